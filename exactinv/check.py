@@ -1,0 +1,471 @@
+"""The independent checker: the trusted kernel of exactinv.
+
+Standard library only (``fractions``, ``json``): it imports nothing from the
+rest of exactinv and no third-party package, so a referee can read it in one
+sitting and trust a certificate without trusting the engine that made it.
+Every check is plain rational arithmetic: matrix products, sign tests,
+Sturm sequences.  Run it as ``exactinv check CERT.json`` or
+``python -m exactinv.check CERT.json``.
+
+Numbers in a certificate are strings ("-3/4"), "oo"/"-oo" for infinities, or
+``{"poly": [c0, c1, ...], "interval": [lo, hi]}`` for the unique real root of
+the integer polynomial c0 + c1 x + ... in the open interval (lo, hi).
+"""
+
+import json
+import sys
+from fractions import Fraction
+
+__all__ = ["check", "CheckReport", "main"]
+
+FORMAT = "exactinv-certificate"
+VERSION = 1
+
+
+class CheckFailure(Exception):
+    """A claim did not verify; the message says which fact failed."""
+
+
+class CheckReport:
+    """The verdict per claim: ``ok`` is True only if every claim verified."""
+
+    def __init__(self, verdicts):
+        self.verdicts = verdicts  # list of (claim type, ok, message)
+
+    @property
+    def ok(self):
+        return bool(self.verdicts) and all(ok for _, ok, _ in self.verdicts)
+
+    def __bool__(self):
+        return self.ok
+
+    def __str__(self):
+        lines = [f"[{'ok' if ok else 'FAILED'}] {kind}: {msg}" for kind, ok, msg in self.verdicts]
+        lines.append("certificate VERIFIED" if self.ok else "certificate REJECTED")
+        return "\n".join(lines)
+
+    __repr__ = __str__
+
+
+# ----------------------------------------------------------------- numbers
+def _q(s):
+    if isinstance(s, bool) or not isinstance(s, (str, int)):
+        raise CheckFailure(f"expected a rational as a string, got {s!r}")
+    return Fraction(s)
+
+
+def _vec(v):
+    return [_q(x) for x in v]
+
+
+def _mat(M):
+    return [_vec(r) for r in M]
+
+
+def _require(cond, message):
+    if not cond:
+        raise CheckFailure(message)
+
+
+def _matmul(X, Y):
+    return [[sum(X[i][k] * Y[k][j] for k in range(len(Y))) for j in range(len(Y[0]))] for i in range(len(X))]
+
+
+def _matvec(X, v):
+    return [sum(a * b for a, b in zip(row, v)) for row in X]
+
+
+def _dot(u, v):
+    return sum(a * b for a, b in zip(u, v))
+
+
+def _transpose(X):
+    return [list(r) for r in zip(*X)]
+
+
+# ------------------------------------------------- polynomials over Q (low -> high)
+def _trim(p):
+    p = list(p)
+    while p and p[-1] == 0:
+        p.pop()
+    return p
+
+
+def _eval(p, x):
+    acc = Fraction(0)
+    for c in reversed(p):
+        acc = acc * x + c
+    return acc
+
+
+def _sign(x):
+    return (x > 0) - (x < 0)
+
+
+def _deriv(p):
+    return _trim([k * p[k] for k in range(1, len(p))])
+
+
+def _divmod(p, d):
+    p, d = _trim(p), _trim(d)
+    _require(d, "division by the zero polynomial")
+    q = [Fraction(0)] * max(len(p) - len(d) + 1, 1)
+    r = list(p)
+    while len(r) >= len(d) and r:
+        shift = len(r) - len(d)
+        c = r[-1] / d[-1]
+        q[shift] = c
+        for k, dk in enumerate(d):
+            r[k + shift] -= c * dk
+        r = _trim(r)
+    return _trim(q), r
+
+
+def _gcd(p, q):
+    p, q = _trim(p), _trim(q)
+    while q:
+        p, q = q, _divmod(p, q)[1]
+    return [c / p[-1] for c in p] if p else p
+
+
+def _sub(p, q):
+    n = max(len(p), len(q))
+    return _trim([(p[i] if i < len(p) else 0) - (q[i] if i < len(q) else 0) for i in range(n)])
+
+
+def _odd_part(p):
+    """The product of the squarefree factors of odd multiplicity (Yun's algorithm)."""
+    p = _trim(p)
+    if len(p) <= 1:
+        return [Fraction(1)]
+    a = _gcd(p, _deriv(p))
+    b = _divmod(p, a)[0]
+    d = _sub(_divmod(_deriv(p), a)[0], _deriv(b))
+    odd, k = [Fraction(1)], 1
+    while len(b) > 1:
+        factor = _gcd(b, d)
+        if k % 2 == 1:
+            odd = _polymul(odd, factor)
+        b = _divmod(b, factor)[0]
+        d = _sub(_divmod(d, factor)[0], _deriv(b))
+        k += 1
+    return odd
+
+
+def _polymul(p, q):
+    out = [Fraction(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(q):
+            out[i + j] += a * b
+    return out
+
+
+def _sturm(p):
+    seq = [_trim(p), _deriv(p)]
+    while seq[-1]:
+        seq.append([-c for c in _divmod(seq[-2], seq[-1])[1]])
+    return seq[:-1]
+
+
+def _variations(values):
+    signs = [v > 0 for v in values if v != 0]
+    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+
+
+def _roots_between(p, a, b):
+    """Distinct real roots of p in (a, b]; a is a rational with p(a) != 0,
+    b a rational or None for +infinity."""
+    seq = _sturm(p)
+    _require(_eval(p, a) != 0, f"Sturm count from a root {a}")
+    va = _variations([_eval(s, a) for s in seq])
+    vb = _variations([s[-1] for s in seq]) if b is None else _variations([_eval(s, b) for s in seq])
+    return va - vb
+
+
+def _strip_zero_roots(p):
+    p = _trim(p)
+    while p and p[0] == 0:
+        p = p[1:]
+    return p
+
+
+def _sign_right_of_zero(p):
+    for c in p:
+        if c != 0:
+            return _sign(c)
+    return 0
+
+
+# ------------------------------------------------------------ real numbers
+class _Real:
+    """A checked real: a rational, +-infinity, or an isolated algebraic root."""
+
+    def __init__(self, data):
+        self.inf = 0
+        self.q = None
+        self.poly = None
+        if data in ("oo", "-oo"):
+            self.inf = 1 if data == "oo" else -1
+        elif isinstance(data, dict):
+            self.poly = _trim(_vec(data["poly"]))
+            self.lo, self.hi = (_q(x) for x in data["interval"])
+            _require(self.lo < self.hi, "empty isolating interval")
+            s_lo, s_hi = _sign(_eval(self.poly, self.lo)), _sign(_eval(self.poly, self.hi))
+            _require(s_lo * s_hi < 0, f"no sign change of {data['poly']} on ({self.lo}, {self.hi})")
+            _require(_roots_between(self.poly, self.lo, self.hi) == 1, "interval isolates more than one root")
+        else:
+            self.q = _q(data)
+
+    def bisect(self):
+        mid = (self.lo + self.hi) / 2
+        s = _sign(_eval(self.poly, mid))
+        if s == 0:
+            self.q, self.poly = mid, None
+        elif s == _sign(_eval(self.poly, self.lo)):
+            self.lo = mid
+        else:
+            self.hi = mid
+
+    def bounds(self):
+        if self.inf:
+            return None
+        return (self.q, self.q) if self.poly is None else (self.lo, self.hi)
+
+    def compare(self, other):
+        """-1, 0, 1; exact."""
+        if self.inf or other.inf:
+            return _sign(self.inf - other.inf) if self.inf != other.inf else 0
+        for _ in range(2000):
+            (a0, a1), (b0, b1) = self.bounds(), other.bounds()
+            if self.poly is None and other.poly is None:
+                return _sign(self.q - other.q)
+            if a1 < b0 or (a1 == b0 and (self.poly is not None or other.poly is not None)):
+                return -1
+            if b1 < a0 or (b1 == a0 and (self.poly is not None or other.poly is not None)):
+                return 1
+            if self.poly is not None and other.poly is not None:
+                g = _gcd(self.poly, other.poly)
+                lo, hi = max(a0, b0), min(a1, b1)
+                if len(g) > 1 and _eval(g, lo) != 0 and _eval(g, hi) != 0 and _sign(_eval(g, lo)) * _sign(_eval(g, hi)) < 0:
+                    return 0
+            if self.poly is None:
+                if _eval(other.poly, self.q) == 0:
+                    return 0
+                other.bisect()
+            elif other.poly is None:
+                if _eval(self.poly, other.q) == 0:
+                    return 0
+                self.bisect()
+            else:
+                self.bisect()
+                other.bisect()
+        raise CheckFailure("could not separate two real numbers")
+
+
+def _nonnegative_until(f, tau):
+    """Check tau = sup{T : f >= 0 on [0, T]}: f >= 0 on [0, tau] and, when tau
+    is finite, f changes sign at tau (or is negative right after 0 if tau = 0)."""
+    f = _trim(f)
+    if not f:
+        _require(tau.inf == 1, "f = 0 is nonnegative everywhere")
+        return
+    right = _sign_right_of_zero(f)
+    if tau.q == 0 and tau.poly is None:
+        _require(right < 0, "tau = 0 claimed but f >= 0 just right of 0")
+        return
+    _require(right > 0, "f is negative just right of 0")
+    odd = _strip_zero_roots(_odd_part(f))
+    if tau.inf == 1:
+        _require(_roots_between(odd, Fraction(0), None) == 0, "f changes sign at a positive point but tau = oo")
+        return
+    _require(tau.inf == 0, "tau = -oo is not a steplength")
+    if tau.poly is None:
+        q = tau.q
+        _require(q > 0 and _eval(odd, q) == 0, f"f does not change sign at tau = {q}")
+        _require(_roots_between(odd, Fraction(0), q) == 1, f"f changes sign before tau = {q}")
+        return
+    _require(tau.lo >= 0, "isolating interval of tau reaches below 0")
+    if tau.lo > 0:
+        _require(_eval(odd, tau.lo) != 0 and _roots_between(odd, Fraction(0), tau.lo) == 0, "f changes sign before tau")
+    _require(_eval(odd, tau.hi) != 0 and _roots_between(odd, tau.lo if tau.lo > 0 else Fraction(0), tau.hi) == 1,
+             "f has not exactly one sign change in tau's interval")
+    g = _gcd(odd, tau.poly)
+    _require(len(g) > 1 and _sign(_eval(g, tau.lo)) * _sign(_eval(g, tau.hi)) < 0, "tau is not a root of f")
+
+
+# ------------------------------------------------------------------ claims
+def _check_H(A, G, b, H):
+    _require(_matmul(H, G) == _matmul(G, A), "HG != GA")
+    _require(all(v <= 0 for v in _matvec(H, b)), "Hb <= 0 fails")
+    m = len(G)
+    _require(all(H[i][k] >= 0 for i in range(m) for k in range(m) if i != k), "an off-diagonal entry of H is negative")
+
+
+def _check_facet_witness(M, G, b, w, strict_bound):
+    x = _vec(w["x"])
+    j = w["facet"]
+    _require(all(v <= beta for v, beta in zip(_matvec(G, x), b)), "witness x is not in P")
+    value = _dot(G[j], _matvec(M, x))
+    _require(value > strict_bound(j), f"witness does not leave P through facet {j}")
+    return x, j
+
+
+def _claim_continuous_invariance(p, c):
+    A, G, b = p["A"], p["G"], p["b"]
+    if c["holds"]:
+        _check_H(A, G, b, _mat(c["H"]))
+        return "P is invariant for x' = Ax (H verified: off-diagonal >= 0, HG = GA, Hb <= 0)"
+    x, j = _check_facet_witness(A, G, b, c["witness"], lambda j: 0)
+    _require(_dot(G[j], x) == b[j], "witness is not on facet j")
+    return f"P is NOT invariant: x on facet {j} has g_j.Ax > 0"
+
+
+def _claim_discrete_invariance(p, c):
+    G, b = p["G"], p["b"]
+    Ad = _mat(c["Ad"])
+    if c["holds"]:
+        H = _mat(c["H"])
+        _require(all(v >= 0 for r in H for v in r), "H~ has a negative entry")
+        _require(_matmul(H, G) == _matmul(G, Ad), "H~G != GA_d")
+        _require(all(v <= beta for v, beta in zip(_matvec(H, b), b)), "H~b <= b fails")
+        return "A_d P is a subset of P (H~ verified)"
+    _check_facet_witness(Ad, G, b, c["witness"], lambda j: b[j])
+    return "A_d P is NOT a subset of P (witness verified)"
+
+
+def _claim_gamma_star(p, c, context):
+    A, G, b = p["A"], p["G"], p["b"]
+    m = len(G)
+    value = c["value"]
+    if value == "oo":
+        x, j = _check_facet_witness(A, G, b, c["witness"], lambda j: 0)
+        _require(_dot(G[j], x) == b[j], "witness is not on facet j")
+        context["gamma"] = _Real("oo")
+        return "gamma* = oo (P is not invariant; witness verified)"
+    if value == "-oo":
+        rows = c["rows"]
+        _require(len(rows) == m, "one unbounded row certificate per row is needed")
+        for j, row in enumerate(rows):
+            h, d = _vec(row["h"]), _vec(row["ray"])
+            for vec, rhs, name in ((h, _matvec(_transpose(A), G[j]), "h"), (d, [0] * len(A), "ray")):
+                _require(_matvec(_transpose(G), vec) == rhs, f"row {j}: G^T {name} mismatch")
+                _require(all(vec[k] >= 0 for k in range(m) if k != j), f"row {j}: {name} has a negative off-diagonal entry")
+            _require(_dot(b, h) <= 0 and _dot(b, d) <= 0 and d[j] > 0, f"row {j}: not a ray of increase of h_jj")
+        context["gamma"] = _Real("-oo")
+        return "gamma* = -oo (every row LP unbounded; rays verified)"
+    gamma = _q(value)
+    H = _mat(c["H"])
+    _check_H(A, G, b, H)
+    _require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
+    j = c["binding_row"]
+    y, lam = _vec(c["dual"]["y"]), _q(c["dual"]["lambda"])
+    _require(lam >= 0, "dual lambda < 0")
+    for k in range(m):
+        s = _dot(G[k], y) + lam * b[k]
+        _require(s == 1 if k == j else s >= 0, f"dual constraint {k} fails")
+    _require(_dot(_matvec(_transpose(A), G[j]), y) == -gamma, "dual objective differs from -gamma")
+    context["gamma"] = _Real(value)
+    return f"gamma* = {gamma} (H attains it; the dual of row {j} proves optimality)"
+
+
+def _f_i(sigmas, gamma, i):
+    from math import comb
+
+    return [Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i) for k in range(len(sigmas))]
+
+
+def _claim_polynomial_threshold(p, c, context):
+    method = p.get("method")
+    _require(method is not None and method["denominator"] == [Fraction(1)], "a polynomial method is needed")
+    sigmas = method["numerator"]
+    _require(sigmas[0] == 1, "sigma_0 != 1")
+    gamma = context.get("gamma")
+    _require(gamma is not None and gamma.poly is None, "the gamma_star claim must precede and be verified")
+    value = _Real(c["value"])
+    if gamma.inf == -1 or (gamma.inf == 0 and gamma.q <= 0):
+        if all(s >= 0 for s in sigmas):
+            _require(value.inf == 1, "gamma* <= 0 and sigma >= 0 give tau = oo")
+            return "tau = oo (gamma* <= 0 and every sigma_k >= 0: r(dt H) >= 0 for all dt)"
+        _require(value.poly is None and value.q == 0, "gamma* <= 0 with a negative sigma gives tau = 0")
+        return "tau = 0 (gamma* <= 0 but some sigma_k < 0; erratum E6)"
+    _require(gamma.inf == 0, "P is not invariant")
+    rows = c["f"]
+    _require(len(rows) == len(sigmas), "one f_i per i = 0..p is needed")
+    smallest = None
+    for row in rows:
+        i = row["i"]
+        f = _vec(row["coefficients"])
+        _require(_trim(f) == _trim(_f_i(sigmas, gamma.q, i)), f"f_{i} does not match sigma and gamma")
+        tau_i = _Real(row["tau"])
+        _nonnegative_until(f, tau_i)
+        if smallest is None or tau_i.compare(smallest) < 0:
+            smallest = tau_i
+    _require(value.compare(smallest) == 0, "tau is not the minimum of the tau_i")
+    return f"tau = min_i tau_i verified for {len(rows)} polynomials f_i (Theorem 3.5)"
+
+
+_CLAIMS = {
+    "continuous_invariance": lambda p, c, ctx: _claim_continuous_invariance(p, c),
+    "discrete_invariance": lambda p, c, ctx: _claim_discrete_invariance(p, c),
+    "gamma_star": _claim_gamma_star,
+    "polynomial_threshold": _claim_polynomial_threshold,
+}
+
+
+def _problem(cert):
+    p = cert["problem"]
+    out = {"A": _mat(p["A"]), "G": _mat(p["G"]), "b": _vec(p["b"])}
+    n = len(out["A"])
+    _require(all(len(r) == n for r in out["A"]), "A is not square")
+    _require(all(len(r) == n for r in out["G"]) and len(out["b"]) == len(out["G"]), "G, b shapes do not match A")
+    if p.get("method") is not None:
+        out["method"] = {"numerator": _trim(_vec(p["method"]["numerator"])), "denominator": _trim(_vec(p["method"]["denominator"]))}
+    return out
+
+
+def check(certificate):
+    """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
+    Returns a :class:`CheckReport`; it is truthy only if every claim verified."""
+    if isinstance(certificate, str):
+        if certificate.lstrip().startswith("{"):
+            certificate = json.loads(certificate)
+        else:
+            with open(certificate) as fh:
+                certificate = json.load(fh)
+    elif hasattr(certificate, "__fspath__"):
+        with open(certificate) as fh:
+            certificate = json.load(fh)
+    verdicts = []
+    try:
+        _require(certificate.get("format") == FORMAT, "not an exactinv certificate")
+        _require(certificate.get("version") == VERSION, f"unsupported certificate version {certificate.get('version')}")
+        problem = _problem(certificate)
+    except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, AttributeError) as exc:
+        return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
+    context = {}
+    claims = certificate.get("claims") or []
+    if not claims:
+        verdicts.append(("claims", False, "the certificate makes no claim"))
+    for claim in claims:
+        kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
+        try:
+            handler = _CLAIMS.get(kind)
+            _require(handler is not None, f"unknown claim type {kind!r}")
+            verdicts.append((kind, True, handler(problem, claim, context)))
+        except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError) as exc:
+            verdicts.append((kind, False, f"{type(exc).__name__}: {exc}"))
+    return CheckReport(verdicts)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 1:
+        print("usage: python -m exactinv.check CERT.json", file=sys.stderr)
+        return 2
+    report = check(argv[0])
+    print(report)
+    return 0 if report.ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

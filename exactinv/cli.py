@@ -1,0 +1,106 @@
+"""The ``exactinv`` command.
+
+    exactinv certify PROBLEM.json [--method SPEC] [-o CERT.json]
+    exactinv check CERT.json
+
+Exit codes: 0 success (for ``check``: every claim verified), 1 a certificate
+was rejected or an internal verification failed, 2 bad input (the message
+names the argument).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Sequence
+
+from .errors import ExactinvError, NotInvariant, VerificationFailed
+
+__all__ = ["main"]
+
+
+def _fmt(v) -> str:
+    from .algebraic import RealAlgebraic
+
+    if isinstance(v, RealAlgebraic):
+        return f"{v}  (root of {v.poly} in ({v.lower}, {v.upper}))"
+    return str(v)
+
+
+def _certify(args) -> int:
+    from . import certificates
+    from .check import check
+    from .invariance import optimal_gamma
+    from .problem import load_problem, parse_method
+    from .thresholds import steplength_threshold
+
+    problem = load_problem(args.problem)
+    method = parse_method(json.loads(args.method)) if args.method else problem.method
+    S, P = problem.system, problem.polyhedron
+    out = print
+    out(f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else ""))
+    results = []
+    gamma = optimal_gamma(S, P)
+    results.append(gamma)
+    if gamma.witness is not None:
+        w = gamma.witness
+        out(f"continuous invariance: FAILS -- x = [{', '.join(map(str, w.x))}] lies on facet {w.facet} "
+            f"and g_{w.facet}.Ax = {w.value} > 0")
+        out("gamma*: oo (no steplength threshold exists)")
+    else:
+        out("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
+        out(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {gamma.paths}]")
+        out(f"largest forward-Euler step 1/gamma*: {gamma.forward_euler_step}")
+        if method is not None:
+            t = steplength_threshold(S, P, method)
+            results.append(t)
+            out(f"paper's threshold for {method.name} ({t.theorem}): {_fmt(t.value)}")
+            for note in t.notes:
+                out(f"  note: {note}")
+    cert = certificates.certificate(S, P, method, results)
+    report = check(cert)
+    out(f"independent check: {'VERIFIED' if report.ok else 'REJECTED'} ({len(cert['claims'])} claims)")
+    if args.output:
+        with open(args.output, "w") as fh:
+            fh.write(certificates.dumps(cert))
+        out(f"certificate written to {args.output}")
+    return 0 if report.ok else 1
+
+
+def _check(args) -> int:
+    from .check import check
+
+    try:
+        report = check(args.certificate)
+    except (OSError, json.JSONDecodeError) as exc:
+        print(f"exactinv check: cannot read {args.certificate}: {exc}", file=sys.stderr)
+        return 2
+    print(report)
+    return 0 if report.ok else 1
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="exactinv", description="Exact steplength thresholds with certificates.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("certify", help="compute and certify everything that applies to a problem file")
+    p.add_argument("problem", help="problem JSON file")
+    p.add_argument("--method", help='method as JSON, e.g. \'{"taylor": 4}\' (overrides the file)')
+    p.add_argument("-o", "--output", help="write the certificate to this JSON file")
+    p.set_defaults(run=_certify)
+    c = sub.add_parser("check", help="re-verify a certificate with the standard-library checker")
+    c.add_argument("certificate", help="certificate JSON file")
+    c.set_defaults(run=_check)
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except VerificationFailed as exc:
+        print(f"exactinv: internal verification failed: {exc}", file=sys.stderr)
+        return 1
+    except (ExactinvError, json.JSONDecodeError) as exc:
+        print(f"exactinv: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,348 @@
+"""Invariance of a polyhedron and the optimal gamma* (paper, Section 2).
+
+* Continuous invariance: P = {x : Gx <= b} is invariant for x' = Ax iff there
+  is H with nonnegative off-diagonal entries, HG = GA and Hb <= 0.
+* Discrete invariance: P is invariant for x+ = A_d x iff there is an
+  entrywise nonnegative H~ with H~G = GA_d and H~b <= b.
+* gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}.
+
+All three are answered row by row with the exact LP engine (:mod:`exactinv.lp`);
+every returned certificate has been re-checked in Q.  When invariance fails
+the result carries an exact witness instead: a point of P where the flow (or
+the map) leaves P through a facet.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import flint
+
+from .errors import EmptyPolyhedron, InvalidInput, VerificationFailed
+from .lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from .model import LinearSystem, Polyhedron, _matrix_text, _vector_text
+from .numbers import INF, Infinity, Matrix, Vector, fmpq_matrix, fraction_of, matrix_of, to_matrix, to_rational
+
+__all__ = [
+    "FacetWitness",
+    "ContinuousInvariance",
+    "DiscreteInvariance",
+    "OptimalGamma",
+    "continuous_invariance",
+    "discrete_invariance",
+    "optimal_gamma",
+]
+
+
+@dataclass(frozen=True)
+class FacetWitness:
+    """An exact point ``x`` of P and a row ``facet`` of G that certify
+    non-invariance.  Continuous case: g_j.x = b_j and g_j.Ax = ``rate`` > 0.
+    Discrete case: g_j.A_d x = ``value`` > b_j (so A_d x is not in P)."""
+
+    x: Vector
+    facet: int
+    value: Fraction
+
+    def __repr__(self) -> str:
+        return f"FacetWitness(x={_vector_text(self.x)}, facet={self.facet}, value={self.value})"
+
+
+@dataclass(frozen=True)
+class ContinuousInvariance:
+    """Is P invariant for x' = Ax?  ``certificate`` is an exact H (off-diagonal
+    >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
+    when it is not."""
+
+    holds: bool
+    certificate: Matrix | None
+    witness: FacetWitness | None
+    system: LinearSystem = field(repr=False)
+    polyhedron: Polyhedron = field(repr=False)
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    @property
+    def certificate_json(self) -> dict:
+        """The JSON certificate of this claim for :func:`exactinv.check`."""
+        from .certificates import certificate
+
+        return certificate(self.system, self.polyhedron, None, [self])
+
+    def __repr__(self) -> str:
+        if self.holds:
+            return f"ContinuousInvariance(holds=True, H={_matrix_text(self.certificate)})"
+        return f"ContinuousInvariance(holds=False, witness={self.witness!r})"
+
+
+@dataclass(frozen=True)
+class DiscreteInvariance:
+    """Is P invariant for x+ = A_d x?  ``certificate`` is an exact H~ >= 0 with
+    H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
+    (``witness.facet`` the violated row)."""
+
+    holds: bool
+    certificate: Matrix | None
+    witness: FacetWitness | None
+    Ad: Matrix = field(repr=False)
+    polyhedron: Polyhedron = field(repr=False)
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    def __repr__(self) -> str:
+        if self.holds:
+            return f"DiscreteInvariance(holds=True, H~={_matrix_text(self.certificate)})"
+        return f"DiscreteInvariance(holds=False, witness={self.witness!r})"
+
+
+@dataclass(frozen=True)
+class GammaRow:
+    """The verified row LP j of gamma*:  max h_j  s.t.  h^T G = g_j^T A,
+    h^T b <= 0, h_k >= 0 (k != j).  ``gamma = -max h_j`` (``-INF`` when the
+    row LP is unbounded, ``INF`` when it is infeasible).  For an optimal row,
+    ``dual = (y, lam)`` proves the bound:  g_k.y + lam b_k >= 0 (k != j),
+    g_j.y + lam b_j = 1, lam >= 0 and (A^T g_j).y = max h_j."""
+
+    gamma: Fraction | Infinity
+    h: Vector | None
+    ray: Vector | None
+    dual: tuple[Vector, Fraction] | None
+    path: str
+
+
+@dataclass(frozen=True)
+class OptimalGamma:
+    """gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, exactly.
+
+    ``value`` is a Fraction, ``INF`` (P is not invariant; ``witness`` then
+    holds a :class:`FacetWitness`) or ``-INF`` (every row LP is unbounded,
+    e.g. for a lower-dimensional P).  ``H`` attains the value (for a finite
+    gamma*: H + gamma* I >= 0); ``binding_row`` is the row whose LP dual
+    ``dual`` proves that no smaller gamma is feasible.  ``rows`` holds every
+    verified row LP and ``paths`` counts which engine route produced them.
+    """
+
+    value: Fraction | Infinity
+    H: Matrix | None
+    binding_row: int | None
+    dual: tuple[Vector, Fraction] | None
+    rows: tuple[GammaRow, ...] = field(repr=False)
+    witness: FacetWitness | None
+    system: LinearSystem = field(repr=False)
+    polyhedron: Polyhedron = field(repr=False)
+
+    @property
+    def paths(self) -> dict[str, int]:
+        counts: dict[str, int] = {}
+        for row in self.rows:
+            counts[row.path] = counts.get(row.path, 0) + 1
+        return counts
+
+    @property
+    def certificate(self) -> dict:
+        """The JSON certificate (H and the binding row's dual, the rays, or
+        the witness) for :func:`exactinv.check`."""
+        from .certificates import certificate
+
+        return certificate(self.system, self.polyhedron, None, [self])
+
+    @property
+    def forward_euler_step(self) -> Fraction | Infinity:
+        """1/gamma*: the largest forward-Euler steplength (INF when gamma* <= 0)."""
+        if isinstance(self.value, Infinity):
+            return INF if self.value.sign < 0 else Fraction(0)
+        return INF if self.value <= 0 else 1 / self.value
+
+    def __repr__(self) -> str:
+        if self.witness is not None:
+            return f"OptimalGamma(value=INF, not invariant, witness={self.witness!r})"
+        return f"OptimalGamma(value={self.value!r}, binding_row={self.binding_row}, paths={self.paths})"
+
+
+# ---------------------------------------------------------------- the API
+def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
+    """gamma* of the paper (Section 2), solved as m independent verified row LPs.
+
+    Row j of H only meets row j of the constraints, so
+    gamma* = max_j ( -max{h_j : h^T G = g_j^T A, h^T b <= 0, h_k >= 0 (k != j)} ).
+    The m row LPs share their constraint matrix [G^T; b^T], so one float model
+    is warm-started from row to row.  Exact: every row value is verified by
+    primal and dual certificates in Q (see :mod:`exactinv.lp`).
+    """
+    S, P = _check_pair(system, polyhedron)
+    m, n = P.m, P.n
+    GA = P.G_flint * S.A_flint
+    constraint = fmpq_matrix(_stack_transpose(P))
+    solver = ExactLPSolver(constraint, [True] * n + [False])
+    rows: list[GammaRow] = []
+    for j in range(m):
+        rhs = [GA[j, i] for i in range(n)] + [0]
+        c = [int(k == j) for k in range(m)]
+        nonneg = [k != j for k in range(m)]
+        res = solver.solve(c, [fraction_of(v) for v in rhs], nonneg)
+        rows.append(_gamma_row(res, n))
+    if any(row.gamma == INF for row in rows):
+        witness = _continuous_witness(S, P, first=[j for j, r in enumerate(rows) if r.gamma == INF])
+        return OptimalGamma(INF, None, None, None, tuple(rows), witness, S, P)
+    value = max((row.gamma for row in rows), key=_order_key)
+    binding = None if value == -INF else next(j for j, r in enumerate(rows) if r.gamma == value)
+    H = _assemble_H(rows, value)
+    _recheck_continuous(S, P, H, value)
+    dual = rows[binding].dual if binding is not None else None
+    return OptimalGamma(value, H, binding, dual, tuple(rows), None, S, P)
+
+
+def continuous_invariance(system: LinearSystem, polyhedron: Polyhedron) -> ContinuousInvariance:
+    """Decide exactly whether P is invariant for x' = Ax (paper, Theorem on
+    continuous invariance), with an exact H or an exact facet witness."""
+    g = optimal_gamma(system, polyhedron)
+    if g.witness is not None:
+        return ContinuousInvariance(False, None, g.witness, g.system, g.polyhedron)
+    return ContinuousInvariance(True, g.H, None, g.system, g.polyhedron)
+
+
+def discrete_invariance(
+    Ad: Any,
+    polyhedron: Polyhedron,
+    method: Any = None,
+    dt: Any = None,
+    *,
+    allow_float: bool = False,
+) -> DiscreteInvariance:
+    """Decide exactly whether P is invariant for x+ = A_d x.
+
+    ``Ad`` is the matrix A_d, or a :class:`LinearSystem` together with a
+    discretization ``method`` and a rational steplength ``dt`` (then A_d =
+    r(dt A) is built exactly).  Row j is the LP  max{g_j^T A_d x : x in P}:
+    by LP duality its optimal dual is row j of H~ when the optimum is <= b_j,
+    and its optimal point is a witness x in P with A_d x not in P otherwise.
+    """
+    P = _check_polyhedron(polyhedron)
+    if isinstance(Ad, LinearSystem):
+        if method is None or dt is None:
+            raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
+        Ad = method.matrix(Ad, to_rational(dt, "dt", allow_float=allow_float))
+    elif method is not None or dt is not None:
+        raise InvalidInput("discrete_invariance: method= and dt= need a LinearSystem as first argument")
+    Adm = to_matrix(Ad, "Ad", square=True, allow_float=allow_float)
+    if len(Adm) != P.n:
+        raise InvalidInput(f"Ad: is {len(Adm)}x{len(Adm)} but P lives in dimension {P.n}")
+    m, n = P.m, P.n
+    GAd = P.G_flint * fmpq_matrix(Adm)
+    solver = ExactLPSolver(P.G_flint, [False] * m)
+    H_rows = []
+    for j in range(m):
+        objective = [fraction_of(GAd[j, i]) for i in range(n)]
+        res = solver.solve(objective, P.b, [False] * n)
+        if res.status == UNBOUNDED:
+            x = _push_along_ray(res.x, res.ray, objective, P.b[j])
+            value = sum(c * xi for c, xi in zip(objective, x))
+            return DiscreteInvariance(False, None, FacetWitness(x, j, value), Adm, P)
+        if res.status == INFEASIBLE:
+            raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty")
+        if res.value > P.b[j]:
+            return DiscreteInvariance(False, None, FacetWitness(res.x, j, res.value), Adm, P)
+        H_rows.append(res.y)
+    H = tuple(H_rows)
+    _recheck_discrete(P, Adm, H)
+    return DiscreteInvariance(True, H, None, Adm, P)
+
+
+# ---------------------------------------------------------------- helpers
+def _check_polyhedron(P: Any) -> Polyhedron:
+    if not isinstance(P, Polyhedron):
+        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
+    if P.is_empty:
+        raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty; invariance questions about it are vacuous")
+    return P
+
+
+def _check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
+    if not isinstance(S, LinearSystem):
+        raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
+    P = _check_polyhedron(P)
+    if S.n != P.n:
+        raise InvalidInput(f"system/polyhedron: A is {S.n}x{S.n} but G has {P.n} columns")
+    return S, P
+
+
+def _stack_transpose(P: Polyhedron) -> list[list[Fraction]]:
+    """The row-LP constraint matrix [G^T; b^T] ((n+1) x m)."""
+    return [[P.G[k][i] for k in range(P.m)] for i in range(P.n)] + [list(P.b)]
+
+
+def _order_key(v):
+    return (v.sign, 0) if isinstance(v, Infinity) else (0, v)
+
+
+def _gamma_row(res: LPResult, n: int) -> GammaRow:
+    if res.status == OPTIMAL:
+        y = res.y
+        return GammaRow(-res.value, res.x, None, (tuple(y[:n]), y[n]), res.path)
+    if res.status == UNBOUNDED:
+        return GammaRow(-INF, res.x, res.ray, None, res.path)
+    return GammaRow(INF, None, None, None, res.path)
+
+
+def _assemble_H(rows: list[GammaRow], gamma) -> Matrix:
+    """H from the row LPs; an unbounded row is pushed along its ray until
+    h_jj >= -gamma* (for gamma* = -INF: h_jj >= 0, any gamma >= 0 then works)."""
+    H = []
+    for j, row in enumerate(rows):
+        h = list(row.h)
+        if row.ray is not None:
+            target = Fraction(0) if isinstance(gamma, Infinity) else -gamma
+            if h[j] < target:
+                t = (target - h[j]) / row.ray[j]
+                h = [hk + t * dk for hk, dk in zip(h, row.ray)]
+        H.append(tuple(h))
+    return tuple(H)
+
+
+def _push_along_ray(x, ray, objective, bound) -> Vector:
+    slope = sum(c * d for c, d in zip(objective, ray))
+    now = sum(c * xi for c, xi in zip(objective, x))
+    t = max(Fraction(0), (bound - now) / slope) + 1
+    return tuple(xi + t * d for xi, d in zip(x, ray))
+
+
+def _continuous_witness(S: LinearSystem, P: Polyhedron, first: list[int]) -> FacetWitness:
+    """A point x in P with g_j.x = b_j and g_j.Ax > 0, from the facet LPs
+    max{g_j^T A x : x in P, g_j^T x = b_j} (rows whose gamma LP failed first).
+    For a nonempty P such a facet exists whenever some row LP is infeasible
+    (Farkas' lemma; see docs)."""
+    GA = P.G_flint * S.A_flint
+    order = first + [j for j in range(P.m) if j not in first]
+    for j in order:
+        solver = ExactLPSolver(P.G_flint, [k == j for k in range(P.m)])
+        objective = [fraction_of(GA[j, i]) for i in range(P.n)]
+        res = solver.solve(objective, P.b, [False] * P.n)
+        if res.status == UNBOUNDED:
+            x = _push_along_ray(res.x, res.ray, objective, Fraction(0))
+            return FacetWitness(x, j, sum(c * xi for c, xi in zip(objective, x)))
+        if res.status == OPTIMAL and res.value > 0:
+            return FacetWitness(res.x, j, res.value)
+    raise VerificationFailed("continuous invariance: a row LP is infeasible but no facet witness was found")
+
+
+def _recheck_continuous(S: LinearSystem, P: Polyhedron, H: Matrix, gamma) -> None:
+    Hq = fmpq_matrix(H)
+    ok = Hq * P.G_flint == P.G_flint * S.A_flint and all(v <= 0 for v in (Hq * P.b_flint).entries())
+    ok = ok and all(H[i][k] >= 0 for i in range(P.m) for k in range(P.m) if i != k)
+    if not isinstance(gamma, Infinity):
+        ok = ok and all(H[i][i] + gamma >= 0 for i in range(P.m))
+    if not ok:
+        raise VerificationFailed("optimal_gamma: the assembled H failed its exact re-check")
+
+
+def _recheck_discrete(P: Polyhedron, Ad: Matrix, H: Matrix) -> None:
+    Hq = fmpq_matrix(H)
+    ok = Hq * P.G_flint == P.G_flint * fmpq_matrix(Ad)
+    ok = ok and all(fraction_of(v) <= beta for v, beta in zip((Hq * P.b_flint).entries(), P.b))
+    ok = ok and all(v >= 0 for row in H for v in row)
+    if not ok:
+        raise VerificationFailed("discrete_invariance: the assembled H~ failed its exact re-check")

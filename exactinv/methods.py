@@ -1,0 +1,326 @@
+"""Discretization methods as exact stability functions r = g/h (paper, Section 3).
+
+A one-step method applied to x' = Ax gives x+ = r(dt A) x.  For Taylor and
+general polynomial methods r(z) = sum_k sigma_k z^k (sigma_0 = 1, Section
+3.1); for rational methods r = g/h with r(0) = 1 (Section 3.2) -- backward
+Euler, the theta-methods, Pade approximants and Runge-Kutta stability
+functions R(z) = det(I - zA + z e b^T)/det(I - zA) of rational Butcher
+tableaux.  Coefficients are Fractions; g and h are stored coprime with
+h(0) = 1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from math import comb, factorial
+from typing import Any, Sequence
+
+import flint
+
+from .errors import InvalidInput
+from .numbers import Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational, to_vector
+
+__all__ = [
+    "Method",
+    "taylor",
+    "polynomial",
+    "forward_euler",
+    "rational",
+    "theta",
+    "backward_euler",
+    "trapezoid",
+    "implicit_midpoint",
+    "pade",
+    "from_butcher",
+    "heun",
+    "ssprk22",
+    "ssprk33",
+    "rk4",
+    "ssprk_s1",
+    "radau_iia2",
+    "lobatto_iiic2",
+    "gauss2",
+    "PRESETS",
+    "preset",
+]
+
+
+@dataclass(frozen=True)
+class Method:
+    """A discretization method given by its stability function r = g/h.
+
+    ``numerator`` and ``denominator`` hold the coefficients of g and h from
+    the constant term up; they are coprime, h(0) = 1 and g(0) = 1.
+    ``butcher`` keeps the (A, b) tableau when the method came from one.
+    """
+
+    name: str
+    numerator: Vector
+    denominator: Vector
+    butcher: tuple[Matrix, Vector] | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def is_polynomial(self) -> bool:
+        return len(self.denominator) == 1
+
+    @property
+    def sigmas(self) -> Vector:
+        """sigma_0..sigma_p of a polynomial method (its Taylor coefficients)."""
+        if not self.is_polynomial:
+            raise InvalidInput(f"method {self.name}: a rational method has no finite sigma list")
+        return self.numerator
+
+    @property
+    def g(self) -> flint.fmpq_poly:
+        return flint.fmpq_poly([fmpq_of(c) for c in self.numerator])
+
+    @property
+    def h(self) -> flint.fmpq_poly:
+        return flint.fmpq_poly([fmpq_of(c) for c in self.denominator])
+
+    def __call__(self, z: Any) -> Fraction:
+        """r(z) at a rational z (an error at a pole)."""
+        zq = fmpq_of(to_rational(z, "z"))
+        den = self.h(zq)
+        if den == 0:
+            raise InvalidInput(f"method {self.name}: z = {z} is a pole of r")
+        return fraction_of(self.g(zq) / den)
+
+    def matrix(self, system: Any, dt: Fraction) -> Matrix:
+        """A_d = r(dt A) = h(dt A)^{-1} g(dt A), exactly; an error if h(dt A)
+        is singular (dt A has an eigenvalue at a pole of r)."""
+        from .model import LinearSystem
+
+        A = system.A_flint if isinstance(system, LinearSystem) else fmpq_matrix(to_matrix(system, "A", square=True))
+        M = A * fmpq_of(to_rational(dt, "dt"))
+        G = _polyval_matrix(self.numerator, M)
+        if self.is_polynomial:
+            return matrix_of(G)
+        H = _polyval_matrix(self.denominator, M)
+        try:
+            return matrix_of(H.solve(G))
+        except ZeroDivisionError:
+            raise InvalidInput(f"method {self.name}: h(dt A) is singular at dt = {dt}; r(dt A) is undefined") from None
+
+    def to_sympy(self, z=None):
+        import sympy
+
+        z = z if z is not None else sympy.Symbol("z")
+        g = sum(sympy.Rational(c.numerator, c.denominator) * z**k for k, c in enumerate(self.numerator))
+        h = sum(sympy.Rational(c.numerator, c.denominator) * z**k for k, c in enumerate(self.denominator))
+        return g / h
+
+    def _repr_latex_(self) -> str:
+        import sympy
+
+        return f"$r(z) = {sympy.latex(self.to_sympy())}$ \\quad ({self.name})"
+
+    def __repr__(self) -> str:
+        return f"Method({self.name}: r(z) = {self.to_sympy()})"
+
+
+def _polyval_matrix(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fmpq_mat:
+    n = M.nrows()
+    out = flint.fmpq_mat(n, n)
+    for c in reversed(coeffs):  # Horner
+        out = out * M
+        if c:
+            for i in range(n):
+                out[i, i] += fmpq_of(c)
+    return out
+
+
+def _trim(c: list[Fraction]) -> list[Fraction]:
+    while len(c) > 1 and c[-1] == 0:
+        c.pop()
+    return c
+
+
+def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
+    g = flint.fmpq_poly([fmpq_of(c) for c in num])
+    h = flint.fmpq_poly([fmpq_of(c) for c in den])
+    if h.is_zero():
+        raise InvalidInput(f"method {name}: the denominator is the zero polynomial")
+    d = h.gcd(g) if not g.is_zero() else h
+    if d.degree() > 0:
+        g, h = g / d, h / d  # exact division by the common factor
+        g, h = flint.fmpq_poly(g), flint.fmpq_poly(h)
+    if h(0) == 0:
+        raise InvalidInput(f"method {name}: the denominator vanishes at z = 0 (r has a pole at 0)")
+    scale = h(0)
+    g, h = g / scale, h / scale
+    if g(0) != 1:
+        raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), got r(0) = {fraction_of(g(0))}")
+    numerator = _trim([fraction_of(c) for c in g.coeffs()])
+    denominator = _trim([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
+    return Method(name, tuple(numerator), tuple(denominator), butcher)
+
+
+# ------------------------------------------------------------ polynomial methods
+def polynomial(sigmas: Sequence[Any], name: str | None = None) -> Method:
+    """r(z) = sigma_0 + sigma_1 z + ... + sigma_p z^p with sigma_0 = 1 (Section 3.1)."""
+    s = list(to_vector(sigmas, "sigmas"))
+    if s[0] != 1:
+        raise InvalidInput(f"sigmas: sigma_0 must be 1 (A_d = I at dt = 0), got sigma_0 = {s[0]}")
+    return Method(name or f"polynomial{tuple(str(x) for x in s)}", tuple(_trim(s)), (Fraction(1),))
+
+
+def taylor(p: int) -> Method:
+    """The p-th order Taylor method, sigma_k = 1/k! (paper, eq. (13))."""
+    if not isinstance(p, int) or isinstance(p, bool) or p < 1:
+        raise InvalidInput(f"p: the Taylor order must be an int >= 1, got {p!r}")
+    return Method(f"taylor({p})", tuple(Fraction(1, factorial(k)) for k in range(p + 1)), (Fraction(1),))
+
+
+def forward_euler() -> Method:
+    """r(z) = 1 + z."""
+    return Method("forward_euler", (Fraction(1), Fraction(1)), (Fraction(1),))
+
+
+# -------------------------------------------------------------- rational methods
+def rational(num: Sequence[Any], den: Sequence[Any], name: str = "rational") -> Method:
+    """r = g/h from coefficient lists (constant term first); r(0) = 1 is checked
+    and common factors of g and h are cancelled."""
+    g = to_vector(num, "num")
+    h = to_vector(den, "den")
+    return _make(name, g, h)
+
+
+def theta(theta_value: Any) -> Method:
+    """The theta-method: r(z) = (1 + (1 - theta) z)/(1 - theta z)."""
+    t = to_rational(theta_value, "theta")
+    if not 0 <= t <= 1:
+        raise InvalidInput(f"theta: must lie in [0, 1], got {t}")
+    return _make(f"theta({t})", [Fraction(1), 1 - t], [Fraction(1), -t])
+
+
+def backward_euler() -> Method:
+    """r(z) = 1/(1 - z)."""
+    return _make("backward_euler", [Fraction(1)], [Fraction(1), Fraction(-1)])
+
+
+def trapezoid() -> Method:
+    """Crank-Nicolson: r(z) = (1 + z/2)/(1 - z/2)."""
+    return _make("trapezoid", [Fraction(1), Fraction(1, 2)], [Fraction(1), Fraction(-1, 2)])
+
+
+def implicit_midpoint() -> Method:
+    """The implicit midpoint rule; for linear systems its r equals the trapezoid's."""
+    m = trapezoid()
+    return Method("implicit_midpoint", m.numerator, m.denominator, ((( Fraction(1, 2),),), (Fraction(1),)))
+
+
+def pade(k: int, l: int) -> Method:
+    """The (k, l) Pade approximant of exp(z): numerator degree k, denominator degree l."""
+    for name, v in (("k", k), ("l", l)):
+        if not isinstance(v, int) or isinstance(v, bool) or v < 0:
+            raise InvalidInput(f"{name}: must be an int >= 0, got {v!r}")
+    n = k + l
+    num = [Fraction(factorial(n - j) * factorial(k), factorial(n) * factorial(j) * factorial(k - j)) for j in range(k + 1)]
+    den = [Fraction((-1) ** j * factorial(n - j) * factorial(l), factorial(n) * factorial(j) * factorial(l - j)) for j in range(l + 1)]
+    return _make(f"pade({k},{l})", num, den)
+
+
+def from_butcher(A: Any, b: Any, name: str = "butcher") -> Method:
+    """The stability function R(z) = det(I - zA + z e b^T)/det(I - zA) of a
+    rational Butcher tableau, by exact interpolation of both determinants
+    at s + 1 rational points (both have degree <= s)."""
+    Am = to_matrix(A, "A", square=True)
+    s = len(Am)
+    bv = to_vector(b, "b", length=s)
+    Aq = fmpq_matrix(Am)
+    ebT = flint.fmpq_mat(s, s, [fmpq_of(bv[j]) for i in range(s) for j in range(s)])
+    I = flint.fmpq_mat(s, s, [int(i == j) for i in range(s) for j in range(s)])
+    points = list(range(s + 1))
+    num_vals = [(I - Aq * z + ebT * z).det() for z in points]
+    den_vals = [(I - Aq * z).det() for z in points]
+    num = _interpolate(points, num_vals)
+    den = _interpolate(points, den_vals)
+    return _make(name, [fraction_of(c) for c in num.coeffs()] or [Fraction(0)],
+                 [fraction_of(c) for c in den.coeffs()] or [Fraction(0)], butcher=(Am, bv))
+
+
+def _interpolate(xs: Sequence[int], ys: Sequence[flint.fmpq]) -> flint.fmpq_poly:
+    result = flint.fmpq_poly([0])
+    for i, (xi, yi) in enumerate(zip(xs, ys)):
+        term = flint.fmpq_poly([yi])
+        for j, xj in enumerate(xs):
+            if j != i:
+                term = term * flint.fmpq_poly([-xj, 1]) / (xi - xj)
+        result += term
+    return result
+
+
+# ---------------------------------------------------------------- RK presets
+def heun() -> Method:
+    """Heun's method (explicit trapezoid), R(z) = 1 + z + z^2/2."""
+    return from_butcher([[0, 0], [1, 0]], ["1/2", "1/2"], name="heun")
+
+
+def ssprk22() -> Method:
+    """SSPRK(2,2) of Shu and Osher (the same tableau as Heun's method)."""
+    return from_butcher([[0, 0], [1, 0]], ["1/2", "1/2"], name="ssprk22")
+
+
+def ssprk33() -> Method:
+    """SSPRK(3,3) of Shu and Osher, R(z) = 1 + z + z^2/2 + z^3/6."""
+    return from_butcher([[0, 0, 0], [1, 0, 0], ["1/4", "1/4", 0]], ["1/6", "1/6", "2/3"], name="ssprk33")
+
+
+def rk4() -> Method:
+    """The classical fourth-order Runge-Kutta method."""
+    return from_butcher(
+        [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]],
+        ["1/6", "1/3", "1/3", "1/6"],
+        name="rk4",
+    )
+
+
+def ssprk_s1(s: int) -> Method:
+    """SSPRK(s,1): s forward-Euler stages of step dt/s, R(z) = (1 + z/s)^s."""
+    if not isinstance(s, int) or isinstance(s, bool) or s < 1:
+        raise InvalidInput(f"s: the number of stages must be an int >= 1, got {s!r}")
+    A = [[Fraction(1, s) if j < i else Fraction(0) for j in range(s)] for i in range(s)]
+    return from_butcher(A, [Fraction(1, s)] * s, name=f"ssprk({s},1)")
+
+
+def radau_iia2() -> Method:
+    """The 2-stage Radau IIA method (order 3), R = (1 + z/3)/(1 - 2z/3 + z^2/6)."""
+    return from_butcher([["5/12", "-1/12"], ["3/4", "1/4"]], ["3/4", "1/4"], name="radau_iia2")
+
+
+def lobatto_iiic2() -> Method:
+    """The 2-stage Lobatto IIIC method, R = 1/(1 - z + z^2/2)."""
+    return from_butcher([["1/2", "-1/2"], ["1/2", "1/2"]], ["1/2", "1/2"], name="lobatto_iiic2")
+
+
+def gauss2() -> Method:
+    """The 2-stage Gauss method.  Its tableau is irrational (it has sqrt(3)),
+    but its stability function is the (2,2) Pade approximant, which is rational."""
+    m = pade(2, 2)
+    return Method("gauss2", m.numerator, m.denominator)
+
+
+PRESETS = {
+    "forward_euler": forward_euler,
+    "backward_euler": backward_euler,
+    "trapezoid": trapezoid,
+    "crank_nicolson": trapezoid,
+    "implicit_midpoint": implicit_midpoint,
+    "heun": heun,
+    "ssprk22": ssprk22,
+    "ssprk33": ssprk33,
+    "rk4": rk4,
+    "radau_iia2": radau_iia2,
+    "lobatto_iiic2": lobatto_iiic2,
+    "gauss2": gauss2,
+}
+
+
+def preset(name: str) -> Method:
+    """A named method from :data:`PRESETS`."""
+    try:
+        return PRESETS[name]()
+    except KeyError:
+        raise InvalidInput(f"preset: unknown method {name!r}; known: {', '.join(sorted(PRESETS))}") from None

@@ -1,0 +1,259 @@
+"""The model: a linear system x' = Ax and a polyhedron P = {x : Gx <= b}.
+
+Both are immutable and exact (entries are Fractions).  A polyhedron knows its
+H-representation (G, b) and, computed exactly with the Parma Polyhedra Library
+(pplpy) on first use, its V-representation: vertices, rays and lines.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property
+from math import lcm
+from typing import Any, Sequence
+
+import flint
+import ppl
+
+from .errors import InvalidInput
+from .numbers import Matrix, Vector, fmpq_matrix, to_matrix, to_vector
+
+__all__ = ["LinearSystem", "Polyhedron"]
+
+
+@dataclass(frozen=True, init=False)
+class LinearSystem:
+    """The linear dynamical system x' = A x with an exact square matrix A.
+
+    >>> LinearSystem([[-1, 1], [-1, "-1"]]).A
+    ((Fraction(-1, 1), Fraction(1, 1)), (Fraction(-1, 1), Fraction(-1, 1)))
+    """
+
+    A: Matrix
+
+    def __init__(self, A: Any, *, allow_float: bool = False):
+        object.__setattr__(self, "A", to_matrix(A, "A", square=True, allow_float=allow_float))
+
+    @classmethod
+    def closed_loop(cls, A0: Any, B: Any, F: Any, *, allow_float: bool = False) -> "LinearSystem":
+        """The closed loop x' = (A0 + B F) x of x' = A0 x + B u under the
+        linear feedback u = F x."""
+        A0m = to_matrix(A0, "A0", square=True, allow_float=allow_float)
+        n = len(A0m)
+        Bm = to_matrix(B, "B", shape=(n, None), allow_float=allow_float)
+        Fm = to_matrix(F, "F", shape=(len(Bm[0]), n), allow_float=allow_float)
+        A = fmpq_matrix(A0m) + fmpq_matrix(Bm) * fmpq_matrix(Fm)
+        return cls([[A[i, j] for j in range(n)] for i in range(n)])
+
+    @property
+    def n(self) -> int:
+        """The state dimension."""
+        return len(self.A)
+
+    @cached_property
+    def A_flint(self) -> flint.fmpq_mat:
+        return fmpq_matrix(self.A)
+
+    def __repr__(self) -> str:
+        return f"LinearSystem(A={_matrix_text(self.A)})"
+
+
+@dataclass(frozen=True, init=False)
+class Polyhedron:
+    """The polyhedron P = {x in Q^n : G x <= b}.
+
+    Construct it from inequalities, ``Polyhedron(G, b)``, from generators,
+    ``Polyhedron.from_vertices(vertices, rays=(), lines=())``, or as a box,
+    ``Polyhedron.box(lo, hi)``.  Conversions between the two representations
+    are exact (double description, pplpy).
+
+    >>> P = Polyhedron.box([-1, -1], [1, 1])
+    >>> P.vertices
+    ((Fraction(-1, 1), Fraction(-1, 1)), (Fraction(-1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)), (Fraction(1, 1), Fraction(1, 1)))
+    """
+
+    G: Matrix
+    b: Vector
+
+    def __init__(self, G: Any, b: Any, *, allow_float: bool = False):
+        Gm = to_matrix(G, "G", allow_float=allow_float)
+        bv = to_vector(b, "b", allow_float=allow_float)
+        if len(bv) != len(Gm):
+            raise InvalidInput(f"b: G has {len(Gm)} rows but b has {len(bv)} entries")
+        for j, row in enumerate(Gm):
+            if not any(row):
+                raise InvalidInput(
+                    f"G: row {j} is zero; the constraint 0 <= {bv[j]} is either void or makes P empty -- remove it"
+                )
+        object.__setattr__(self, "G", Gm)
+        object.__setattr__(self, "b", bv)
+
+    # ----------------------------------------------------------- constructors
+    @classmethod
+    def from_vertices(
+        cls,
+        vertices: Any,
+        rays: Any = (),
+        lines: Any = (),
+        *,
+        allow_float: bool = False,
+    ) -> "Polyhedron":
+        """P = conv(vertices) + cone(rays) + span(lines), converted exactly to
+        inequalities (an affine hull becomes pairs of opposite inequalities)."""
+        V = to_matrix(vertices, "vertices", allow_float=allow_float)
+        n = len(V[0])
+        R = to_matrix(rays, "rays", shape=(None, n), allow_float=allow_float) if _nonempty(rays) else ()
+        L = to_matrix(lines, "lines", shape=(None, n), allow_float=allow_float) if _nonempty(lines) else ()
+        for name, gens in (("rays", R), ("lines", L)):
+            for i, g in enumerate(gens):
+                if not any(g):
+                    raise InvalidInput(f"{name}: entry {i} is the zero vector")
+        gs = ppl.Generator_System()
+        for v in V:
+            d = lcm(*(x.denominator for x in v))
+            gs.insert(ppl.point(ppl.Linear_Expression([int(x * d) for x in v], 0), d))
+        for r in R:
+            gs.insert(ppl.ray(ppl.Linear_Expression(_integer_row(r), 0)))
+        for l in L:
+            gs.insert(ppl.line(ppl.Linear_Expression(_integer_row(l), 0)))
+        poly = ppl.C_Polyhedron(gs)
+        G, b = _inequalities_of(poly, n)
+        if not G:
+            raise InvalidInput("from_vertices: the generators span the whole space; P has no inequality")
+        P = cls(G, b)
+        P.__dict__["_ppl"] = poly
+        return P
+
+    @classmethod
+    def box(cls, lo: Any, hi: Any, *, allow_float: bool = False) -> "Polyhedron":
+        """The box {x : lo <= x <= hi} with rows e_1..e_n, then -e_1..-e_n."""
+        lov = to_vector(lo, "lo", allow_float=allow_float)
+        hiv = to_vector(hi, "hi", length=len(lov), allow_float=allow_float)
+        for i, (l, h) in enumerate(zip(lov, hiv)):
+            if l > h:
+                raise InvalidInput(f"box: lo[{i}] = {l} exceeds hi[{i}] = {h}; the box is empty")
+        n = len(lov)
+        G = [[int(i == k) for k in range(n)] for i in range(n)] + [[-int(i == k) for k in range(n)] for i in range(n)]
+        return cls(G, list(hiv) + [-x for x in lov])
+
+    # ------------------------------------------------------------- properties
+    @property
+    def n(self) -> int:
+        """The ambient dimension."""
+        return len(self.G[0])
+
+    @property
+    def m(self) -> int:
+        """The number of inequalities."""
+        return len(self.G)
+
+    @cached_property
+    def G_flint(self) -> flint.fmpq_mat:
+        return fmpq_matrix(self.G)
+
+    @cached_property
+    def b_flint(self) -> flint.fmpq_mat:
+        return fmpq_matrix([[x] for x in self.b])
+
+    @cached_property
+    def _ppl(self) -> ppl.C_Polyhedron:
+        cs = ppl.Constraint_System()
+        for g, beta in zip(self.G, self.b):
+            d = lcm(*(x.denominator for x in g), beta.denominator)
+            # ppl constraints read  e(x) >= 0 :  d*beta - d*g.x >= 0
+            cs.insert(ppl.Linear_Expression([int(-x * d) for x in g], int(beta * d)) >= 0)
+        return ppl.C_Polyhedron(cs)
+
+    @cached_property
+    def _generators(self) -> tuple[Matrix, Matrix, Matrix]:
+        points, rays, lines = [], [], []
+        for g in self._ppl.minimized_generators():
+            coeffs = [Fraction(int(c)) for c in g.coefficients()]
+            if g.is_point():
+                d = int(g.divisor())
+                points.append(tuple(c / d for c in coeffs))
+            elif g.is_ray():
+                rays.append(tuple(coeffs))
+            elif g.is_line():
+                lines.append(tuple(coeffs))
+        return tuple(sorted(points)), tuple(sorted(rays)), tuple(sorted(lines))
+
+    @property
+    def vertices(self) -> Matrix:
+        """The vertices (for a polyhedron with lines: the points of a minimal
+        generator system), exact and sorted."""
+        return self._generators[0]
+
+    @property
+    def rays(self) -> Matrix:
+        """Extreme rays of the recession cone (modulo lines), as integer vectors."""
+        return self._generators[1]
+
+    @property
+    def lines(self) -> Matrix:
+        """A basis of the lineality space, as integer vectors."""
+        return self._generators[2]
+
+    @cached_property
+    def is_empty(self) -> bool:
+        """Exact emptiness test by a verified LP (a Farkas certificate when
+        empty); unlike PPL's own test it never enumerates generators."""
+        from .lp import INFEASIBLE, ExactLPSolver
+
+        res = ExactLPSolver(self.G_flint, [False] * self.m).solve([0] * self.n, self.b, [False] * self.n)
+        return res.status == INFEASIBLE
+
+    @cached_property
+    def dimension(self) -> int:
+        """The affine dimension of P (-1 when P is empty)."""
+        return -1 if self.is_empty else int(self._ppl.affine_dimension())
+
+    @cached_property
+    def is_bounded(self) -> bool:
+        return self._ppl.is_bounded()
+
+    def contains(self, x: Sequence[Any]) -> bool:
+        """Exact membership test G x <= b for a rational point x."""
+        xv = to_vector(x, "x", length=self.n)
+        return all(sum(g * xi for g, xi in zip(row, xv)) <= beta for row, beta in zip(self.G, self.b))
+
+    def __contains__(self, x: Sequence[Any]) -> bool:
+        return self.contains(x)
+
+    def __repr__(self) -> str:
+        return f"Polyhedron(G={_matrix_text(self.G)}, b={_vector_text(self.b)})"
+
+
+def _nonempty(x: Any) -> bool:
+    try:
+        return len(x) > 0
+    except TypeError:
+        return True
+
+
+def _integer_row(row: Sequence[Fraction]) -> list[int]:
+    d = lcm(*(x.denominator for x in row))
+    return [int(x * d) for x in row]
+
+
+def _inequalities_of(poly: ppl.C_Polyhedron, n: int) -> tuple[list, list]:
+    G, b = [], []
+    for c in poly.minimized_constraints():
+        coeffs = [int(x) for x in c.coefficients()]
+        coeffs += [0] * (n - len(coeffs))
+        beta = int(c.inhomogeneous_term())
+        G.append([-x for x in coeffs])
+        b.append(beta)
+        if c.is_equality():
+            G.append(coeffs)
+            b.append(-beta)
+    return G, b
+
+
+def _vector_text(v: Sequence[Fraction]) -> str:
+    return "[" + ", ".join(str(x) for x in v) + "]"
+
+
+def _matrix_text(M: Sequence[Sequence[Fraction]]) -> str:
+    return "[" + ", ".join(_vector_text(r) for r in M) + "]"

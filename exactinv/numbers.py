@@ -1,0 +1,286 @@
+"""Exact scalars, vectors and matrices: the one place where input is parsed.
+
+Everything that enters exactinv is converted here, once, to
+:class:`fractions.Fraction` (the public, immutable form) and, where the
+engine computes, to python-flint's ``fmpq``/``fmpq_mat``.  Accepted scalars:
+
+* ``int`` (not ``bool``), :class:`~fractions.Fraction`, :class:`~decimal.Decimal`;
+* strings such as ``"3/4"``, ``"-2"``, ``"0.1"`` (exactly 1/10) or ``"1e-3"``;
+* sympy rationals and python-flint ``fmpz``/``fmpq``.
+
+Python and numpy floats are refused: a float such as ``0.1`` is not the number
+1/10, and exactinv does not guess which number was meant.  Pass ``"0.1"``, or
+convert deliberately with :func:`exact_from_float` (the exact binary value) or
+:func:`nearest_rational` (the simplest nearby fraction), or pass
+``allow_float=True`` to the parsing functions (which then use
+:func:`exact_from_float`).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers as _abc
+from decimal import Decimal
+from fractions import Fraction
+from functools import total_ordering
+from typing import Any, Iterable, Sequence
+
+import flint
+
+from .errors import InvalidInput
+
+__all__ = [
+    "INF",
+    "Infinity",
+    "Matrix",
+    "Vector",
+    "exact_from_float",
+    "nearest_rational",
+    "to_rational",
+    "to_vector",
+    "to_matrix",
+]
+
+Vector = tuple[Fraction, ...]
+Matrix = tuple[tuple[Fraction, ...], ...]
+
+
+@total_ordering
+class Infinity:
+    """Exact +infinity or -infinity (``INF`` and ``-INF``).
+
+    Compares with ints, Fractions and :class:`~exactinv.RealAlgebraic` and
+    with other infinities; ``float(INF)`` is ``math.inf``.
+    """
+
+    __slots__ = ("sign",)
+
+    def __new__(cls, sign: int = 1):
+        if sign not in (1, -1):
+            raise InvalidInput(f"Infinity: sign must be 1 or -1, got {sign!r}")
+        cached = _INFINITIES.get(sign)
+        if cached is not None:
+            return cached
+        self = super().__new__(cls)
+        object.__setattr__(self, "sign", sign)
+        _INFINITIES[sign] = self
+        return self
+
+    def __setattr__(self, name, value):
+        raise AttributeError("Infinity is immutable")
+
+    def __neg__(self) -> "Infinity":
+        return Infinity(-self.sign)
+
+    def __pos__(self) -> "Infinity":
+        return self
+
+    def __float__(self) -> float:
+        return math.inf * self.sign
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, Infinity):
+            return other.sign == self.sign
+        if isinstance(other, float) and math.isinf(other):
+            return (other > 0) == (self.sign > 0)
+        return False
+
+    def __lt__(self, other: object) -> bool:
+        if isinstance(other, Infinity):
+            return self.sign < other.sign
+        if _is_comparable(other):
+            return self.sign < 0
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(math.inf * self.sign)
+
+    def __repr__(self) -> str:
+        return "INF" if self.sign > 0 else "-INF"
+
+    def __str__(self) -> str:
+        return "oo" if self.sign > 0 else "-oo"
+
+    def __reduce__(self):
+        return (Infinity, (self.sign,))
+
+    def _repr_latex_(self) -> str:
+        return r"$\infty$" if self.sign > 0 else r"$-\infty$"
+
+
+_INFINITIES: dict[int, Infinity] = {}
+INF = Infinity(1)
+
+
+def _is_comparable(other: object) -> bool:
+    if isinstance(other, (int, Fraction)) and not isinstance(other, bool):
+        return True
+    # RealAlgebraic lives in another module; duck-type it to avoid a cycle.
+    return hasattr(other, "_is_real_algebraic")
+
+
+def exact_from_float(x: float) -> Fraction:
+    """The exact rational value of a finite binary float (0.1 -> 3602879701896397/36028797018963968)."""
+    if not isinstance(x, (float, int)) or isinstance(x, bool):
+        x = float(x)
+    if not math.isfinite(x):
+        raise InvalidInput(f"exact_from_float: {x!r} is not a finite number")
+    return Fraction(x)
+
+
+def nearest_rational(x: float, max_denominator: int = 10**6) -> Fraction:
+    """The rational with denominator <= ``max_denominator`` closest to the float ``x``
+    (0.1 -> 1/10).  A deliberate, explicit rounding step."""
+    return exact_from_float(x).limit_denominator(max_denominator)
+
+
+def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -> Fraction:
+    """Parse one exact scalar; ``name`` is used in error messages."""
+    if isinstance(value, Fraction):
+        return value
+    if isinstance(value, bool):
+        raise InvalidInput(f"{name}: got the bool {value!r}; pass a number")
+    if isinstance(value, int):
+        return Fraction(value)
+    if isinstance(value, str):
+        text = value.strip()
+        if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+            raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
+        try:
+            return Fraction(text)
+        except (ValueError, ZeroDivisionError):
+            raise InvalidInput(
+                f"{name}: cannot read {value!r} as a rational number (write e.g. '3/4', '-2' or '0.1')"
+            ) from None
+    if isinstance(value, Decimal):
+        if not value.is_finite():
+            raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
+        return Fraction(value)
+    if isinstance(value, flint.fmpq):
+        return Fraction(int(value.p), int(value.q))
+    if isinstance(value, flint.fmpz):
+        return Fraction(int(value))
+    if getattr(value, "is_Rational", False):  # sympy Integer / Rational
+        return Fraction(int(value.p), int(value.q))
+    if isinstance(value, _abc.Integral):  # numpy integers, gmpy2 mpz
+        return Fraction(int(value))
+    if isinstance(value, float) or isinstance(value, _abc.Real) and not isinstance(value, _abc.Rational):
+        as_float = float(value)
+        if not math.isfinite(as_float):
+            raise InvalidInput(f"{name}: {value!r} is not a finite number")
+        if allow_float:
+            return exact_from_float(as_float)
+        raise InvalidInput(
+            f"{name}: got the float {value!r}; floats are not exact. Pass a string "
+            f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
+            f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
+        )
+    if isinstance(value, _abc.Rational):  # e.g. gmpy2 mpq
+        return Fraction(int(value.numerator), int(value.denominator))
+    if getattr(value, "is_number", False) and getattr(value, "is_Rational", None) is False:
+        raise InvalidInput(f"{name}: {value} is not a rational number")
+    raise InvalidInput(f"{name}: cannot read {value!r} (type {type(value).__name__}) as a rational number")
+
+
+def _suggest(x: float) -> str:
+    return repr(x) if len(repr(x)) < 20 else str(nearest_rational(x))
+
+
+def _rows(value: Any, name: str) -> list:
+    if hasattr(value, "tolist") and not isinstance(value, str):  # numpy, flint matrices
+        if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
+            return [[value[i, j] for j in range(value.ncols())] for i in range(value.nrows())]
+        value = value.tolist()
+    if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+        raise InvalidInput(f"{name}: expected a list of rows, got {type(value).__name__}")
+    return list(value)
+
+
+def to_vector(
+    value: Any, name: str = "vector", *, length: int | None = None, allow_float: bool = False
+) -> Vector:
+    """Parse a vector of exact scalars, optionally checking its length."""
+    if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
+        value = [value[i, j] for i in range(value.nrows()) for j in range(value.ncols())]
+    items = _rows(value, name)
+    out = []
+    for i, entry in enumerate(items):
+        if not isinstance(entry, (str, bytes)) and isinstance(entry, Iterable):
+            raise InvalidInput(f"{name}: entry {i} is a sequence; expected a vector of numbers")
+        out.append(to_rational(entry, f"{name}[{i}]", allow_float=allow_float))
+    if not out:
+        raise InvalidInput(f"{name}: the vector is empty")
+    if length is not None and len(out) != length:
+        raise InvalidInput(f"{name}: expected length {length}, got length {len(out)}")
+    return tuple(out)
+
+
+def to_matrix(
+    value: Any,
+    name: str = "matrix",
+    *,
+    shape: tuple[int | None, int | None] = (None, None),
+    square: bool = False,
+    allow_float: bool = False,
+) -> Matrix:
+    """Parse a matrix given as a sequence of rows; checks raggedness, emptiness
+    and (optionally) the shape and squareness, naming the offending position."""
+    rows = _rows(value, name)
+    if not rows:
+        raise InvalidInput(f"{name}: the matrix is empty")
+    out = []
+    width = None
+    for i, row in enumerate(rows):
+        if isinstance(row, (str, bytes)) or not isinstance(row, Iterable):
+            raise InvalidInput(f"{name}: row {i} is {row!r}, not a sequence; expected a list of rows")
+        entries = list(row)
+        if width is None:
+            width = len(entries)
+            if width == 0:
+                raise InvalidInput(f"{name}: row 0 is empty")
+        elif len(entries) != width:
+            raise InvalidInput(f"{name}: ragged matrix, row 0 has {width} entries but row {i} has {len(entries)}")
+        out.append(tuple(to_rational(e, f"{name}[{i}][{j}]", allow_float=allow_float) for j, e in enumerate(entries)))
+    rows_expected, cols_expected = shape
+    if square and len(out) != width:
+        raise InvalidInput(f"{name}: must be square, got shape {len(out)}x{width}")
+    if rows_expected is not None and len(out) != rows_expected:
+        raise InvalidInput(f"{name}: expected {rows_expected} rows, got {len(out)} (shape {len(out)}x{width})")
+    if cols_expected is not None and width != cols_expected:
+        raise InvalidInput(f"{name}: expected {cols_expected} columns, got {width} (shape {len(out)}x{width})")
+    return tuple(out)
+
+
+# ---------------------------------------------------------------- flint bridge
+def fmpq_of(x: Fraction) -> flint.fmpq:
+    return flint.fmpq(x.numerator, x.denominator)
+
+
+def fraction_of(x: flint.fmpq | flint.fmpz | int) -> Fraction:
+    if isinstance(x, (flint.fmpz, int)):
+        return Fraction(int(x))
+    return Fraction(int(x.p), int(x.q))
+
+
+def fmpq_matrix(rows: Sequence[Sequence[Fraction]]) -> flint.fmpq_mat:
+    m = len(rows)
+    n = len(rows[0]) if m else 0
+    return flint.fmpq_mat(m, n, [fmpq_of(x) for row in rows for x in row])
+
+
+def fmpq_column(entries: Sequence[Fraction]) -> flint.fmpq_mat:
+    return flint.fmpq_mat(len(entries), 1, [fmpq_of(x) for x in entries])
+
+
+def matrix_of(M: flint.fmpq_mat) -> Matrix:
+    return tuple(tuple(fraction_of(M[i, j]) for j in range(M.ncols())) for i in range(M.nrows()))
+
+
+def vector_of(M: flint.fmpq_mat) -> Vector:
+    """The entries of a column (or row) matrix, as Fractions."""
+    return tuple(fraction_of(x) for x in M.entries())
+
+
+def format_rational(x: Fraction | Infinity) -> str:
+    """The exact string form used in JSON and on the command line ("-3/4")."""
+    return str(x)

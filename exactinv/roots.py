@@ -1,0 +1,206 @@
+"""Certified real roots of rational polynomials (FLINT), and first sign changes.
+
+The paper (Section 3.1.2) needs tau_i, "the first positive zero" of f_i; what
+its proof needs is the end of the first interval on which f_i >= 0, i.e. the
+first root of *odd* multiplicity (a tangent root of even multiplicity does not
+end nonnegativity).  This module computes it exactly:
+
+1. cheap exact filters: all coefficients of f(start + x) nonnegative, or no
+   sign variation at all (Descartes' rule of signs) => no root beyond start;
+2. FLINT factors f into irreducible integer polynomials with multiplicities;
+   factors of even multiplicity cannot change the sign and are dropped, and so
+   are factors that Descartes' rule shows have no root beyond start;
+3. each remaining irreducible factor's real roots are isolated by FLINT's
+   certified (Arb) root isolation; real roots come back with an exactly zero
+   imaginary part, and the rational interval read off the ball is re-checked
+   by an exact sign change;
+4. roots are returned as Fractions (linear factors) or
+   :class:`~exactinv.RealAlgebraic` numbers, compared exactly.
+
+No floating-point bisection happens anywhere.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Iterable
+
+import flint
+
+from .algebraic import RealAlgebraic, _dyadic, sign_at
+from .errors import InvalidInput, VerificationFailed
+from .numbers import INF, Infinity, fmpq_of, fraction_of, to_rational
+
+__all__ = [
+    "as_polynomial",
+    "real_roots",
+    "count_real_roots",
+    "sign_variations",
+    "first_sign_change",
+    "nonnegative_until",
+    "sign_right_of",
+]
+
+Real = Fraction | RealAlgebraic
+
+
+def as_polynomial(f: Any, name: str = "f") -> flint.fmpq_poly:
+    """An exact polynomial from an fmpq_poly/fmpz_poly, a sympy Poly, or a
+    sequence of coefficients from the constant term up."""
+    if isinstance(f, flint.fmpq_poly):
+        return f
+    if isinstance(f, flint.fmpz_poly):
+        return flint.fmpq_poly(f)
+    if hasattr(f, "all_coeffs") and hasattr(f, "gens"):  # sympy Poly (high to low)
+        coeffs = list(reversed(f.all_coeffs()))
+    elif isinstance(f, (str, bytes)) or not isinstance(f, Iterable):
+        raise InvalidInput(f"{name}: expected a polynomial or a list of coefficients (constant term first)")
+    else:
+        coeffs = list(f)
+    return flint.fmpq_poly([fmpq_of(to_rational(c, f"{name}[{k}]")) for k, c in enumerate(coeffs)])
+
+
+def _integer(f: flint.fmpq_poly) -> flint.fmpz_poly:
+    """The primitive integer polynomial with the same roots and sign as f."""
+    num = f.numer()
+    return num // num.content() if not num.is_zero() else num
+
+
+def _shift(f: flint.fmpq_poly, start: Fraction) -> flint.fmpq_poly:
+    """f(start + x)."""
+    if start == 0:
+        return f
+    return f(flint.fmpq_poly([fmpq_of(start), 1]))
+
+
+def sign_variations(coeffs: Iterable[Any]) -> int:
+    """Number of sign changes in a coefficient sequence, zeros ignored.
+    By Descartes' rule it bounds the number of positive roots (with
+    multiplicity) and has the same parity."""
+    signs = [c > 0 for c in coeffs if c != 0]
+    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+
+
+def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
+    """The real roots of an irreducible integer polynomial, sorted."""
+    if p.degree() == 1:
+        a, b = (int(c) for c in p.coeffs())  # b x + a
+        return [Fraction(-a, b)]
+    out = []
+    for z, _ in p.complex_roots():
+        if not z.imag.is_zero():
+            continue
+        lo, hi = _dyadic(z.real.lower()), _dyadic(z.real.upper())
+        if sign_at(p, lo) * sign_at(p, hi) >= 0:
+            raise VerificationFailed(f"root isolation: Arb enclosure ({lo}, {hi}) of a root of {p} has no sign change")
+        out.append(RealAlgebraic(p, lo, hi, _trusted=True))
+    out.sort()
+    return out
+
+
+def real_roots(f: Any) -> list[tuple[Real, int]]:
+    """All distinct real roots of f with their multiplicities, sorted; exact.
+
+    >>> real_roots([2, -3, 1])                      # (x - 1)(x - 2)
+    [(Fraction(1, 1), 1), (Fraction(2, 1), 1)]
+    >>> [(str(r), m) for r, m in real_roots([-2, 0, 1])]
+    [('-1.414213562373095...', 1), ('1.414213562373095...', 1)]
+    """
+    fq = as_polynomial(f)
+    if fq.is_zero():
+        raise InvalidInput("f: the zero polynomial has every number as a root")
+    _, factors = _integer(fq).factor()
+    roots = [(r, int(m)) for p, m in factors for r in _isolate_irreducible(p)]
+    roots.sort(key=lambda rm: _SortKey(rm[0]))
+    return roots
+
+
+class _SortKey:
+    __slots__ = ("v",)
+
+    def __init__(self, v):
+        self.v = v
+
+    def __lt__(self, other):
+        a, b = self.v, other.v
+        if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
+            return b > a
+        return a < b
+
+
+def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:
+    """Number of distinct real roots of p in the open interval (lower, upper)
+    (None = unbounded), by Sturm's theorem in exact arithmetic.  The ends must
+    not be roots."""
+    pq = as_polynomial(p)
+    seq = [pq, pq.derivative()]
+    while not seq[-1].is_zero():
+        seq.append(-(seq[-2] % seq[-1]))
+    seq.pop()
+
+    def variations(x):
+        if x is None:
+            return None
+        return sign_variations([s(fmpq_of(x)) for s in seq])
+
+    def at_infinity(sign):
+        vals = []
+        for s in seq:
+            lead = s.coeffs()[-1] if s.degree() >= 0 else 0
+            vals.append(lead * (sign ** s.degree()))
+        return sign_variations(vals)
+
+    left = at_infinity(-1) if lower is None else variations(lower)
+    right = at_infinity(1) if upper is None else variations(upper)
+    return left - right
+
+
+def sign_right_of(f: Any, t: Fraction) -> int:
+    """The sign of f on (t, t + eps) for small eps > 0: the sign of the first
+    nonzero Taylor coefficient of f at t (0 only for the zero polynomial)."""
+    g = _shift(as_polynomial(f), Fraction(t))
+    for c in g.coeffs():
+        if c != 0:
+            return 1 if c > 0 else -1
+    return 0
+
+
+def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
+    """The smallest t > start at which f changes sign (a root of odd
+    multiplicity), or INF if there is none.  Exact.
+
+    >>> first_sign_change([4, -12, 13, -6, 1])     # (t-1)^2 (t-2)^2: tangent roots only
+    INF
+    >>> first_sign_change([-3, 7, -5, 1])          # (t-1)^2 (t-3)
+    Fraction(3, 1)
+    """
+    fq = as_polynomial(f)
+    start = to_rational(start, "start")
+    if fq.is_zero() or fq.degree() == 0:
+        return INF
+    shifted = _shift(fq, start)
+    if sign_variations(shifted.coeffs()) == 0:  # Descartes: no root beyond start
+        return INF
+    _, factors = _integer(fq).factor()
+    best: Real | Infinity = INF
+    for p, mult in factors:
+        if mult % 2 == 0:
+            continue
+        if sign_variations(_shift(flint.fmpq_poly(p), start).coeffs()) == 0:
+            continue
+        for r in _isolate_irreducible(p):
+            if r > start:
+                if r < best:
+                    best = r
+                break
+    return best
+
+
+def nonnegative_until(f: Any, start: Any = 0) -> Real | Infinity:
+    """sup{T >= start : f >= 0 on [start, T]} when f >= 0 just right of start
+    (f(start) itself is not inspected); ``start`` when f < 0 just right of it.
+    This is the paper's tau_i for f_i, with tangent roots stepped over."""
+    start = to_rational(start, "start")
+    if sign_right_of(f, start) < 0:
+        return start
+    return first_sign_change(f, start)

@@ -1,0 +1,190 @@
+"""Steplength thresholds of the paper (Section 3), corrected where it errs.
+
+Polynomial methods r(z) = sum_k sigma_k z^k (Theorem 3.5 of the paper):
+with gamma = gamma* and H^ = H + gamma I >= 0,
+
+    r(dt H) = sum_i f_i(dt) H^i,   f_i(dt) = sum_{k=i}^p (-1)^(k-i) sigma_k C(k,i) gamma^(k-i) dt^k,
+
+so r(dt H) >= 0 while every f_i >= 0.  tau_i is the end of the first interval
+[0, tau_i] on which f_i >= 0 -- the first root of *odd* multiplicity, or 0 when
+f_i is negative right after 0 (the paper's "first positive zero" is wrong in
+both respects: erratum E5 in docs/errata.md) -- and tau = min_i tau_i.
+
+For gamma* <= 0 the paper's Theorem 3.9 gives tau = infinity.  That holds when
+every sigma_k >= 0 (then H >= 0 and r(dt H) >= 0 for all dt), but not when
+some sigma_k < 0 (erratum E6): then rho = 0 and the theorem yields no positive
+threshold, so exactinv reports 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from math import comb
+from typing import Any
+
+import flint
+
+from .algebraic import RealAlgebraic
+from .errors import InvalidInput, NotInvariant
+from .invariance import OptimalGamma, optimal_gamma
+from .methods import Method
+from .model import LinearSystem, Polyhedron
+from .numbers import INF, Infinity, fmpq_of, fraction_of
+from .roots import nonnegative_until
+
+__all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "steplength_threshold"]
+
+Real = Fraction | RealAlgebraic | Infinity
+
+
+@dataclass(frozen=True)
+class FiRow:
+    """One row of the f_i table: f_i at gamma = gamma* (coefficients of dt^0..dt^p)
+    and tau_i = sup{T : f_i >= 0 on [0, T]}."""
+
+    i: int
+    f: tuple[Fraction, ...]
+    tau: Real
+
+    def __repr__(self) -> str:
+        return f"FiRow(i={self.i}, tau={self.tau})"
+
+
+@dataclass(frozen=True)
+class SteplengthThreshold:
+    """A valid steplength threshold tau: A_d(dt) P subset of P for every dt in
+    [0, tau] (``attained``) or [0, tau) (not ``attained``).
+
+    ``value`` is a Fraction, a :class:`~exactinv.RealAlgebraic` or ``INF``;
+    ``lower``/``upper`` are rationals enclosing it (``lower`` is itself a
+    safe steplength); ``theorem`` names the result that proves it; ``table``
+    holds the f_i rows (polynomial methods) and ``binding`` the index i that
+    attains the minimum; ``notes`` records where the paper was corrected.
+    """
+
+    value: Real
+    attained: bool
+    theorem: str
+    method: Method = field(repr=False)
+    gamma: OptimalGamma = field(repr=False)
+    table: tuple[FiRow, ...] = field(default=(), repr=False)
+    binding: int | None = None
+    notes: tuple[str, ...] = field(default=(), repr=False)
+
+    @property
+    def lower(self) -> Fraction | Infinity:
+        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
+
+    @property
+    def upper(self) -> Fraction | Infinity:
+        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
+
+    def refine(self, bits: int = 53) -> "SteplengthThreshold":
+        """Shrink the enclosure [lower, upper] to width <= 2**-bits."""
+        if isinstance(self.value, RealAlgebraic):
+            self.value.refine(bits)
+        return self
+
+    def _claims(self) -> list[dict]:
+        from .certificates import encode_real
+
+        if self.method.is_polynomial:
+            return [{
+                "type": "polynomial_threshold",
+                "value": encode_real(self.value),
+                "binding": self.binding,
+                "f": [{"i": r.i, "coefficients": [str(c) for c in r.f], "tau": encode_real(r.tau)} for r in self.table],
+            }]
+        return self._rational_claims()
+
+    @property
+    def certificate(self) -> dict:
+        """The JSON certificate (gamma* and this threshold) for :func:`exactinv.check`."""
+        from .certificates import certificate
+
+        return certificate(self.gamma.system, self.gamma.polyhedron, self.method, [self])
+
+    def f_symbolic(self):
+        """The f_i as sympy expressions in dt and gamma (the paper's eq. (20))."""
+        return f_i_symbolic(self.method)
+
+    def __repr__(self) -> str:
+        return (f"SteplengthThreshold(value={self.value}, attained={self.attained}, "
+                f"method={self.method.name}, gamma*={self.gamma.value}, binding={self.binding})")
+
+
+def f_i(sigmas: tuple[Fraction, ...], gamma: Fraction, i: int) -> tuple[Fraction, ...]:
+    """Coefficients (dt^0 .. dt^p) of f_i(dt) = sum_{k=i}^p (-1)^(k-i) sigma_k C(k,i) gamma^(k-i) dt^k."""
+    p = len(sigmas) - 1
+    return tuple(
+        Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
+        for k in range(p + 1)
+    )
+
+
+def f_i_symbolic(method: Method):
+    """[f_0, ..., f_p] as sympy expressions in the symbols dt and gamma."""
+    import sympy
+
+    dt, gamma = sympy.symbols("Delta_t gamma", positive=True)
+    s = [sympy.Rational(c.numerator, c.denominator) for c in method.sigmas]
+    p = len(s) - 1
+    return [
+        sum((-1) ** (k - i) * s[k] * sympy.binomial(k, i) * gamma ** (k - i) * dt**k for k in range(i, p + 1))
+        for i in range(p + 1)
+    ]
+
+
+def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> SteplengthThreshold:
+    """The paper's valid threshold for ``method`` on P, with gamma = gamma*.
+
+    Polynomial methods: Theorem 3.5 with tau_i as in the module docstring.
+    Raises :class:`~exactinv.NotInvariant` (carrying the witness) when P is
+    not invariant for x' = Ax: the paper's theorems then give nothing.
+    """
+    if not isinstance(method, Method):
+        raise InvalidInput(f"method: expected an exactinv method (exactinv.methods.*), got {type(method).__name__}")
+    gamma = optimal_gamma(system, polyhedron)
+    if gamma.witness is not None:
+        raise NotInvariant("P is not invariant for x' = Ax (gamma* = +oo); no threshold exists", gamma.witness)
+    if method.is_polynomial:
+        return _polynomial_threshold(method, gamma)
+    from .rational_threshold import rational_threshold
+
+    return rational_threshold(method, gamma)
+
+
+def _polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
+    sigmas = method.sigmas
+    g = gamma.value
+    if isinstance(g, Infinity) or g <= 0:
+        if all(s >= 0 for s in sigmas):
+            return SteplengthThreshold(INF, True, "Theorem 3.9 (gamma* <= 0, all sigma_k >= 0)", method, gamma)
+        return SteplengthThreshold(
+            Fraction(0), True, "Theorem 3.9 corrected (gamma* <= 0, some sigma_k < 0: rho = 0)", method, gamma,
+            notes=("erratum E6: the paper gives infinity here",),
+        )
+    table = []
+    for i in range(len(sigmas)):
+        coeffs = f_i(sigmas, g, i)
+        table.append(FiRow(i, coeffs, nonnegative_until(coeffs)))
+    binding = min(range(len(table)), key=lambda i: _key(table[i].tau))
+    value = table[binding].tau
+    notes = ()
+    if any(s == 0 for s in sigmas[1:]) or any(s < 0 for s in sigmas):
+        notes = ("erratum E5: tau_i is where f_i stops being >= 0, not its first positive zero",)
+    return SteplengthThreshold(value, True, "Theorem 3.5 (polynomial methods)", method, gamma, tuple(table), binding, notes)
+
+
+class _key:
+    __slots__ = ("v",)
+
+    def __init__(self, v):
+        self.v = v
+
+    def __lt__(self, other):
+        a, b = self.v, other.v
+        if isinstance(a, Fraction) and not isinstance(b, Fraction):
+            return b > a
+        return a < b

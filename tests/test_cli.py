@@ -1,0 +1,60 @@
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from exactinv.cli import main
+
+ROOT = Path(__file__).parent.parent
+BOX = ROOT / "examples" / "paper_box_taylor4.json"
+
+
+def test_certify_and_check(tmp_path, capsys):
+    out = tmp_path / "cert.json"
+    assert main(["certify", str(BOX), "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "gamma*: 1" in text and "1/gamma*: 1" in text and "VERIFIED" in text
+    assert main(["check", str(out)]) == 0
+    assert "certificate VERIFIED" in capsys.readouterr().out
+    cert = json.loads(out.read_text())
+    cert["claims"][0]["value"] = "2"
+    out.write_text(json.dumps(cert))
+    assert main(["check", str(out)]) == 1
+
+
+def test_method_override(capsys):
+    assert main(["certify", str(BOX), "--method", '{"taylor": 1}']) == 0
+    assert "taylor(1)" in capsys.readouterr().out
+
+
+def test_not_invariant_problem(tmp_path, capsys):
+    prob = tmp_path / "p.json"
+    prob.write_text(json.dumps({"system": {"A": [["1"]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}))
+    assert main(["certify", str(prob)]) == 0
+    assert "FAILS" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("content, message", [
+    ('{"system": {"A": [[1.5]]}, "polyhedron": {"G": [[1]], "b": [1]}}', "float"),
+    ('{"system": {"A": [["1", "2"]]}, "polyhedron": {"G": [[1]], "b": [1]}}', "square"),
+    ('{"polyhedron": {"G": [[1]], "b": [1]}}', "system"),
+    ('{"system": {"A": [["1"]]}, "polyhedron": {"G": [[1]], "b": [1]}, "method": {"euler": 1}}', "unknown kind"),
+    ('not json', "not valid JSON"),
+])
+def test_bad_problem_files(tmp_path, capsys, content, message):
+    prob = tmp_path / "p.json"
+    prob.write_text(content)
+    assert main(["certify", str(prob)]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_missing_file(capsys):
+    assert main(["certify", "/nonexistent/p.json"]) == 2
+    assert main(["check", "/nonexistent/c.json"]) == 2
+
+
+def test_console_entry_point_runs():
+    proc = subprocess.run([sys.executable, "-m", "exactinv", "certify", str(BOX)], capture_output=True, text=True)
+    assert proc.returncode == 0 and "VERIFIED" in proc.stdout

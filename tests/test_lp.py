@@ -1,0 +1,105 @@
+from fractions import Fraction
+
+import flint
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from exactinv import lp
+from exactinv.lp import ExactLPSolver, solve_lp
+
+
+def _verify(A, eq, b, c, nonneg, res):
+    """Independent re-check of a returned certificate with Fractions."""
+    R, N = len(A), len(A[0])
+    if res.status == "optimal":
+        x, y = res.x, res.y
+        for r in range(R):
+            ax = sum(A[r][i] * x[i] for i in range(N))
+            assert ax == b[r] if eq[r] else ax <= b[r]
+            if not eq[r]:
+                assert y[r] >= 0
+        for i in range(N):
+            red = sum(A[r][i] * y[r] for r in range(R)) - c[i]
+            assert red >= 0 if nonneg[i] else red == 0
+            if nonneg[i]:
+                assert x[i] >= 0
+        assert sum(ci * xi for ci, xi in zip(c, x)) == sum(bi * yi for bi, yi in zip(b, y)) == res.value
+    elif res.status == "infeasible":
+        y = res.y
+        assert sum(bi * yi for bi, yi in zip(b, y)) < 0
+        for i in range(N):
+            s = sum(A[r][i] * y[r] for r in range(R))
+            assert s >= 0 if nonneg[i] else s == 0
+    else:
+        d = res.ray
+        assert sum(ci * di for ci, di in zip(c, d)) > 0
+        for r in range(R):
+            ad = sum(A[r][i] * d[i] for i in range(N))
+            assert ad == 0 if eq[r] else ad <= 0
+
+
+def _solve(A, eq, b, c, nonneg):
+    res = solve_lp(flint.fmpq_mat(A), eq, b, c, nonneg)
+    _verify(A, eq, b, c, nonneg, res)
+    return res
+
+
+def test_optimal_with_thirds():
+    res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True])
+    assert res.status == "optimal" and res.value == Fraction(1, 2)
+    assert res.x == (Fraction(1, 4), Fraction(1, 4))
+
+
+def test_infeasible_has_farkas():
+    res = _solve([[1, 1], [-1, -1]], [False, False], [1, -2], [1, 0], [True, True])
+    assert res.status == "infeasible"
+
+
+def test_unbounded_has_ray():
+    res = _solve([[1, -1], [-1, 0]], [False, False], [1, 0], [1, 1], [False, False])
+    assert res.status == "unbounded" and res.value == lp.INF
+
+
+def test_basis_solve_when_rounding_fails(monkeypatch):
+    monkeypatch.setattr(lp, "_snap", lambda v: Fraction(v) + Fraction(1, 10**9))
+    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
+    assert res.path == "float-basis"
+
+
+def test_exact_fallback_when_float_hint_is_useless(monkeypatch):
+    monkeypatch.setattr(ExactLPSolver, "_reconstructions", lambda self, *a: iter(()))
+    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
+    assert res.path == "exact-ppl"
+    # dual: 7y1 + 2y2 = 1, 3y1 + 9y2 = 1  =>  y = (7/57, 4/57)
+    assert res.value == Fraction(1, 3) * Fraction(7, 57) + Fraction(2, 7) * Fraction(4, 57)
+
+
+def test_exact_fallback_when_float_solver_gives_up(monkeypatch):
+    monkeypatch.setattr(ExactLPSolver, "_float_solve", lambda self, *a: ("unknown", None, None, None))
+    for status, data in [
+        ("optimal", ([[1, 2]], [False], [4], [1, 1], [True, True])),
+        ("infeasible", ([[1], [-1]], [False, False], [0, -1], [1], [False])),
+        ("unbounded", ([[1, -1]], [False], [0], [1, 1], [True, True])),
+    ]:
+        res = _solve(*data)
+        assert res.status == status
+
+
+small = st.integers(-4, 4)
+
+
+@given(st.integers(1, 4).flatmap(lambda n: st.tuples(
+    st.lists(st.lists(small, min_size=n, max_size=n), min_size=1, max_size=5),
+    st.lists(small, min_size=n, max_size=n),
+    st.lists(st.booleans(), min_size=n, max_size=n),
+)), st.data())
+def test_random_lps_match_exact_ppl(data, draw):
+    A, c, nonneg = data
+    b = draw.draw(st.lists(small, min_size=len(A), max_size=len(A)))
+    eq = draw.draw(st.lists(st.booleans(), min_size=len(A), max_size=len(A)))
+    res = _solve(A, eq, b, c, nonneg)
+    status, x = lp._ppl_maximize(flint.fmpq_mat(A), eq, flint.fmpq_mat(len(b), 1, b), flint.fmpq_mat(len(c), 1, c), nonneg)
+    assert res.status == status
+    if status == "optimal":
+        assert res.value == sum(ci * Fraction(int(xi.p), int(xi.q)) for ci, xi in zip(c, x.entries()))
