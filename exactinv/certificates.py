@@ -59,7 +59,10 @@ def _gamma_claim(g) -> dict:
         claim["rows"] = [{"h": _vec(r.h), "ray": _vec(r.ray)} for r in g.rows]
     else:
         y, lam = g.dual
-        claim.update(H=_mat(g.H), binding_row=g.binding_row, dual={"y": _vec(y), "lambda": str(lam)})
+        m = g.H_flint.nrows()
+        H = g.H_flint.entries()
+        claim.update(H=[[str(v) for v in H[i * m:(i + 1) * m]] for i in range(m)], binding_row=g.binding_row,
+                     dual={"y": _vec(y), "lambda": str(lam)})
     return claim
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 from typing import Any
 
 import flint
@@ -23,7 +24,7 @@ import flint
 from .errors import EmptyPolyhedron, InvalidInput, VerificationFailed
 from .lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from .model import LinearSystem, Polyhedron, _matrix_text, _vector_text
-from .numbers import INF, Infinity, Matrix, Vector, fmpq_matrix, fraction_of, matrix_of, to_matrix, to_rational
+from .numbers import INF, Infinity, Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational
 
 __all__ = [
     "FacetWitness",
@@ -105,13 +106,30 @@ class GammaRow:
     h^T b <= 0, h_k >= 0 (k != j).  ``gamma = -max h_j`` (``-INF`` when the
     row LP is unbounded, ``INF`` when it is infeasible).  For an optimal row,
     ``dual = (y, lam)`` proves the bound:  g_k.y + lam b_k >= 0 (k != j),
-    g_j.y + lam b_j = 1, lam >= 0 and (A^T g_j).y = max h_j."""
+    g_j.y + lam b_j = 1, lam >= 0 and (A^T g_j).y = max h_j.  For an
+    unbounded row, ``h`` is feasible and ``ray`` increases h_j."""
 
     gamma: Fraction | Infinity
-    h: Vector | None
-    ray: Vector | None
-    dual: tuple[Vector, Fraction] | None
-    path: str
+    lp: LPResult = field(repr=False)
+
+    @property
+    def path(self) -> str:
+        return self.lp.path
+
+    @property
+    def h(self) -> Vector | None:
+        return self.lp.x
+
+    @property
+    def ray(self) -> Vector | None:
+        return self.lp.ray
+
+    @property
+    def dual(self) -> tuple[Vector, Fraction] | None:
+        if self.lp.y is None:
+            return None
+        y = self.lp.y
+        return tuple(y[:-1]), y[-1]
 
 
 @dataclass(frozen=True)
@@ -127,13 +145,22 @@ class OptimalGamma:
     """
 
     value: Fraction | Infinity
-    H: Matrix | None
+    H_flint: flint.fmpq_mat | None = field(repr=False)
     binding_row: int | None
-    dual: tuple[Vector, Fraction] | None
     rows: tuple[GammaRow, ...] = field(repr=False)
     witness: FacetWitness | None
     system: LinearSystem = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
+
+    @cached_property
+    def H(self) -> Matrix | None:
+        """The exact certificate H (Fractions)."""
+        return None if self.H_flint is None else matrix_of(self.H_flint)
+
+    @property
+    def dual(self) -> tuple[Vector, Fraction] | None:
+        """(y, lambda) of the binding row: the proof that gamma* is not smaller."""
+        return None if self.binding_row is None else self.rows[self.binding_row].dual
 
     @property
     def paths(self) -> dict[str, int]:
@@ -176,24 +203,22 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     S, P = _check_pair(system, polyhedron)
     m, n = P.m, P.n
     GA = P.G_flint * S.A_flint
-    constraint = fmpq_matrix(_stack_transpose(P))
+    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     solver = ExactLPSolver(constraint, [True] * n + [False])
-    rows: list[GammaRow] = []
+    costs = flint.fmpq_mat(m, m)  # column j: e_j
     for j in range(m):
-        rhs = [GA[j, i] for i in range(n)] + [0]
-        c = [int(k == j) for k in range(m)]
-        nonneg = [k != j for k in range(m)]
-        res = solver.solve(c, [fraction_of(v) for v in rhs], nonneg)
-        rows.append(_gamma_row(res, n))
+        costs[j, j] = 1
+    rhss = flint.fmpq_mat(n + 1, m, GA.transpose().entries() + [0] * m)  # column j: (A^T g_j, 0)
+    signs = [[k != j for k in range(m)] for j in range(m)]
+    rows = [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
     if any(row.gamma == INF for row in rows):
         witness = _continuous_witness(S, P, first=[j for j, r in enumerate(rows) if r.gamma == INF])
-        return OptimalGamma(INF, None, None, None, tuple(rows), witness, S, P)
+        return OptimalGamma(INF, None, None, tuple(rows), witness, S, P)
     value = max((row.gamma for row in rows), key=_order_key)
     binding = None if value == -INF else next(j for j, r in enumerate(rows) if r.gamma == value)
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
-    dual = rows[binding].dual if binding is not None else None
-    return OptimalGamma(value, H, binding, dual, tuple(rows), None, S, P)
+    return OptimalGamma(value, H, binding, tuple(rows), None, S, P)
 
 
 def continuous_invariance(system: LinearSystem, polyhedron: Polyhedron) -> ContinuousInvariance:
@@ -270,37 +295,28 @@ def _check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
     return S, P
 
 
-def _stack_transpose(P: Polyhedron) -> list[list[Fraction]]:
-    """The row-LP constraint matrix [G^T; b^T] ((n+1) x m)."""
-    return [[P.G[k][i] for k in range(P.m)] for i in range(P.n)] + [list(P.b)]
-
-
 def _order_key(v):
     return (v.sign, 0) if isinstance(v, Infinity) else (0, v)
 
 
-def _gamma_row(res: LPResult, n: int) -> GammaRow:
+def _gamma_row(res: LPResult) -> GammaRow:
     if res.status == OPTIMAL:
-        y = res.y
-        return GammaRow(-res.value, res.x, None, (tuple(y[:n]), y[n]), res.path)
-    if res.status == UNBOUNDED:
-        return GammaRow(-INF, res.x, res.ray, None, res.path)
-    return GammaRow(INF, None, None, None, res.path)
+        return GammaRow(-res.value, res)
+    return GammaRow(-INF if res.status == UNBOUNDED else INF, res)
 
 
-def _assemble_H(rows: list[GammaRow], gamma) -> Matrix:
+def _assemble_H(rows: list[GammaRow], gamma) -> flint.fmpq_mat:
     """H from the row LPs; an unbounded row is pushed along its ray until
     h_jj >= -gamma* (for gamma* = -INF: h_jj >= 0, any gamma >= 0 then works)."""
-    H = []
+    entries = []
+    target = flint.fmpq(0) if isinstance(gamma, Infinity) else -fmpq_of(gamma)
     for j, row in enumerate(rows):
-        h = list(row.h)
-        if row.ray is not None:
-            target = Fraction(0) if isinstance(gamma, Infinity) else -gamma
-            if h[j] < target:
-                t = (target - h[j]) / row.ray[j]
-                h = [hk + t * dk for hk, dk in zip(h, row.ray)]
-        H.append(tuple(h))
-    return tuple(H)
+        h = row.lp.x_q
+        ray = row.lp.ray_q
+        if ray is not None and h[j, 0] < target:
+            h = h + ray * ((target - h[j, 0]) / ray[j, 0])
+        entries.extend(h.entries())
+    return flint.fmpq_mat(len(rows), len(rows), entries)
 
 
 def _push_along_ray(x, ray, objective, bound) -> Vector:
@@ -329,12 +345,17 @@ def _continuous_witness(S: LinearSystem, P: Polyhedron, first: list[int]) -> Fac
     raise VerificationFailed("continuous invariance: a row LP is infeasible but no facet witness was found")
 
 
-def _recheck_continuous(S: LinearSystem, P: Polyhedron, H: Matrix, gamma) -> None:
-    Hq = fmpq_matrix(H)
+def _recheck_continuous(S: LinearSystem, P: Polyhedron, Hq: flint.fmpq_mat, gamma) -> None:
+    m = P.m
     ok = Hq * P.G_flint == P.G_flint * S.A_flint and all(v <= 0 for v in (Hq * P.b_flint).entries())
-    ok = ok and all(H[i][k] >= 0 for i in range(P.m) for k in range(P.m) if i != k)
+    entries = Hq.entries()
+    for i in range(m):  # off-diagonal entries >= 0 (min runs in C)
+        row = entries[i * m:(i + 1) * m]
+        del row[i]
+        ok = ok and (not row or min(row) >= 0)
     if not isinstance(gamma, Infinity):
-        ok = ok and all(H[i][i] + gamma >= 0 for i in range(P.m))
+        g = fmpq_of(gamma)
+        ok = ok and all(entries[i * (m + 1)] + g >= 0 for i in range(m))
     if not ok:
         raise VerificationFailed("optimal_gamma: the assembled H failed its exact re-check")
 

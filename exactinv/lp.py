@@ -30,8 +30,9 @@ Infeasible and unbounded programs get certificates too: a Farkas vector
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 from math import lcm
 from typing import Sequence
 
@@ -62,10 +63,22 @@ class LPResult:
 
     status: str
     value: Fraction | Infinity | None
-    x: tuple[Fraction, ...] | None
-    y: tuple[Fraction, ...] | None
-    ray: tuple[Fraction, ...] | None
+    x_q: flint.fmpq_mat | None = field(repr=False)
+    y_q: flint.fmpq_mat | None = field(repr=False)
+    ray_q: flint.fmpq_mat | None = field(repr=False)
     path: str
+
+    @cached_property
+    def x(self) -> tuple[Fraction, ...] | None:
+        return None if self.x_q is None else _fractions(self.x_q)
+
+    @cached_property
+    def y(self) -> tuple[Fraction, ...] | None:
+        return None if self.y_q is None else _fractions(self.y_q)
+
+    @cached_property
+    def ray(self) -> tuple[Fraction, ...] | None:
+        return None if self.ray_q is None else _fractions(self.ray_q)
 
 
 class ExactLPSolver:
@@ -85,17 +98,33 @@ class ExactLPSolver:
         self.equality = tuple(bool(e) for e in equality)
         self.R, self.N = A.nrows(), A.ncols()
         self._highs: highspy.Highs | None = None
-        self._A_float = np.array([[float(A[r, i]) for i in range(self.N)] for r in range(self.R)], dtype=float).reshape(self.R, self.N)
+        self._A_float = np.array([float(v) for v in A.entries()], dtype=float).reshape(self.R, self.N)
+
+    @cached_property
+    def _rows(self) -> list[list[tuple[int, flint.fmpq]]]:
+        """Sparse rows of A (for verifying one solution: basic solutions are sparse)."""
+        entries = self.A.entries()
+        return [[(i, v) for i, v in enumerate(entries[r * self.N:(r + 1) * self.N]) if v != 0] for r in range(self.R)]
+
+    @cached_property
+    def _cols(self) -> list[list[tuple[int, flint.fmpq]]]:
+        cols: list[list[tuple[int, flint.fmpq]]] = [[] for _ in range(self.N)]
+        for r, row in enumerate(self._rows):
+            for i, v in row:
+                cols[i].append((r, v))
+        return cols
 
     # ------------------------------------------------------------------ API
-    def solve(self, c: Sequence[Fraction], b: Sequence[Fraction], nonnegative: Sequence[bool]) -> LPResult:
-        """Maximize c.x over {A x (=|<=) b, x_i >= 0 where nonnegative[i]}; verified."""
+    def solve(self, c: Sequence[Fraction] | flint.fmpq_mat, b: Sequence[Fraction] | flint.fmpq_mat,
+              nonnegative: Sequence[bool]) -> LPResult:
+        """Maximize c.x over {A x (=|<=) b, x_i >= 0 where nonnegative[i]}; verified.
+        ``c`` and ``b`` are sequences of rationals or fmpq column matrices."""
         cq = _column(c)
         bq = _column(b)
         nonneg = tuple(bool(v) for v in nonnegative)
-        status, x_float, y_float, basis = self._float_solve(c, b, nonneg)
+        status, x_float, y_float, highs = self._float_solve(cq, bq, nonneg)
         if status == OPTIMAL:
-            for path, x, y in self._reconstructions(cq, bq, nonneg, x_float, y_float, basis):
+            for path, x, y in self._reconstructions(cq, bq, nonneg, x_float, y_float, highs):
                 if x is not None and y is not None and self._verify_optimal(cq, bq, nonneg, x, y):
                     return _optimal(cq, x, y, path)
         elif status == INFEASIBLE:
@@ -108,13 +137,73 @@ class ExactLPSolver:
                 return certificate
         return self._exact_solve(cq, bq, nonneg)
 
+    def solve_many(self, costs: flint.fmpq_mat, rhss: flint.fmpq_mat,
+                   nonnegatives: Sequence[Sequence[bool]]) -> list[LPResult]:
+        """Solve K LPs that share A: LP k has cost column k of ``costs`` (N x K),
+        right-hand side column k of ``rhss`` (R x K) and sign pattern
+        ``nonnegatives[k]``.  The float hints are rounded and then verified all
+        at once by two exact FLINT matrix products (primal A X, dual A^T Y);
+        an LP whose rounded hint fails goes through :meth:`solve`'s full route.
+        Every returned result is verified exactly, as with :meth:`solve`."""
+        K = costs.ncols()
+        C_cols = _columns_of(costs)
+        B_cols = _columns_of(rhss)
+        signs = [tuple(nn) for nn in nonnegatives]
+        results: list[LPResult | None] = [None] * K
+        xs, ys = [], []
+        for k in range(K):
+            status, x_float, y_float, _ = self._float_solve(C_cols[k], B_cols[k], signs[k])
+            if status != OPTIMAL:
+                results[k] = self.solve(C_cols[k], B_cols[k], signs[k])
+                xs.append(None)
+                ys.append(None)
+                continue
+            xs.append(_snapped(x_float).entries())
+            ys.append(_snapped(y_float).entries())
+        zero_N, zero_R = [flint.fmpq(0)] * self.N, [flint.fmpq(0)] * self.R
+        X = flint.fmpq_mat(K, self.N, [v for x in xs for v in (x if x is not None else zero_N)]).transpose()
+        Y = flint.fmpq_mat(K, self.R, [v for y in ys for v in (y if y is not None else zero_R)]).transpose()
+        ok = [x is not None for x in xs]
+        # primal: slack = b - A x >= 0, = 0 on equality rows; x >= 0 where required
+        for idx, v in enumerate((rhss - self.A * X).entries()):
+            if v != 0:
+                r, k = divmod(idx, K)
+                if v < 0 or self.equality[r]:
+                    ok[k] = False
+        # dual: A^T y - c >= 0 (nonnegative columns), = 0 (free); y >= 0 on inequality rows
+        for idx, v in enumerate((self.AT * Y - costs).entries()):
+            if v != 0:
+                i, k = divmod(idx, K)
+                if v < 0 or not signs[k][i]:
+                    ok[k] = False
+        for k in range(K):
+            if not ok[k]:
+                continue
+            x, y = xs[k], ys[k]
+            if any(v < 0 for v, sign in zip(x, signs[k]) if sign and v != 0) or any(
+                v < 0 for v, eq in zip(y, self.equality) if not eq and v != 0
+            ):
+                ok[k] = False
+                continue
+            cx = sum((c * v for c, v in zip(C_cols[k].entries(), x) if c != 0 and v != 0), flint.fmpq(0))
+            by = sum((b * v for b, v in zip(B_cols[k].entries(), y) if b != 0 and v != 0), flint.fmpq(0))
+            if cx != by:
+                ok[k] = False
+                continue
+            results[k] = LPResult(OPTIMAL, fraction_of(cx), flint.fmpq_mat(self.N, 1, x), flint.fmpq_mat(self.R, 1, y),
+                                  None, "float-rounded")
+        for k in range(K):
+            if results[k] is None:
+                results[k] = self.solve(C_cols[k], B_cols[k], signs[k])
+        return results
+
     # ----------------------------------------------------------- float hint
     def _float_solve(self, c, b, nonneg):
         h = self._highs
-        cost = np.array([-float(v) for v in c])  # HiGHS minimizes
+        cost = np.array([-float(v) for v in c.entries()])  # HiGHS minimizes
         lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
         upper = np.full(self.N, highspy.kHighsInf)
-        rhs = np.array([float(v) for v in b])
+        rhs = np.array([float(v) for v in b.entries()])
         row_lower = np.where(np.array(self.equality, dtype=bool), rhs, -highspy.kHighsInf)
         if h is None:
             h = highspy.Highs()
@@ -143,8 +232,7 @@ class ExactLPSolver:
         S = highspy.HighsModelStatus
         if status == S.kOptimal:
             sol = h.getSolution()
-            basis = h.getBasis()
-            return OPTIMAL, list(sol.col_value), [-v for v in sol.row_dual], basis
+            return OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), h
         if status == S.kInfeasible:
             return INFEASIBLE, None, None, None
         if status == S.kUnbounded:
@@ -153,19 +241,10 @@ class ExactLPSolver:
         return "unknown", None, None, None
 
     # -------------------------------------------------------- map back to Q
-    def _reconstructions(self, cq, bq, nonneg, x_float, y_float, basis):
+    def _reconstructions(self, cq, bq, nonneg, x_float, y_float, highs):
         """Candidate exact (x, y) pairs, cheapest first."""
-        B = highspy.HighsBasisStatus
-        basic_cols = [i for i, s in enumerate(basis.col_status) if s == B.kBasic]
-        basic_rows = {r for r, s in enumerate(basis.row_status) if s == B.kBasic}
-        tight_rows = [r for r in range(self.R) if r not in basic_rows]
-        x = [Fraction(0)] * self.N
-        for i in basic_cols:
-            x[i] = _snap(x_float[i])
-        y = [Fraction(0)] * self.R
-        for r in tight_rows:
-            y[r] = _snap(y_float[r])
-        yield "float-rounded", _column(x), _column(y)
+        yield "float-rounded", _snapped(x_float), _snapped(y_float)
+        basic_cols, tight_rows = _basis_sets(highs.getBasis(), self.R)
         if len(basic_cols) != len(tight_rows):
             return
         Bmat = flint.fmpq_mat(len(tight_rows), len(basic_cols), [self.A[r, i] for r in tight_rows for i in basic_cols])
@@ -184,19 +263,32 @@ class ExactLPSolver:
 
     # --------------------------------------------------------- verification
     def _primal_feasible(self, bq, nonneg, x) -> bool:
-        Ax = self.A * x
-        for r in range(self.R):
-            if self.equality[r] and Ax[r, 0] != bq[r, 0]:
+        """A x (=|<=) b and the sign restrictions, by a sparse exact product."""
+        Ax = [flint.fmpq(0)] * self.R
+        for i, v in enumerate(x.entries()):
+            if v != 0:
+                if v < 0 and nonneg[i]:
+                    return False
+                for r, a in self._cols[i]:
+                    Ax[r] += a * v
+        for r, (lhs, rhs) in enumerate(zip(Ax, bq.entries())):
+            if lhs > rhs or (self.equality[r] and lhs != rhs):
                 return False
-            if not self.equality[r] and Ax[r, 0] > bq[r, 0]:
-                return False
-        return all(x[i, 0] >= 0 for i in range(self.N) if nonneg[i])
+        return True
 
     def _dual_feasible(self, cq, nonneg, y) -> bool:
-        if any(y[r, 0] < 0 for r in range(self.R) if not self.equality[r]):
-            return False
-        reduced = self.AT * y - cq
-        return all(reduced[i, 0] >= 0 if nonneg[i] else reduced[i, 0] == 0 for i in range(self.N))
+        """y_r >= 0 on inequality rows; A^T y - c >= 0 (nonnegative columns), = 0 (free)."""
+        ATy = [flint.fmpq(0)] * self.N
+        for r, v in enumerate(y.entries()):
+            if v != 0:
+                if v < 0 and not self.equality[r]:
+                    return False
+                for i, a in self._rows[r]:
+                    ATy[i] += a * v
+        for i, (lhs, c) in enumerate(zip(ATy, cq.entries())):
+            if lhs < c or (not nonneg[i] and lhs != c):
+                return False
+        return True
 
     def _verify_optimal(self, cq, bq, nonneg, x, y) -> bool:
         return (
@@ -222,23 +314,22 @@ class ExactLPSolver:
         res = aux.solve([-fraction_of(bq[r, 0]) for r in range(self.R)], [0] * self.N + [1], [not e for e in self.equality])
         if res.status != OPTIMAL:
             return None
-        y = _column(res.x)
-        if not self._verify_farkas(bq, nonneg, y):
+        if not self._verify_farkas(bq, nonneg, res.x_q):
             return None
-        return LPResult(INFEASIBLE, None, None, res.x, None, res.path)
+        return LPResult(INFEASIBLE, None, None, res.x_q, None, res.path)
 
     def _unbounded(self, cq, bq, nonneg) -> LPResult | None:
         """A feasible point (max 0 over the same set) and a ray (max c.d over the
         recession cone cut by c.d <= 1)."""
-        point = self.solve([0] * self.N, [fraction_of(v) for v in bq.entries()], nonneg)
+        point = self.solve(flint.fmpq_mat(self.N, 1), bq, nonneg)
         if point.status != OPTIMAL:
             return None
         rows = [[self.A[r, i] for i in range(self.N)] for r in range(self.R)] + [[cq[i, 0] for i in range(self.N)]]
         cone = ExactLPSolver(flint.fmpq_mat(rows), list(self.equality) + [False])
-        ray = cone.solve([fraction_of(v) for v in cq.entries()], [0] * self.R + [1], nonneg)
-        if ray.status != OPTIMAL or not self._verify_ray(cq, nonneg, _column(ray.x)):
+        ray = cone.solve(cq, [0] * self.R + [1], nonneg)
+        if ray.status != OPTIMAL or not self._verify_ray(cq, nonneg, ray.x_q):
             return None
-        return LPResult(UNBOUNDED, INF, point.x, None, ray.x, ray.path)
+        return LPResult(UNBOUNDED, INF, point.x_q, None, ray.x_q, ray.path)
 
     # ------------------------------------------------------ exact fallback
     def _exact_solve(self, cq, bq, nonneg) -> LPResult:
@@ -275,8 +366,39 @@ def solve_lp(
 
 
 # ------------------------------------------------------------------ helpers
-def _snap(v: float) -> Fraction:
-    return Fraction(v).limit_denominator(_ROUNDING_DENOMINATOR)
+_SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 24)
+
+
+def _snap(v: float) -> flint.fmpq:
+    """A simple fraction near the float hint v (only a hint: it is verified)."""
+    for d in _SMALL_DENOMINATORS:
+        scaled = v * d
+        nearest = round(scaled)
+        if abs(scaled - nearest) <= 1e-9 * max(1.0, abs(scaled)):
+            return flint.fmpq(int(nearest), d)
+    q = Fraction(v).limit_denominator(_ROUNDING_DENOMINATOR)
+    return flint.fmpq(q.numerator, q.denominator)
+
+
+def _snapped(values: np.ndarray) -> flint.fmpq_mat:
+    """The float hint as a column of simple fractions; exact zeros stay zero.
+    Only a hint: whatever it produces is verified."""
+    out = flint.fmpq_mat(len(values), 1)
+    idx = np.flatnonzero(values)
+    v = values[idx]
+    for d in _SMALL_DENOMINATORS:  # the common cases, vectorised
+        if not len(idx):
+            break
+        scaled = v * d
+        near = np.round(scaled)
+        ok = np.abs(scaled - near) <= 1e-9 * np.maximum(1.0, np.abs(scaled))
+        for i, num in zip(idx[ok].tolist(), near[ok].tolist()):
+            if num:
+                out[i, 0] = flint.fmpq(int(num), d)
+        idx, v = idx[~ok], v[~ok]
+    for i, value in zip(idx.tolist(), v.tolist()):
+        out[i, 0] = _snap(value)
+    return out
 
 
 def _column(v) -> flint.fmpq_mat:
@@ -290,15 +412,26 @@ def _dot(u: flint.fmpq_mat, v: flint.fmpq_mat) -> flint.fmpq:
     return (u.transpose() * v)[0, 0]
 
 
+def _basis_sets(basis: highspy.HighsBasis, R: int) -> tuple[list[int], list[int]]:
+    """(basic columns, tight rows = rows whose slack is nonbasic) of a HiGHS basis."""
+    basic = highspy.HighsBasisStatus.kBasic
+    basic_cols = [i for i, st in enumerate(basis.col_status) if st == basic]
+    return basic_cols, [r for r, st in enumerate(basis.row_status) if st != basic]
+
+
+def _columns_of(M: flint.fmpq_mat) -> list[flint.fmpq_mat]:
+    rows, K = M.nrows(), M.ncols()
+    T = M.transpose().entries()
+    return [flint.fmpq_mat(rows, 1, T[k * rows:(k + 1) * rows]) for k in range(K)]
+
+
+def _fractions(M: flint.fmpq_mat) -> tuple[Fraction, ...]:
+    zero = Fraction(0)
+    return tuple(zero if v == 0 else fraction_of(v) for v in M.entries())
+
+
 def _optimal(cq, x, y, path) -> LPResult:
-    return LPResult(
-        OPTIMAL,
-        fraction_of(_dot(cq, x)),
-        tuple(fraction_of(v) for v in x.entries()),
-        tuple(fraction_of(v) for v in y.entries()),
-        None,
-        path,
-    )
+    return LPResult(OPTIMAL, fraction_of(_dot(cq, x)), x, y, None, path)
 
 
 def _integer_expression(coeffs: Sequence[flint.fmpq], constant: flint.fmpq = flint.fmpq(0)):

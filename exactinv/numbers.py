@@ -259,7 +259,15 @@ def fmpq_of(x: Fraction) -> flint.fmpq:
 def fraction_of(x: flint.fmpq | flint.fmpz | int) -> Fraction:
     if isinstance(x, (flint.fmpz, int)):
         return Fraction(int(x))
-    return Fraction(int(x.p), int(x.q))
+    return _coprime(int(x.p), int(x.q))
+
+
+def _coprime(p: int, q: int) -> Fraction:
+    # flint keeps fmpq canonical (coprime, q > 0): skip Fraction's gcd.
+    try:
+        return Fraction(p, q, _normalize=False)
+    except TypeError:  # Python >= 3.12
+        return Fraction._from_coprime_ints(p, q)
 
 
 def fmpq_matrix(rows: Sequence[Sequence[Fraction]]) -> flint.fmpq_mat:

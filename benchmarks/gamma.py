@@ -1,0 +1,123 @@
+"""gamma*: the certified pipeline against a plain float solve and a purely exact solver.
+
+On the same instances, in one run:
+
+* exactinv   -- ``optimal_gamma``: m row LPs in HiGHS (warm-started), exact
+                reconstruction and verification in Q (the certified answer);
+* cvxpy      -- the whole LP  min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}
+                as one cvxpy problem solved by HiGHS in floating point (no guarantee);
+* pplpy      -- the m row LPs solved by PPL's exact simplex (MIP_Problem), row by row.
+
+Instances: boxes [-1,1]^n (m = 2n) with row-diagonally-dominant A, and random
+polytopes {x : Gx <= 1} inside [-1,1]^n with up to 500 facets and
+A = -I/2 + R, R small enough that P is invariant.
+
+Run:  python benchmarks/gamma.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+import time
+from fractions import Fraction
+
+import cvxpy as cp
+import numpy as np
+
+import exactinv as ei
+from exactinv.lp import _ppl_maximize
+from exactinv.numbers import fmpq_matrix
+
+PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
+
+
+def box_instance(n: int, rng: random.Random):
+    A = [[Fraction(rng.randint(-3, 3), rng.randint(1, 4)) if i != j else Fraction(0) for j in range(n)] for i in range(n)]
+    for i in range(n):
+        A[i][i] = -sum(abs(v) for v in A[i]) - Fraction(rng.randint(0, 5), 2)
+    return ei.LinearSystem(A), ei.Polyhedron.box([-1] * n, [1] * n)
+
+
+def polytope_instance(n: int, m: int, rng: random.Random):
+    G = [[int(i == k) for k in range(n)] for i in range(n)] + [[-int(i == k) for k in range(n)] for i in range(n)]
+    while len(G) < m:
+        row = [rng.randint(-9, 9) for _ in range(n)]
+        if any(row):
+            G.append(row)
+    scale = 18 * n * n
+    A = [[Fraction(rng.randint(-100, 100), 100 * scale) - (Fraction(1, 2) if i == j else 0) for j in range(n)] for i in range(n)]
+    return ei.LinearSystem(A), ei.Polyhedron(G, [1] * len(G))
+
+
+def time_exact(S, P):
+    t = time.perf_counter()
+    g = ei.optimal_gamma(S, P)
+    return time.perf_counter() - t, g
+
+
+def time_cvxpy(S, P):
+    G = np.array([[float(v) for v in r] for r in P.G])
+    A = np.array([[float(v) for v in r] for r in S.A])
+    b = np.array([float(v) for v in P.b])
+    m = P.m
+    t = time.perf_counter()
+    H = cp.Variable((m, m))
+    gamma = cp.Variable()
+    problem = cp.Problem(cp.Minimize(gamma), [H + gamma * np.eye(m) >= 0, H @ G == G @ A, H @ b <= 0])
+    problem.solve(solver=cp.HIGHS)
+    return time.perf_counter() - t, problem.value
+
+
+def time_ppl(S, P):
+    import flint
+
+    m, n = P.m, P.n
+    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
+    GA = P.G_flint * S.A_flint
+    t = time.perf_counter()
+    best = None
+    done = 0
+    for j in range(m):
+        rhs = flint.fmpq_mat(n + 1, 1, [GA[j, i] for i in range(n)] + [0])
+        c = flint.fmpq_mat(m, 1, [int(k == j) for k in range(m)])
+        status, x = _ppl_maximize(constraint, [True] * n + [False], rhs, c, [k != j for k in range(m)])
+        value = -Fraction(int(x[j, 0].p), int(x[j, 0].q)) if status == "optimal" else None
+        best = value if best is None or (value is not None and value > best) else best
+        done += 1
+        if time.perf_counter() - t > PPL_BUDGET:
+            break
+    elapsed = time.perf_counter() - t
+    return elapsed * m / done, done < m, best
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
+    args = parser.parse_args(argv)
+    rng = random.Random(20261122)
+    instances = []
+    sizes = [10, 25] if args.quick else [10, 25, 50, 100, 150, 200]
+    for n in sizes:
+        instances.append((f"box n={n}", *box_instance(n, rng)))
+    poly_sizes = [(5, 50)] if args.quick else [(5, 50), (8, 100), (10, 250), (10, 500)]
+    for n, m in poly_sizes:
+        instances.append((f"polytope n={n}", *polytope_instance(n, m, rng)))
+    header = f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'exact/cvxpy':>13}{'pplpy s':>11}{'pplpy/exact':>13}  gamma*  routes"
+    print(header)
+    print("-" * len(header))
+    for name, S, P in instances:
+        te, g = time_exact(S, P)
+        tc, vc = time_cvxpy(S, P)
+        tp, extrapolated, vp = time_ppl(S, P)
+        assert vp is None or extrapolated or vp == g.value, (vp, g.value)
+        assert abs(vc - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (vc, g.value)
+        mark = "~" if extrapolated else " "
+        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{te / tc:>13.2f}{mark}{tp:>10.2f}{tp / te:>13.1f}  {g.value}  {g.paths}")
+        sys.stdout.flush()
+    print("~ = pplpy stopped after its time budget; time extrapolated from the rows it solved")
+
+
+if __name__ == "__main__":
+    main()
