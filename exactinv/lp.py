@@ -150,16 +150,24 @@ class ExactLPSolver:
         B_cols = _columns_of(rhss)
         signs = [tuple(nn) for nn in nonnegatives]
         results: list[LPResult | None] = [None] * K
+        paths = ["float-rounded"] * K
         xs, ys = [], []
         for k in range(K):
-            status, x_float, y_float, _ = self._float_solve(C_cols[k], B_cols[k], signs[k])
+            status, x_float, y_float, highs = self._float_solve(C_cols[k], B_cols[k], signs[k])
             if status != OPTIMAL:
                 results[k] = self.solve(C_cols[k], B_cols[k], signs[k])
                 xs.append(None)
                 ys.append(None)
                 continue
-            xs.append(_snapped(x_float).entries())
-            ys.append(_snapped(y_float).entries())
+            x, x_clean = _snapped(x_float)
+            y, y_clean = _snapped(y_float)
+            if not (x_clean and y_clean):  # large denominators: rounding is unlikely to verify
+                pair = self._basis_solution(C_cols[k], B_cols[k], highs.getBasis())
+                if pair is not None:
+                    x, y = pair
+                    paths[k] = "float-basis"
+            xs.append(x.entries())
+            ys.append(y.entries())
         zero_N, zero_R = [flint.fmpq(0)] * self.N, [flint.fmpq(0)] * self.R
         X = flint.fmpq_mat(K, self.N, [v for x in xs for v in (x if x is not None else zero_N)]).transpose()
         Y = flint.fmpq_mat(K, self.R, [v for y in ys for v in (y if y is not None else zero_R)]).transpose()
@@ -191,7 +199,7 @@ class ExactLPSolver:
                 ok[k] = False
                 continue
             results[k] = LPResult(OPTIMAL, fraction_of(cx), flint.fmpq_mat(self.N, 1, x), flint.fmpq_mat(self.R, 1, y),
-                                  None, "float-rounded")
+                                  None, paths[k])
         for k in range(K):
             if results[k] is None:
                 results[k] = self.solve(C_cols[k], B_cols[k], signs[k])
@@ -243,23 +251,35 @@ class ExactLPSolver:
     # -------------------------------------------------------- map back to Q
     def _reconstructions(self, cq, bq, nonneg, x_float, y_float, highs):
         """Candidate exact (x, y) pairs, cheapest first."""
-        yield "float-rounded", _snapped(x_float), _snapped(y_float)
-        basic_cols, tight_rows = _basis_sets(highs.getBasis(), self.R)
+        x, x_clean = _snapped(x_float)
+        y, y_clean = _snapped(y_float)
+        yield "float-rounded", x, y
+        pair = self._basis_solution(cq, bq, highs.getBasis())
+        if pair is not None:
+            yield ("float-basis", *pair)
+
+    def _basis_solution(self, cq, bq, basis) -> tuple[flint.fmpq_mat, flint.fmpq_mat] | None:
+        """The exact vertex and dual of a float basis: B x_B = b_tight, B^T y = c_B."""
+        basic_cols, tight_rows = _basis_sets(basis, self.R)
         if len(basic_cols) != len(tight_rows):
-            return
-        Bmat = flint.fmpq_mat(len(tight_rows), len(basic_cols), [self.A[r, i] for r in tight_rows for i in basic_cols])
+            return None
+        A = self.A.entries()
+        N = self.N
+        Bmat = flint.fmpq_mat(len(tight_rows), len(basic_cols), [A[r * N + i] for r in tight_rows for i in basic_cols])
+        b = bq.entries()
+        c = cq.entries()
         try:
-            xB = Bmat.solve(flint.fmpq_mat(len(tight_rows), 1, [bq[r, 0] for r in tight_rows]))
-            yB = Bmat.transpose().solve(flint.fmpq_mat(len(basic_cols), 1, [cq[i, 0] for i in basic_cols]))
+            xB = Bmat.solve(flint.fmpq_mat(len(tight_rows), 1, [b[r] for r in tight_rows]))
+            yB = Bmat.transpose().solve(flint.fmpq_mat(len(basic_cols), 1, [c[i] for i in basic_cols]))
         except (ZeroDivisionError, ValueError):
-            return
+            return None
         xq = flint.fmpq_mat(self.N, 1)
         for k, i in enumerate(basic_cols):
             xq[i, 0] = xB[k, 0]
         yq = flint.fmpq_mat(self.R, 1)
         for k, r in enumerate(tight_rows):
             yq[r, 0] = yB[k, 0]
-        yield "float-basis", xq, yq
+        return xq, yq
 
     # --------------------------------------------------------- verification
     def _primal_feasible(self, bq, nonneg, x) -> bool:
@@ -380,9 +400,10 @@ def _snap(v: float) -> flint.fmpq:
     return flint.fmpq(q.numerator, q.denominator)
 
 
-def _snapped(values: np.ndarray) -> flint.fmpq_mat:
-    """The float hint as a column of simple fractions; exact zeros stay zero.
-    Only a hint: whatever it produces is verified."""
+def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
+    """The float hint as a column of simple fractions (exact zeros stay zero),
+    and whether every entry was within 1e-9 of a fraction with a small
+    denominator.  Only a hint: whatever it produces is verified."""
     out = flint.fmpq_mat(len(values), 1)
     idx = np.flatnonzero(values)
     v = values[idx]
@@ -398,7 +419,7 @@ def _snapped(values: np.ndarray) -> flint.fmpq_mat:
         idx, v = idx[~ok], v[~ok]
     for i, value in zip(idx.tolist(), v.tolist()):
         out[i, 0] = _snap(value)
-    return out
+    return out, not len(idx)
 
 
 def _column(v) -> flint.fmpq_mat:
