@@ -31,6 +31,7 @@ from .invariance import (
 )
 from .methods import Method
 from .model import LinearSystem, Polyhedron
+from .monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
 from .numbers import INF, Infinity, exact_from_float, nearest_rational
 from .roots import first_sign_change, nonnegative_until, real_roots
 from .thresholds import SteplengthThreshold, steplength_threshold
@@ -38,6 +39,8 @@ from .thresholds import SteplengthThreshold, steplength_threshold
 __version__ = "0.1.0"
 
 __all__ = [
+    "AbsoluteMonotonicityRadius",
+    "absolute_monotonicity_radius",
     "INF",
     "Infinity",
     "ContinuousInvariance",

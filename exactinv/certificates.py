@@ -57,6 +57,7 @@ def _gamma_claim(g) -> dict:
         claim["witness"] = _witness(g.witness)
     elif isinstance(g.value, Infinity):  # -oo: a point and a ray per row
         claim["rows"] = [{"h": _vec(r.h), "ray": _vec(r.ray)} for r in g.rows]
+        claim["H"] = _mat(g.H)
     else:
         y, lam = g.dual
         m = g.H_flint.nrows()

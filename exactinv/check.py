@@ -351,11 +351,16 @@ def _claim_gamma_star(p, c, context):
                 _require(_matvec(_transpose(G), vec) == rhs, f"row {j}: G^T {name} mismatch")
                 _require(all(vec[k] >= 0 for k in range(m) if k != j), f"row {j}: {name} has a negative off-diagonal entry")
             _require(_dot(b, h) <= 0 and _dot(b, d) <= 0 and d[j] > 0, f"row {j}: not a ray of increase of h_jj")
+        if c.get("H") is not None:
+            H = _mat(c["H"])
+            _check_H(A, G, b, H)
+            context["H"] = H
         context["gamma"] = _Real("-oo")
         return "gamma* = -oo (every row LP unbounded; rays verified)"
     gamma = _q(value)
     H = _mat(c["H"])
     _check_H(A, G, b, H)
+    context["H"] = H
     _require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
     j = c["binding_row"]
     y, lam = _vec(c["dual"]["y"]), _q(c["dual"]["lambda"])
@@ -401,7 +406,211 @@ def _claim_polynomial_threshold(p, c, context):
         if smallest is None or tau_i.compare(smallest) < 0:
             smallest = tau_i
     _require(value.compare(smallest) == 0, "tau is not the minimum of the tau_i")
-    return f"tau = min_i tau_i verified for {len(rows)} polynomials f_i (Theorem 3.5)"
+    return f"tau = min_i tau_i verified for {len(rows)} polynomials f_i (Theorem 3.4)"
+
+
+def _shift_coefficients(p, i_max):
+    """[w^i] p(w - kappa) for i < i_max, as polynomials in kappa."""
+    from math import comb
+
+    out = []
+    for i in range(i_max):
+        q = [Fraction(0)] * max(len(p) - i, 1)
+        for k in range(i, len(p)):
+            q[k - i] += p[k] * comb(k, i) * (-1) ** (k - i)
+        out.append(_trim(q))
+    return out
+
+
+def _d_polynomials(num, den, count):
+    """d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), c_j = r^(j)(-kappa)/j!, by the series-division recurrence."""
+    G = _shift_coefficients(num, max(len(num), count))
+    H = _shift_coefficients(den, len(den))
+    H0 = H[0]
+    powers = [[Fraction(1)]]
+    d = []
+    for j in range(count):
+        while len(powers) <= j:
+            powers.append(_polymul(powers[-1], H0))
+        value = _polymul(G[j], powers[j]) if j < len(G) and G[j] else []
+        for i in range(1, min(j, len(H) - 1) + 1):
+            value = _sub(value, _polymul(_polymul(H[i], d[j - i]), powers[i - 1]) if H[i] and d[j - i] else [])
+        d.append(_trim(value))
+    return d
+
+
+def _nonnegative_on(f, value):
+    """f >= 0 on [0, value] (value a _Real, possibly oo)."""
+    f = _trim(f)
+    if not f:
+        return True
+    if _sign_right_of_zero(f) < 0:
+        return value.poly is None and not value.inf and value.q == 0
+    odd = _strip_zero_roots(_odd_part(f))
+    if value.inf == 1:
+        return _roots_between(odd, Fraction(0), None) == 0
+    if value.poly is None:
+        if value.q == 0:
+            return True
+        count = _roots_between(odd, Fraction(0), value.q)
+        return count == 0 or (count == 1 and _eval(odd, value.q) == 0)
+    if value.lo > 0 and (_eval(odd, value.lo) == 0 or _roots_between(odd, Fraction(0), value.lo) > 0):
+        return False
+    left = value.lo if value.lo > 0 else Fraction(0)
+    inside = _roots_between(odd, left, value.hi) - (1 if _eval(odd, value.hi) == 0 else 0)
+    if inside == 0:
+        return True
+    g = _gcd(odd, value.poly)
+    return inside == 1 and len(g) > 1 and _sign(_eval(g, value.lo)) * _sign(_eval(g, value.hi)) < 0
+
+
+def _series_at_zero(num, den, count):
+    c = []
+    for j in range(count):
+        v = num[j] if j < len(num) else Fraction(0)
+        for i in range(1, min(j, len(den) - 1) + 1):
+            v -= den[i] * c[j - i]
+        c.append(v / den[0])
+    return c
+
+
+def _all_roots_real_positive(h):
+    """Every root of h (with multiplicity) is real and positive (Yun + Sturm)."""
+    p = _trim(h)
+    total = 0
+    a = _gcd(p, _deriv(p))
+    b = _divmod(p, a)[0]
+    d = _sub(_divmod(_deriv(p), a)[0], _deriv(b))
+    k = 1
+    while len(b) > 1:
+        factor = _gcd(b, d)
+        if len(factor) > 1:
+            _require(_eval(factor, Fraction(0)) != 0, "h vanishes at 0")
+            total += k * _roots_between(factor, Fraction(0), None)
+        b = _divmod(b, factor)[0]
+        d = _sub(_divmod(d, factor)[0], _deriv(b))
+        k += 1
+    return total == len(p) - 1
+
+
+def _claim_radius(p, c, context):
+    method = p.get("method")
+    _require(method is not None, "a method is needed")
+    num, den = method["numerator"], method["denominator"]
+    _require(den[0] != 0 and num[0] == den[0], "r(0) != 1")
+    value = _Real(c["value"])
+    reason = c["reason"]
+    context["rho"] = value
+    polynomial = len(den) == 1
+    if reason in ("no-positive-pole", "principal-part-sign", "dominance-at-0"):
+        j = c["witness_j"]
+        _require(value.poly is None and value.q == 0, "these reasons give rho = 0")
+        _require(_series_at_zero(num, den, j + 1)[j] < 0, f"c_{j}(0) is not negative")
+        return f"rho = 0: c_{j}(0) < 0, so r is not absolutely monotonic at 0"
+    if reason == "product":
+        _require(value.inf == 1 and len(num) == 1 and num[0] / den[0] > 0, "product form needs a positive constant numerator")
+        _require(_all_roots_real_positive(den), "h has a root that is not real and positive")
+        return "rho = oo: r = c prod (1 - z/p_k)^(-m_k), p_k > 0, a product of absolutely monotonic factors"
+    claimed = [_trim(_vec(d)) for d in c.get("d", [])]
+    _require(claimed, "the coefficient polynomials d_j are missing")
+    _require(claimed == _d_polynomials(num, den, len(claimed)), "d_j do not match r")
+    if polynomial:
+        _require(len(claimed) >= len(num), "a polynomial method needs every d_j, j <= p")
+    for j, d in enumerate(claimed):
+        _require(_nonnegative_on(d, _Real(c["value"])), f"c_{j} is negative somewhere in [0, rho]")
+    if not polynomial:  # h(-kappa) > 0 on [0, rho): no pole in [-rho, 0] except possibly at -rho itself
+        h_minus = [coef * (-1) ** k for k, coef in enumerate(den)]
+        _require(_nonnegative_on(h_minus, _Real(c["value"])), "r has a pole in [-rho, 0]")
+    if reason == "coefficient":
+        j = c["binding"]
+        _nonnegative_until(claimed[j], _Real(c["value"]))
+        tail = "" if polynomial else f"; tail j >= {c.get('tail_index')} certified by the engine's Arb bound (not re-checked)"
+        return f"rho = {c['value'] if isinstance(c['value'], str) else 'algebraic'}: c_{j} changes sign there, c_0..c_{len(claimed) - 1} >= 0 on [0, rho]{tail}"
+    if reason in ("all-coefficients", "termwise"):
+        _require(value.inf == 1, "these reasons give rho = oo")
+        extra = "" if polynomial else " (termwise positivity of the partial fractions: engine's Arb bound, not re-checked)"
+        return "rho = oo: every c_j is nonnegative for all kappa >= 0" + extra
+    raise CheckFailure(f"unknown reason {reason!r}")
+
+
+def _real_quotient(a, b):
+    """a/b for _Real a > 0, b > 0 with at least one rational; None if both irrational."""
+    if a.inf:
+        return _Real("oo")
+    if a.poly is None and b.poly is None:
+        return _Real(str(a.q / b.q))
+    if b.poly is None:  # root of p(b x)
+        q = b.q
+        poly = [coef * q ** k for k, coef in enumerate(a.poly)]
+        return _Real({"poly": [str(v) for v in poly], "interval": [str(a.lo / q), str(a.hi / q)]})
+    if a.poly is None:  # a/b: b root of p  =>  a/b root of reversed p scaled
+        _require(b.lo > 0, "alpha's interval must be positive")
+        rev = list(reversed(b.poly))
+        q = a.q
+        poly = [coef / q ** k for k, coef in enumerate(rev)]
+        return _Real({"poly": [str(v) for v in poly], "interval": [str(q / b.hi), str(q / b.lo)]})
+    return None
+
+
+def _charpoly(M):
+    """Characteristic polynomial det(xI - M), low to high (Faddeev-LeVerrier)."""
+    n = len(M)
+    coeffs = [Fraction(0)] * (n + 1)
+    coeffs[n] = Fraction(1)
+    Mk = [[Fraction(0)] * n for _ in range(n)]
+    ident = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
+    c = Fraction(1)
+    for k in range(1, n + 1):
+        Mk = _matmul(M, [[Mk[i][j] + c * ident[i][j] for j in range(n)] for i in range(n)])
+        c = -sum(Mk[i][i] for i in range(n)) / k
+        coeffs[n - k] = c
+    return coeffs
+
+
+def _claim_rational_threshold(p, c, context):
+    method = p.get("method")
+    _require(method is not None and len(method["denominator"]) > 1, "a rational method is needed")
+    den = method["denominator"]
+    gamma, rho = context.get("gamma"), context.get("rho")
+    _require(gamma is not None and rho is not None, "gamma_star and absolute_monotonicity_radius claims must precede")
+    _require(_Real(c["rho"]).compare(rho) == 0, "rho differs from the verified radius")
+    value = _Real(c["value"])
+    if rho.poly is None and not rho.inf and rho.q == 0:
+        _require(value.poly is None and value.q == 0, "rho = 0 gives tau = 0")
+        return "tau = 0 (rho = 0)"
+    if gamma.inf == -1 or (not gamma.inf and gamma.q <= 0):
+        paper = _Real("oo")
+    else:
+        paper = _real_quotient(rho, gamma)
+    bound = None
+    if c.get("pole") is not None and c.get("alpha") is not None:
+        pole, alpha = _Real(c["pole"]), _Real(c["alpha"])
+        hp = _trim(den)
+        if pole.poly is None:
+            _require(_eval(hp, pole.q) == 0 and _roots_between(hp, Fraction(0), pole.q) == 1, "pole is not the smallest positive pole")
+        else:
+            g = _gcd(hp, pole.poly)
+            _require(len(g) > 1 and _roots_between(_strip_zero_roots(hp), Fraction(0), pole.hi) - (1 if _eval(hp, pole.hi) == 0 else 0) == 1,
+                     "pole is not the smallest positive pole")
+        H = context.get("H")
+        _require(H is not None, "the gamma_star claim must carry H")
+        chi = _charpoly(H)
+        if alpha.poly is None:
+            _require(_eval(chi, alpha.q) == 0, "alpha is not an eigenvalue of H")
+            deflated = chi
+            while _eval(deflated, alpha.q) == 0:
+                deflated = _divmod(deflated, [-alpha.q, Fraction(1)])[0]
+            _require(_roots_between(deflated, alpha.q, None) == 0, "H has a larger real eigenvalue")
+        else:
+            _require(len(_gcd(chi, alpha.poly)) > 1 and _roots_between(chi, alpha.hi, None) == 0, "alpha is not the largest eigenvalue")
+        if alpha.compare(_Real("0")) > 0:
+            bound = _real_quotient(pole, alpha)
+            if bound is None:
+                bound = _Real(str(pole.lo / alpha.hi))
+    expected = paper if bound is None or (not paper.inf and paper.compare(bound) < 0) else bound
+    _require(value.compare(expected) == 0, "tau is not min(rho/gamma*, z_p/alpha(H))")
+    _require(bool(c["attained"]) == (bound is None or (not paper.inf and paper.compare(bound) < 0)), "attained flag is wrong")
+    return "tau = min(rho/gamma*, z_p/alpha(H)) verified (Theorem 3.12 with the convergence condition of erratum E2)"
 
 
 _CLAIMS = {
@@ -409,6 +618,8 @@ _CLAIMS = {
     "discrete_invariance": lambda p, c, ctx: _claim_discrete_invariance(p, c),
     "gamma_star": _claim_gamma_star,
     "polynomial_threshold": _claim_polynomial_threshold,
+    "absolute_monotonicity_radius": _claim_radius,
+    "rational_threshold": _claim_rational_threshold,
 }
 
 

@@ -7,7 +7,7 @@ It is given in two arithmetics: exact (Fractions, FLINT polynomials) and
 plain floats (numpy), the way a reader of the paper would implement it.
 
 The input is f(t) = 1 + alpha_1 t + ... + alpha_q t^q (f(0) = 1, alpha_q != 0).
-Step 0 sets t* = alpha*/alpha_q + 1 from the bound lemma (Lemma 3.4), which
+Step 0 sets t* = alpha*/alpha_q + 1 from the bound lemma (Lemma 3.6), which
 assumes alpha_q > 0; for alpha_q < 0 this t* is <= 0 and Step 2 returns
 tau = infinity although f has a positive root (erratum E3: f(t) = 1 - t gives
 infinity instead of 1).  ``repaired=True`` uses Cauchy's bound

@@ -1,6 +1,6 @@
 """Steplength thresholds of the paper (Section 3), corrected where it errs.
 
-Polynomial methods r(z) = sum_k sigma_k z^k (Theorem 3.5 of the paper):
+Polynomial methods r(z) = sum_k sigma_k z^k (Theorem 3.4 of the paper):
 with gamma = gamma* and H^ = H + gamma I >= 0,
 
     r(dt H) = sum_i f_i(dt) H^i,   f_i(dt) = sum_{k=i}^p (-1)^(k-i) sigma_k C(k,i) gamma^(k-i) dt^k,
@@ -10,7 +10,7 @@ so r(dt H) >= 0 while every f_i >= 0.  tau_i is the end of the first interval
 f_i is negative right after 0 (the paper's "first positive zero" is wrong in
 both respects: erratum E5 in docs/errata.md) -- and tau = min_i tau_i.
 
-For gamma* <= 0 the paper's Theorem 3.9 gives tau = infinity.  That holds when
+For gamma* <= 0 the paper's Theorem 3.13 gives tau = infinity.  That holds when
 every sigma_k >= 0 (then H >= 0 and r(dt H) >= 0 for all dt), but not when
 some sigma_k < 0 (erratum E6): then rho = 0 and the theorem yields no positive
 threshold, so exactinv reports 0.
@@ -71,6 +71,16 @@ class SteplengthThreshold:
     table: tuple[FiRow, ...] = field(default=(), repr=False)
     binding: int | None = None
     notes: tuple[str, ...] = field(default=(), repr=False)
+    radius: Any = field(default=None, repr=False)
+    pole: Any = field(default=None, repr=False)
+    spectral_abscissa: Any = field(default=None, repr=False)
+    paper_value: Any = field(default=None, repr=False)
+
+    @property
+    def paper(self) -> Real:
+        """What the paper's theorem, taken literally, gives (differs from
+        ``value`` where exactinv corrects an erratum)."""
+        return self.value if self.paper_value is None else self.paper_value
 
     @property
     def lower(self) -> Fraction | Infinity:
@@ -96,7 +106,14 @@ class SteplengthThreshold:
                 "binding": self.binding,
                 "f": [{"i": r.i, "coefficients": [str(c) for c in r.f], "tau": encode_real(r.tau)} for r in self.table],
             }]
-        return self._rational_claims()
+        return self.radius._claims() + [{
+            "type": "rational_threshold",
+            "value": encode_real(self.value),
+            "attained": self.attained,
+            "rho": encode_real(self.radius.value),
+            "pole": None if self.pole is None else encode_real(self.pole),
+            "alpha": None if self.spectral_abscissa is None else encode_real(self.spectral_abscissa),
+        }]
 
     @property
     def certificate(self) -> dict:
@@ -139,7 +156,7 @@ def f_i_symbolic(method: Method):
 def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> SteplengthThreshold:
     """The paper's valid threshold for ``method`` on P, with gamma = gamma*.
 
-    Polynomial methods: Theorem 3.5 with tau_i as in the module docstring.
+    Polynomial methods: Theorem 3.4 with tau_i as in the module docstring.
     Raises :class:`~exactinv.NotInvariant` (carrying the witness) when P is
     not invariant for x' = Ax: the paper's theorems then give nothing.
     """
@@ -160,9 +177,9 @@ def _polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThre
     g = gamma.value
     if isinstance(g, Infinity) or g <= 0:
         if all(s >= 0 for s in sigmas):
-            return SteplengthThreshold(INF, True, "Theorem 3.9 (gamma* <= 0, all sigma_k >= 0)", method, gamma)
+            return SteplengthThreshold(INF, True, "Theorem 3.13 (gamma* <= 0, all sigma_k >= 0)", method, gamma)
         return SteplengthThreshold(
-            Fraction(0), True, "Theorem 3.9 corrected (gamma* <= 0, some sigma_k < 0: rho = 0)", method, gamma,
+            Fraction(0), True, "Theorem 3.13 corrected (gamma* <= 0, some sigma_k < 0: rho = 0)", method, gamma,
             notes=("erratum E6: the paper gives infinity here",),
         )
     table = []
@@ -174,7 +191,7 @@ def _polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThre
     notes = ()
     if any(s == 0 for s in sigmas[1:]) or any(s < 0 for s in sigmas):
         notes = ("erratum E5: tau_i is where f_i stops being >= 0, not its first positive zero",)
-    return SteplengthThreshold(value, True, "Theorem 3.5 (polynomial methods)", method, gamma, tuple(table), binding, notes)
+    return SteplengthThreshold(value, True, "Theorem 3.4 (polynomial methods)", method, gamma, tuple(table), binding, notes)
 
 
 class _key:

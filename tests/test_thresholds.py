@@ -96,7 +96,7 @@ def test_discrete_check_succeeds_at_lower(problem, name):
     dt = t.lower if t.lower != ei.INF else Fraction(1000)
     result = ei.discrete_invariance(S, P, method, dt)
     assert result.holds
-    # and H~ = sum sigma_k (dt H)^k is a certificate (paper, Theorem 3.5)
+    # and H~ = sum sigma_k (dt H)^k is a certificate (paper, Theorem 3.4)
     g = t.gamma
     if g.value != -ei.INF:
         H = fmpq_matrix(g.H) * flint.fmpq(dt.numerator, dt.denominator)
@@ -142,7 +142,7 @@ def test_erratum_e5_zero_sigma():
 
 
 def test_erratum_e6_gamma_nonpositive_with_negative_sigma():
-    """E6: Theorem 3.9 (gamma* <= 0 => tau = oo) fails for r(z) = 1 + z - z^2 on the orthant with A = [[0,1],[1,0]]."""
+    """E6: Theorem 3.13 (gamma* <= 0 => tau = oo) fails for r(z) = 1 + z - z^2 on the orthant with A = [[0,1],[1,0]]."""
     S = ei.LinearSystem([[0, 1], [1, 0]])
     P = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
     method = ei.methods.polynomial([1, 1, -1])

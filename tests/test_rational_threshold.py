@@ -1,0 +1,97 @@
+from fractions import Fraction
+
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+import exactinv as ei
+from exactinv import methods as M
+from exactinv.numbers import fmpq_matrix
+from exactinv.rational_threshold import rational_threshold, spectral_abscissa
+
+E2_SYSTEM = ei.LinearSystem([[-1, 2], [0, 1]])
+ORTHANT = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
+
+
+def test_erratum_e2_backward_euler_on_the_orthant():
+    """E2: the paper gives tau = oo (rho = oo); (I - dt A)^-1 has a negative entry for every dt > 1."""
+    t = ei.steplength_threshold(E2_SYSTEM, ORTHANT, M.backward_euler())
+    assert t.paper == ei.INF
+    assert t.value == 1 and not t.attained
+    assert t.spectral_abscissa == 1 and t.pole == 1
+    for dt in ("1/2", "99/100"):
+        assert ei.discrete_invariance(E2_SYSTEM, ORTHANT, M.backward_euler(), dt).holds
+    for dt in ("101/100", 2, 10):
+        result = ei.discrete_invariance(E2_SYSTEM, ORTHANT, M.backward_euler(), dt)
+        assert not result.holds and ORTHANT.contains(result.witness.x)
+    with pytest.raises(ei.InvalidInput, match="singular"):
+        ei.discrete_invariance(E2_SYSTEM, ORTHANT, M.backward_euler(), 1)
+    assert ei.check(t.certificate).ok
+
+
+def test_erratum_e2_gamma_nonpositive_is_not_infinity_for_rational_methods():
+    """Theorem 3.13 for rational methods: gamma* <= 0 but dt >= 1 fails for backward Euler."""
+    S = ei.LinearSystem([[0, 1], [1, 0]])  # Metzler, gamma* = 0 on the orthant, eigenvalue 1
+    assert ei.optimal_gamma(S, ORTHANT).value == 0
+    t = ei.steplength_threshold(S, ORTHANT, M.backward_euler())
+    assert t.paper == ei.INF and t.value == 1 and not t.attained
+    assert not ei.discrete_invariance(S, ORTHANT, M.backward_euler(), 2).holds
+
+
+def test_polynomial_methods_agree_through_both_routes():
+    S = ei.LinearSystem([[-1, 1], [-1, -1]])
+    P = ei.Polyhedron.box([-1, -1], [1, 1])
+    g = ei.optimal_gamma(S, P)
+    for m in (M.taylor(1), M.taylor(3), M.ssprk_s1(3), M.heun(), M.polynomial([1, 1, "1/3"]), M.polynomial([1, 2])):
+        assert rational_threshold(m, g).value == ei.steplength_threshold(S, P, m).value
+
+
+def test_spectral_abscissa_is_exact():
+    assert spectral_abscissa(fmpq_matrix([[Fraction(-1), Fraction(2)], [Fraction(0), Fraction(1)]])) == 1
+    alpha = spectral_abscissa(fmpq_matrix([[Fraction(0), Fraction(1)], [Fraction(2), Fraction(0)]]))
+    assert isinstance(alpha, ei.RealAlgebraic) and alpha == ei.real_roots([-2, 0, 1])[1][0]
+
+
+@st.composite
+def cones(draw):
+    """Random cones {x : Gx <= 0} = T^-1(orthant) with A = T^-1 M T, M Metzler (stable or not)."""
+    n = draw(st.integers(1, 3))
+    Mz = [[Fraction(draw(st.integers(-3, 3)), draw(st.integers(1, 2))) if i == j else Fraction(draw(st.integers(0, 3)), draw(st.integers(1, 2)))
+           for j in range(n)] for i in range(n)]
+    T = [[Fraction(draw(st.integers(-2, 2))) for _ in range(n)] for _ in range(n)]
+    Tq = fmpq_matrix(T)
+    assume(Tq.det() != 0)
+    A = Tq.inv() * fmpq_matrix(Mz) * Tq
+    G = -Tq
+    return (ei.LinearSystem([[A[i, j] for j in range(n)] for i in range(n)]),
+            ei.Polyhedron([[G[i, j] for j in range(n)] for i in range(n)], [0] * n))
+
+
+@st.composite
+def polytopes(draw):
+    n = draw(st.integers(1, 2))
+    A = [[Fraction(draw(st.integers(-3, 3)), draw(st.integers(1, 3))) for _ in range(n)] for _ in range(n)]
+    for i in range(n):
+        A[i][i] = -sum(abs(A[i][j]) for j in range(n) if j != i) - Fraction(draw(st.integers(0, 3)), 2)
+    return ei.LinearSystem(A), ei.Polyhedron.box([-1] * n, [1] * n)
+
+
+METHODS = [M.taylor(2), M.heun(), M.rk4(), M.trapezoid(), M.theta("1/4"), M.backward_euler(),
+           M.rational([1, "1/2"], [1, -1, "1/4"]), M.ssprk_s1(2)]
+
+
+@given(st.one_of(cones(), polytopes()), st.sampled_from(METHODS))
+def test_returned_thresholds_are_valid(problem, method):
+    """No threshold is larger than the true largest one: exact spot checks below it."""
+    S, P = problem
+    t = ei.steplength_threshold(S, P, method)
+    if t.value == ei.INF:
+        points = [Fraction(7), Fraction(1000)]
+    elif t.value == 0:
+        return
+    else:
+        top = t.lower if t.attained else t.lower * Fraction(999, 1000)
+        points = [top, top / 2, top / 5]
+    for dt in points:
+        assert ei.discrete_invariance(S, P, method, dt).holds, (method.name, dt, t)
+    assert ei.check(t.certificate).ok
