@@ -29,6 +29,16 @@ from .invariance import (
     discrete_invariance,
     optimal_gamma,
 )
+from .largest import (
+    ForwardEulerThreshold,
+    LargestThreshold,
+    ThresholdComparison,
+    ValidSteplengths,
+    compare_thresholds,
+    forward_euler_threshold,
+    largest_threshold,
+    valid_steplengths,
+)
 from .methods import Method
 from .model import LinearSystem, Polyhedron
 from .monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
@@ -48,6 +58,14 @@ __all__ = [
     "EmptyPolyhedron",
     "ExactinvError",
     "FacetWitness",
+    "ForwardEulerThreshold",
+    "LargestThreshold",
+    "ThresholdComparison",
+    "ValidSteplengths",
+    "compare_thresholds",
+    "forward_euler_threshold",
+    "largest_threshold",
+    "valid_steplengths",
     "InvalidInput",
     "LinearSystem",
     "Method",

@@ -102,6 +102,20 @@ class RealAlgebraic:
         else:
             self._upper = mid
 
+    def tidy(self, digits: int = 12) -> "RealAlgebraic":
+        """Replace the isolating interval by a short decimal one (for readable
+        output and certificates), verified by a sign change and a Sturm count."""
+        from .roots import count_real_roots
+
+        self.refine(int(digits * 3.33) + 4)
+        scale = 10**digits
+        lo = Fraction(_floor(self._lower * scale), scale)
+        hi = Fraction(-_floor(-self._upper * scale), scale)
+        if sign_at(self.poly, lo) * sign_at(self.poly, hi) < 0 and count_real_roots(self.poly, lo, hi) == 1:
+            self._lower, self._upper = lo, hi
+            self._sign_lower = sign_at(self.poly, lo)
+        return self
+
     def refine(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval to width <= 2**-bits (exact bisection;
         the number itself is unchanged).  Returns self."""
@@ -203,17 +217,20 @@ class RealAlgebraic:
         return inverse * Fraction(q)
 
     # ----------------------------------------------------------- conversion
+    def _copy(self) -> "RealAlgebraic":
+        return RealAlgebraic(self.poly, self._lower, self._upper, _trusted=True)
+
     def __float__(self) -> float:
-        self.refine(64)
-        return float((self._lower + self._upper) / 2)
+        c = self._copy().refine(64)
+        return float((c._lower + c._upper) / 2)
 
     def certified_digits(self, digits: int = 15) -> str:
         """A decimal string whose every printed digit is certified: the value
         lies in [shown, shown + 10**-k) (for negative values, mirrored),
         followed by an ellipsis."""
-        self.refine(int(digits * 3.33) + 8)
-        neg = self._upper <= 0
-        lo, hi = (-self._upper, -self._lower) if neg else (self._lower, self._upper)
+        c = self._copy().refine(int(digits * 3.33) + 8)  # keep this number's tidy enclosure
+        neg = c._upper <= 0
+        lo, hi = (-c._upper, -c._lower) if neg else (c._lower, c._upper)
         for k in range(digits, -1, -1):
             a, b = int(lo * 10**k), int(hi * 10**k)  # floor for positive values
             if a == b:
@@ -247,6 +264,10 @@ class RealAlgebraic:
 
 def _rebuild(coeffs: list[int], lower: Fraction, upper: Fraction) -> RealAlgebraic:
     return RealAlgebraic(flint.fmpz_poly(coeffs), lower, upper, _trusted=True)
+
+
+def _floor(q: Fraction) -> int:
+    return q.numerator // q.denominator
 
 
 def _gcd(a: int, b: int) -> int:

@@ -26,6 +26,7 @@ def encode_real(v: Any) -> Any:
     if isinstance(v, Infinity):
         return "oo" if v.sign > 0 else "-oo"
     if isinstance(v, RealAlgebraic):
+        v.tidy()
         return {"poly": [str(int(c)) for c in v.poly.coeffs()], "interval": [str(v.lower), str(v.upper)]}
     if isinstance(v, (int, Fraction)):
         return str(Fraction(v))

@@ -613,6 +613,167 @@ def _claim_rational_threshold(p, c, context):
     return "tau = min(rho/gamma*, z_p/alpha(H)) verified (Theorem 3.12 with the convergence condition of erratum E2)"
 
 
+def _solve(M, B):
+    """X with M X = B (Gauss-Jordan over Q); None if M is singular."""
+    n = len(M)
+    aug = [list(M[i]) + list(B[i]) for i in range(n)]
+    for col in range(n):
+        pivot = next((r for r in range(col, n) if aug[r][col] != 0), None)
+        if pivot is None:
+            return None
+        aug[col], aug[pivot] = aug[pivot], aug[col]
+        inv = 1 / aug[col][col]
+        aug[col] = [v * inv for v in aug[col]]
+        for r in range(n):
+            if r != col and aug[r][col] != 0:
+                f = aug[r][col]
+                aug[r] = [a - f * c for a, c in zip(aug[r], aug[col])]
+    return [row[n:] for row in aug]
+
+
+def _det(M):
+    n = len(M)
+    a = [list(r) for r in M]
+    det = Fraction(1)
+    for col in range(n):
+        pivot = next((r for r in range(col, n) if a[r][col] != 0), None)
+        if pivot is None:
+            return Fraction(0)
+        if pivot != col:
+            a[col], a[pivot] = a[pivot], a[col]
+            det = -det
+        det *= a[col][col]
+        for r in range(col + 1, n):
+            f = a[r][col] / a[col][col]
+            a[r] = [x - f * y for x, y in zip(a[r], a[col])]
+    return det
+
+
+def _polyval_matrix(coeffs, M):
+    n = len(M)
+    out = [[Fraction(0)] * n for _ in range(n)]
+    for c in reversed(coeffs):
+        out = _matmul(out, M)
+        for i in range(n):
+            out[i][i] += c
+    return out
+
+
+def _interpolate(points, values):
+    """The polynomial of degree < len(points) through (points, values), Lagrange."""
+    result = [Fraction(0)]
+    for i, (xi, yi) in enumerate(zip(points, values)):
+        term = [yi]
+        for j, xj in enumerate(points):
+            if j != i:
+                term = [c / (xi - xj) for c in _polymul(term, [-xj, Fraction(1)])]
+        result = _sub(result, [-c for c in term])
+    return _trim(result)
+
+
+def _condition_polynomials(A, G, b, method, gens):
+    """(D, [(kind, i, j, c)]) with c(dt) = (b_j D - g_j N(dt) w) D for vertices and
+    -(g_j N(dt) w) D for rays, N = D A_d;  lines give e = g_j N(dt) w (must vanish)."""
+    num, den = method["numerator"], method["denominator"]
+    n = len(A)
+    if len(den) == 1:
+        D = [Fraction(1)]
+        powers = [[[Fraction(int(i == j)) for j in range(n)] for i in range(n)]]
+        for _ in range(len(num) - 1):
+            powers.append(_matmul(powers[-1], A))
+        GA = [_matmul(G, Pk) for Pk in powers]
+
+        def gN(j, w):
+            return [num[k] / den[0] * _dot(GA[k][j], w) for k in range(len(num))]
+    else:
+        count = max(n * (len(den) - 1), (n - 1) * (len(den) - 1) + len(num) - 1) + 1
+        points, Ds, Xs = [], [], []
+        t = Fraction(0)
+        W = _transpose([w for _, w in gens]) if gens else None
+        while len(points) < count:
+            M = [[a * t for a in row] for row in A]
+            Hm = _polyval_matrix(den, M)
+            d = _det(Hm)
+            if d != 0:
+                points.append(t)
+                Ds.append(d)
+                X = _solve(Hm, _matmul(_polyval_matrix(num, M), W)) if W else None
+                Xs.append([[d * v for v in row] for row in X] if X else None)
+            t += 1
+        D = _interpolate(points, Ds)
+        GX = [_matmul(G, X) if X else None for X in Xs]
+        cache = {}
+
+        def gN(j, w_index):
+            key = (j, w_index)
+            if key not in cache:
+                cache[key] = _interpolate(points, [GXk[j][w_index] for GXk in GX])
+            return cache[key]
+    out = []
+    for index, (kind, w) in enumerate(gens):
+        for j in range(len(G)):
+            e = _trim(gN(j, w if len(den) == 1 else index))
+            if kind == "line":
+                out.append((kind, index, j, e))
+                continue
+            q = [-c for c in e]
+            if kind == "vertex":
+                q = _sub(_polymul(D, [b[j]]), e)
+            out.append((kind, index, j, _trim(_polymul(q, D))))
+    return D, out
+
+
+def _claim_largest_threshold(p, c, context):
+    method = p.get("method")
+    _require(method is not None, "a method is needed")
+    A, G, b = p["A"], p["G"], p["b"]
+    V, R, L = (_mat(c[k]) for k in ("vertices", "rays", "lines"))
+    for v in V:
+        _require(all(x <= beta for x, beta in zip(_matvec(G, v), b)), "a listed vertex is not in P")
+    for r in R:
+        _require(all(x <= 0 for x in _matvec(G, r)), "a listed ray is not in the recession cone")
+    for l in L:
+        _require(all(x == 0 for x in _matvec(G, l)), "a listed line is not in the lineality space")
+    gens = [("vertex", v) for v in V] + [("ray", r) for r in R] + [("line", l) for l in L]
+    D, conds = _condition_polynomials(A, G, b, method, gens)
+    _require(_trim(_vec(c["determinant"])) == D, "det h(dt A) does not match")
+    value = _Real(c["value"])
+    attained = bool(c["attained"])
+    lines = [e for kind, _, _, e in conds if kind == "line" and e]
+    if lines:
+        _require(value.poly is None and value.q == 0 and attained, "a line condition binds at 0")
+        return "tau = 0: A_d(dt) moves a line of P out of its lineality space for small dt > 0"
+    D_pos = _strip_zero_roots(D)
+    for kind, i, j, poly in conds:
+        if kind != "line":
+            _require(_nonnegative_on(poly, _Real(c["value"])), f"{kind} {i}, facet {j}: condition negative before tau")
+    if value.inf == 1:
+        _require(len(D_pos) <= 1 or _roots_between(D_pos, Fraction(0), None) == 0, "r(dt A) is singular somewhere")
+        return f"tau = oo: all {len(conds)} vertex/ray-facet conditions are nonnegative on (0, oo)"
+    binding = c.get("binding")
+    if binding is None:  # a pole of r(dt A) ends the first interval
+        _require(not attained, "a singular end is not attained")
+        _require(len(D_pos) > 1, "no singular point")
+        if value.poly is None:
+            _require(_eval(D_pos, value.q) == 0 and _roots_between(D_pos, Fraction(0), value.q) == 1, "tau is not the first singular point")
+        else:
+            g = _gcd(D_pos, value.poly)
+            _require(len(g) > 1 and _sign(_eval(g, value.lo)) * _sign(_eval(g, value.hi)) < 0, "tau is not a singular point")
+            _require(value.lo > 0 and _roots_between(D_pos, Fraction(0), value.lo) == 0, "tau is not the first singular point")
+        return f"tau = first pole of r(dt A), not attained; {len(conds)} conditions nonnegative on [0, tau]"
+    poly = _trim(_vec(binding["poly"]))
+    _require(any(poly == cp and kind == binding["kind"] and i == binding["generator"] and j == binding["facet"]
+                 for kind, i, j, cp in conds), "the binding condition is not one of the recomputed conditions")
+    _nonnegative_until(poly, _Real(c["value"]))
+    _require(attained, "a sign-change end is attained")
+    if len(D_pos) > 1:  # no pole of r(dt A) in (0, tau]
+        end = value.hi if value.poly is not None else value.q
+        _require(_eval(D_pos, end) != 0 and _roots_between(D_pos, Fraction(0), end) == 0, "r(dt A) is singular before tau")
+    return (f"tau verified: {len(conds)} conditions recomputed from the {len(V)} vertices, {len(R)} rays "
+            f"(V-representation completeness from PPL, not re-checked); {binding['kind']} {binding['generator']} "
+            f"leaves P through facet {binding['facet']} right after tau")
+
+
 _CLAIMS = {
     "continuous_invariance": lambda p, c, ctx: _claim_continuous_invariance(p, c),
     "discrete_invariance": lambda p, c, ctx: _claim_discrete_invariance(p, c),
@@ -620,6 +781,7 @@ _CLAIMS = {
     "polynomial_threshold": _claim_polynomial_threshold,
     "absolute_monotonicity_radius": _claim_radius,
     "rational_threshold": _claim_rational_threshold,
+    "largest_threshold": _claim_largest_threshold,
 }
 
 

@@ -24,8 +24,33 @@ def _fmt(v) -> str:
     from .algebraic import RealAlgebraic
 
     if isinstance(v, RealAlgebraic):
+        v.tidy()
         return f"{v}  (root of {v.poly} in ({v.lower}, {v.upper}))"
     return str(v)
+
+
+_VERTEX_LIMIT = 12  # dimension above which the vertex enumeration is not attempted by default
+
+
+def _forward_euler(S, P, out):
+    from .largest import forward_euler_threshold
+
+    if P.n > _VERTEX_LIMIT:
+        out(f"largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
+        return None
+    fe = forward_euler_threshold(S, P)
+    out(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")
+    return fe
+
+
+def _largest(S, P, method, out):
+    from .largest import largest_threshold, valid_steplengths
+
+    V = valid_steplengths(S, P, method)
+    L = largest_threshold(S, P, method)
+    out(f"exact valid steplengths for {method.name}: {V.intervals!r}")
+    out(f"exact largest threshold: {_fmt(L.value)}" + ("" if L.attained else "  (not attained)"))
+    return L
 
 
 def _certify(args) -> int:
@@ -51,13 +76,20 @@ def _certify(args) -> int:
     else:
         out("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
         out(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {gamma.paths}]")
-        out(f"largest forward-Euler step 1/gamma*: {gamma.forward_euler_step}")
+        fe = _forward_euler(S, P, out)
         if method is not None:
             t = steplength_threshold(S, P, method)
             results.append(t)
-            out(f"paper's threshold for {method.name} ({t.theorem}): {_fmt(t.value)}")
+            out(f"paper's threshold for {method.name} ({t.theorem}): {_fmt(t.value)}"
+                + ("" if t.attained else "  (not attained: valid on [0, tau))"))
+            if t.paper != t.value:
+                out(f"  the paper, taken literally, gives {_fmt(t.paper)}")
             for note in t.notes:
                 out(f"  note: {note}")
+    if method is not None and P.n <= _VERTEX_LIMIT:
+        L = _largest(S, P, method, out)
+        if L is not None:
+            results.append(L)
     cert = certificates.certificate(S, P, method, results)
     report = check(cert)
     out(f"independent check: {'VERIFIED' if report.ok else 'REJECTED'} ({len(cert['claims'])} claims)")

@@ -93,7 +93,7 @@ def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
         lo, hi = _dyadic(z.real.lower()), _dyadic(z.real.upper())
         if sign_at(p, lo) * sign_at(p, hi) >= 0:
             raise VerificationFailed(f"root isolation: Arb enclosure ({lo}, {hi}) of a root of {p} has no sign change")
-        out.append(RealAlgebraic(p, lo, hi, _trusted=True))
+        out.append(RealAlgebraic(p, lo, hi, _trusted=True).tidy())
     out.sort()
     return out
 

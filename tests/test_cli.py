@@ -15,7 +15,8 @@ def test_certify_and_check(tmp_path, capsys):
     out = tmp_path / "cert.json"
     assert main(["certify", str(BOX), "-o", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "gamma*: 1" in text and "1/gamma*: 1" in text and "VERIFIED" in text
+    assert "gamma*: 1" in text and "largest forward-Euler step: 1" in text and "VERIFIED" in text
+    assert "exact largest threshold: 1.7496858314" in text
     assert main(["check", str(out)]) == 0
     assert "certificate VERIFIED" in capsys.readouterr().out
     cert = json.loads(out.read_text())

@@ -1,0 +1,137 @@
+"""Exact unions of intervals on [0, oo): the valid steplength sets.
+
+Endpoints are Fractions, :class:`~exactinv.RealAlgebraic` numbers or ``INF``;
+each end is marked closed or open.  ``dt in V`` tests a rational steplength
+exactly; iterating gives the intervals in increasing order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Iterator
+
+from .algebraic import RealAlgebraic
+from .numbers import INF, Infinity, to_rational
+
+__all__ = ["Interval", "IntervalUnion"]
+
+Real = Fraction | RealAlgebraic | Infinity
+
+
+def _lt(a: Real, b: Real) -> bool:
+    if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
+        return b > a
+    return a < b
+
+
+def _eq(a: Real, b: Real) -> bool:
+    if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
+        return b == a
+    return a == b
+
+
+@dataclass(frozen=True)
+class Interval:
+    """An interval with exact ends; ``hi`` may be INF (then open)."""
+
+    lo: Real
+    hi: Real
+    lo_closed: bool = True
+    hi_closed: bool = True
+
+    def __contains__(self, t: Any) -> bool:
+        t = t if isinstance(t, (Fraction, RealAlgebraic)) else to_rational(t, "dt")
+        above = _lt(self.lo, t) or (self.lo_closed and _eq(self.lo, t))
+        below = _lt(t, self.hi) or (self.hi_closed and _eq(self.hi, t))
+        return above and below
+
+    def __repr__(self) -> str:
+        left = "[" if self.lo_closed else "("
+        right = "]" if self.hi_closed else ")"
+        return f"{left}{self.lo}, {self.hi}{right}"
+
+    def _repr_latex_(self) -> str:
+        left = "[" if self.lo_closed else "("
+        right = "]" if self.hi_closed else ")"
+        return f"${left}{_latex(self.lo)}, {_latex(self.hi)}{right}$"
+
+
+def _latex(v: Real) -> str:
+    if isinstance(v, Infinity):
+        return r"\infty"
+    if isinstance(v, RealAlgebraic):
+        return v.certified_digits(8).replace("...", r"\ldots")
+    if v.denominator == 1:
+        return str(v.numerator)
+    return rf"\tfrac{{{v.numerator}}}{{{v.denominator}}}"
+
+
+@dataclass(frozen=True)
+class IntervalUnion:
+    """A finite union of disjoint intervals, sorted."""
+
+    intervals: tuple[Interval, ...]
+
+    def __iter__(self) -> Iterator[Interval]:
+        return iter(self.intervals)
+
+    def __len__(self) -> int:
+        return len(self.intervals)
+
+    def __getitem__(self, k: int) -> Interval:
+        return self.intervals[k]
+
+    def __contains__(self, t: Any) -> bool:
+        t = t if isinstance(t, (Fraction, RealAlgebraic)) else to_rational(t, "dt")
+        return any(t in iv for iv in self.intervals)
+
+    def __repr__(self) -> str:
+        return " U ".join(repr(iv) for iv in self.intervals) if self.intervals else "{}"
+
+    def _repr_latex_(self) -> str:
+        return "$" + r" \cup ".join(iv._repr_latex_().strip("$") for iv in self.intervals) + "$"
+
+
+def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> IntervalUnion:
+    """[0, oo) minus the union of open intervals ``bad`` (a, b) (a >= 0, b may
+    be INF) and minus the isolated ``points`` (all > 0)."""
+    from functools import cmp_to_key
+
+    def cmp(x, y):
+        return -1 if _lt(x, y) else (1 if _lt(y, x) else 0)
+
+    bad = sorted(bad, key=cmp_to_key(lambda u, v: cmp(u[0], v[0])))
+    merged: list[list[Real]] = []
+    for a, b in bad:
+        if merged and _lt(a, merged[-1][1]):  # overlaps (open intervals sharing an end do not merge)
+            if _lt(merged[-1][1], b):
+                merged[-1][1] = b
+        else:
+            merged.append([a, b])
+    # the good set between bad intervals
+    pieces: list[Interval] = []
+    start: Real = Fraction(0)
+    start_closed = True
+    for a, b in merged:
+        if _lt(start, a) or (_eq(start, a) and start_closed):
+            pieces.append(Interval(start, a, start_closed, True))
+        start, start_closed = b, True
+        if isinstance(b, Infinity):
+            break
+    else:
+        pieces.append(Interval(start, INF, start_closed, False))
+    # a zero-length piece [a, a] between (.., a) and (a, ..) is a valid point
+    # remove isolated excluded points
+    for p in sorted(points, key=cmp_to_key(cmp)):
+        new: list[Interval] = []
+        for iv in pieces:
+            if p not in iv:
+                new.append(iv)
+                continue
+            if _lt(iv.lo, p):
+                new.append(Interval(iv.lo, p, iv.lo_closed, False))
+            if _lt(p, iv.hi):
+                new.append(Interval(p, iv.hi, False, iv.hi_closed))
+        pieces = new
+    return IntervalUnion(tuple(pieces))
