@@ -64,7 +64,11 @@ class Condition:
     kind: str
     generator: int
     facet: int
-    poly: tuple[Fraction, ...] = field(repr=False)
+    p: flint.fmpq_poly = field(repr=False, compare=False)
+
+    @property
+    def poly(self) -> tuple[Fraction, ...]:
+        return tuple(fraction_of(c) for c in self.p.coeffs())
 
 
 @dataclass(frozen=True)
@@ -138,8 +142,6 @@ class LargestThreshold:
             "binding": None if self.binding is None else {
                 "kind": self.binding.kind, "generator": self.binding.generator, "facet": self.binding.facet,
                 "poly": [str(c) for c in self.binding.poly]},
-            "conditions": [{"kind": c.kind, "generator": c.generator, "facet": c.facet,
-                            "poly": [str(x) for x in c.poly]} for c in self.checked],
         }]
 
     @property
@@ -233,21 +235,25 @@ def _conditions(system: LinearSystem, P: Polyhedron, method: Method):
         blocks = coefficient_blocks(W)
         entries = [blk.entries() for blk in blocks]
         cols = W.ncols()
+        cheap_skip = method.is_polynomial and kind != "line"
         for j in range(P.m):
             for i in range(cols):
-                gN = [e[j * cols + i] for e in entries]  # g_j N(dt) w, coefficients
+                idx = j * cols + i
+                if cheap_skip and all(e[idx] <= 0 for e in entries[1:]) and (kind == "ray" or entries[0][idx] <= b[j]):
+                    continue  # every coefficient of c is >= 0: never binds (Descartes), decided before building c
+                gN = [e[idx] for e in entries]  # g_j N(dt) w, coefficients
                 if kind == "line":
                     poly = flint.fmpq_poly(gN)
                     if not poly.is_zero():
-                        equalities.append(Condition(kind, i, j, tuple(fraction_of(c) for c in poly.coeffs())))
+                        equalities.append(Condition(kind, i, j, poly))
                     continue
                 q = -flint.fmpq_poly(gN)
                 if kind == "vertex":
                     q += D * b[j]
-                coeffs = (q * D).coeffs()
-                if _never_binds(coeffs):
+                c = q * D
+                if _never_binds(c.coeffs()):
                     continue
-                conditions.append(Condition(kind, i, j, tuple(fraction_of(x) for x in coeffs)))
+                conditions.append(Condition(kind, i, j, c))
     return conditions, equalities, D, Dcoeffs
 
 
@@ -257,31 +263,53 @@ def _never_binds(coeffs) -> bool:
     return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
 
 
+_ONE_PLUS_X = flint.fmpq_poly([1, 1])
+
+
+def _no_root_below(p: flint.fmpq_poly, T: Fraction) -> bool:
+    """Descartes' rule on (0, T): with g(y) = c(T y), the polynomial
+    rev(g)(1 + x) = (1+x)^d g(1/(1+x)) has no sign variation, so c has no root
+    in (0, T).  Exact and cheap (a Taylor shift in FLINT)."""
+    Tq = fmpq_of(T)
+    scaled = [c * Tq**k for k, c in enumerate(p.coeffs())]
+    shifted = flint.fmpq_poly(scaled[::-1])(_ONE_PLUS_X)
+    return sign_variations(shifted.coeffs()) == 0
+
+
+def _positive_right_of_zero(p: flint.fmpq_poly) -> bool:
+    for c in p.coeffs():
+        if c != 0:
+            return c > 0
+    return True
+
+
+def _upper(v: Real):
+    return v.upper if isinstance(v, RealAlgebraic) else v
+
+
 def _distinct(conditions: list[Condition]) -> dict[tuple, Condition]:
     seen: dict[tuple, Condition] = {}
     for c in conditions:
-        key = _normalised(c.poly)
+        key = _normalised(c.p)
         if key not in seen:
             seen[key] = c
     return seen
 
 
-def _normalised(coeffs: tuple[Fraction, ...]) -> tuple:
-    p = _integer(flint.fmpq_poly([fmpq_of(c) for c in coeffs]))
-    return tuple(int(c) for c in p.coeffs())
+def _normalised(p: flint.fmpq_poly) -> tuple:
+    return tuple(int(c) for c in _integer(p).coeffs())
 
 
-def _positive_roots(poly) -> list[tuple[Real, int]]:
-    p = flint.fmpq_poly([fmpq_of(c) for c in poly]) if not isinstance(poly, flint.fmpq_poly) else poly
+def _positive_roots(p: flint.fmpq_poly) -> list[tuple[Real, int]]:
     if p.degree() < 1:
         return []
     return [(r, m) for r, m in real_roots(p) if r > 0]
 
 
-def _negative_segments(poly: tuple[Fraction, ...]) -> list[tuple[Real, Real]]:
+def _negative_segments(p: flint.fmpq_poly) -> list[tuple[Real, Real]]:
     """Open intervals (a, b) in (0, oo) where the polynomial is negative."""
-    sign = sign_right_of(list(poly), 0)
-    roots = _positive_roots(poly)
+    sign = sign_right_of(p, 0)
+    roots = _positive_roots(p)
     out = []
     left: Real = Fraction(0)
     for r, m in roots:
@@ -317,15 +345,27 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     _check_method_problem(system, polyhedron, method)
     conditions, equalities, D, _ = _conditions(system, polyhedron, method)
     distinct = _distinct(conditions)
-    bad: list[tuple[Real, Real]] = []
-    for key, c in distinct.items():
-        bad.extend(_negative_segments(c.poly))
     singular = [r for r, _ in _positive_roots(D)]
+    # The valid set lies inside the valid set of any single generator: take the
+    # conditions of the first vertex exactly, then skip every other condition
+    # that Descartes' rule shows nonnegative on [0, T], T the end of that set.
+    first = [c for c in distinct.values() if c.kind == "vertex" and c.generator == 0]
+    bad: list[tuple[Real, Real]] = []
+    for c in first:
+        bad.extend(_negative_segments(c.p))
+    bound = complement_of_open(bad, singular)
+    T = bound.intervals[-1].hi if bound.intervals else Fraction(0)
+    for c in distinct.values():
+        if c.kind == "vertex" and c.generator == 0:
+            continue
+        if not isinstance(T, Infinity) and _positive_right_of_zero(c.p) and _no_root_below(c.p, _upper(T)):
+            continue
+        bad.extend(_negative_segments(c.p))
     union = complement_of_open(bad, singular)
     if equalities:  # lines: only the common roots of every e survive
         allowed = None
         for e in _distinct(equalities).values():
-            roots = {r for r, _ in _positive_roots(e.poly)}
+            roots = {r for r, _ in _positive_roots(e.p)}
             allowed = roots if allowed is None else {r for r in allowed if any(r == s for s in roots)}
         points = [Fraction(0)] + sorted((r for r in allowed or () if r in union), key=_SortKey)
         union = IntervalUnion(tuple(Interval(p, p, True, True) for p in points))
@@ -343,8 +383,10 @@ def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Meth
         return LargestThreshold(Fraction(0), True, method, equalities[0], None, system, polyhedron, tuple(distinct), tuple(Dcoeffs))
     best: Real = INF
     binding: Condition | None = None
-    for c in distinct:
-        end = nonnegative_until(list(c.poly))
+    for c in sorted(distinct, key=lambda c: c.p(0)):  # the tightest pairs first
+        if not isinstance(best, Infinity) and _positive_right_of_zero(c.p) and _no_root_below(c.p, _upper(best)):
+            continue  # c >= 0 on [0, best]: cannot end the first interval earlier
+        end = nonnegative_until(c.p)
         if _lt(end, best):
             best, binding = end, c
     poles = _positive_roots(D)
