@@ -104,14 +104,17 @@ class RealAlgebraic:
 
     def tidy(self, digits: int = 12) -> "RealAlgebraic":
         """Replace the isolating interval by a short decimal one (for readable
-        output and certificates), verified by a sign change and a Sturm count."""
-        from .roots import count_real_roots
+        output and certificates); the added slivers are proved root-free by
+        Descartes' rule, so the new interval still isolates the same root."""
+        from .roots import no_root_between
 
         self.refine(int(digits * 3.33) + 4)
         scale = 10**digits
         lo = Fraction(_floor(self._lower * scale), scale)
         hi = Fraction(-_floor(-self._upper * scale), scale)
-        if sign_at(self.poly, lo) * sign_at(self.poly, hi) < 0 and count_real_roots(self.poly, lo, hi) == 1:
+        # the widened interval adds the slivers (lo, lower] and [upper, hi): prove them root-free
+        if (lo == self._lower or no_root_between(self.poly, lo, self._lower)) and \
+                (hi == self._upper or no_root_between(self.poly, self._upper, hi)):
             self._lower, self._upper = lo, hi
             self._sign_lower = sign_at(self.poly, lo)
         return self

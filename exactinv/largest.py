@@ -506,6 +506,7 @@ def _bounds(v):
     if isinstance(v, Infinity):
         return None, None
     if isinstance(v, RealAlgebraic):
+        v.refine(40)
         return v.lower, v.upper
     return v, v
 

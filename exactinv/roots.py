@@ -73,6 +73,19 @@ def _shift(f: flint.fmpq_poly, start: Fraction) -> flint.fmpq_poly:
     return f(flint.fmpq_poly([fmpq_of(start), 1]))
 
 
+_ONE_PLUS_X = flint.fmpq_poly([1, 1])
+
+
+def no_root_between(p: Any, a: Fraction, b: Fraction) -> bool:
+    """True if Descartes' rule proves that p has no root in the open interval
+    (a, b): the Moebius-transformed (1+x)^d p((a + b x)/(1 + x)) has no sign
+    variation.  (False means: not proved.)  Exact; a Taylor shift in FLINT."""
+    pq = as_polynomial(p)
+    shifted = pq(flint.fmpq_poly([fmpq_of(a), fmpq_of(b - a)]))  # p(a + (b - a) y), y in (0, 1)
+    transformed = flint.fmpq_poly(list(reversed(shifted.coeffs())))(_ONE_PLUS_X)
+    return sign_variations(transformed.coeffs()) == 0
+
+
 def sign_variations(coeffs: Iterable[Any]) -> int:
     """Number of sign changes in a coefficient sequence, zeros ignored.
     By Descartes' rule it bounds the number of positive roots (with
@@ -93,7 +106,7 @@ def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
         lo, hi = _dyadic(z.real.lower()), _dyadic(z.real.upper())
         if sign_at(p, lo) * sign_at(p, hi) >= 0:
             raise VerificationFailed(f"root isolation: Arb enclosure ({lo}, {hi}) of a root of {p} has no sign change")
-        out.append(RealAlgebraic(p, lo, hi, _trusted=True).tidy())
+        out.append(RealAlgebraic(p, lo, hi, _trusted=True))
     out.sort()
     return out
 
@@ -165,9 +178,50 @@ def sign_right_of(f: Any, t: Fraction) -> int:
     return 0
 
 
+def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fraction] | Fraction | None:
+    """The smallest positive root of a squarefree integer polynomial with
+    q(0) != 0: an isolating open interval (a, b), a Fraction if it is a dyadic
+    bisection point, or None.  Vincent-Collins-Akritas bisection: Descartes'
+    rule on (0, 1) after the Moebius map, children by Taylor shifts in FLINT;
+    left-first, so it stops at the first root."""
+    d = q.degree()
+    if d < 1:
+        return None
+    coeffs = [int(c) for c in q.coeffs()]
+    lead = abs(coeffs[-1])
+    bound = 1 + max(abs(c) for c in coeffs[:-1]) // lead + 1  # Cauchy: every root has |z| < bound
+    k = max(bound.bit_length(), 1)
+    P0 = flint.fmpz_poly([c << (k * i) for i, c in enumerate(coeffs)])  # q(2^k x): roots in (0, 1)
+    one_plus_x = flint.fmpz_poly([1, 1])
+    stack = [(0, 0, P0)]  # interval (a/2^level, (a+1)/2^level) * 2^k, P maps (0, 1) onto it
+    while stack:
+        a, level, P = stack.pop()
+        if not isinstance(P, flint.fmpz_poly):  # a marker: a rational root at a bisection point
+            return P
+        rev = flint.fmpz_poly(list(reversed([int(c) for c in P.coeffs()])))
+        variations = sign_variations(rev(one_plus_x).coeffs())
+        if variations == 0:
+            continue
+        scale = Fraction(2**k, 2**level)
+        if variations == 1:
+            return a * scale, (a + 1) * scale
+        left = flint.fmpz_poly([int(c) << (d - i) for i, c in enumerate(P.coeffs())])  # 2^d P(x/2)
+        right = left(one_plus_x)
+        stack.append((2 * a + 1, level + 1, right))
+        if right(0) == 0:  # P(1/2) = 0: the midpoint is a root (after everything left of it)
+            stack.append((None, None, Fraction(2 * a + 1, 2 ** (level + 1)) * 2**k))
+        stack.append((2 * a, level + 1, left))
+    return None
+
+
 def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
     """The smallest t > start at which f changes sign (a root of odd
     multiplicity), or INF if there is none.  Exact.
+
+    Descartes' rule first (no sign variation of f(start + x): no root); then the
+    odd-multiplicity part of f (squarefree factorisation in FLINT), the first
+    positive root isolated by Vincent-Collins-Akritas bisection, and the
+    irreducible factor that owns it.
 
     >>> first_sign_change([4, -12, 13, -6, 1])     # (t-1)^2 (t-2)^2: tangent roots only
     INF
@@ -178,22 +232,36 @@ def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
     start = to_rational(start, "start")
     if fq.is_zero() or fq.degree() == 0:
         return INF
-    shifted = _shift(fq, start)
+    shifted = _integer(_shift(fq, start))
     if sign_variations(shifted.coeffs()) == 0:  # Descartes: no root beyond start
         return INF
+    _, parts = shifted.factor_squarefree()
+    odd = flint.fmpz_poly([1])
+    for p, mult in parts:
+        if mult % 2:
+            odd *= p
+    while odd.degree() > 0 and odd(0) == 0:  # a root at start itself is not "beyond" it
+        odd = flint.fmpz_poly([int(c) for c in odd.coeffs()[1:]])
+    found = _first_positive_root_interval(odd)
+    if found is None:
+        return INF
+    if isinstance(found, Fraction):
+        return start + found
+    a, b = found
+    lo, hi = start + a, start + b
     _, factors = _integer(fq).factor()
-    best: Real | Infinity = INF
     for p, mult in factors:
         if mult % 2 == 0:
             continue
-        if sign_variations(_shift(flint.fmpq_poly(p), start).coeffs()) == 0:
+        if p.degree() == 1:
+            c0, c1 = (int(c) for c in p.coeffs())
+            r = Fraction(-c0, c1)
+            if lo < r < hi:
+                return r
             continue
-        for r in _isolate_irreducible(p):
-            if r > start:
-                if r < best:
-                    best = r
-                break
-    return best
+        if sign_at(p, lo) * sign_at(p, hi) < 0:
+            return RealAlgebraic(p, lo, hi, _trusted=True)
+    raise VerificationFailed("first_sign_change: the isolated root belongs to no factor")
 
 
 def nonnegative_until(f: Any, start: Any = 0) -> Real | Infinity:
