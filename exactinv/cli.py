@@ -2,9 +2,12 @@
 
     exactinv certify PROBLEM.json [--method SPEC] [-o CERT.json]
     exactinv check CERT.json
+    exactinv explain CERT.json
+    exactinv oracle RESULTS.csv [--tolerance 1e-9]
 
-Exit codes: 0 success (for ``check``: every claim verified), 1 a certificate
-was rejected or an internal verification failed, 2 bad input (the message
+Exit codes: 0 success (for ``check``: every claim verified; for ``oracle``:
+no result invalid), 1 a certificate was rejected, an oracle verdict was
+``invalid`` or an internal verification failed, 2 bad input (the message
 names the argument).
 """
 
@@ -112,6 +115,55 @@ def _check(args) -> int:
     return 0 if report.ok else 1
 
 
+def _oracle(args) -> int:
+    """Judge a batch of float results: CSV (problem,quantity,method,claimed) or JSON lines."""
+    import csv
+    import os
+
+    from . import oracle
+    from .problem import load_problem, parse_method
+
+    base = os.path.dirname(os.path.abspath(args.results))
+    with open(args.results) as fh:
+        if args.results.endswith(".jsonl"):
+            rows = [json.loads(line) for line in fh if line.strip()]
+        else:
+            rows = list(csv.DictReader(fh))
+    invalid = 0
+    print(f"{'#':>3}  {'problem':<28}{'quantity':<11}{'method':<16}{'claimed':<22}verdict")
+    for k, row in enumerate(rows, 1):
+        source = row["problem"]
+        prob = load_problem(source if isinstance(source, dict) else os.path.join(base, source))
+        method_spec = row.get("method") or None
+        method = parse_method(json.loads(method_spec) if isinstance(method_spec, str) else method_spec) if method_spec else prob.method
+        claimed = float(row["claimed"])
+        quantity = row.get("quantity", "threshold")
+        if quantity == "threshold":
+            v = oracle.judge_threshold(prob.system, prob.polyhedron, method, claimed, args.tolerance)
+        elif quantity == "gamma":
+            v = oracle.judge_gamma(prob.system, prob.polyhedron, claimed, args.tolerance)
+        elif quantity == "radius":
+            v = oracle.judge_radius(method, claimed, args.tolerance)
+        else:
+            raise ExactinvError(f"row {k}: unknown quantity {quantity!r} (threshold, gamma, radius)")
+        invalid += v.status == "invalid"
+        name = prob.name if isinstance(source, dict) else os.path.basename(str(source))
+        print(f"{k:>3}  {name:<28}{quantity:<11}{(method.name if method else '-'):<16}{row['claimed']:<22}{v.status.upper()}")
+        if v.status != "tight":
+            print(f"     {v.message}")
+    print(f"{len(rows)} results judged: {invalid} invalid")
+    return 1 if invalid else 0
+
+
+def _explain(args) -> int:
+    from .explain import explain
+
+    with open(args.certificate) as fh:
+        cert = json.load(fh)
+    print(explain(cert))
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="exactinv", description="Exact steplength thresholds with certificates.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -123,6 +175,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     c = sub.add_parser("check", help="re-verify a certificate with the standard-library checker")
     c.add_argument("certificate", help="certificate JSON file")
     c.set_defaults(run=_check)
+    e = sub.add_parser("explain", help="print the argument of a certificate in words")
+    e.add_argument("certificate", help="certificate JSON file")
+    e.set_defaults(run=_explain)
+    o = sub.add_parser("oracle", help="judge float results (CSV: problem,quantity,method,claimed; or .jsonl)")
+    o.add_argument("results", help="CSV or JSON-lines file of float results")
+    o.add_argument("--tolerance", default="1e-9", help="relative tolerance for 'tight' (default 1e-9)")
+    o.set_defaults(run=_oracle)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

@@ -57,6 +57,16 @@ class ContinuousInvariance:
     >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
     when it is not."""
 
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
     holds: bool
     certificate: Matrix | None
     witness: FacetWitness | None
@@ -84,6 +94,16 @@ class DiscreteInvariance:
     """Is P invariant for x+ = A_d x?  ``certificate`` is an exact H~ >= 0 with
     H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
     (``witness.facet`` the violated row)."""
+
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
 
     holds: bool
     certificate: Matrix | None
@@ -143,6 +163,16 @@ class OptimalGamma:
     ``dual`` proves that no smaller gamma is feasible.  ``rows`` holds every
     verified row LP and ``paths`` counts which engine route produced them.
     """
+
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
 
     value: Fraction | Infinity
     H_flint: flint.fmpq_mat | None = field(repr=False)

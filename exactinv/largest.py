@@ -105,6 +105,16 @@ class LargestThreshold:
     condition (vertex/ray, facet, polynomial) whose sign change ends the
     interval, or None when a pole of r(dt A) (``singular``) ends it."""
 
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
     value: Real
     attained: bool
     method: Method = field(repr=False)
@@ -416,6 +426,16 @@ class ForwardEulerThreshold:
     ``by_gamma`` = 1/gamma* (Lemma 3.14) and ``by_vertices`` = min_i eps^i with
     eps^i = max{t : x^i + t A x^i in P} (rays and lines likewise); they must agree.
     ``binding`` = (kind, generator index, facet) of the vertex ratio test that binds."""
+
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
 
     value: Real
     by_gamma: Real

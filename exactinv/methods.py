@@ -114,7 +114,7 @@ class Method:
     def _repr_latex_(self) -> str:
         import sympy
 
-        return f"$r(z) = {sympy.latex(self.to_sympy())}$ \\quad ({self.name})"
+        return f"$r(z) = {sympy.latex(self.to_sympy())} \\quad \\text{{({self.name})}}$"
 
     def __repr__(self) -> str:
         return f"Method({self.name}: r(z) = {self.to_sympy()})"

@@ -30,6 +30,16 @@ class LinearSystem:
     ((Fraction(-1, 1), Fraction(1, 1)), (Fraction(-1, 1), Fraction(-1, 1)))
     """
 
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
     A: Matrix
 
     def __init__(self, A: Any, *, allow_float: bool = False):
@@ -72,6 +82,16 @@ class Polyhedron:
     >>> P.vertices
     ((Fraction(-1, 1), Fraction(-1, 1)), (Fraction(-1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)), (Fraction(1, 1), Fraction(1, 1)))
     """
+
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
 
     G: Matrix
     b: Vector

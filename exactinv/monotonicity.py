@@ -71,6 +71,16 @@ class AbsoluteMonotonicityRadius:
     ``attained``: is rho itself in the set (r absolutely monotonic at -rho).
     """
 
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
     value: Real
     attained: bool
     reason: str

@@ -63,6 +63,16 @@ class SteplengthThreshold:
     attains the minimum; ``notes`` records where the paper was corrected.
     """
 
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
     value: Real
     attained: bool
     theorem: str

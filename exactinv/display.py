@@ -1,0 +1,244 @@
+"""Rich display: LaTeX for papers and Jupyter, and plots (matplotlib, optional).
+
+Exact values are typeset exactly (fractions) or, for algebraic numbers, by
+their defining polynomial with a decimal that shows only certified digits.
+Plots evaluate polynomials in floating point *for drawing only*; every
+number printed on a plot comes from the exact result.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Sequence
+
+from .algebraic import RealAlgebraic, _poly_latex
+from .numbers import Infinity
+
+__all__ = [
+    "latex_real",
+    "latex_matrix",
+    "to_latex",
+    "plot_f_i",
+    "plot_coefficients",
+    "plot_valid_set",
+    "plot_images",
+]
+
+
+def latex_real(v: Any, digits: int = 10) -> str:
+    """A Fraction as \\frac, INF as \\infty, an algebraic number as its certified
+    decimal with the defining polynomial ("1.4142135623\\ldots, root of x^2-2")."""
+    if isinstance(v, Infinity):
+        return r"\infty" if v.sign > 0 else r"-\infty"
+    if isinstance(v, RealAlgebraic):
+        decimal = v.certified_digits(digits).replace("...", "\\ldots")
+        return rf"{decimal}\ (\text{{root of }} {_poly_latex(v.poly)})"
+    v = Fraction(v)
+    if v.denominator == 1:
+        return str(v.numerator)
+    sign = "-" if v < 0 else ""
+    return rf"{sign}\frac{{{abs(v.numerator)}}}{{{v.denominator}}}"
+
+
+def latex_matrix(M: Sequence[Sequence[Any]]) -> str:
+    rows = r" \\ ".join(" & ".join(latex_real(x) for x in row) for row in M)
+    return rf"\begin{{pmatrix}} {rows} \end{{pmatrix}}"
+
+
+def to_latex(result: Any) -> str:
+    """LaTeX for any exactinv result (used by the results' ``to_latex`` and ``_repr_latex_``)."""
+    from .invariance import ContinuousInvariance, DiscreteInvariance, OptimalGamma
+    from .largest import ForwardEulerThreshold, LargestThreshold
+    from .model import LinearSystem, Polyhedron
+    from .monotonicity import AbsoluteMonotonicityRadius
+    from .thresholds import SteplengthThreshold
+
+    if isinstance(result, LinearSystem):
+        return rf"\dot x = {latex_matrix(result.A)}\, x"
+    if isinstance(result, Polyhedron):
+        return rf"P = \{{x : {latex_matrix(result.G)} x \le {latex_matrix([[v] for v in result.b])}\}}"
+    if isinstance(result, OptimalGamma):
+        if result.witness is not None:
+            w = result.witness
+            return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_matrix([[v] for v in w.x])}"
+                    rf"\text{{ on facet {w.facet}, }} g^T A x = {latex_real(w.value)} > 0)")
+        return rf"\gamma^* = {latex_real(result.value)}, \quad H = {latex_matrix(result.H)}"
+    if isinstance(result, SteplengthThreshold):
+        text = rf"\tau = {latex_real(result.value)}\ \text{{({result.theorem}{'' if result.attained else ', not attained'})}}"
+        if result.table:
+            rows = r" \\ ".join(rf"{r.i} & {_f_latex(r.f)} & {latex_real(r.tau)}" for r in result.table)
+            text += rf"\\ \begin{{array}}{{c|l|l}} i & f_i(\Delta t) & \tau_i \\ \hline {rows} \end{{array}}"
+        return text
+    if isinstance(result, LargestThreshold):
+        return rf"\tau_{{\max}} = {latex_real(result.value)}\ \text{{({'attained' if result.attained else 'not attained'})}}"
+    if isinstance(result, ForwardEulerThreshold):
+        return rf"\tau_{{FE}} = 1/\gamma^* = {latex_real(result.value)}"
+    if isinstance(result, AbsoluteMonotonicityRadius):
+        return rf"\rho = {latex_real(result.value)}\ \text{{({result.reason})}}"
+    if isinstance(result, (ContinuousInvariance, DiscreteInvariance)):
+        name = "H" if isinstance(result, ContinuousInvariance) else r"\tilde H"
+        if result.holds:
+            return rf"\text{{invariant}},\ {name} = {latex_matrix(result.certificate)}"
+        return rf"\text{{not invariant: }} x = {latex_matrix([[v] for v in result.witness.x])},\ \text{{facet {result.witness.facet}}}"
+    raise TypeError(f"no LaTeX for {type(result).__name__}")
+
+
+def _f_latex(coeffs: Sequence[Fraction]) -> str:
+    terms = []
+    for k, c in enumerate(coeffs):
+        if c == 0:
+            continue
+        mono = "" if k == 0 else (r"\Delta t" if k == 1 else rf"\Delta t^{{{k}}}")
+        body = latex_real(abs(c)) if (abs(c) != 1 or k == 0) else ""
+        terms.append(("-" if c < 0 else "+") + body + mono)
+    text = "".join(terms) or "0"
+    return text[1:] if text.startswith("+") else text
+
+
+def _repr_latex(self) -> str:
+    return "$" + to_latex(self) + "$"
+
+
+# ------------------------------------------------------------------ plots
+def _plt():
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as exc:  # pragma: no cover - the notebook extra
+        raise ImportError("plots need matplotlib: pip install 'exactinv[notebook]'") from exc
+    return plt
+
+
+def _f(v) -> float:
+    return float(v)
+
+
+def _polyval(coeffs, x):
+    acc = 0.0
+    for c in reversed(coeffs):
+        acc = acc * x + float(c)
+    return acc
+
+
+def plot_f_i(threshold, upto: float | None = None):
+    """The f_i(dt) of a polynomial-method threshold with tau_i and tau marked."""
+    import numpy as np
+
+    plt = _plt()
+    finite = [r.tau for r in threshold.table if not isinstance(r.tau, Infinity)]
+    top = upto or (2.0 * max([_f(t) for t in finite] + [_f(threshold.value) if not isinstance(threshold.value, Infinity) else 1.0]))
+    xs = np.linspace(0, top, 400)
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for r in threshold.table:
+        scale = max(abs(float(c)) for c in r.f) or 1.0
+        ax.plot(xs, [_polyval(r.f, x) / scale for x in xs], label=rf"$f_{r.i}$ (scaled)")
+        if not isinstance(r.tau, Infinity) and r.tau != 0:
+            ax.axvline(_f(r.tau), ls=":", lw=0.8, color="gray")
+    if not isinstance(threshold.value, Infinity):
+        ax.axvline(_f(threshold.value), color="crimson", lw=1.5, label=rf"$\tau = {latex_real(threshold.value, 6)}$")
+    ax.axhline(0, color="black", lw=0.6)
+    ax.set_xlabel(r"$\Delta t$")
+    ax.set_title(rf"$f_i(\Delta t)$ for {threshold.method.name}, $\gamma^* = {latex_real(threshold.gamma.value)}$")
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    return fig
+
+
+def plot_coefficients(method, count: int = 6, upto: float | None = None):
+    """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! (their numerators d_j) with rho marked."""
+    import numpy as np
+
+    from .monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
+
+    plt = _plt()
+    rho = absolute_monotonicity_radius(method)
+    top = upto or (2.0 * _f(rho.value) if not isinstance(rho.value, Infinity) and rho.value != 0 else 4.0)
+    d = taylor_coefficient_polynomials(method, count)
+    xs = np.linspace(0, top, 400)
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for j, p in enumerate(d):
+        coeffs = [float(c) for c in p.coeffs()] or [0.0]
+        vals = np.array([_polyval(coeffs, x) for x in xs])
+        scale = max(np.max(np.abs(vals)), 1e-300)
+        ax.plot(xs, vals / scale, label=rf"$c_{j}$ (sign of)")
+    if not isinstance(rho.value, Infinity):
+        ax.axvline(_f(rho.value), color="crimson", lw=1.5, label=rf"$\rho = {latex_real(rho.value, 6)}$")
+    ax.axhline(0, color="black", lw=0.6)
+    ax.set_xlabel(r"$\kappa$")
+    ax.set_title(f"absolute monotonicity of {method.name}")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def plot_valid_set(system, polyhedron, method, upto: float | None = None):
+    """The exact valid steplengths on a number line, with the paper's, the
+    corrected and the exact largest threshold."""
+    from .largest import largest_threshold, valid_steplengths
+    from .thresholds import steplength_threshold
+
+    plt = _plt()
+    V = valid_steplengths(system, polyhedron, method)
+    t = steplength_threshold(system, polyhedron, method)
+    L = largest_threshold(system, polyhedron, method)
+    ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if not isinstance(x, Infinity)]
+    ends += [_f(v) for v in (t.paper, t.value) if not isinstance(v, Infinity)]
+    top = upto or 1.25 * max(ends + [1.0])
+    fig, ax = plt.subplots(figsize=(7, 1.9))
+    for iv in V:
+        lo, hi = _f(iv.lo), min(_f(iv.hi) if not isinstance(iv.hi, Infinity) else top, top)
+        ax.plot([lo, hi], [0, 0], color="seagreen", lw=6, solid_capstyle="butt")
+        ax.plot([lo], [0], "o", color="seagreen", mfc="seagreen" if iv.lo_closed else "white")
+        if not isinstance(iv.hi, Infinity):
+            ax.plot([hi], [0], "o", color="seagreen", mfc="seagreen" if iv.hi_closed else "white")
+    for value, label, color, y in ((t.paper, "paper", "gray", 0.45), (t.value, "corrected", "royalblue", 0.25),
+                                   (L.value, "largest", "crimson", -0.35)):
+        if not isinstance(value, Infinity):
+            ax.axvline(_f(value), color=color, ls="--", lw=1)
+            ax.text(_f(value), y, f" {label} {latex_real(value, 5) if not isinstance(value, RealAlgebraic) else value.certified_digits(5)}",
+                    color=color, fontsize=7)
+    infinite = [label for value, label in ((t.paper, "paper"), (t.value, "corrected"), (L.value, "largest"))
+                if isinstance(value, Infinity)]
+    if infinite:
+        ax.text(top, 0.5, " = ".join(infinite) + r" $=\infty$ ", ha="right", fontsize=7, color="gray")
+    ax.set_xlim(0, top)
+    ax.set_ylim(-0.6, 0.7)
+    ax.set_yticks([])
+    ax.set_xlabel(r"$\Delta t$")
+    ax.set_title(f"valid steplengths of {method.name} (green)", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_images(system, polyhedron, method, dts: Sequence[Any]):
+    """A 2-D polytope P and its images A_d(dt) P; vertices mapped outside P in red."""
+    from .model import Polyhedron
+
+    plt = _plt()
+    if polyhedron.n != 2 or not polyhedron.is_bounded:
+        raise ValueError("plot_images draws bounded polygons in the plane")
+    import math
+
+    def ordered(points):
+        cx = sum(p[0] for p in points) / len(points)
+        cy = sum(p[1] for p in points) / len(points)
+        return sorted(points, key=lambda p: math.atan2(p[1] - cy, p[0] - cx))
+
+    V = [(float(v[0]), float(v[1])) for v in polyhedron.vertices]
+    fig, ax = plt.subplots(figsize=(4.6, 4.6))
+    poly = ordered(V)
+    ax.fill(*zip(*poly), color="lightgray", alpha=0.7, label="P")
+    cmap = plt.get_cmap("viridis")
+    for k, dt in enumerate(dts):
+        Ad = method.matrix(system, Fraction(dt) if not isinstance(dt, str) else Fraction(dt))
+        images = [(sum(Ad[0][j] * v[j] for j in range(2)), sum(Ad[1][j] * v[j] for j in range(2))) for v in polyhedron.vertices]
+        pts = ordered([(float(x), float(y)) for x, y in images])
+        color = cmap(k / max(len(dts) - 1, 1))
+        ax.plot(*zip(*(pts + pts[:1])), color=color, lw=1.2, label=rf"$A_d({dt})P$")
+        outside = [(float(x), float(y)) for x, y in images if not polyhedron.contains([x, y])]
+        if outside:
+            ax.plot(*zip(*outside), "o", color="crimson", ms=5)
+    ax.set_aspect("equal")
+    ax.legend(fontsize=7)
+    ax.set_title(f"images of P under {method.name}; red: outside P", fontsize=9)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,201 @@
+"""A regression oracle for floating-point implementations.
+
+A float implementation of the paper (or of anything computing the same
+quantities) outputs a number; the oracle turns that float into the exact
+rational it denotes (``exact_from_float``: this is the one place where a float
+is accepted, because judging it is the point) and compares it with the exact
+result:
+
+* ``valid``   -- on the safe side of the exact value; ``relative_gap`` says by how much;
+* ``tight``   -- on the safe side and within ``tolerance`` (relative) of it;
+* ``invalid`` -- on the wrong side; for thresholds and gamma* the verdict carries
+  an exact counterexample: a rational steplength dt <= claimed and a point x of P
+  whose image A_d(dt) x leaves P through ``facet``.
+
+For pytest: ``assert_threshold(system, polyhedron, method, claimed)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+from .algebraic import RealAlgebraic
+from .errors import InvalidInput
+from .largest import largest_threshold, valid_steplengths
+from .methods import Method, forward_euler
+from .monotonicity import absolute_monotonicity_radius
+from .numbers import INF, Infinity, exact_from_float, to_rational
+from .roots import first_sign_change
+from .invariance import discrete_invariance, optimal_gamma
+
+__all__ = ["Verdict", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold"]
+
+VALID, TIGHT, INVALID = "valid", "tight", "invalid"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The oracle's judgement of one float result."""
+
+    status: str
+    quantity: str
+    claimed: Fraction | Infinity
+    exact: Any
+    relative_gap: Fraction | None = None
+    counterexample: dict | None = None
+    message: str = ""
+
+    def __bool__(self) -> bool:
+        return self.status != INVALID
+
+    def __str__(self) -> str:
+        return f"{self.status.upper()}: {self.message}"
+
+
+def _exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
+    if isinstance(claimed, float):
+        if math.isnan(claimed):
+            raise InvalidInput(f"{name}: NaN is not a claim")
+        if math.isinf(claimed):
+            return INF if claimed > 0 else -INF
+        return exact_from_float(claimed)
+    if isinstance(claimed, Infinity):
+        return claimed
+    return to_rational(claimed, name)
+
+
+def _gap(claimed, exact) -> Fraction | None:
+    """(exact - claimed)/exact as an exact rational (bounds for algebraic exact values)."""
+    if isinstance(exact, Infinity) or isinstance(claimed, Infinity) or exact == 0:
+        return None
+    if isinstance(exact, RealAlgebraic):
+        exact.refine(80)
+        exact = exact.lower
+    return (exact - claimed) / exact
+
+
+def _within(claimed, exact, tolerance: Fraction) -> bool:
+    """claimed (<= exact) is within a relative tolerance of exact."""
+    if isinstance(exact, Infinity):
+        return claimed == exact
+    if isinstance(exact, RealAlgebraic):
+        exact.refine(80)
+        return claimed >= exact.lower - tolerance * abs(exact.upper)
+    return abs(exact - claimed) <= tolerance * abs(exact)
+
+
+def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+    """Judge a claimed steplength threshold: is every dt in [0, claimed] valid?
+    Compared with the exact largest threshold (attained or not)."""
+    tol = to_rational(tolerance, "tolerance")
+    c = _exact_claim(claimed)
+    L = largest_threshold(system, polyhedron, method)
+    tau = L.value
+    too_big = (not isinstance(c, Infinity) and not isinstance(tau, Infinity) and (tau < c if isinstance(tau, RealAlgebraic) else c > tau)) \
+        or (isinstance(c, Infinity) and not isinstance(tau, Infinity)) \
+        or (not L.attained and c == tau)
+    if c < 0 if not isinstance(c, Infinity) else c.sign < 0:
+        raise InvalidInput(f"claimed: a steplength threshold cannot be negative, got {claimed}")
+    if too_big and not L.attained and c == tau:
+        return Verdict(INVALID, "threshold", c, tau, Fraction(0), {"dt": tau, "singular": True},
+                       f"claimed {claimed} equals the exact largest threshold, which is not attained: "
+                       f"r(dt A) is singular at dt = {tau}")
+    if too_big:
+        dt = _invalid_step(system, polyhedron, method, c)
+        result = discrete_invariance(system, polyhedron, method, dt)
+        w = result.witness
+        return Verdict(INVALID, "threshold", c, tau, _gap(c, tau),
+                       {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value},
+                       f"claimed {claimed} exceeds the exact largest threshold {tau}"
+                       f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point {list(map(str, w.x))} "
+                       f"leaves P through facet {w.facet}")
+    gap = _gap(c, tau)
+    if _within(c, tau, tol):
+        return Verdict(TIGHT, "threshold", c, tau, gap, None, f"claimed {claimed} is within {tol} of the exact {tau}")
+    return Verdict(VALID, "threshold", c, tau, gap, None,
+                   f"claimed {claimed} is safe; the exact largest threshold is {tau}"
+                   + ("" if gap is None else f" (relative gap {float(gap):.3g})"))
+
+
+def _invalid_step(system, polyhedron, method, claimed) -> Fraction:
+    """A rational dt <= claimed at which A_d(dt) P is not inside P (and r(dt A) is defined):
+    bisect towards the end of the first valid interval inside the first gap."""
+    V = valid_steplengths(system, polyhedron, method)
+    end = V.intervals[0].hi
+    lo = end.upper if isinstance(end, RealAlgebraic) else end
+    top = lo + 1 if isinstance(claimed, Infinity) else claimed
+    if len(V.intervals) > 1:
+        nxt = V.intervals[1].lo
+        nxt = nxt.lower if isinstance(nxt, RealAlgebraic) else nxt
+        top = min(top, nxt)
+    for k in range(1, 200):
+        dt = lo + (top - lo) / 2**k
+        if dt <= 0 or dt in V:
+            continue
+        try:
+            if not discrete_invariance(system, polyhedron, method, dt).holds:
+                return dt
+        except InvalidInput:  # r(dt A) singular at this dt
+            continue
+    raise InvalidInput("no invalid rational step found below the claim")
+
+
+def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+    """Judge a claimed gamma*.  A claim below gamma* is invalid (its forward-Euler step
+    1/claimed is too large: counterexample given); above it, it is safe but conservative."""
+    tol = to_rational(tolerance, "tolerance")
+    c = _exact_claim(claimed)
+    g = optimal_gamma(system, polyhedron).value
+    if isinstance(g, Infinity) or isinstance(c, Infinity):
+        ok = c == g
+        return Verdict(TIGHT if ok else INVALID, "gamma", c, g, None, None, f"claimed {claimed}, exact gamma* = {g}")
+    if c < g:
+        cex = None
+        if c > 0:
+            dt = 1 / c
+            w = discrete_invariance(system, polyhedron, forward_euler(), dt).witness
+            cex = {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value} if w else None
+        return Verdict(INVALID, "gamma", c, g, None, cex, f"claimed {claimed} is below the exact gamma* = {g}")
+    status = TIGHT if abs(c - g) <= tol * max(abs(g), Fraction(1)) else VALID
+    return Verdict(status, "gamma", c, g, c - g, None, f"claimed {claimed}; exact gamma* = {g}")
+
+
+def judge_root(f: Any, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+    """Judge a claimed first sign change of the polynomial f (coefficients, constant first)."""
+    tol = to_rational(tolerance, "tolerance")
+    c = _exact_claim(claimed)
+    r = first_sign_change(f)
+    if isinstance(r, Infinity) or isinstance(c, Infinity):
+        ok = c == r
+        return Verdict(TIGHT if ok else INVALID, "root", c, r, None, None, f"claimed {claimed}, exact first sign change {r}")
+    if r < c if isinstance(r, RealAlgebraic) else c > r:
+        return Verdict(INVALID, "root", c, r, _gap(c, r), None, f"claimed {claimed} lies beyond the first sign change {r}")
+    status = TIGHT if _within(c, r, tol) else VALID
+    return Verdict(status, "root", c, r, _gap(c, r), None, f"claimed {claimed}; exact first sign change {r}")
+
+
+def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+    """Judge a claimed radius of absolute monotonicity."""
+    tol = to_rational(tolerance, "tolerance")
+    c = _exact_claim(claimed)
+    rho = absolute_monotonicity_radius(method).value
+    if isinstance(rho, Infinity) or isinstance(c, Infinity):
+        ok = c == rho or (isinstance(rho, Infinity) and not isinstance(c, Infinity))
+        status = TIGHT if c == rho else (VALID if ok else INVALID)
+        return Verdict(status, "radius", c, rho, None, None, f"claimed {claimed}; exact rho = {rho}")
+    if rho < c if isinstance(rho, RealAlgebraic) else c > rho:
+        return Verdict(INVALID, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed} exceeds the exact rho = {rho}")
+    status = TIGHT if _within(c, rho, tol) else VALID
+    return Verdict(status, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed}; exact rho = {rho}")
+
+
+def assert_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
+    """pytest helper: fail (AssertionError with the counterexample) unless the claim is valid
+    (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold)."""
+    v = judge_threshold(system, polyhedron, method, claimed, tolerance)
+    if v.status == INVALID or (require_tight and v.status != TIGHT):
+        raise AssertionError(str(v))
+    return v
