@@ -58,13 +58,13 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args(argv)
     S = ei.LinearSystem([[-1, "1/2"], ["-1/2", -1]])
-    sizes = [10, 100] if args.quick else [10, 100, 1000, 3000]
+    sizes = [10, 100] if args.quick else [10, 100, 300, 1000]
     header = f"{'N':>6}{'p':>3}{'pairs':>10}{'kept':>8}{'distinct':>9}{'exact s':>10}{'grid s':>10}{'grid/exact':>12}  largest"
     print(header)
     print("-" * len(header))
     for N in sizes:
         P = polygon(N)
-        orders = range(1, 9) if N <= 100 else (1, 2, 4, 8)
+        orders = range(1, 9) if N <= 100 else ((1, 2, 4, 8) if N <= 300 else (1, 2))
         for p in orders:
             method = ei.methods.taylor(p)
             t0 = time.perf_counter()
@@ -77,6 +77,7 @@ def main(argv=None):
             print(f"{N:>6}{p:>3}{P.m * len(P.vertices):>10}{V.conditions:>8}{V.distinct:>9}{te:>10.3f}{tg:>10.2f}{mark}{tg / te:>11.1f}  {first}")
             sys.stdout.flush()
     print("~ = grid check stopped after its time budget; time extrapolated to all grid points")
+    print("N = 10,000 (10^8 vertex-facet pairs) is not run: about 40 us per pair gives over an hour.")
 
 
 if __name__ == "__main__":

@@ -774,6 +774,114 @@ def _claim_largest_threshold(p, c, context):
             f"leaves P through facet {binding['facet']} right after tau")
 
 
+def _separate(a, b):
+    """Refine two _Reals (a < b) until a's upper bound is below b's lower bound."""
+    for _ in range(400):
+        (a0, a1), (b0, b1) = a.bounds(), b.bounds()
+        if a1 < b0:
+            return a1, b0
+        if a.poly is not None:
+            a.bisect()
+        if b.poly is not None:
+            b.bisect()
+    raise CheckFailure("interval ends could not be separated")
+
+
+def _count_open(odd, x0, x1):
+    """Distinct roots of the squarefree odd in the open interval (x0, x1), rationals x0 < x1."""
+    q = odd
+    for x in (x0, x1):
+        if _eval(q, x) == 0:
+            q = _divmod(q, [-x, Fraction(1)])[0]
+    return _roots_between(q, x0, x1) if len(q) > 1 else 0
+
+
+def _sliver_roots(odd, x, side):
+    """Roots of odd strictly between the algebraic end x and its bound on ``side``, x excluded."""
+    if x.poly is None:
+        return 0
+    lo, hi = (x.lo, x.hi)
+    total = _count_open(odd, lo, hi)
+    g = _gcd(odd, x.poly)
+    if len(g) > 1 and _sign(_eval(g, lo)) * _sign(_eval(g, hi)) < 0:
+        total -= 1  # x itself
+    # only the part of (lo, hi) on ``side`` of x lies inside the claimed interval;
+    # counting the whole sliver is conservative (a root there is rejected).
+    return total
+
+
+def _sign_constant_inside(f, a, b):
+    """Check that f has no sign change in the open interval (a, b) and return its sign there."""
+    a1, b0 = _separate(a, b)
+    sample = (a1 + b0) / 2
+    f = _trim(f)
+    if len(f) > 1:
+        odd = _strip_zero_roots(_odd_part(f))
+        if len(odd) > 1:
+            inside = _count_open(odd, a1, b0)
+            if a.poly is not None:
+                inside += (_eval(odd, a1) == 0) + _sliver_roots(odd, a, "right")
+            if b.poly is not None:
+                inside += (_eval(odd, b0) == 0) + _sliver_roots(odd, b, "left")
+            _require(inside == 0, "a condition changes sign inside a claimed interval")
+    return _sign(_eval(f, sample))
+
+
+def _claim_valid_steplengths(p, c, context):
+    method = p.get("method")
+    _require(method is not None, "a method is needed")
+    A, G, b = p["A"], p["G"], p["b"]
+    V, R, L = (_mat(c[k]) for k in ("vertices", "rays", "lines"))
+    for v in V:
+        _require(all(x <= beta for x, beta in zip(_matvec(G, v), b)), "a listed vertex is not in P")
+    gens = [("vertex", v) for v in V] + [("ray", r) for r in R] + [("line", l) for l in L]
+    D, conds = _condition_polynomials(A, G, b, method, gens)
+    polys = [poly for kind, _, _, poly in conds if kind != "line" and poly]
+    _require(not any(kind == "line" and poly for kind, _, _, poly in conds), "line conditions are not supported here")
+    intervals = c["intervals"]
+    _require(intervals and intervals[0]["lo"] == "0" and intervals[0]["lo_closed"], "the first interval must start at 0")
+    D_pos = _strip_zero_roots(D)
+    for k, iv in enumerate(intervals):
+        a, hi = _Real(iv["lo"]), _Real(iv["hi"])
+        if not hi.inf and a.compare(hi) == 0:
+            continue  # an isolated valid point
+        if hi.inf:  # [a, oo): check (a, top) like a bounded interval, then (top, oo) by Sturm
+            a_hi = a.bounds()[1]
+            hi = _Real(str(a_hi + 1))
+        for poly in polys:
+            _require(_sign_constant_inside(poly, _Real(iv["lo"]), hi) >= 0, f"a condition is negative inside interval {k}")
+            if iv["hi"] == "oo" and len(poly) > 1:
+                odd = _strip_zero_roots(_odd_part(poly))
+                top = hi.q
+                _require(len(odd) <= 1 or (_eval(odd, top) != 0 and _roots_between(odd, top, None) == 0),
+                         "a condition changes sign on the last, unbounded interval")
+        if len(D_pos) > 1:
+            lo_r, hi_r = _separate(_Real(iv["lo"]), hi)
+            _require(_count_open(D_pos, lo_r, hi_r) == 0 and (iv["hi"] != "oo" or _roots_between(D_pos, hi_r, None) == 0),
+                     "r(dt A) is singular inside a claimed interval")
+    # ends: every finite end other than 0 is a root of some condition or of det h(dt A)
+    for iv in intervals:
+        for key in ("lo", "hi"):
+            if iv[key] in ("0", "oo"):
+                continue
+            e = _Real(iv[key])
+            candidates = polys + ([D_pos] if len(D_pos) > 1 else [])
+            if e.poly is None:
+                hit = any(_eval(q, e.q) == 0 for q in candidates)
+            else:
+                hit = any(len(g) > 1 and _sign(_eval(g, e.lo)) * _sign(_eval(g, e.hi)) < 0
+                          for g in (_gcd(q, e.poly) for q in candidates))
+            _require(hit, f"the interval end {iv[key]} is not a root of any condition")
+    # gaps: a rational point between consecutive intervals is invalid
+    for k in range(len(intervals) - 1):
+        g0, g1 = _separate(_Real(intervals[k]["hi"]), _Real(intervals[k + 1]["lo"]))
+        t = (g0 + g1) / 2
+        bad = any(_eval(poly, t) < 0 for poly in polys) or (len(D_pos) > 1 and _eval(D_pos, t) == 0)
+        _require(bad, f"the gap after interval {k} contains the valid point {t}")
+    return (f"{len(intervals)} intervals: every one of {len(polys)} conditions is >= 0 on each claimed interval "
+            f"and r(dt A) is regular there; every end is a root of a condition; each gap holds an invalid point")
+
+
 _CLAIMS = {
     "continuous_invariance": lambda p, c, ctx: _claim_continuous_invariance(p, c),
     "discrete_invariance": lambda p, c, ctx: _claim_discrete_invariance(p, c),
@@ -782,6 +890,7 @@ _CLAIMS = {
     "absolute_monotonicity_radius": _claim_radius,
     "rational_threshold": _claim_rational_threshold,
     "largest_threshold": _claim_largest_threshold,
+    "valid_steplengths": _claim_valid_steplengths,
 }
 
 

@@ -82,11 +82,34 @@ class ValidSteplengths:
     conditions: int = field(default=0, repr=False)
     distinct: int = field(default=0, repr=False)
 
+    system: LinearSystem | None = field(default=None, repr=False)
+    polyhedron: Polyhedron | None = field(default=None, repr=False)
+    determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
+
     def __iter__(self):
         return iter(self.intervals)
 
     def __len__(self) -> int:
         return len(self.intervals)
+
+    def _claims(self) -> list[dict]:
+        from .certificates import encode_real
+
+        return [{
+            "type": "valid_steplengths",
+            "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
+                           "hi_closed": iv.hi_closed} for iv in self.intervals],
+            "vertices": [[str(x) for x in v] for v in self.polyhedron.vertices],
+            "rays": [[str(x) for x in r] for r in self.polyhedron.rays],
+            "lines": [[str(x) for x in l] for l in self.polyhedron.lines],
+            "determinant": [str(c) for c in self.determinant],
+        }]
+
+    @property
+    def certificate(self) -> dict:
+        from .certificates import certificate
+
+        return certificate(self.system, self.polyhedron, self.method, [self])
 
     def __contains__(self, t: Any) -> bool:
         return t in self.intervals
@@ -379,7 +402,8 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
             allowed = roots if allowed is None else {r for r in allowed if any(r == s for s in roots)}
         points = [Fraction(0)] + sorted((r for r in allowed or () if r in union), key=_SortKey)
         union = IntervalUnion(tuple(Interval(p, p, True, True) for p in points))
-    return ValidSteplengths(union, method, tuple(singular), len(conditions), len(distinct))
+    return ValidSteplengths(union, method, tuple(singular), len(conditions), len(distinct), system, polyhedron,
+                            tuple(fraction_of(c) for c in D.coeffs()))
 
 
 def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> LargestThreshold:

@@ -36,8 +36,24 @@ def _discrete():
     return certificate(S, P, None, [ei.discrete_invariance([[0, 1], [-1, 0]], P), ei.discrete_invariance([[1, 1], [0, 1]], P)])
 
 
+def _gap_set():
+    S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    return ei.valid_steplengths(S, P, ei.methods.polynomial([1, "1/2", "3/4", "1/4"])).certificate
+
+
+def _e2_largest():
+    S, O = ei.LinearSystem([[-1, 2], [0, 1]]), ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
+    return certificate(S, O, ei.methods.backward_euler(),
+                       [ei.steplength_threshold(S, O, ei.methods.backward_euler()), ei.largest_threshold(S, O, ei.methods.backward_euler())])
+
+
+def _largest_taylor2():
+    S = ei.LinearSystem([[-1, 1], [-1, -1]])
+    return ei.largest_threshold(S, ei.Polyhedron.box([-1, -1], [1, 1]), ei.methods.taylor(2)).certificate
+
+
 def test_round_trip_through_json(tmp_path):
-    for cert in (_box_taylor3(), _non_invariant(), _minus_infinity(), _discrete()):
+    for cert in (_box_taylor3(), _non_invariant(), _minus_infinity(), _discrete(), _gap_set(), _e2_largest(), _largest_taylor2()):
         path = tmp_path / "c.json"
         path.write_text(json.dumps(cert))
         report = check(str(path))
@@ -51,8 +67,10 @@ def test_every_example_round_trips(example):
 
     prob = load_problem(example)
     results = [ei.optimal_gamma(prob.system, prob.polyhedron)]
-    if prob.method is not None and prob.method.is_polynomial:
+    if prob.method is not None:
         results.append(ei.steplength_threshold(prob.system, prob.polyhedron, prob.method))
+        results.append(ei.largest_threshold(prob.system, prob.polyhedron, prob.method))
+        results.append(ei.valid_steplengths(prob.system, prob.polyhedron, prob.method))
     assert check(json.loads(json.dumps(certificate(prob.system, prob.polyhedron, prob.method, results)))).ok
 
 
@@ -85,6 +103,14 @@ TAMPERS = {
     "H~ entry": (_discrete, lambda c: c["claims"][0]["H"][0].__setitem__(0, "1")),
     "discrete verdict flipped": (_discrete, lambda c: c["claims"][1].__setitem__("holds", True)),
     "version": (_box_taylor3, lambda c: c.__setitem__("version", 99)),
+    "valid set end moved": (_gap_set, lambda c: c["claims"][0]["intervals"][1].__setitem__("hi", "3")),
+    "valid set gap closed": (_gap_set, lambda c: c["claims"][0]["intervals"][0].__setitem__("hi", "3/2")),
+    "valid set vertex moved out of P": (_gap_set, lambda c: c["claims"][0]["vertices"][0].__setitem__(0, "2")),
+    "largest value": (_largest_taylor2, lambda c: c["claims"][0].__setitem__("value", "3/2")),
+    "largest attained flipped": (_e2_largest, lambda c: _claim(c, "largest_threshold").__setitem__("attained", True)),
+    "rational threshold value": (_e2_largest, lambda c: _claim(c, "rational_threshold").__setitem__("value", "oo")),
+    "rational pole": (_e2_largest, lambda c: _claim(c, "rational_threshold").__setitem__("pole", "2")),
+    "radius reason": (_e2_largest, lambda c: _claim(c, "absolute_monotonicity_radius").__setitem__("reason", "coefficient")),
     "no claims": (_box_taylor3, lambda c: c.__setitem__("claims", [])),
     "unknown claim": (_box_taylor3, lambda c: c["claims"].append({"type": "trust_me"})),
     "float smuggled": (_box_taylor3, lambda c: c["problem"]["b"].__setitem__(0, 1.0)),
