@@ -20,7 +20,7 @@ def main():
     os.makedirs(OUT, exist_ok=True)
     figures = {
         "f_i.png": display.plot_f_i(ei.steplength_threshold(S, BOX, ei.methods.taylor(4)), upto=3.0),
-        "coefficients.png": display.plot_coefficients(ei.methods.trapezoid(), count=5),
+        "coefficients.png": display.plot_coefficients(ei.methods.ssprk_s1(3), count=4, upto=5.0),
         "valid_set.png": display.plot_valid_set(S, BOX, ei.methods.taylor(4)),
         "valid_set_e2.png": display.plot_valid_set(E2_S, ORTHANT, ei.methods.backward_euler(), upto=2.0),
         "images.png": display.plot_images(ei.LinearSystem([["-1/2", 1], [-1, "-1/2"]]), OCT, ei.methods.heun(),

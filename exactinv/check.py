@@ -882,6 +882,36 @@ def _claim_valid_steplengths(p, c, context):
             f"and r(dt A) is regular there; every end is a root of a condition; each gap holds an invalid point")
 
 
+def _claim_forward_euler(p, c, context):
+    """tau_FE = min over generators and facets of the ratio tests, and = 1/gamma*."""
+    A, G, b = p["A"], p["G"], p["b"]
+    gamma = context.get("gamma")
+    _require(gamma is not None, "the gamma_star claim must precede")
+    best = None
+    for kind, gens in (("vertex", _mat(c["vertices"])), ("ray", _mat(c["rays"])), ("line", _mat(c["lines"]))):
+        for x in gens:
+            Ax = _matvec(A, x)
+            for j, g in enumerate(G):
+                rate = _dot(g, Ax)
+                if kind == "line":
+                    eps = None if rate == 0 else Fraction(0)
+                elif rate <= 0:
+                    eps = None
+                else:
+                    eps = ((b[j] if kind == "vertex" else 0) - _dot(g, x)) / rate
+                if eps is not None and (best is None or eps < best):
+                    best = eps
+    by_vertices = "oo" if best is None else str(best)
+    if gamma.inf == 1:
+        by_gamma = "0"
+    elif gamma.inf == -1 or gamma.q <= 0:
+        by_gamma = "oo"
+    else:
+        by_gamma = str(1 / gamma.q)
+    _require(c["value"] == by_vertices == by_gamma, f"ratio tests give {by_vertices}, 1/gamma* gives {by_gamma}, claimed {c['value']}")
+    return f"largest forward-Euler step {c['value']}: the vertex ratio tests and 1/gamma* (Lemma 3.14) agree"
+
+
 _CLAIMS = {
     "continuous_invariance": lambda p, c, ctx: _claim_continuous_invariance(p, c),
     "discrete_invariance": lambda p, c, ctx: _claim_discrete_invariance(p, c),
@@ -891,15 +921,18 @@ _CLAIMS = {
     "rational_threshold": _claim_rational_threshold,
     "largest_threshold": _claim_largest_threshold,
     "valid_steplengths": _claim_valid_steplengths,
+    "forward_euler_threshold": _claim_forward_euler,
 }
 
 
 def _problem(cert):
     p = cert["problem"]
-    out = {"A": _mat(p["A"]), "G": _mat(p["G"]), "b": _vec(p["b"])}
-    n = len(out["A"])
-    _require(all(len(r) == n for r in out["A"]), "A is not square")
-    _require(all(len(r) == n for r in out["G"]) and len(out["b"]) == len(out["G"]), "G, b shapes do not match A")
+    out = {}
+    if "A" in p or "G" in p:  # a method-only certificate (a radius) has neither
+        out = {"A": _mat(p["A"]), "G": _mat(p["G"]), "b": _vec(p["b"])}
+        n = len(out["A"])
+        _require(all(len(r) == n for r in out["A"]), "A is not square")
+        _require(all(len(r) == n for r in out["G"]) and len(out["b"]) == len(out["G"]), "G, b shapes do not match A")
     if p.get("method") is not None:
         out["method"] = {"numerator": _trim(_vec(p["method"]["numerator"])), "denominator": _trim(_vec(p["method"]["denominator"]))}
     return out

@@ -35,6 +35,24 @@ def _fmt(v) -> str:
 _VERTEX_LIMIT = 12  # dimension above which the vertex enumeration is not attempted by default
 
 
+class _Progress:
+    """Stage-by-stage progress on a terminal (stderr); silent when piped."""
+
+    def __init__(self, total: int):
+        self.total, self.done = total, 0
+        self.active = sys.stderr.isatty()
+
+    def step(self, what: str) -> None:
+        self.done += 1
+        if self.active:
+            bar = "#" * self.done + "." * max(self.total - self.done, 0)
+            print(f"\r[{bar}] {what:<40}", end="", file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        if self.active:
+            print("\r" + " " * (self.total + 45) + "\r", end="", file=sys.stderr, flush=True)
+
+
 def _forward_euler(S, P, out):
     from .largest import forward_euler_threshold
 
@@ -53,7 +71,7 @@ def _largest(S, P, method, out):
     L = largest_threshold(S, P, method)
     out(f"exact valid steplengths for {method.name}: {V.intervals!r}")
     out(f"exact largest threshold: {_fmt(L.value)}" + ("" if L.attained else "  (not attained)"))
-    return L
+    return [L, V]
 
 
 def _certify(args) -> int:
@@ -69,6 +87,8 @@ def _certify(args) -> int:
     out = print
     out(f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else ""))
     results = []
+    progress = _Progress(5 if method is not None else 3)
+    progress.step("gamma* (verified row LPs)")
     gamma = optimal_gamma(S, P)
     results.append(gamma)
     if gamma.witness is not None:
@@ -79,8 +99,12 @@ def _certify(args) -> int:
     else:
         out("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
         out(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {gamma.paths}]")
+        progress.step("forward Euler (vertex ratio tests)")
         fe = _forward_euler(S, P, out)
+        if fe is not None:
+            results.append(fe)
         if method is not None:
+            progress.step(f"paper's threshold for {method.name}")
             t = steplength_threshold(S, P, method)
             results.append(t)
             out(f"paper's threshold for {method.name} ({t.theorem}): {_fmt(t.value)}"
@@ -90,9 +114,10 @@ def _certify(args) -> int:
             for note in t.notes:
                 out(f"  note: {note}")
     if method is not None and P.n <= _VERTEX_LIMIT:
-        L = _largest(S, P, method, out)
-        if L is not None:
-            results.append(L)
+        progress.step("exact valid steplengths")
+        results.extend(_largest(S, P, method, out))
+    progress.step("independent check")
+    progress.close()
     cert = certificates.certificate(S, P, method, results)
     report = check(cert)
     out(f"independent check: {'VERIFIED' if report.ok else 'REJECTED'} ({len(cert['claims'])} claims)")

@@ -144,7 +144,7 @@ def plot_f_i(threshold, upto: float | None = None):
 
 
 def plot_coefficients(method, count: int = 6, upto: float | None = None):
-    """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! (their numerators d_j) with rho marked."""
+    """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! at -kappa, each scaled to [-1, 1], with rho marked."""
     import numpy as np
 
     from .monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
@@ -155,11 +155,15 @@ def plot_coefficients(method, count: int = 6, upto: float | None = None):
     d = taylor_coefficient_polynomials(method, count)
     xs = np.linspace(0, top, 400)
     fig, ax = plt.subplots(figsize=(6, 3.6))
-    for j, p in enumerate(d):
-        coeffs = [float(c) for c in p.coeffs()] or [0.0]
-        vals = np.array([_polyval(coeffs, x) for x in xs])
-        scale = max(np.max(np.abs(vals)), 1e-300)
-        ax.plot(xs, vals / scale, label=rf"$c_{j}$ (sign of)")
+    h = [float(c) for c in method.denominator]
+    h_minus = np.array([_polyval([c * (-1) ** k for k, c in enumerate(h)], x) for x in xs])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for j, p in enumerate(d):
+            coeffs = [float(c) for c in p.coeffs()] or [0.0]
+            vals = np.array([_polyval(coeffs, x) for x in xs]) / h_minus ** (j + 1)  # c_j = d_j / h(-kappa)^(j+1)
+            finite = np.abs(vals[np.isfinite(vals)])
+            scale = max(finite.max() if finite.size else 1.0, 1e-300)
+            ax.plot(xs, np.clip(vals / scale, -1.05, 1.05), label=rf"$c_{j}(\kappa)$ (scaled)")
     if not isinstance(rho.value, Infinity):
         ax.axvline(_f(rho.value), color="crimson", lw=1.5, label=rf"$\rho = {latex_real(rho.value, 6)}$")
     ax.axhline(0, color="black", lw=0.6)

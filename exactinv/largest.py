@@ -479,6 +479,24 @@ class ForwardEulerThreshold:
     def refine(self, bits: int = 53) -> "ForwardEulerThreshold":
         return self
 
+    def _claims(self) -> list[dict]:
+        from .certificates import _gamma_claim, encode_real
+
+        P = self.gamma.polyhedron
+        return [_gamma_claim(self.gamma), {
+            "type": "forward_euler_threshold",
+            "value": encode_real(self.value),
+            "vertices": [[str(x) for x in v] for v in P.vertices],
+            "rays": [[str(x) for x in r] for r in P.rays],
+            "lines": [[str(x) for x in l] for l in P.lines],
+        }]
+
+    @property
+    def certificate(self) -> dict:
+        from .certificates import certificate
+
+        return certificate(self.gamma.system, self.gamma.polyhedron, None, [self])
+
 
 def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron) -> ForwardEulerThreshold:
     """The largest forward-Euler steplength, exact, cross-checked: 1/gamma* from

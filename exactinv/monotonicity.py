@@ -104,6 +104,16 @@ class AbsoluteMonotonicityRadius:
             self.value.refine(bits)
         return self
 
+    @property
+    def certificate(self) -> dict:
+        """A certificate with the method only (no system or polyhedron)."""
+        from .certificates import FORMAT, VERSION, _vec
+
+        return {"format": FORMAT, "version": VERSION,
+                "problem": {"method": {"name": self.method.name, "numerator": _vec(self.method.numerator),
+                                       "denominator": _vec(self.method.denominator)}},
+                "claims": self._claims()}
+
     def _claims(self) -> list[dict]:
         from .certificates import encode_real
 

@@ -52,6 +52,17 @@ def _largest_taylor2():
     return ei.largest_threshold(S, ei.Polyhedron.box([-1, -1], [1, 1]), ei.methods.taylor(2)).certificate
 
 
+def test_standalone_certificates():
+    S = ei.LinearSystem([[-1, 1], [-1, -1]])
+    P = ei.Polyhedron.box([-1, -1], [1, 1])
+    assert check(ei.forward_euler_threshold(S, P).certificate).ok
+    for m in (ei.methods.rk4(), ei.methods.lobatto_iiic2(), ei.methods.backward_euler(), ei.methods.trapezoid()):
+        assert check(json.loads(json.dumps(ei.absolute_monotonicity_radius(m).certificate))).ok
+    bad = ei.absolute_monotonicity_radius(ei.methods.rk4()).certificate
+    bad["claims"][0]["value"] = "2"
+    assert not check(bad).ok
+
+
 def test_round_trip_through_json(tmp_path):
     for cert in (_box_taylor3(), _non_invariant(), _minus_infinity(), _discrete(), _gap_set(), _e2_largest(), _largest_taylor2()):
         path = tmp_path / "c.json"
