@@ -269,6 +269,22 @@ def _rebuild(coeffs: list[int], lower: Fraction, upper: Fraction) -> RealAlgebra
     return RealAlgebraic(flint.fmpz_poly(coeffs), lower, upper, _trusted=True)
 
 
+class ExactKey:
+    """A sort key for mixed Fractions, RealAlgebraics and infinities: exact
+    comparisons in either order (``min(values, key=ExactKey)``)."""
+
+    __slots__ = ("v",)
+
+    def __init__(self, v):
+        self.v = v
+
+    def __lt__(self, other: "ExactKey") -> bool:
+        a, b = self.v, other.v
+        if isinstance(a, Fraction) and not isinstance(b, Fraction):
+            return b > a
+        return a < b
+
+
 def _floor(q: Fraction) -> int:
     return q.numerator // q.denominator
 

@@ -723,10 +723,9 @@ def _condition_polynomials(A, G, b, method, gens):
     return D, out
 
 
-def _claim_largest_threshold(p, c, context):
-    method = p.get("method")
-    _require(method is not None, "a method is needed")
-    A, G, b = p["A"], p["G"], p["b"]
+def _generators(c, G, b):
+    """The claimed generators of P, each checked to lie in P, its recession cone or
+    its lineality space (their completeness comes from PPL and is not re-checked)."""
     V, R, L = (_mat(c[k]) for k in ("vertices", "rays", "lines"))
     for v in V:
         _require(all(x <= beta for x, beta in zip(_matvec(G, v), b)), "a listed vertex is not in P")
@@ -734,9 +733,24 @@ def _claim_largest_threshold(p, c, context):
         _require(all(x <= 0 for x in _matvec(G, r)), "a listed ray is not in the recession cone")
     for l in L:
         _require(all(x == 0 for x in _matvec(G, l)), "a listed line is not in the lineality space")
-    gens = [("vertex", v) for v in V] + [("ray", r) for r in R] + [("line", l) for l in L]
+    return [("vertex", v) for v in V] + [("ray", r) for r in R] + [("line", l) for l in L]
+
+
+def _claimed_conditions(p, c):
+    """The claim's generators (checked) and every condition polynomial, recomputed."""
+    method = p.get("method")
+    _require(method is not None, "a method is needed")
+    A, G, b = p["A"], p["G"], p["b"]
+    gens = _generators(c, G, b)
     D, conds = _condition_polynomials(A, G, b, method, gens)
     _require(_trim(_vec(c["determinant"])) == D, "det h(dt A) does not match")
+    return gens, D, conds
+
+
+def _claim_largest_threshold(p, c, context):
+    gens, D, conds = _claimed_conditions(p, c)
+    V = [w for kind, w in gens if kind == "vertex"]
+    R = [w for kind, w in gens if kind == "ray"]
     value = _Real(c["value"])
     attained = bool(c["attained"])
     lines = [e for kind, _, _, e in conds if kind == "line" and e]
@@ -828,14 +842,7 @@ def _sign_constant_inside(f, a, b):
 
 
 def _claim_valid_steplengths(p, c, context):
-    method = p.get("method")
-    _require(method is not None, "a method is needed")
-    A, G, b = p["A"], p["G"], p["b"]
-    V, R, L = (_mat(c[k]) for k in ("vertices", "rays", "lines"))
-    for v in V:
-        _require(all(x <= beta for x, beta in zip(_matvec(G, v), b)), "a listed vertex is not in P")
-    gens = [("vertex", v) for v in V] + [("ray", r) for r in R] + [("line", l) for l in L]
-    D, conds = _condition_polynomials(A, G, b, method, gens)
+    gens, D, conds = _claimed_conditions(p, c)
     polys = [poly for kind, _, _, poly in conds if kind != "line" and poly]
     _require(not any(kind == "line" and poly for kind, _, _, poly in conds), "line conditions are not supported here")
     intervals = c["intervals"]

@@ -25,6 +25,7 @@ from .errors import EmptyPolyhedron, InvalidInput, VerificationFailed
 from .lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from .model import LinearSystem, Polyhedron, _matrix_text, _vector_text
 from .numbers import INF, Infinity, Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational
+from .results import LatexMixin
 
 __all__ = [
     "FacetWitness",
@@ -52,20 +53,10 @@ class FacetWitness:
 
 
 @dataclass(frozen=True)
-class ContinuousInvariance:
+class ContinuousInvariance(LatexMixin):
     """Is P invariant for x' = Ax?  ``certificate`` is an exact H (off-diagonal
     >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
     when it is not."""
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     holds: bool
     certificate: Matrix | None
@@ -90,20 +81,10 @@ class ContinuousInvariance:
 
 
 @dataclass(frozen=True)
-class DiscreteInvariance:
+class DiscreteInvariance(LatexMixin):
     """Is P invariant for x+ = A_d x?  ``certificate`` is an exact H~ >= 0 with
     H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
     (``witness.facet`` the violated row)."""
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     holds: bool
     certificate: Matrix | None
@@ -153,7 +134,7 @@ class GammaRow:
 
 
 @dataclass(frozen=True)
-class OptimalGamma:
+class OptimalGamma(LatexMixin):
     """gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, exactly.
 
     ``value`` is a Fraction, ``INF`` (P is not invariant; ``witness`` then
@@ -163,16 +144,6 @@ class OptimalGamma:
     ``dual`` proves that no smaller gamma is feasible.  ``rows`` holds every
     verified row LP and ``paths`` counts which engine route produced them.
     """
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     value: Fraction | Infinity
     H_flint: flint.fmpq_mat | None = field(repr=False)

@@ -31,7 +31,7 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic
+from .algebraic import ExactKey, RealAlgebraic
 from .errors import InvalidInput, VerificationFailed
 from .intervals import Interval, IntervalUnion, complement_of_open, _lt
 from .invariance import optimal_gamma
@@ -39,6 +39,7 @@ from .methods import Method, forward_euler
 from .model import LinearSystem, Polyhedron
 from .numbers import INF, Infinity, fmpq_of, fraction_of
 from .roots import _integer, nonnegative_until, real_roots, sign_right_of, sign_variations
+from .results import ExactValueMixin, LatexMixin
 
 __all__ = [
     "Condition",
@@ -122,21 +123,11 @@ class ValidSteplengths:
 
 
 @dataclass(frozen=True)
-class LargestThreshold:
+class LargestThreshold(ExactValueMixin):
     """The exact largest threshold: the end of the first interval of the valid
     set, ``attained`` if that end is itself valid.  ``binding`` is the
     condition (vertex/ray, facet, polynomial) whose sign change ends the
     interval, or None when a pole of r(dt A) (``singular``) ends it."""
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     value: Real
     attained: bool
@@ -148,18 +139,7 @@ class LargestThreshold:
     checked: tuple[Condition, ...] = field(default=(), repr=False)
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
 
-    @property
-    def lower(self):
-        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
 
-    @property
-    def upper(self):
-        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
-
-    def refine(self, bits: int = 53) -> "LargestThreshold":
-        if isinstance(self.value, RealAlgebraic):
-            self.value.refine(bits)
-        return self
 
     def _claims(self) -> list[dict]:
         from .certificates import encode_real
@@ -400,7 +380,7 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
         for e in _distinct(equalities).values():
             roots = {r for r, _ in _positive_roots(e.p)}
             allowed = roots if allowed is None else {r for r in allowed if any(r == s for s in roots)}
-        points = [Fraction(0)] + sorted((r for r in allowed or () if r in union), key=_SortKey)
+        points = [Fraction(0)] + sorted((r for r in allowed or () if r in union), key=ExactKey)
         union = IntervalUnion(tuple(Interval(p, p, True, True) for p in points))
     return ValidSteplengths(union, method, tuple(singular), len(conditions), len(distinct), system, polyhedron,
                             tuple(fraction_of(c) for c in D.coeffs()))
@@ -433,33 +413,13 @@ def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     return LargestThreshold(best, attained, method, binding, singular, system, polyhedron, tuple(distinct), tuple(Dcoeffs))
 
 
-class _SortKey:
-    __slots__ = ("v",)
-
-    def __init__(self, v):
-        self.v = v
-
-    def __lt__(self, other):
-        return _lt(self.v, other.v)
-
-
 # ------------------------------------------------------------- forward Euler
 @dataclass(frozen=True)
-class ForwardEulerThreshold:
+class ForwardEulerThreshold(ExactValueMixin):
     """The largest forward-Euler threshold, derived twice (paper, Section 3.4):
     ``by_gamma`` = 1/gamma* (Lemma 3.14) and ``by_vertices`` = min_i eps^i with
     eps^i = max{t : x^i + t A x^i in P} (rays and lines likewise); they must agree.
     ``binding`` = (kind, generator index, facet) of the vertex ratio test that binds."""
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     value: Real
     by_gamma: Real
@@ -467,17 +427,6 @@ class ForwardEulerThreshold:
     binding: tuple[str, int, int] | None
     gamma: Any = field(repr=False)
     attained: bool = True
-
-    @property
-    def lower(self):
-        return self.value
-
-    @property
-    def upper(self):
-        return self.value
-
-    def refine(self, bits: int = 53) -> "ForwardEulerThreshold":
-        return self
 
     def _claims(self) -> list[dict]:
         from .certificates import _gamma_claim, encode_real

@@ -18,27 +18,18 @@ import ppl
 
 from .errors import InvalidInput
 from .numbers import Matrix, Vector, fmpq_matrix, to_matrix, to_vector
+from .results import LatexMixin
 
 __all__ = ["LinearSystem", "Polyhedron"]
 
 
 @dataclass(frozen=True, init=False)
-class LinearSystem:
+class LinearSystem(LatexMixin):
     """The linear dynamical system x' = A x with an exact square matrix A.
 
     >>> LinearSystem([[-1, 1], [-1, "-1"]]).A
     ((Fraction(-1, 1), Fraction(1, 1)), (Fraction(-1, 1), Fraction(-1, 1)))
     """
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     A: Matrix
 
@@ -70,7 +61,7 @@ class LinearSystem:
 
 
 @dataclass(frozen=True, init=False)
-class Polyhedron:
+class Polyhedron(LatexMixin):
     """The polyhedron P = {x in Q^n : G x <= b}.
 
     Construct it from inequalities, ``Polyhedron(G, b)``, from generators,
@@ -82,16 +73,6 @@ class Polyhedron:
     >>> P.vertices
     ((Fraction(-1, 1), Fraction(-1, 1)), (Fraction(-1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)), (Fraction(1, 1), Fraction(1, 1)))
     """
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     G: Matrix
     b: Vector

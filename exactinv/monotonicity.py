@@ -42,11 +42,12 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic, sign_at
+from .algebraic import ExactKey, RealAlgebraic, sign_at
 from .errors import InvalidInput, Undecided
 from .methods import Method
 from .numbers import INF, Infinity, fmpq_of, fraction_of
 from .roots import nonnegative_until, real_roots, sign_variations
+from .results import ExactValueMixin, LatexMixin
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 
@@ -57,7 +58,7 @@ _MAX_COEFFICIENTS = 64  # coefficients tried below a dominance bound
 
 
 @dataclass(frozen=True)
-class AbsoluteMonotonicityRadius:
+class AbsoluteMonotonicityRadius(ExactValueMixin):
     """rho(r), exactly, with the argument that decides it.
 
     ``reason`` is one of ``"coefficient"`` (c_binding changes sign at rho),
@@ -71,16 +72,6 @@ class AbsoluteMonotonicityRadius:
     ``attained``: is rho itself in the set (r absolutely monotonic at -rho).
     """
 
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
-
     value: Real
     attained: bool
     reason: str
@@ -91,18 +82,7 @@ class AbsoluteMonotonicityRadius:
     pole: Fraction | RealAlgebraic | None = None
     coefficients: tuple[tuple[Fraction, ...], ...] = field(default=(), repr=False)
 
-    @property
-    def lower(self):
-        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
 
-    @property
-    def upper(self):
-        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
-
-    def refine(self, bits: int = 53) -> "AbsoluteMonotonicityRadius":
-        if isinstance(self.value, RealAlgebraic):
-            self.value.refine(bits)
-        return self
 
     @property
     def certificate(self) -> dict:
@@ -168,7 +148,7 @@ def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
 def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
     d = taylor_coefficient_polynomials(method, len(method.numerator))
     ends = [nonnegative_until(p) for p in d]
-    binding = min(range(len(ends)), key=lambda j: _Key(ends[j]))
+    binding = min(range(len(ends)), key=lambda j: ExactKey(ends[j]))
     value = ends[binding]
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d)
     reason = "all-coefficients" if value == INF else "coefficient"
@@ -244,7 +224,7 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
         while True:
             d = taylor_coefficient_polynomials(method, count)
             ends = [nonnegative_until(p) for p in d]
-            candidate = min(ends, key=_Key)
+            candidate = min(ends, key=ExactKey)
             if kappa_A is None:
                 if candidate == INF:
                     infinite = _infinite_radius_certificate(method, balls, star)
@@ -264,7 +244,7 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
         if N > count:
             d = taylor_coefficient_polynomials(method, N)
             ends += [nonnegative_until(p) for p in d[count:]]
-            candidate = min(ends, key=_Key)
+            candidate = min(ends, key=ExactKey)
     binding = next(j for j, e in enumerate(ends) if e == candidate)
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d[: max(N, binding + 1)])
     return AbsoluteMonotonicityRadius(candidate, True, "coefficient", method, binding, tail_index=N, pole=p_star,
@@ -463,16 +443,3 @@ def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
     if len(method.numerator) <= len(method.denominator) and all(v.real > 0 for _, _, b in balls for v in b):
         return "termwise"
     return None
-
-
-class _Key:
-    __slots__ = ("v",)
-
-    def __init__(self, v):
-        self.v = v
-
-    def __lt__(self, other):
-        a, b = self.v, other.v
-        if isinstance(a, Fraction) and not isinstance(b, Fraction):
-            return b > a
-        return a < b

@@ -24,7 +24,7 @@ from fractions import Fraction
 
 import flint
 
-from .algebraic import RealAlgebraic
+from .algebraic import ExactKey, RealAlgebraic
 from .invariance import OptimalGamma
 from .methods import Method
 from .monotonicity import absolute_monotonicity_radius
@@ -61,7 +61,7 @@ def _quotient(a, b):
 
 
 def rational_threshold(method: Method, gamma: OptimalGamma):
-    from .thresholds import SteplengthThreshold, _key
+    from .thresholds import SteplengthThreshold
 
     radius = absolute_monotonicity_radius(method)
     rho, g = radius.value, gamma.value
@@ -79,7 +79,7 @@ def rational_threshold(method: Method, gamma: OptimalGamma):
         pole_bound = _quotient(z_p, alpha)
         if isinstance(z_p, RealAlgebraic) and isinstance(alpha, RealAlgebraic):
             notes.append("z_p/alpha(H) replaced by a certified rational lower bound (both irrational)")
-        if paper == INF or not _key(paper) < _key(pole_bound):
+        if paper == INF or not ExactKey(paper) < ExactKey(pole_bound):
             value, attained = pole_bound, False
             theorem = "Theorem 3.12 corrected (erratum E2: convergence needs dt < z_p/alpha(H))"
             notes.append(f"erratum E2: the paper gives {paper}; the Taylor series at -rho diverges for dt >= z_p/alpha(H)")

@@ -27,7 +27,7 @@ from typing import Any, Iterable
 
 import flint
 
-from .algebraic import RealAlgebraic, _dyadic, sign_at
+from .algebraic import ExactKey, RealAlgebraic, _dyadic, sign_at
 from .errors import InvalidInput, VerificationFailed
 from .numbers import INF, Infinity, fmpq_of, fraction_of, to_rational
 
@@ -124,21 +124,8 @@ def real_roots(f: Any) -> list[tuple[Real, int]]:
         raise InvalidInput("f: the zero polynomial has every number as a root")
     _, factors = _integer(fq).factor()
     roots = [(r, int(m)) for p, m in factors for r in _isolate_irreducible(p)]
-    roots.sort(key=lambda rm: _SortKey(rm[0]))
+    roots.sort(key=lambda rm: ExactKey(rm[0]))
     return roots
-
-
-class _SortKey:
-    __slots__ = ("v",)
-
-    def __init__(self, v):
-        self.v = v
-
-    def __lt__(self, other):
-        a, b = self.v, other.v
-        if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
-            return b > a
-        return a < b
 
 
 def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:

@@ -25,13 +25,14 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic
+from .algebraic import ExactKey, RealAlgebraic
 from .errors import InvalidInput, NotInvariant
 from .invariance import OptimalGamma, optimal_gamma
 from .methods import Method
 from .model import LinearSystem, Polyhedron
 from .numbers import INF, Infinity, fmpq_of, fraction_of
 from .roots import nonnegative_until
+from .results import ExactValueMixin, LatexMixin
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "steplength_threshold"]
 
@@ -52,7 +53,7 @@ class FiRow:
 
 
 @dataclass(frozen=True)
-class SteplengthThreshold:
+class SteplengthThreshold(ExactValueMixin):
     """A valid steplength threshold tau: A_d(dt) P subset of P for every dt in
     [0, tau] (``attained``) or [0, tau) (not ``attained``).
 
@@ -62,16 +63,6 @@ class SteplengthThreshold:
     holds the f_i rows (polynomial methods) and ``binding`` the index i that
     attains the minimum; ``notes`` records where the paper was corrected.
     """
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
-
 
     value: Real
     attained: bool
@@ -92,19 +83,7 @@ class SteplengthThreshold:
         ``value`` where exactinv corrects an erratum)."""
         return self.value if self.paper_value is None else self.paper_value
 
-    @property
-    def lower(self) -> Fraction | Infinity:
-        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
 
-    @property
-    def upper(self) -> Fraction | Infinity:
-        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
-
-    def refine(self, bits: int = 53) -> "SteplengthThreshold":
-        """Shrink the enclosure [lower, upper] to width <= 2**-bits."""
-        if isinstance(self.value, RealAlgebraic):
-            self.value.refine(bits)
-        return self
 
     def _claims(self) -> list[dict]:
         from .certificates import encode_real
@@ -196,22 +175,9 @@ def _polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThre
     for i in range(len(sigmas)):
         coeffs = f_i(sigmas, g, i)
         table.append(FiRow(i, coeffs, nonnegative_until(coeffs)))
-    binding = min(range(len(table)), key=lambda i: _key(table[i].tau))
+    binding = min(range(len(table)), key=lambda i: ExactKey(table[i].tau))
     value = table[binding].tau
     notes = ()
     if any(s == 0 for s in sigmas[1:]) or any(s < 0 for s in sigmas):
         notes = ("erratum E5: tau_i is where f_i stops being >= 0, not its first positive zero",)
     return SteplengthThreshold(value, True, "Theorem 3.4 (polynomial methods)", method, gamma, tuple(table), binding, notes)
-
-
-class _key:
-    __slots__ = ("v",)
-
-    def __init__(self, v):
-        self.v = v
-
-    def __lt__(self, other):
-        a, b = self.v, other.v
-        if isinstance(a, Fraction) and not isinstance(b, Fraction):
-            return b > a
-        return a < b

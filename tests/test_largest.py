@@ -9,6 +9,7 @@ import exactinv as ei
 from exactinv import methods as M
 from exactinv.largest import compare_thresholds, forward_euler_threshold, largest_threshold, valid_steplengths
 from exactinv.numbers import fmpq_matrix
+from strategies import metzler_cones as cones
 
 BOX_S = ei.LinearSystem([[-1, 1], [-1, -1]])
 BOX = ei.Polyhedron.box([-1, -1], [1, 1])
@@ -100,19 +101,6 @@ def random_polytopes(draw):
     assume(P.dimension == 2)
     A = [[Fraction(draw(st.integers(-4, 4)), draw(st.integers(1, 3))) for _ in range(n)] for _ in range(n)]
     return ei.LinearSystem(A), P
-
-
-@st.composite
-def cones(draw):
-    n = draw(st.integers(1, 3))
-    Mz = [[Fraction(draw(st.integers(-3, 3))) if i == j else Fraction(draw(st.integers(0, 3))) for j in range(n)] for i in range(n)]
-    T = [[Fraction(draw(st.integers(-2, 2))) for _ in range(n)] for _ in range(n)]
-    Tq = fmpq_matrix(T)
-    assume(Tq.det() != 0)
-    A = Tq.inv() * fmpq_matrix(Mz) * Tq
-    G = -Tq
-    return (ei.LinearSystem([[A[i, j] for j in range(n)] for i in range(n)]),
-            ei.Polyhedron([[G[i, j] for j in range(n)] for i in range(n)], [0] * n))
 
 
 @st.composite

@@ -8,6 +8,7 @@ import exactinv as ei
 from exactinv import methods as M
 from exactinv.numbers import fmpq_matrix
 from exactinv.rational_threshold import rational_threshold, spectral_abscissa
+from strategies import metzler_cones as cones
 
 E2_SYSTEM = ei.LinearSystem([[-1, 2], [0, 1]])
 ORTHANT = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
@@ -50,21 +51,6 @@ def test_spectral_abscissa_is_exact():
     assert spectral_abscissa(fmpq_matrix([[Fraction(-1), Fraction(2)], [Fraction(0), Fraction(1)]])) == 1
     alpha = spectral_abscissa(fmpq_matrix([[Fraction(0), Fraction(1)], [Fraction(2), Fraction(0)]]))
     assert isinstance(alpha, ei.RealAlgebraic) and alpha == ei.real_roots([-2, 0, 1])[1][0]
-
-
-@st.composite
-def cones(draw):
-    """Random cones {x : Gx <= 0} = T^-1(orthant) with A = T^-1 M T, M Metzler (stable or not)."""
-    n = draw(st.integers(1, 3))
-    Mz = [[Fraction(draw(st.integers(-3, 3)), draw(st.integers(1, 2))) if i == j else Fraction(draw(st.integers(0, 3)), draw(st.integers(1, 2)))
-           for j in range(n)] for i in range(n)]
-    T = [[Fraction(draw(st.integers(-2, 2))) for _ in range(n)] for _ in range(n)]
-    Tq = fmpq_matrix(T)
-    assume(Tq.det() != 0)
-    A = Tq.inv() * fmpq_matrix(Mz) * Tq
-    G = -Tq
-    return (ei.LinearSystem([[A[i, j] for j in range(n)] for i in range(n)]),
-            ei.Polyhedron([[G[i, j] for j in range(n)] for i in range(n)], [0] * n))
 
 
 @st.composite

@@ -1,0 +1,44 @@
+"""Behaviour shared by exact result objects: the enclosure of ``value`` and display."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from .algebraic import RealAlgebraic
+from .numbers import Infinity
+
+__all__ = ["LatexMixin", "ExactValueMixin"]
+
+
+class LatexMixin:
+    """``to_latex()`` (for papers) and ``_repr_latex_`` (for Jupyter)."""
+
+    def to_latex(self) -> str:
+        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
+        from .display import to_latex
+
+        return to_latex(self)
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
+
+
+class ExactValueMixin(LatexMixin):
+    """For results with an exact ``value``: rational ``lower``/``upper`` bounds
+    (``lower`` is itself a safe value) and ``refine(bits)``."""
+
+    value: Fraction | RealAlgebraic | Infinity
+
+    @property
+    def lower(self) -> Fraction | Infinity:
+        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
+
+    @property
+    def upper(self) -> Fraction | Infinity:
+        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
+
+    def refine(self, bits: int = 53):
+        """Shrink the enclosure [lower, upper] to width <= 2**-bits; returns self."""
+        if isinstance(self.value, RealAlgebraic):
+            self.value.refine(bits)
+        return self
