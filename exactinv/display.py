@@ -219,7 +219,9 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
 
     plt = _plt()
     if polyhedron.n != 2 or not polyhedron.is_bounded:
-        raise ValueError("plot_images draws bounded polygons in the plane")
+        from .errors import InvalidInput
+
+        raise InvalidInput("polyhedron: plot_images draws bounded polygons in the plane")
     import math
 
     def ordered(points):

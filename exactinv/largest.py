@@ -523,15 +523,22 @@ def _bounds(v):
 
 
 def _ratio_text(c: ThresholdComparison) -> str:
+    """corrected/largest exactly when rational, else a certified 6-digit enclosure."""
     if c.ratio is not None:
         return str(c.ratio)
     if isinstance(c.largest, Infinity):
-        return "—" if not isinstance(c.corrected, Infinity) or True else "1"
+        return "0 (largest = oo)" if not isinstance(c.corrected, Infinity) else "1"
     interval = c.ratio_interval
     if interval is None:
-        return "0" if c.corrected == 0 else "—"
+        return "0" if c.corrected == 0 else "-"
     lo, hi = interval
-    return f"{float(lo):.6f}"[:8] + "…"
+    scale = 10**6
+    return f"[{_decimal(lo, scale, floor=True)}, {_decimal(hi, scale, floor=False)}]"
+
+
+def _decimal(q: Fraction, scale: int, floor: bool) -> str:
+    n = q.numerator * scale // q.denominator if floor else -((-q.numerator * scale) // q.denominator)
+    return f"{n // scale}.{n % scale:06d}"
 
 
 def compare_thresholds(system: LinearSystem, polyhedron: Polyhedron, methods) -> list[ThresholdComparison]:

@@ -162,6 +162,7 @@ def test_compare_table():
     lo, hi = rows[1].ratio_interval
     assert lo <= Fraction(1, 1) / Fraction(14142, 10000) and hi >= Fraction(7071, 10000)
     assert rows[2].largest == ei.INF
+    assert rows[1].row()["corrected/largest"] == "[0.707106, 0.707107]"
 
 
 def test_bad_input():
