@@ -881,6 +881,12 @@ def _claim_valid_steplengths(p, c, context):
             _require(hit, f"the interval end {iv[key]} is not a root of any condition")
     # gaps: a rational point between consecutive intervals is invalid
     for k in range(len(intervals) - 1):
+        end, start = _Real(intervals[k]["hi"]), _Real(intervals[k + 1]["lo"])
+        if end.compare(start) == 0:  # the gap is one excluded point: a pole of r(dt A)
+            _require(not intervals[k]["hi_closed"] and not intervals[k + 1]["lo_closed"], "touching intervals must be open")
+            _require(len(D_pos) > 1 and (_eval(D_pos, end.q) == 0 if end.poly is None else
+                                         len(_gcd(D_pos, end.poly)) > 1), f"the excluded point {intervals[k]['hi']} is not singular")
+            continue
         g0, g1 = _separate(_Real(intervals[k]["hi"]), _Real(intervals[k + 1]["lo"]))
         t = (g0 + g1) / 2
         bad = any(_eval(poly, t) < 0 for poly in polys) or (len(D_pos) > 1 and _eval(D_pos, t) == 0)

@@ -87,6 +87,16 @@ def test_valid_set_with_a_gap():
         assert (t in V) == (abs(value) <= 1) == ei.discrete_invariance(S, P, m, t).holds
 
 
+def test_isolated_singular_point_is_excluded():
+    """On the strip |x1| <= 1 with A = diag(-1, 1), backward Euler is singular only at dt = 1."""
+    S, strip = ei.LinearSystem([[-1, 0], [0, 1]]), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])
+    V = valid_steplengths(S, strip, M.backward_euler())
+    assert [(iv.lo, iv.hi, iv.lo_closed, iv.hi_closed) for iv in V] == [(0, 1, True, False), (1, ei.INF, False, False)]
+    assert 2 in V and 1 not in V
+    assert ei.discrete_invariance(S, strip, M.backward_euler(), 2).holds
+    assert ei.check(V.certificate).ok
+
+
 def test_union_membership_and_repr():
     V = valid_steplengths(BOX_S, BOX, M.taylor(1))
     assert "[0, 1]" in repr(V) and 1 in V and Fraction(3, 2) not in V
