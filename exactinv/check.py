@@ -710,16 +710,19 @@ def _condition_polynomials(A, G, b, method, gens):
                 cache[key] = _interpolate(points, [GXk[j][w_index] for GXk in GX])
             return cache[key]
     out = []
+    per_kind = {"vertex": 0, "ray": 0, "line": 0}
     for index, (kind, w) in enumerate(gens):
+        number = per_kind[kind]  # generators are numbered within their kind, as in the certificate
+        per_kind[kind] += 1
         for j in range(len(G)):
             e = _trim(gN(j, w if len(den) == 1 else index))
             if kind == "line":
-                out.append((kind, index, j, e))
+                out.append((kind, number, j, e))
                 continue
             q = [-c for c in e]
             if kind == "vertex":
                 q = _sub(_polymul(D, [b[j]]), e)
-            out.append((kind, index, j, _trim(_polymul(q, D))))
+            out.append((kind, number, j, _trim(_polymul(q, D))))
     return D, out
 
 
@@ -803,9 +806,9 @@ def _separate(a, b):
 
 def _count_open(odd, x0, x1):
     """Distinct roots of the squarefree odd in the open interval (x0, x1), rationals x0 < x1."""
-    q = odd
+    q = _trim(odd)
     for x in (x0, x1):
-        if _eval(q, x) == 0:
+        while len(q) > 1 and _eval(q, x) == 0:
             q = _divmod(q, [-x, Fraction(1)])[0]
     return _roots_between(q, x0, x1) if len(q) > 1 else 0
 

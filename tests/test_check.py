@@ -168,3 +168,11 @@ def test_checker_main_exit_codes(tmp_path, capsys):
     path.write_text(json.dumps(bad))
     assert main([str(path)]) == 1
     assert "REJECTED" in capsys.readouterr().out
+
+
+def test_regressions_found_by_fuzzing():
+    """A binding ray (generators are numbered within their kind) and a double pole."""
+    L = ei.largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[-2]], [0]), ei.methods.polynomial([1, 1, "1/2", "1/4"]))
+    assert L.binding.kind == "ray" and check(L.certificate).ok
+    V = ei.valid_steplengths(ei.LinearSystem([[2]]), ei.Polyhedron([[1]], [0]), ei.methods.rational([1, "1/2"], [1, -1, "1/4"]))
+    assert len(V) == 2 and check(V.certificate).ok
