@@ -578,6 +578,13 @@ def _claim_rational_threshold(p, c, context):
     if rho.poly is None and not rho.inf and rho.q == 0:
         _require(value.poly is None and value.q == 0, "rho = 0 gives tau = 0")
         return "tau = 0 (rho = 0)"
+    H = context.get("H")
+    if c.get("H") is not None:  # a different certificate H, with its own gamma_H
+        H = _mat(c["H"])
+        _check_H(p["A"], p["G"], p["b"], H)
+        g_H = _q(c["gamma_H"])
+        _require(all(H[i][i] + g_H >= 0 for i in range(len(H))), "H + gamma_H I >= 0 fails")
+        gamma = _Real(c["gamma_H"])
     if gamma.inf == -1 or (not gamma.inf and gamma.q <= 0):
         paper = _Real("oo")
     else:
@@ -592,7 +599,6 @@ def _claim_rational_threshold(p, c, context):
             g = _gcd(hp, pole.poly)
             _require(len(g) > 1 and _roots_between(_strip_zero_roots(hp), Fraction(0), pole.hi) - (1 if _eval(hp, pole.hi) == 0 else 0) == 1,
                      "pole is not the smallest positive pole")
-        H = context.get("H")
         _require(H is not None, "the gamma_star claim must carry H")
         chi = _charpoly(H)
         if alpha.poly is None:

@@ -28,7 +28,7 @@ from .algebraic import ExactKey, RealAlgebraic
 from .invariance import OptimalGamma
 from .methods import Method
 from .monotonicity import absolute_monotonicity_radius
-from .numbers import INF, Infinity
+from .numbers import INF, Infinity, fraction_of
 from .roots import real_roots
 
 __all__ = ["rational_threshold", "spectral_abscissa", "smallest_positive_pole"]
@@ -60,28 +60,52 @@ def _quotient(a, b):
     return a.lower / b.upper
 
 
+def _certificate_candidates(gamma: OptimalGamma):
+    """(H, gamma_H) pairs with H + gamma_H I >= 0, HG = GA, Hb <= 0: the gamma*-optimal H
+    and, when some row LP is unbounded, the H of the unpushed row points (its spectral
+    abscissa can be smaller; the E2 bound depends on the choice of H)."""
+    yield gamma.H_flint, gamma.value
+    if any(row.lp.ray_q is not None for row in gamma.rows):
+        m = len(gamma.rows)
+        H = flint.fmpq_mat(m, m, [v for row in gamma.rows for v in row.lp.x_q.entries()])
+        yield H, max(-fraction_of(H[i, i]) for i in range(m))
+
+
 def rational_threshold(method: Method, gamma: OptimalGamma):
+    """tau = min(rho/gamma_H, z_p/alpha(H)) for the best certificate H tried (module docstring)."""
     from .thresholds import SteplengthThreshold
 
     radius = absolute_monotonicity_radius(method)
     rho, g = radius.value, gamma.value
-    notes = []
     if rho == 0:
         return SteplengthThreshold(Fraction(0), True, "Theorem 3.12 (rho = 0)", method, gamma, radius=radius)
-    if isinstance(g, Infinity) or g <= 0:
-        paper = INF  # Theorem 3.13
-    else:
-        paper = _quotient(rho, g) if not isinstance(rho, Infinity) else INF
+    paper = _rho_over(rho, g)  # the paper, literally (Theorems 3.12, 3.13)
     z_p = smallest_positive_pole(method)
-    alpha = spectral_abscissa(gamma.H_flint) if z_p is not None else None
-    value, attained, theorem = paper, True, "Theorem 3.12 (rho/gamma*)" if paper != INF else "Theorem 3.13"
-    if z_p is not None and alpha > 0:
-        pole_bound = _quotient(z_p, alpha)
-        if isinstance(z_p, RealAlgebraic) and isinstance(alpha, RealAlgebraic):
-            notes.append("z_p/alpha(H) replaced by a certified rational lower bound (both irrational)")
-        if paper == INF or not ExactKey(paper) < ExactKey(pole_bound):
-            value, attained = pole_bound, False
-            theorem = "Theorem 3.12 corrected (erratum E2: convergence needs dt < z_p/alpha(H))"
-            notes.append(f"erratum E2: the paper gives {paper}; the Taylor series at -rho diverges for dt >= z_p/alpha(H)")
+    best = None
+    for H, g_H in _certificate_candidates(gamma):
+        value, attained, notes = _rho_over(rho, g_H), True, []
+        alpha = spectral_abscissa(H) if z_p is not None else None
+        if z_p is not None and alpha > 0:
+            pole_bound = _quotient(z_p, alpha)
+            if isinstance(z_p, RealAlgebraic) and isinstance(alpha, RealAlgebraic):
+                notes.append("z_p/alpha(H) replaced by a certified rational lower bound (both irrational)")
+            if value == INF or not ExactKey(value) < ExactKey(pole_bound):
+                value, attained = pole_bound, False
+        if best is None or ExactKey(best[0]) < ExactKey(value) or (best[0] == value and attained and not best[1]):
+            best = (value, attained, notes, H, g_H, alpha)
+    value, attained, notes, H, g_H, alpha = best
+    if attained:
+        theorem = "Theorem 3.12 (rho/gamma)" if value != INF else "Theorem 3.13"
+    else:
+        theorem = "Theorem 3.12 corrected (erratum E2: convergence needs dt < z_p/alpha(H))"
+        notes.append(f"erratum E2: the paper gives {paper}; the Taylor series at -rho diverges for dt >= z_p/alpha(H)")
+    certificate_H = None if H is gamma.H_flint else (H, g_H)
     return SteplengthThreshold(value, attained, theorem, method, gamma, notes=tuple(notes), radius=radius,
-                               pole=z_p, spectral_abscissa=alpha, paper_value=paper)
+                               pole=z_p, spectral_abscissa=alpha, paper_value=paper, certificate_H=certificate_H)
+
+
+def _rho_over(rho, g):
+    """rho/gamma, read as infinity for gamma <= 0 (Theorem 3.13's limit gamma -> 0+)."""
+    if isinstance(g, Infinity) or g <= 0 or isinstance(rho, Infinity):
+        return INF
+    return _quotient(rho, g)

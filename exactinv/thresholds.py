@@ -76,6 +76,7 @@ class SteplengthThreshold(ExactValueMixin):
     pole: Any = field(default=None, repr=False)
     spectral_abscissa: Any = field(default=None, repr=False)
     paper_value: Any = field(default=None, repr=False)
+    certificate_H: Any = field(default=None, repr=False)
 
     @property
     def paper(self) -> Real:
@@ -95,14 +96,20 @@ class SteplengthThreshold(ExactValueMixin):
                 "binding": self.binding,
                 "f": [{"i": r.i, "coefficients": [str(c) for c in r.f], "tau": encode_real(r.tau)} for r in self.table],
             }]
-        return self.radius._claims() + [{
+        claim = {
             "type": "rational_threshold",
             "value": encode_real(self.value),
             "attained": self.attained,
             "rho": encode_real(self.radius.value),
             "pole": None if self.pole is None else encode_real(self.pole),
             "alpha": None if self.spectral_abscissa is None else encode_real(self.spectral_abscissa),
-        }]
+        }
+        if self.certificate_H is not None:  # another H than gamma*'s was better for the E2 bound
+            H, g_H = self.certificate_H
+            m = H.nrows()
+            claim["H"] = [[str(H[i, j]) for j in range(m)] for i in range(m)]
+            claim["gamma_H"] = str(g_H)
+        return self.radius._claims() + [claim]
 
     @property
     def certificate(self) -> dict:

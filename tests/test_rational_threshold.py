@@ -81,3 +81,17 @@ def test_returned_thresholds_are_valid(problem, method):
     for dt in points:
         assert ei.discrete_invariance(S, P, method, dt).holds, (method.name, dt, t)
     assert ei.check(t.certificate).ok
+
+
+def test_the_e2_bound_uses_the_best_certificate_H():
+    """gamma* = -oo (the line x1 = 0, A = -I): the gamma*-optimal H is pushed to H >= 0 and has
+    alpha(H) > 0, but the unpushed row points give alpha(H) < 0, hence tau = oo for backward Euler."""
+    S, line = ei.LinearSystem([[-1, 0], [0, -1]]), ei.Polyhedron([[1, 0], [-1, 0]], [0, 0])
+    t = ei.steplength_threshold(S, line, M.backward_euler())
+    assert t.value == ei.INF and t.certificate_H is not None
+    assert ei.discrete_invariance(S, line, M.backward_euler(), 1000).holds
+    cert = t.certificate
+    assert ei.check(cert).ok
+    claim = next(c for c in cert["claims"] if c["type"] == "rational_threshold")
+    claim["H"][0][1] = "-1"  # no longer a certificate
+    assert not ei.check(cert).ok
