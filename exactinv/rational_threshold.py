@@ -16,6 +16,8 @@ nearest to -rho).  The corrected valid threshold is therefore
 valid on [0, tau] when rho/gamma* < z_p/alpha(H) and on [0, tau) otherwise.
 For gamma* <= 0 the paper's "tau = infinity" (Theorem 3.13) becomes
 z_p/alpha(H) (or infinity when alpha(H) <= 0 or r has no positive pole).
+Any certificate H gives a valid bound; the gamma*-optimal H is tried first and,
+when some row LP is unbounded, the unpushed row points as well.
 """
 
 from __future__ import annotations
