@@ -16,7 +16,7 @@ Fraction(1, 1)
 Fraction(1, 1)
 """
 
-from . import methods
+from . import display, methods, oracle
 from .algebraic import RealAlgebraic
 from .check import check
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed
@@ -81,7 +81,9 @@ __all__ = [
     "discrete_invariance",
     "exact_from_float",
     "first_sign_change",
+    "display",
     "methods",
+    "oracle",
     "nearest_rational",
     "nonnegative_until",
     "optimal_gamma",
