@@ -819,8 +819,10 @@ def _count_open(odd, x0, x1):
     return _roots_between(q, x0, x1) if len(q) > 1 else 0
 
 
-def _sliver_roots(odd, x, side):
-    """Roots of odd strictly between the algebraic end x and its bound on ``side``, x excluded."""
+def _sliver_roots(odd, x):
+    """Roots of odd in the isolating interval of the algebraic end x, other than x.
+    Counting the whole interval (both sides of x) is conservative: a root on the
+    outer side would be rejected although it lies outside the claimed interval."""
     if x.poly is None:
         return 0
     lo, hi = (x.lo, x.hi)
@@ -828,8 +830,6 @@ def _sliver_roots(odd, x, side):
     g = _gcd(odd, x.poly)
     if len(g) > 1 and _sign(_eval(g, lo)) * _sign(_eval(g, hi)) < 0:
         total -= 1  # x itself
-    # only the part of (lo, hi) on ``side`` of x lies inside the claimed interval;
-    # counting the whole sliver is conservative (a root there is rejected).
     return total
 
 
@@ -843,9 +843,9 @@ def _sign_constant_inside(f, a, b):
         if len(odd) > 1:
             inside = _count_open(odd, a1, b0)
             if a.poly is not None:
-                inside += (_eval(odd, a1) == 0) + _sliver_roots(odd, a, "right")
+                inside += (_eval(odd, a1) == 0) + _sliver_roots(odd, a)
             if b.poly is not None:
-                inside += (_eval(odd, b0) == 0) + _sliver_roots(odd, b, "left")
+                inside += (_eval(odd, b0) == 0) + _sliver_roots(odd, b)
             _require(inside == 0, "a condition changes sign inside a claimed interval")
     return _sign(_eval(f, sample))
 
