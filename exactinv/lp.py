@@ -98,7 +98,8 @@ class ExactLPSolver:
         self.equality = tuple(bool(e) for e in equality)
         self.R, self.N = A.nrows(), A.ncols()
         self._highs: highspy.Highs | None = None
-        self._A_float = np.array([float(v) for v in A.entries()], dtype=float).reshape(self.R, self.N)
+        floats = _floats(A.entries())
+        self._A_float = None if floats is None else floats.reshape(self.R, self.N)
 
     @cached_property
     def _rows(self) -> list[list[tuple[int, flint.fmpq]]]:
@@ -207,11 +208,13 @@ class ExactLPSolver:
 
     # ----------------------------------------------------------- float hint
     def _float_solve(self, c, b, nonneg):
+        cost, rhs = _floats(c.entries()), _floats(b.entries())
+        if self._A_float is None or cost is None or rhs is None:
+            return "unknown", None, None, None  # beyond double range: exact route only
+        cost = -cost  # HiGHS minimizes
         h = self._highs
-        cost = np.array([-float(v) for v in c.entries()])  # HiGHS minimizes
         lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
         upper = np.full(self.N, highspy.kHighsInf)
-        rhs = np.array([float(v) for v in b.entries()])
         row_lower = np.where(np.array(self.equality, dtype=bool), rhs, -highspy.kHighsInf)
         if h is None:
             h = highspy.Highs()
@@ -431,6 +434,15 @@ def _column(v) -> flint.fmpq_mat:
 
 def _dot(u: flint.fmpq_mat, v: flint.fmpq_mat) -> flint.fmpq:
     return (u.transpose() * v)[0, 0]
+
+
+def _floats(values) -> np.ndarray | None:
+    """The float images of exact values, or None if one overflows a double
+    (the float hint is then skipped and the exact route taken)."""
+    try:
+        return np.array([float(v) for v in values], dtype=float)
+    except OverflowError:
+        return None
 
 
 def _basis_sets(basis: highspy.HighsBasis, R: int) -> tuple[list[int], list[int]]:

@@ -103,3 +103,9 @@ def test_random_lps_match_exact_ppl(data, draw):
     assert res.status == status
     if status == "optimal":
         assert res.value == sum(ci * Fraction(int(xi.p), int(xi.q)) for ci, xi in zip(c, x.entries()))
+
+
+def test_coefficients_beyond_double_range_take_the_exact_route():
+    big = 10**400
+    res = _solve([[big, 1], [1, -1]], [False, False], [4 * big, 1], [1, 2], [True, True])
+    assert res.status == "optimal" and res.value == 8 * big and res.path == "exact-ppl"
