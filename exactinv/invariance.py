@@ -246,6 +246,7 @@ def discrete_invariance(
     r(dt A) is built exactly).  Row j is the LP  max{g_j^T A_d x : x in P}:
     by LP duality its optimal dual is row j of H~ when the optimum is <= b_j,
     and its optimal point is a witness x in P with A_d x not in P otherwise.
+    The m LPs share G and are verified as one batch (:meth:`ExactLPSolver.solve_many`).
     """
     P = _check_polyhedron(polyhedron)
     if isinstance(Ad, LinearSystem):
@@ -260,10 +261,11 @@ def discrete_invariance(
     m, n = P.m, P.n
     GAd = P.G_flint * fmpq_matrix(Adm)
     solver = ExactLPSolver(P.G_flint, [False] * m)
+    rhss = flint.fmpq_mat(m, m, [P.b_flint[r, 0] for r in range(m) for _ in range(m)])  # column j: b
+    results = solver.solve_many(GAd.transpose(), rhss, [[False] * n] * m)  # column j: A_d^T g_j
     H_rows = []
-    for j in range(m):
+    for j, res in enumerate(results):
         objective = [fraction_of(GAd[j, i]) for i in range(n)]
-        res = solver.solve(objective, P.b, [False] * n)
         if res.status == UNBOUNDED:
             x = _push_along_ray(res.x, res.ray, objective, P.b[j])
             value = sum(c * xi for c, xi in zip(objective, x))

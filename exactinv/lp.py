@@ -99,7 +99,14 @@ class ExactLPSolver:
         self.R, self.N = A.nrows(), A.ncols()
         self._highs: highspy.Highs | None = None
         floats = _floats(A.entries())
-        self._A_float = None if floats is None else floats.reshape(self.R, self.N)
+        self._A_float = None
+        if floats is not None:
+            # Rows scaled to max-norm 1 for the float model only (PPL-made rows can
+            # carry 10^15-sized integers); the hint's duals are scaled back.
+            A_float = floats.reshape(self.R, self.N)
+            norms = np.abs(A_float).max(axis=1) if self.N else np.ones(self.R)
+            self._row_scale = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
+            self._A_float = A_float * self._row_scale[:, None]
 
     @cached_property
     def _rows(self) -> list[list[tuple[int, flint.fmpq]]]:
@@ -212,6 +219,7 @@ class ExactLPSolver:
         if self._A_float is None or cost is None or rhs is None:
             return "unknown", None, None, None  # beyond double range: exact route only
         cost = -cost  # HiGHS minimizes
+        rhs = rhs * self._row_scale
         h = self._highs
         lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
         upper = np.full(self.N, highspy.kHighsInf)
@@ -243,7 +251,7 @@ class ExactLPSolver:
         S = highspy.HighsModelStatus
         if status == S.kOptimal:
             sol = h.getSolution()
-            return OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), h
+            return OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual) * self._row_scale, h
         if status == S.kInfeasible:
             return INFEASIBLE, None, None, None
         if status == S.kUnbounded:
@@ -257,9 +265,79 @@ class ExactLPSolver:
         x, x_clean = _snapped(x_float)
         y, y_clean = _snapped(y_float)
         yield "float-rounded", x, y
-        pair = self._basis_solution(cq, bq, highs.getBasis())
+        basis = highs.getBasis()
+        pair = self._basis_solution(cq, bq, basis)
         if pair is not None:
             yield ("float-basis", *pair)
+        pair = self._exact_pivots(cq, bq, nonneg, basis)
+        if pair is not None:
+            yield ("float-basis+pivots", *pair)
+
+    def _exact_pivots(self, cq, bq, nonneg, basis, max_steps: int = 200):
+        """Repair a float basis by exact simplex steps (active-set form, Bland's rule).
+
+        A vertex is N active constraints W (tight rows and x_i = 0 bounds) with
+        A_W x = b_W.  Multipliers mu solve A_W^T mu = c; if every inequality in W
+        has mu >= 0 the vertex is optimal.  Otherwise leave the first such
+        constraint a with mu_a < 0, move along d with A_W d = -e_a (c.d = -mu_a > 0)
+        to the first constraint that becomes tight, and repeat.  Returns (x, y) or
+        None (infeasible start, unboundedness, or too many steps)."""
+        basic_cols, tight_rows = _basis_sets(basis, self.R)
+        N, R = self.N, self.R
+        basic = set(basic_cols)
+        W = list(tight_rows) + [R + i for i in range(N) if nonneg[i] and i not in basic]
+        if len(W) != N:
+            return None
+        A = self.A.entries()
+        b = bq.entries()
+
+        def row(k):
+            if k < R:
+                return A[k * N:(k + 1) * N]
+            e = [flint.fmpq(0)] * N
+            e[k - R] = flint.fmpq(-1)
+            return e
+
+        def rhs(k):
+            return b[k] if k < R else flint.fmpq(0)
+
+        candidates = [k for k in range(R) if not self.equality[k]] + [R + i for i in range(N) if nonneg[i]]
+        try:
+            M = flint.fmpq_mat(N, N, [v for k in W for v in row(k)])
+            x = M.solve(flint.fmpq_mat(N, 1, [rhs(k) for k in W]))
+            for _ in range(max_steps):
+                mu = M.transpose().solve(cq)
+                leaving = next((t for t, k in sorted(enumerate(W), key=lambda tk: tk[1])
+                                if (k >= R or not self.equality[k]) and mu[t, 0] < 0), None)
+                if leaving is None:
+                    y = flint.fmpq_mat(R, 1)
+                    for t, k in enumerate(W):
+                        if k < R:
+                            y[k, 0] = mu[t, 0]
+                    return x, y
+                e = flint.fmpq_mat(N, 1)
+                e[leaving, 0] = -1
+                d = M.solve(e)
+                xs, ds = x.entries(), d.entries()
+                best, entering = None, None
+                active = set(W)
+                for k in candidates:
+                    if k in active:
+                        continue
+                    a = row(k)
+                    rate = sum((ai * di for ai, di in zip(a, ds) if ai != 0 and di != 0), flint.fmpq(0))
+                    if rate > 0:
+                        step = (rhs(k) - sum((ai * xi for ai, xi in zip(a, xs) if ai != 0 and xi != 0), flint.fmpq(0))) / rate
+                        if best is None or step < best:
+                            best, entering = step, k
+                if entering is None:
+                    return None  # unbounded direction: leave it to the certificate routes
+                x = x + d * best
+                W[leaving] = entering
+                M = flint.fmpq_mat(N, N, [v for k in W for v in row(k)])
+        except (ZeroDivisionError, ValueError):
+            return None
+        return None
 
     def _basis_solution(self, cq, bq, basis) -> tuple[flint.fmpq_mat, flint.fmpq_mat] | None:
         """The exact vertex and dual of a float basis: B x_B = b_tight, B^T y = c_B."""

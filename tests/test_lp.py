@@ -109,3 +109,24 @@ def test_coefficients_beyond_double_range_take_the_exact_route():
     big = 10**400
     res = _solve([[big, 1], [1, -1]], [False, False], [4 * big, 1], [1, 2], [True, True])
     assert res.status == "optimal" and res.value == 8 * big and res.path == "exact-ppl"
+
+
+def test_exact_pivots_repair_a_wrong_basis(monkeypatch):
+    """A float basis that is feasible but not optimal is repaired by exact simplex steps."""
+    A = [[1, 1], [1, -1], [-1, 0], [0, -1]]
+    solver = lp.ExactLPSolver(flint.fmpq_mat(A), [False] * 4)
+    c, b = [1, 2], [4, 1, 0, 0]
+    status, xf, yf, highs = solver._float_solve(lp._column(c), lp._column(b), (False, False))
+    basis = highs.getBasis()
+    B = lp.highspy.HighsBasisStatus
+    basis.row_status = [B.kBasic, B.kUpper, B.kBasic, B.kUpper]  # the vertex (1, 0): tight rows 1 and 3
+    basis.col_status = [B.kBasic, B.kBasic]
+    x, y = solver._exact_pivots(lp._column(c), lp._column(b), (False, False), basis)
+    assert [v for v in x.entries()] == [0, 4]  # the optimum, reached by pivoting
+    assert solver._verify_optimal(lp._column(c), lp._column(b), (False, False), x, y)
+
+
+def test_badly_scaled_rows_still_get_a_float_hint():
+    big = 10**15
+    res = _solve([[big, big], [1, -1], [-3 * big, 0]], [False] * 3, [4 * big, 1, 0], [1, 2], [False, False])
+    assert res.status == "optimal" and res.path != "exact-ppl"
