@@ -28,7 +28,6 @@ import numpy as np
 
 import exactinv as ei
 from exactinv.lp import _ppl_maximize
-from exactinv.numbers import fmpq_matrix
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 

@@ -800,7 +800,7 @@ def _claim_largest_threshold(p, c, context):
 def _separate(a, b):
     """Refine two _Reals (a < b) until a's upper bound is below b's lower bound."""
     for _ in range(400):
-        (a0, a1), (b0, b1) = a.bounds(), b.bounds()
+        a1, b0 = a.bounds()[1], b.bounds()[0]
         if a1 < b0:
             return a1, b0
         if a.poly is not None:

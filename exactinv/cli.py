@@ -18,7 +18,7 @@ import json
 import sys
 from typing import Sequence
 
-from .errors import ExactinvError, NotInvariant, VerificationFailed
+from .errors import ExactinvError, VerificationFailed
 
 __all__ = ["main"]
 
@@ -57,7 +57,7 @@ def _forward_euler(S, P, out):
     from .largest import forward_euler_threshold
 
     if P.n > _VERTEX_LIMIT:
-        out(f"largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
+        out("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
         return None
     fe = forward_euler_threshold(S, P)
     out(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")

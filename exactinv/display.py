@@ -215,8 +215,6 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
 
 def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     """A 2-D polytope P and its images A_d(dt) P; vertices mapped outside P in red."""
-    from .model import Polyhedron
-
     plt = _plt()
     if polyhedron.n != 2 or not polyhedron.is_bounded:
         from .errors import InvalidInput

@@ -21,6 +21,7 @@ from typing import Any
 
 import flint
 
+from .algebraic import ExactKey
 from .errors import EmptyPolyhedron, InvalidInput, VerificationFailed
 from .lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from .model import LinearSystem, Polyhedron, _matrix_text, _vector_text
@@ -215,7 +216,7 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     if any(row.gamma == INF for row in rows):
         witness = _continuous_witness(S, P, first=[j for j, r in enumerate(rows) if r.gamma == INF])
         return OptimalGamma(INF, None, None, tuple(rows), witness, S, P)
-    value = max((row.gamma for row in rows), key=_order_key)
+    value = max((row.gamma for row in rows), key=ExactKey)
     binding = None if value == -INF else next(j for j, r in enumerate(rows) if r.gamma == value)
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
@@ -296,10 +297,6 @@ def _check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
     if S.n != P.n:
         raise InvalidInput(f"system/polyhedron: A is {S.n}x{S.n} but G has {P.n} columns")
     return S, P
-
-
-def _order_key(v):
-    return (v.sign, 0) if isinstance(v, Infinity) else (0, v)
 
 
 def _gamma_row(res: LPResult) -> GammaRow:

@@ -39,7 +39,7 @@ from .methods import Method, forward_euler
 from .model import LinearSystem, Polyhedron
 from .numbers import INF, Infinity, fmpq_of, fraction_of
 from .roots import _integer, nonnegative_until, real_roots, sign_right_of, sign_variations
-from .results import ExactValueMixin, LatexMixin
+from .results import ExactValueMixin
 
 __all__ = [
     "Condition",

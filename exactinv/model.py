@@ -7,7 +7,7 @@ H-representation (G, b) and, computed exactly with the Parma Polyhedra Library
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 from math import lcm

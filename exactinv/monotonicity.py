@@ -37,8 +37,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from math import comb, factorial
-from typing import Any
+from math import comb
 
 import flint
 
@@ -46,8 +45,8 @@ from .algebraic import ExactKey, RealAlgebraic, sign_at
 from .errors import InvalidInput, Undecided
 from .methods import Method
 from .numbers import INF, Infinity, fmpq_of, fraction_of
-from .roots import nonnegative_until, real_roots, sign_variations
-from .results import ExactValueMixin, LatexMixin
+from .roots import nonnegative_until, real_roots
+from .results import ExactValueMixin
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 

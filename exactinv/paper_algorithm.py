@@ -24,7 +24,7 @@ import flint
 import numpy as np
 
 from .errors import InvalidInput
-from .numbers import INF, Infinity, fmpq_of, to_rational, to_vector
+from .numbers import INF, fmpq_of, to_rational, to_vector
 
 __all__ = ["PaperBisectionResult", "paper_bisection", "paper_bisection_float", "paper_bound"]
 

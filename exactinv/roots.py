@@ -29,7 +29,7 @@ import flint
 
 from .algebraic import ExactKey, RealAlgebraic, _dyadic, sign_at
 from .errors import InvalidInput, VerificationFailed
-from .numbers import INF, Infinity, fmpq_of, fraction_of, to_rational
+from .numbers import INF, Infinity, fmpq_of, to_rational
 
 __all__ = [
     "as_polynomial",

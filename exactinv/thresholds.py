@@ -23,16 +23,14 @@ from fractions import Fraction
 from math import comb
 from typing import Any
 
-import flint
-
 from .algebraic import ExactKey, RealAlgebraic
 from .errors import InvalidInput, NotInvariant
 from .invariance import OptimalGamma, optimal_gamma
 from .methods import Method
 from .model import LinearSystem, Polyhedron
-from .numbers import INF, Infinity, fmpq_of, fraction_of
+from .numbers import INF, Infinity
 from .roots import nonnegative_until
-from .results import ExactValueMixin, LatexMixin
+from .results import ExactValueMixin
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "steplength_threshold"]
 

@@ -125,7 +125,7 @@ def test_discrete_invariance():
     assert check(certificate(ei.LinearSystem([[0, 0], [0, 0]]), P, None, [rotation])).ok
     shear = ei.discrete_invariance([[1, 1], [0, 1]], P)
     assert not shear.holds
-    x, j = shear.witness.x, shear.witness.facet
+    x = shear.witness.x
     assert P.contains(x) and not P.contains([x[0] + x[1], x[1]])
 
 

@@ -1,7 +1,6 @@
 from fractions import Fraction
 
 import flint
-import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 

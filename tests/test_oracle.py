@@ -20,7 +20,7 @@ def test_threshold_verdicts():
     assert oracle.judge_threshold(S, P, T2, 1.41421356237).status == "tight"
     bad = oracle.judge_threshold(S, P, T2, math.sqrt(2))  # the double sqrt(2) is above sqrt(2)
     assert bad.status == "invalid" and not bad
-    dt, x, facet = bad.counterexample["dt"], bad.counterexample["x"], bad.counterexample["facet"]
+    dt, x = bad.counterexample["dt"], bad.counterexample["x"]
     assert dt <= Fraction(math.sqrt(2)) and not ei.discrete_invariance(S, P, T2, dt).holds
     assert P.contains(x)
     with pytest.raises(ei.InvalidInput):
