@@ -18,7 +18,7 @@ from .numbers import Infinity
 __all__ = ["encode_real", "problem_record", "certificate", "claims_of", "dumps"]
 
 FORMAT = "exactinv-certificate"
-VERSION = 1
+VERSION = 2  # v2 = v1 + optional data (e.g. dt on discrete claims); the kernel checks both
 
 
 def encode_real(v: Any) -> Any:

@@ -151,7 +151,9 @@ def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
     value = ends[binding]
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d)
     reason = "all-coefficients" if value == INF else "coefficient"
-    return AbsoluteMonotonicityRadius(value, True, reason, method, None if value == INF else binding, coefficients=coeffs)
+    attained = value != 0 or all(c[0] >= 0 if c else True for c in coeffs)  # rho = 0 may fail at kappa = 0 itself
+    return AbsoluteMonotonicityRadius(value, attained, reason, method, None if value == INF else binding,
+                                      coefficients=coeffs)
 
 
 # ------------------------------------------------------------- rational case
@@ -246,7 +248,8 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
             candidate = min(ends, key=ExactKey)
     binding = next(j for j, e in enumerate(ends) if e == candidate)
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d[: max(N, binding + 1)])
-    return AbsoluteMonotonicityRadius(candidate, True, "coefficient", method, binding, tail_index=N, pole=p_star,
+    attained = candidate != 0 or all(p(0) >= 0 for p in d)
+    return AbsoluteMonotonicityRadius(candidate, attained, "coefficient", method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)
 
 

@@ -18,6 +18,11 @@ For gamma* <= 0 the paper's "tau = infinity" (Theorem 3.13) becomes
 z_p/alpha(H) (or infinity when alpha(H) <= 0 or r has no positive pole).
 Any certificate H gives a valid bound; the gamma*-optimal H is tried first and,
 when some row LP is unbounded, the unpushed row points as well.
+
+Erratum E2' (our own correction of the above): H only meets the rows of G, so
+it does not see the eigenvalues of A along the lineality space of P, and r(hA)
+can be singular before that bound.  The threshold is therefore also capped by
+the first h > 0 at which h_r(hA) is singular (not attained there).
 """
 
 from __future__ import annotations
@@ -53,13 +58,61 @@ def smallest_positive_pole(method: Method) -> Fraction | RealAlgebraic | None:
 
 
 def _quotient(a, b):
-    """a/b for positive exact reals; exact unless both are irrational, then a
-    certified rational lower bound (conservative: still a valid threshold)."""
+    """a/b for positive exact reals, exactly (for two irrationals: the root of the
+    resultant res_y(p_a(t y), p_b(y)) that their quotient's enclosure isolates)."""
     if isinstance(a, Infinity):
         return INF
     if isinstance(a, Fraction) or isinstance(b, Fraction):
         return a / b
-    return a.lower / b.upper
+    a, b = a._copy(), b._copy()
+    pa, pb = a.poly, b.poly
+    da, db = pa.degree(), pb.degree()
+    points = list(range(da * db + 1))
+    values = [flint.fmpz_poly([c * t**k for k, c in enumerate(pa.coeffs())]).resultant(pb) for t in points]
+    R = flint.fmpq_poly.interpolate(points, values) if hasattr(flint.fmpq_poly, "interpolate") else _interpolate(points, values)
+    roots = [r for r, _ in real_roots(R) if r > 0]
+    for _ in range(2000):
+        lo, hi = a.lower / b.upper, a.upper / b.lower
+        inside = [r for r in roots if lo < r < hi]
+        if len(inside) == 1:
+            return inside[0]
+        a._bisect()
+        b._bisect()
+    raise ArithmeticError("could not isolate the quotient of two algebraic numbers")
+
+
+def _interpolate(points, values) -> flint.fmpq_poly:
+    """Lagrange interpolation over Q."""
+    x = flint.fmpq_poly([0, 1])
+    total = flint.fmpq_poly([0])
+    for i, (xi, yi) in enumerate(zip(points, values)):
+        term = flint.fmpq_poly([yi])
+        for j, xj in enumerate(points):
+            if j != i:
+                term = term * (x - xj) / (xi - xj)
+        total += term
+    return total
+
+
+def first_singular_steplength(A: flint.fmpq_mat, method: Method):
+    """The first h > 0 at which h_r(hA) is singular (erratum E2'), or None:
+    the least positive root of D(h) = det h_r(hA), a polynomial of degree <= n deg h_r."""
+    if method.is_polynomial:
+        return None
+    n = A.nrows()
+    points = list(range(n * (len(method.denominator) - 1) + 1))
+    values = []
+    for t in points:
+        M = A * t
+        out = flint.fmpq_mat(n, n)
+        for c in reversed(method.denominator):
+            out = out * M
+            for i in range(n):
+                out[i, i] += flint.fmpq(c.numerator, c.denominator)
+        values.append(out.det())
+    D = _interpolate(points, values)
+    positive = [z for z, _ in real_roots(D) if z > 0] if D.degree() > 0 else []
+    return positive[0] if positive else None
 
 
 def _certificate_candidates(gamma: OptimalGamma):
@@ -101,6 +154,13 @@ def rational_threshold(method: Method, gamma: OptimalGamma):
     else:
         theorem = "Theorem 3.12 corrected (erratum E2: convergence needs dt < z_p/alpha(H))"
         notes.append(f"erratum E2: the paper gives {paper}; the Taylor series at -rho diverges for dt >= z_p/alpha(H)")
+    singular = first_singular_steplength(gamma.system.A_flint, method)
+    if singular is not None and not ExactKey(value) < ExactKey(singular):
+        notes.append(f"erratum E2': r(dt A) is singular at dt = {singular}, before the corrected bound {value}")
+        if value == singular and attained:
+            notes.append("the bound is not attained there")
+        value, attained = singular, False
+        theorem = "Theorem 3.12 corrected (erratum E2': r(dt A) must exist)"
     certificate_H = None if H is gamma.H_flint else (H, g_H)
     return SteplengthThreshold(value, attained, theorem, method, gamma, notes=tuple(notes), radius=radius,
                                pole=z_p, spectral_abscissa=alpha, paper_value=paper, certificate_H=certificate_H)

@@ -1,0 +1,29 @@
+"""exactinv_check -- the trusted kernel of exactinv.
+
+A small, standalone checker that re-proves every claim of an exactinv
+certificate from the problem (A, G, b, the method r = g/h) and the
+certificate's data alone, in exact rational arithmetic, with the Python
+standard library only.  It imports nothing from exactinv and trusts no list,
+bound or flag the engine wrote: generator lists are proved complete,
+thresholds, radii and valid sets are recomputed, and what it cannot prove it
+rejects.  Run it as ``python3 -S -m exactinv_check CERT.json``.
+
+Modules, bottom up: rationals (strict parsing, matrices), polys (Q[x], Sturm,
+root isolation), reals (rationals, infinities, algebraic numbers), linalg
+(characteristic polynomials), polyhedra (generators proved complete),
+conditions (the polynomial conditions of A_d(h)P in P), validset (the exact
+valid set), tail (positivity of a Taylor-coefficient tail), and one module per
+family of claims: claims_invariance, claims_thresholds, claims_radius,
+claims_sets; kernel is the driver.
+"""
+
+from .kernel import FORMAT, VERSIONS, CheckReport, check
+from .rationals import CheckFailure
+
+__all__ = ["check", "CheckReport", "CheckFailure", "FORMAT", "VERSIONS", "main"]
+
+
+def main(argv=None):
+    from .__main__ import main as _main
+
+    return _main(argv)

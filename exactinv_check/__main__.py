@@ -1,0 +1,32 @@
+"""python3 -S -m exactinv_check CERT.json [CERT.json ...]
+
+Exit status: 0 every certificate verified; 1 a claim was rejected;
+2 bad input (a file that cannot be read or is not an exactinv certificate)."""
+
+import argparse
+import sys
+
+from .kernel import check
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="python3 -S -m exactinv_check",
+        description="The trusted kernel of exactinv: re-prove every claim of a certificate in exact "
+                    "arithmetic, with the Python standard library only.",
+        epilog="exit status: 0 verified, 1 rejected, 2 bad input")
+    parser.add_argument("certificates", nargs="+", metavar="CERT.json")
+    parser.add_argument("-q", "--quiet", action="store_true", help="print only the final verdict per file")
+    args = parser.parse_args(argv)
+    status = 0
+    for path in args.certificates:
+        report = check(path)
+        text = str(report).splitlines()
+        print(f"{path}:")
+        print("\n".join(text[-1:] if args.quiet else text))
+        status = max(status, 2 if report.bad_input else (0 if report.ok else 1))
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

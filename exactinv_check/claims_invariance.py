@@ -1,0 +1,122 @@
+"""Claims about invariance and gamma* (paper, Section 2).
+
+* continuous_invariance: P is invariant for x' = Ax iff some H with
+  nonnegative off-diagonal entries has HG = GA and Hb <= 0; otherwise a point
+  x on a facet j with g_j.Ax > 0 leaves P.
+* discrete_invariance: A_d P is a subset of P iff some H~ >= 0 has
+  H~G = GA_d and H~b <= b; otherwise x in P with g_j.A_d x > b_j.
+* gamma_star = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}: a feasible H
+  bounds it from above, the LP dual of its binding row from below.
+"""
+
+from fractions import Fraction
+
+from .rationals import dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
+from .reals import Real
+
+
+def check_H(problem, H):
+    """H is an invariance certificate: off-diagonal >= 0, HG = GA, Hb <= 0."""
+    A, G, b, m = problem.A, problem.G, problem.b, problem.m
+    require(matmul(H, G) == matmul(G, A), "HG != GA")
+    require(all(v <= 0 for v in matvec(H, b)), "Hb <= 0 fails")
+    require(all(H[i][k] >= 0 for i in range(m) for k in range(m) if i != k), "an off-diagonal entry of H is negative")
+
+
+def facet_witness(problem, M, w, on_facet):
+    """x in P, facet j and g_j.Mx; checks the recorded value and (optionally) that x is on facet j."""
+    require(isinstance(w, dict) and set(w) <= {"x", "facet", "value"} and {"x", "facet"} <= set(w),
+            "a witness has the keys x, facet (and value)")
+    x = vector(w["x"], "witness x", problem.n)
+    j = integer(w["facet"], "witness facet", 0, problem.m)
+    require(all(v <= beta for v, beta in zip(matvec(problem.G, x), problem.b)), "witness x is not in P")
+    if on_facet:
+        require(dot(problem.G[j], x) == problem.b[j], "witness x is not on facet j")
+    value = dot(problem.G[j], matvec(M, x))
+    if "value" in w:
+        require(rational(w["value"], "witness value") == value, "the witness's recorded value is wrong")
+    return j, value
+
+
+def continuous_invariance(problem, claim, context):
+    if claim["holds"]:
+        check_H(problem, matrix(claim["H"], "H", problem.m, problem.m))
+        return "P is invariant for x' = Ax (H: off-diagonal >= 0, HG = GA, Hb <= 0)"
+    j, value = facet_witness(problem, problem.A, claim["witness"], on_facet=True)
+    require(value > 0, f"the witness does not leave P through facet {j}")
+    return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {value} > 0"
+
+
+def _discrete_matrix(problem, claim):
+    """A_d: r(dt A) recomputed when the claim names dt, else the matrix the claim states."""
+    if "dt" in claim:
+        require(problem.method is not None, "a claim with dt needs the problem's method")
+        from .conditions import method_matrices
+
+        dt = rational(claim["dt"], "dt")
+        require(dt >= 0, "dt must be >= 0")
+        D, N = method_matrices(problem.A, problem.method.numerator, problem.method.denominator)
+        d = sum(c * dt ** k for k, c in enumerate(D))
+        require(d != 0, f"r(dt A) does not exist at dt = {dt}")
+        Ad = [[sum(Nk[i][j] * dt ** k for k, Nk in enumerate(N)) / d for j in range(problem.n)] for i in range(problem.n)]
+        if "Ad" in claim:
+            require(matrix(claim["Ad"], "Ad", problem.n, problem.n) == Ad, "Ad is not r(dt A)")
+        return Ad, f"A_d = r(dt A) with dt = {dt}"
+    return matrix(claim["Ad"], "Ad", problem.n, problem.n), "the matrix A_d stated in the claim"
+
+
+def discrete_invariance(problem, claim, context):
+    Ad, what = _discrete_matrix(problem, claim)
+    G, b = problem.G, problem.b
+    if claim["holds"]:
+        H = matrix(claim["H"], "H~", problem.m, problem.m)
+        require(all(v >= 0 for r in H for v in r), "H~ has a negative entry")
+        require(matmul(H, G) == matmul(G, Ad), "H~G != GA_d")
+        require(all(v <= beta for v, beta in zip(matvec(H, b), b)), "H~b <= b fails")
+        return f"A_d P is a subset of P for {what} (H~ >= 0, H~G = GA_d, H~b <= b)"
+    j, value = facet_witness(problem, Ad, claim["witness"], on_facet=False)
+    require(value > b[j], f"the witness's image does not leave P through facet {j}")
+    return f"A_d P is NOT a subset of P for {what}: a point of P is mapped beyond facet {j}"
+
+
+def gamma_star(problem, claim, context):
+    A, G, b, m, n = problem.A, problem.G, problem.b, problem.m, problem.n
+    value = Real.parse(claim["value"], "gamma* value")
+    if value.inf == 1:
+        j, rate = facet_witness(problem, A, claim["witness"], on_facet=True)
+        require(rate > 0, f"the witness does not leave P through facet {j}")
+        context["gamma"] = value
+        return "gamma* = oo: P is not invariant (a facet point leaves P)"
+    require(value.poly is None, "gamma* is rational or infinite")
+    if value.inf == -1:
+        rows = claim["rows"]
+        require(isinstance(rows, list) and len(rows) == m, "one unbounded-row certificate per row of G is needed")
+        AtG = [matvec(transpose(A), G[j]) for j in range(m)] if m else []
+        for j, row in enumerate(rows):
+            require(isinstance(row, dict) and set(row) == {"h", "ray"}, f"row {j}: keys h, ray")
+            h, d = vector(row["h"], f"row {j} h", m), vector(row["ray"], f"row {j} ray", m)
+            for vec, rhs, name in ((h, AtG[j], "h"), (d, [Fraction(0)] * n, "ray")):
+                require(matvec(transpose(G), vec) == rhs, f"row {j}: G^T {name} mismatch")
+                require(all(vec[k] >= 0 for k in range(m) if k != j), f"row {j}: {name} has a negative off-diagonal entry")
+            require(dot(b, h) <= 0 and dot(b, d) <= 0 and d[j] > 0, f"row {j}: not a ray of increase of h_jj")
+        if claim.get("H") is not None:
+            H = matrix(claim["H"], "H", m, m)
+            check_H(problem, H)
+            context["H"] = H
+        context["gamma"] = value
+        return "gamma* = -oo: every row LP is unbounded (a feasible point and a ray per row)"
+    gamma = value.q
+    H = matrix(claim["H"], "H", m, m)
+    check_H(problem, H)
+    require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
+    j = integer(claim["binding_row"], "binding_row", 0, m)
+    dual = claim["dual"]
+    require(isinstance(dual, dict) and set(dual) == {"y", "lambda"}, "dual has the keys y, lambda")
+    y, lam = vector(dual["y"], "dual y", n), rational(dual["lambda"], "dual lambda")
+    require(lam >= 0, "dual lambda < 0")
+    for k in range(m):
+        s = dot(G[k], y) + lam * b[k]
+        require(s == 1 if k == j else s >= 0, f"dual constraint {k} fails")
+    require(dot(matvec(transpose(A), G[j]), y) == -gamma, "the dual objective differs from -gamma")
+    context["gamma"], context["H"] = value, H
+    return f"gamma* = {gamma}: H attains it, the dual of row {j} proves no smaller gamma is feasible"

@@ -1,0 +1,158 @@
+"""The radius of absolute monotonicity (paper, Definition 3.11, erratum E1).
+
+rho(r) = sup{kappa >= 0 : r has no pole in [-kappa, 0] and c_j(kappa) >= 0 for
+all j >= 0}, c_j(kappa) = r^(j)(-kappa)/j!.  With h(0) > 0 and
+d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), a polynomial in kappa with the sign of
+c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
+
+* rho = 0 (not attained) by an index j with c_j(0) < 0: then kappa = 0 itself
+  fails (exact series of g/h at 0);
+* rho = oo for r = c / prod (1 - z/p_k)^(m_k), c > 0, every p_k real and
+  positive: a product of absolutely monotonic factors (Sturm counts);
+* otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
+  rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
+  and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)
+  and the first kappa > 0 where h(-kappa) = 0.  For a polynomial method only
+  c_0 .. c_p are nonzero, so no tail exists (N = p + 1).
+The set of admissible kappa is the interval [0, rho], closed unless a pole sits
+at -rho or rho = 0 is itself inadmissible.
+"""
+
+from fractions import Fraction
+from math import comb
+
+from . import polys
+from .rationals import integer, require, vector
+from .reals import Real
+from .tail import prove_tail
+from .validset import first_end
+
+MAX_COEFFICIENTS = 4096
+REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
+           "dominance-at-0"}
+ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
+
+
+def d_polynomials(num, den, count):
+    """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa."""
+    require(count <= MAX_COEFFICIENTS, f"more than {MAX_COEFFICIENTS} coefficients requested")
+
+    G = [_shift(num, i) for i in range(max(len(num), count))]
+    H = [_shift(den, i) for i in range(len(den))]
+    powers, d = [[Fraction(1)]], []
+    for j in range(count):
+        while len(powers) <= j:
+            powers.append(polys.mul(powers[-1], H[0]))
+        value = polys.mul(G[j], powers[j]) if j < len(G) else []
+        for i in range(1, min(j, len(H) - 1) + 1):
+            if H[i] and d[j - i]:
+                value = polys.sub(value, polys.mul(polys.mul(H[i], d[j - i]), powers[i - 1]))
+        d.append(polys.trim(value))
+    return d
+
+
+def _shift(p, i):
+    """[w^i] p(w - kappa) as a polynomial in kappa: sum_k p_k C(k, i) (-kappa)^(k-i)."""
+    out = [Fraction(0)] * max(len(p) - i, 0)
+    for k in range(i, len(p)):
+        out[k - i] += p[k] * comb(k, i) * (-1) ** (k - i)
+    return polys.trim(out)
+
+
+def series_at_zero(num, den, count):
+    c = []
+    for j in range(count):
+        v = num[j] if j < len(num) else Fraction(0)
+        for i in range(1, min(j, len(den) - 1) + 1):
+            v -= den[i] * c[j - i]
+        c.append(v / den[0])
+    return c
+
+
+def _all_roots_real_positive(h):
+    """Every root of h (with multiplicity) is real and positive."""
+    p = polys.trim(h)
+    total, k = 0, 1
+    a = polys.gcd(p, polys.derivative(p))
+    b = polys.divmod_(p, a)[0]
+    d = polys.sub(polys.divmod_(polys.derivative(p), a)[0], polys.derivative(b))
+    while len(b) > 1:
+        factor = polys.gcd(b, d)
+        if len(factor) > 1:
+            total += k * len(polys.positive_roots(factor))
+        b = polys.divmod_(b, factor)[0]
+        d = polys.sub(polys.divmod_(d, factor)[0], polys.derivative(b))
+        k += 1
+    return total == len(p) - 1
+
+
+def recompute(num, den, count, K_is_infinite):
+    """(rho, attained, ends) from d_0 .. d_{count-1} and the poles on the negative axis."""
+    d = d_polynomials(num, den, count)
+    rho, _ = first_end([Fraction(1)], [p for p in d if p], [])
+    attained = True
+    if rho.is_zero():  # kappa = 0 is admissible iff every c_j(0) >= 0
+        attained = all(polys.evaluate(p, Fraction(0)) >= 0 for p in d)
+    h_minus = [c * (-1) ** k for k, c in enumerate(den)]  # h(-kappa)
+    if len(polys.trim(h_minus)) > 1:
+        roots = polys.positive_roots(h_minus)
+        if roots:
+            pole = Real.root_in(h_minus, *roots[0])
+            if pole.compare(rho) <= 0:
+                rho, attained = pole, False
+    return rho, attained, d
+
+
+def absolute_monotonicity_radius(problem, claim, context):
+    method = problem.method
+    require(method is not None, "a method is needed")
+    num, den = method.numerator, method.denominator
+    value = Real.parse(claim["value"], "rho")
+    attained = claim["attained"]
+    reason = claim["reason"]
+    require(reason in REASONS, f"unknown reason {reason!r}")
+    if method.is_polynomial:
+        rho, rho_attained, d = recompute(num, den, len(num), True)
+        how = f"recomputed from c_0 .. c_{len(num) - 1}"
+    elif reason in ZERO_REASONS:
+        j = integer(claim["witness_j"], "witness_j", 0, MAX_COEFFICIENTS)
+        require(series_at_zero(num, den, j + 1)[j] < 0, f"c_{j}(0) is not negative")
+        rho, rho_attained, d = Real.rational(0), False, []
+        how = f"c_{j}(0) < 0, so r is not absolutely monotonic at 0"
+    elif reason == "product":
+        require(len(num) == 1 and num[0] > 0, "the product form needs a positive constant numerator")
+        require(_all_roots_real_positive(den), "h has a root that is not real and positive")
+        rho, rho_attained, d = Real(inf=1), True, []
+        how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
+    else:
+        K = None if value.inf == 1 else value.bounds()[1]
+        require(value.inf != -1, "rho >= 0")
+        hint = claim.get("tail_index")
+        hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
+        N = prove_tail(num, den, K, hint)
+        count = max(N, len(num), len(den), 1)
+        rho, rho_attained, d = recompute(num, den, count, K is None)
+        require(K is None and rho.inf == 1 or K is not None and rho.compare(Real.rational(K)) <= 0,
+                "the recomputed radius lies beyond the range where the tail is proved")
+        how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
+    require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
+    consistent = {"coefficient": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+                  "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
+    require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
+    require(attained is rho_attained, "the attained flag is wrong")
+    if claim.get("d") is not None:
+        require(isinstance(claim["d"], list) and len(claim["d"]) <= len(d), "more d_j listed than were needed")
+        for j, dj in enumerate(claim["d"]):
+            require(polys.trim(vector(dj, f"d_{j}")) == d[j], f"d_{j} does not match r")
+    if claim.get("binding") is not None and d:
+        j = integer(claim["binding"], "binding", 0, len(d))
+        end, _ = first_end([Fraction(1)], [d[j]] if d[j] else [], [])
+        require(end.compare(rho) == 0, f"c_{j} does not end the interval at rho")
+    if claim.get("pole") is not None:
+        from .claims_thresholds import smallest_positive_root
+
+        pole = smallest_positive_root(den)
+        require(pole is not None and Real.parse(claim["pole"], "pole").compare(pole) == 0,
+                f"the recorded pole is not the smallest positive pole {pole}")
+    context["rho"], context["rho_attained"] = rho, rho_attained
+    return f"rho = {rho}: {how}"

@@ -1,0 +1,76 @@
+"""Claims beyond the paper: the exact valid set and the largest threshold.
+
+A_d(h)P is a subset of P iff A_d(h) maps every vertex into P, every ray into
+rec(P) and every line into lin(P) -- over a generator system that the kernel
+first proves complete (:mod:`exactinv_check.polyhedra`).  The kernel then
+rebuilds every condition polynomial (:mod:`exactinv_check.conditions`) and
+recomputes the valid set or its first interval (:mod:`exactinv_check.validset`);
+the claim must equal the recomputation, end by end and flag by flag.
+"""
+
+from types import SimpleNamespace
+
+from . import polys
+from .conditions import condition_polynomials
+from .polyhedra import prove_generators
+from .rationals import boolean, integer, matrix, require, vector
+from .reals import Real
+from .validset import first_end, valid_set
+
+
+def _conditions(problem, claim):
+    require(problem.method is not None, "a method is needed")
+    gens = prove_generators(problem.G, problem.b, *(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines")))
+    D, inequalities, equalities = condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
+                                                        problem.method.denominator, gens)
+    if claim.get("determinant") is not None:
+        claimed = polys.trim(vector(claim["determinant"], "determinant"))
+        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+    return gens, D, inequalities, equalities
+
+
+def largest_threshold(problem, claim, context):
+    gens, D, inequalities, equalities = _conditions(problem, claim)
+    tau, attained = first_end(D, inequalities, equalities)
+    value = Real.parse(claim["value"], "tau")
+    require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")
+    require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
+    binding = claim.get("binding")
+    if binding is not None:
+        require(isinstance(binding, dict) and set(binding) == {"kind", "generator", "facet", "poly"},
+                "binding has the keys kind, generator, facet, poly")
+        kind = binding["kind"]
+        require(kind in ("vertex", "ray", "line"), "binding kind is vertex, ray or line")
+        field = {"vertex": "vertices", "ray": "rays", "line": "lines"}[kind]
+        vectors = getattr(gens, field)
+        i = integer(binding["generator"], "binding generator", 0, len(vectors))
+        j = integer(binding["facet"], "binding facet", 0, problem.m)
+        one = SimpleNamespace(vertices=[], rays=[], lines=[])
+        getattr(one, field).append(vectors[i])
+        _, single, single_eq = condition_polynomials(problem.A, [problem.G[j]], [problem.b[j]],
+                                                     problem.method.numerator, problem.method.denominator, one)
+        own = list(single) + list(single_eq)
+        require(len(own) == 1 and polys.primitive(vector(binding["poly"], "binding poly")) == list(own[0]),
+                "the binding polynomial is not the recomputed condition of that generator and facet")
+        end, _ = first_end(D, single, single_eq)
+        require(end.compare(tau) == 0, "the binding condition does not end the first interval")
+    return (f"largest threshold {value} ({'attained' if attained else 'not attained'}): recomputed from "
+            f"{len(inequalities) + len(equalities)} distinct conditions over {len(gens.vertices)} vertices, "
+            f"{len(gens.rays)} rays and {len(gens.lines)} lines proved complete")
+
+
+def valid_steplengths(problem, claim, context):
+    gens, D, inequalities, equalities = _conditions(problem, claim)
+    truth = valid_set(D, list(inequalities), list(equalities))
+    claimed = claim["intervals"]
+    require(isinstance(claimed, list), "intervals is a list")
+    require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")
+    for k, (iv, true) in enumerate(zip(claimed, truth)):
+        require(isinstance(iv, dict) and set(iv) == {"lo", "hi", "lo_closed", "hi_closed"},
+                f"interval {k}: keys lo, hi, lo_closed, hi_closed")
+        require(Real.parse(iv["lo"], "lo").compare(true.lo) == 0, f"interval {k} starts at {true.lo}")
+        require(Real.parse(iv["hi"], "hi").compare(true.hi) == 0, f"interval {k} ends at {true.hi}")
+        require(boolean(iv["lo_closed"], "lo_closed") == true.lo_closed, f"interval {k}: wrong lo_closed")
+        require(boolean(iv["hi_closed"], "hi_closed") == true.hi_closed, f"interval {k}: wrong hi_closed")
+    return (f"the valid set {truth} recomputed: every positive root of {len(inequalities) + len(equalities)} "
+            f"distinct conditions and of det h(hA) isolated, every cell and root decided exactly")

@@ -1,0 +1,169 @@
+"""Claims about the paper's steplength thresholds (Sections 3.1-3.3).
+
+* polynomial_threshold (Theorem 3.4, errata E3, E5, E6): with gamma = gamma*
+  > 0, tau = min_i tau_i, tau_i = sup{T : f_i >= 0 on [0, T]} for
+  f_i(dt) = sum_{k>=i} (-1)^(k-i) sigma_k C(k, i) gamma^(k-i) dt^k.  With
+  gamma* <= 0: oo when every sigma_k >= 0, else 0 (erratum E6).
+* rational_threshold (Theorem 3.12 with errata E2 and E2'): tau = the least
+  of rho/gamma, z_p/alpha(H) (when alpha(H) > 0) and the first h > 0 at
+  which h_r(hA) is singular; every ingredient is recomputed here.
+* forward_euler_threshold (Section 3.3, Lemma 3.14): the vertex ratio tests
+  over a generator system proved complete, and 1/gamma*, must agree.
+"""
+
+from fractions import Fraction
+from math import comb
+
+from . import polys
+from .conditions import method_matrices
+from .linalg import characteristic_polynomial, largest_real_root
+from .polyhedra import prove_generators
+from .rationals import dot, integer, matrix, matvec, rational, require, vector
+from .reals import Real, quotient
+from .validset import first_end
+
+ZERO, INF = Real.rational(0), Real(inf=1)
+
+
+def f_i(sigmas, gamma, i):
+    return polys.trim([Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
+                       for k in range(len(sigmas))])
+
+
+def _verified(context, key, claim_type):
+    require(key in context, f"a verified {claim_type} claim must precede this one")
+    return context[key]
+
+
+def polynomial_threshold(problem, claim, context):
+    method = problem.method
+    require(method is not None and method.is_polynomial, "a polynomial method is needed")
+    sigmas = method.numerator
+    gamma = _verified(context, "gamma", "gamma_star")
+    value = Real.parse(claim["value"], "tau")
+    if gamma.inf == -1 or (not gamma.inf and gamma.q <= 0):
+        expected = INF if all(s >= 0 for s in sigmas) else ZERO
+        require(value.compare(expected) == 0, f"gamma* <= 0 gives tau = {expected}")
+        require(claim.get("f") in (None, []), "no f_i table belongs to gamma* <= 0")
+        return f"tau = {expected}: gamma* <= 0 and {'every sigma_k >= 0' if expected.inf else 'a sigma_k < 0 (erratum E6)'}"
+    require(gamma.inf == 0, "gamma* = oo: P is not invariant, no threshold exists")
+    rows = claim["f"]
+    p = len(sigmas) - 1
+    require(isinstance(rows, list) and len(rows) == p + 1, f"one f_i row per i = 0..{p} is needed")
+    best, binding = None, None
+    for i, row in enumerate(rows):
+        require(isinstance(row, dict) and set(row) == {"i", "coefficients", "tau"}, f"row {i}: keys i, coefficients, tau")
+        require(integer(row["i"], "f row index") == i, f"the f rows must be i = 0..{p} in order")
+        f = f_i(sigmas, gamma.q, i)
+        require(polys.trim(vector(row["coefficients"], f"f_{i}")) == f, f"f_{i} does not match sigma and gamma*")
+        tau_i, _ = first_end([Fraction(1)], [f] if f else [], [])
+        require(Real.parse(row["tau"], f"tau_{i}").compare(tau_i) == 0, f"tau_{i} is wrong (it is {tau_i})")
+        if best is None or tau_i.compare(best) < 0:
+            best, binding = tau_i, i
+    require(value.compare(best) == 0, f"tau is not min_i tau_i = {best}")
+    if claim.get("binding") is not None:
+        j = integer(claim["binding"], "binding", 0, p + 1)
+        tau_j, _ = first_end([Fraction(1)], [f_i(sigmas, gamma.q, j)], [])
+        require(tau_j.compare(best) == 0, "the binding index does not attain the minimum")
+    return f"tau = min_i tau_i over the {p + 1} recomputed f_i (Theorem 3.4)"
+
+
+def singular_point(problem):
+    """The first h > 0 with h_r(hA) singular (a Real), or None."""
+    D, _ = method_matrices(problem.A, [Fraction(1)], problem.method.denominator)
+    roots = polys.positive_roots(D) if len(D) > 1 else []
+    return Real.root_in(D, *roots[0]) if roots else None
+
+
+def rational_threshold(problem, claim, context):
+    method = problem.method
+    require(method is not None and not method.is_polynomial, "a rational method is needed")
+    gamma = _verified(context, "gamma", "gamma_star")
+    rho = _verified(context, "rho", "absolute_monotonicity_radius")
+    require(Real.parse(claim["rho"], "rho").compare(rho) == 0, "rho differs from the verified radius")
+    require(gamma.inf != 1, "gamma* = oo: P is not invariant, no threshold exists")
+    value = Real.parse(claim["value"], "tau")
+    attained = claim["attained"]
+    H = context.get("H")
+    if claim.get("H") is not None:  # another certificate H with its own gamma_H >= gamma*
+        from .claims_invariance import check_H
+
+        H = matrix(claim["H"], "H", problem.m, problem.m)
+        check_H(problem, H)
+        gamma_H = rational(claim["gamma_H"], "gamma_H")
+        require(all(H[i][i] + gamma_H >= 0 for i in range(problem.m)), "H + gamma_H I >= 0 fails")
+        gamma = Real.rational(gamma_H)
+    if rho.is_zero():
+        require(value.is_zero() and attained, "rho = 0 gives tau = 0 (attained)")
+        return "tau = 0 (rho = 0)"
+    candidates = []  # (bound, attained there)
+    if not rho.inf and gamma.inf == 0 and gamma.q > 0:
+        candidates.append((quotient(rho, gamma), context["rho_attained"]))
+    pole = smallest_positive_root(method.denominator)
+    _same(claim.get("pole"), pole, "z_p (the smallest positive pole)")
+    alpha = None
+    if pole is not None and problem.m:
+        require(H is not None, "the gamma_star claim carries no H: the convergence bound of erratum E2 cannot be computed")
+        alpha = largest_real_root(characteristic_polynomial(H))
+        if alpha is not None and alpha.compare(ZERO) > 0:
+            candidates.append((quotient(pole, alpha), False))  # E2: the series at -rho stops converging
+    _same(claim.get("alpha"), alpha, "alpha(H)")
+    singular = singular_point(problem)
+    if singular is not None:
+        candidates.append((singular, False))  # E2': r(hA) does not exist there
+    expected, expected_attained = INF, True
+    for bound, at in candidates:
+        c = bound.compare(expected)
+        if c < 0:
+            expected, expected_attained = bound, at
+        elif c == 0:
+            expected_attained = expected_attained and at
+    require(value.compare(expected) == 0, f"tau is not min(rho/gamma*, z_p/alpha(H), first singular point) = {expected}")
+    require(attained == expected_attained, "the attained flag is wrong")
+    return ("tau = min(rho/gamma*, z_p/alpha(H), first singular h) recomputed "
+            "(Theorem 3.12 with the corrections of errata E2 and E2')")
+
+
+def _same(recorded, computed, what):
+    """A value the claim records for information must still be the true one."""
+    if recorded is not None:
+        require(computed is not None and Real.parse(recorded, what).compare(computed) == 0,
+                f"the recorded {what} is not {computed}")
+
+
+def smallest_positive_root(p):
+    roots = polys.positive_roots(p)
+    return Real.root_in(p, *roots[0]) if roots else None
+
+
+def forward_euler_threshold(problem, claim, context):
+    gens = prove_generators(problem.G, problem.b, *(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines")))
+    gamma = _verified(context, "gamma", "gamma_star")
+    best = None
+    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
+        for x in vectors:
+            Ax = matvec(problem.A, x)
+            for j, g in enumerate(problem.G):
+                rate = dot(g, Ax)
+                if kind == "line":
+                    eps = None if rate == 0 else Fraction(0)
+                elif rate <= 0:
+                    eps = None
+                else:
+                    eps = ((problem.b[j] if kind == "vertex" else 0) - dot(g, x)) / rate
+                if eps is not None and (best is None or eps < best):
+                    best = eps
+    by_vertices = INF if best is None else Real.rational(best)
+    if gamma.inf == 1:
+        by_gamma = ZERO
+    elif gamma.inf == -1 or gamma.q <= 0:
+        by_gamma = INF
+    else:
+        by_gamma = Real.rational(1 / gamma.q)
+    value = Real.parse(claim["value"], "tau")
+    require(by_vertices.compare(by_gamma) == 0, f"the ratio tests give {by_vertices} but 1/gamma* is {by_gamma}")
+    require(value.compare(by_gamma) == 0, f"the largest forward-Euler step is {by_gamma}, not {value}")
+    if "attained" in claim:
+        require(claim["attained"] is True, "the largest forward-Euler step is attained")
+    return (f"largest forward-Euler step {value}: the ratio tests over the {len(gens.vertices)} proved vertices "
+            "and 1/gamma* (Lemma 3.14) agree")

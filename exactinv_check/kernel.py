@@ -1,0 +1,169 @@
+"""The driver: read a certificate strictly, check its claims in order, report.
+
+A certificate is ``{"format": "exactinv-certificate", "version": 1 or 2,
+"problem": {...}, "claims": [...]}``.  Every key is required or optional by
+name; an unknown key, a missing key or a value of the wrong JSON type rejects
+the claim.  Claims are checked in order and may use what an earlier claim
+proved (a threshold uses the gamma* and the radius verified before it); the
+context holds only such proved facts, never data the certificate asserts.
+"""
+
+import json
+from fractions import Fraction
+
+from . import claims_invariance, claims_radius, claims_sets, claims_thresholds, polys
+from .rationals import CheckFailure, matrix, require, vector
+
+FORMAT = "exactinv-certificate"
+VERSIONS = (1, 2)
+
+# claim type -> (handler, required keys, optional keys)
+CLAIMS = {
+    "continuous_invariance": (claims_invariance.continuous_invariance, {"holds"}, {"H", "witness"}),
+    "discrete_invariance": (claims_invariance.discrete_invariance, {"holds"}, {"Ad", "dt", "H", "witness"}),
+    "gamma_star": (claims_invariance.gamma_star, {"value"}, {"paths", "H", "binding_row", "dual", "witness", "rows"}),
+    "polynomial_threshold": (claims_thresholds.polynomial_threshold, {"value"}, {"binding", "f"}),
+    "absolute_monotonicity_radius": (claims_radius.absolute_monotonicity_radius, {"value", "reason", "attained"},
+                                     {"binding", "witness_j", "tail_index", "d", "pole"}),
+    "rational_threshold": (claims_thresholds.rational_threshold, {"value", "attained", "rho"},
+                           {"pole", "alpha", "H", "gamma_H"}),
+    "largest_threshold": (claims_sets.largest_threshold, {"value", "attained", "vertices", "rays", "lines"},
+                          {"determinant", "binding"}),
+    "valid_steplengths": (claims_sets.valid_steplengths, {"intervals", "vertices", "rays", "lines"}, {"determinant"}),
+    "forward_euler_threshold": (claims_thresholds.forward_euler_threshold, {"value", "vertices", "rays", "lines"},
+                                {"attained"}),
+}
+_BOOLEAN_KEYS = {"holds", "attained"}
+
+
+class BadInput(Exception):
+    """The input is not a certificate at all (unreadable, not JSON, wrong format)."""
+
+
+class Method:
+    """r = g/h from the problem, normalised to h(0) > 0 (and h = 1 for polynomials)."""
+
+    def __init__(self, record):
+        require(isinstance(record, dict) and set(record) <= {"name", "numerator", "denominator"}
+                and {"numerator", "denominator"} <= set(record), "method has the keys name, numerator, denominator")
+        num = polys.trim(vector(record["numerator"], "method numerator"))
+        den = polys.trim(vector(record["denominator"], "method denominator"))
+        require(den and den[0] != 0, "the method's denominator vanishes at 0")
+        require(num and num[0] == den[0], "r(0) != 1")
+        require(len(num) - 1 <= polys.MAX_DEGREE and len(den) - 1 <= polys.MAX_DEGREE, "method degree too large")
+        if den[0] < 0:
+            num, den = [-c for c in num], [-c for c in den]
+        if len(den) == 1:
+            num, den = [c / den[0] for c in num], [Fraction(1)]
+        self.name = record.get("name")
+        self.numerator, self.denominator = num, den
+        self.is_polynomial = len(den) == 1
+
+
+class Problem:
+    """A, G, b (each shape-checked) and the method; radius certificates have only the method."""
+
+    def __init__(self, record):
+        require(isinstance(record, dict) and set(record) <= {"A", "G", "b", "method"}, "problem has the keys A, G, b, method")
+        self.method = Method(record["method"]) if record.get("method") is not None else None
+        if {"A", "G", "b"} & set(record):
+            require({"A", "G", "b"} <= set(record), "problem needs all of A, G, b")
+            self.A = matrix(record["A"], "A")
+            self.n = len(self.A)
+            require(self.n >= 1 and all(len(r) == self.n for r in self.A), "A is not a nonempty square matrix")
+            self.G = matrix(record["G"], "G", cols=self.n)
+            self.m = len(self.G)
+            self.b = vector(record["b"], "b", self.m)
+            require(all(any(row) for row in self.G), "G has a zero row (void or infeasible; exactinv never writes one)")
+        else:
+            self.A = self.G = self.b = None
+            self.n = self.m = 0
+
+
+class CheckReport:
+    """The verdict per claim; ``ok`` is True only if there is a claim and every claim verified."""
+
+    def __init__(self, verdicts, bad_input=False):
+        self.verdicts = verdicts  # list of (claim type, ok, message)
+        self.bad_input = bad_input
+
+    @property
+    def ok(self):
+        return bool(self.verdicts) and all(ok for _, ok, _ in self.verdicts)
+
+    def __bool__(self):
+        return self.ok
+
+    def __str__(self):
+        lines = [f"[{'ok' if ok else 'REJECTED'}] {kind}: {msg}" for kind, ok, msg in self.verdicts]
+        lines.append("certificate VERIFIED" if self.ok else "certificate REJECTED")
+        return "\n".join(lines)
+
+    __repr__ = __str__
+
+
+def load(certificate):
+    """A certificate dict from a dict, a JSON string or a path; BadInput otherwise."""
+    if isinstance(certificate, dict):
+        return certificate
+    try:
+        if isinstance(certificate, str) and certificate.lstrip().startswith("{"):
+            data = json.loads(certificate, parse_float=_no_float, parse_constant=_no_float)
+        else:
+            with open(certificate, encoding="utf-8") as fh:
+                data = json.load(fh, parse_float=_no_float, parse_constant=_no_float)
+    except (OSError, TypeError) as exc:
+        raise BadInput(f"cannot read {certificate!r}: {exc}") from None
+    except (ValueError, CheckFailure) as exc:
+        raise BadInput(f"not valid JSON: {exc}") from None
+    if not isinstance(data, dict):
+        raise BadInput("a certificate is a JSON object")
+    return data
+
+
+def _no_float(text):
+    raise CheckFailure(f"the JSON number {text} is not exact: certificates write numbers as strings")
+
+
+def _check_keys(claim, kind):
+    _, required, optional = CLAIMS[kind]
+    keys = set(claim) - {"type"}
+    require(required <= keys, f"missing keys {sorted(required - keys)}")
+    require(keys <= required | optional, f"unknown keys {sorted(keys - required - optional)}")
+    for key in _BOOLEAN_KEYS & keys:
+        require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
+
+
+def check(certificate):
+    """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
+
+    Returns a :class:`CheckReport`, truthy only if every claim was proved."""
+    try:
+        cert = load(certificate)
+    except BadInput as exc:
+        return CheckReport([("input", False, str(exc))], bad_input=True)
+    if cert.get("format") != FORMAT:
+        return CheckReport([("input", False, "not an exactinv certificate (format is missing or wrong)")], bad_input=True)
+    try:
+        require(set(cert) == {"format", "version", "problem", "claims"}, "a certificate has exactly the keys "
+                "format, version, problem, claims")
+        require(cert["version"] in VERSIONS and not isinstance(cert["version"], bool),
+                f"unsupported certificate version {cert['version']!r}")
+        problem = Problem(cert["problem"])
+        require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
+    except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
+            RecursionError) as exc:
+        return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
+    context, verdicts = {}, []
+    for claim in cert["claims"]:
+        kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
+        try:
+            require(kind in CLAIMS, f"unknown claim type {kind!r}")
+            _check_keys(claim, kind)
+            if kind != "absolute_monotonicity_radius":
+                require(problem.A is not None, f"a {kind} claim needs A, G and b in the problem")
+            verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
+        except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
+                RecursionError) as exc:
+            verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))
+    return CheckReport(verdicts)

@@ -1,0 +1,285 @@
+"""Polynomials over Q, coefficient lists from x^0 up, and their real roots.
+
+Everything the kernel knows about roots comes from Sturm sequences: exact
+counts of distinct real roots in half-open intervals, with no tolerance and no
+float.  Root isolation bisects until each interval holds one root.
+"""
+
+from fractions import Fraction
+from math import gcd as _igcd
+
+from .rationals import CheckFailure, require
+
+MAX_DEGREE = 400  # bound on every polynomial the kernel builds from a certificate
+MAX_BISECTIONS = 4000
+
+
+def trim(p):
+    p = list(p)
+    while p and p[-1] == 0:
+        p.pop()
+    return p
+
+
+def degree(p):
+    return len(trim(p)) - 1
+
+
+def evaluate(p, x):
+    acc = Fraction(0)
+    for c in reversed(p):
+        acc = acc * x + c
+    return acc
+
+
+def sign(x):
+    return (x > 0) - (x < 0)
+
+
+def add(p, q):
+    n = max(len(p), len(q))
+    return trim([(p[i] if i < len(p) else 0) + (q[i] if i < len(q) else 0) for i in range(n)])
+
+
+def sub(p, q):
+    return add(p, [-c for c in q])
+
+
+def scale(p, c):
+    return trim([c * a for a in p])
+
+
+def mul(p, q):
+    if not p or not q:
+        return []
+    out = [Fraction(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for j, b in enumerate(q):
+                out[i + j] += a * b
+    return trim(out)
+
+
+def power(p, k):
+    out = [Fraction(1)]
+    for _ in range(k):
+        out = mul(out, p)
+    return out
+
+
+def derivative(p):
+    return trim([k * p[k] for k in range(1, len(p))])
+
+
+def divmod_(p, d):
+    p, d = trim(p), trim(d)
+    require(d, "division by the zero polynomial")
+    q = [Fraction(0)] * max(len(p) - len(d) + 1, 1)
+    r = list(p)
+    lead = d[-1]
+    while r and len(r) >= len(d):
+        shift = len(r) - len(d)
+        c = Fraction(r[-1]) / lead
+        q[shift] = c
+        for k, dk in enumerate(d):
+            r[k + shift] -= c * dk
+        r = trim(r)
+    return trim(q), r
+
+
+def primitive(p):
+    """p scaled by a POSITIVE rational to coprime integer coefficients (sign kept)."""
+    p = trim(p)
+    if not p:
+        return []
+    den = 1
+    for c in p:
+        den = den * Fraction(c).denominator // _igcd(den, Fraction(c).denominator)
+    ints = [int(c * den) for c in p]
+    g = 0
+    for c in ints:
+        g = _igcd(g, c)
+    return [Fraction(c // g) for c in ints]
+
+
+def monic(p):
+    p = trim(p)
+    return [c / p[-1] for c in p] if p else p
+
+
+def gcd(p, q):
+    p, q = primitive(p), primitive(q)
+    while q:
+        p, q = q, primitive(divmod_(p, q)[1])
+    return monic(p)
+
+
+def squarefree(p):
+    """The squarefree part p / gcd(p, p'), primitive, with p's leading sign."""
+    p = trim(p)
+    if len(p) <= 2:
+        return primitive(p)
+    g = gcd(p, derivative(p))
+    return primitive(divmod_(p, g)[0]) if len(g) > 1 else primitive(p)
+
+
+def odd_part(p):
+    """The product of the squarefree factors of odd multiplicity (Yun), monic."""
+    p = trim(p)
+    if len(p) <= 1:
+        return [Fraction(1)]
+    a = gcd(p, derivative(p))
+    b = divmod_(p, a)[0]
+    d = sub(divmod_(derivative(p), a)[0], derivative(b))
+    odd, k = [Fraction(1)], 1
+    while len(b) > 1:
+        require(k <= MAX_DEGREE, "squarefree decomposition does not terminate")
+        factor = gcd(b, d)
+        if k % 2 == 1:
+            odd = mul(odd, factor)
+        b = divmod_(b, factor)[0]
+        d = sub(divmod_(d, factor)[0], derivative(b))
+        k += 1
+    return monic(odd)
+
+
+def strip_zero_roots(p):
+    p = trim(p)
+    while p and p[0] == 0:
+        p = p[1:]
+    return p
+
+
+def sign_right_of(p, x):
+    """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0)."""
+    q = trim(p)
+    while q:
+        s = sign(evaluate(q, x))
+        if s:
+            return s
+        q = derivative(q)
+    return 0
+
+
+def sign_left_of(p, x):
+    """The sign of p on (x - eps, x) for small eps > 0."""
+    q, flips = trim(p), 1
+    while q:
+        s = sign(evaluate(q, x))
+        if s:
+            return s * flips
+        q, flips = derivative(q), -flips
+    return 0
+
+
+class Sturm:
+    """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
+
+    def __init__(self, p):
+        p = primitive(p)
+        require(len(p) - 1 <= MAX_DEGREE, f"polynomial of degree {len(p) - 1} exceeds the kernel's bound")
+        self.p = p
+        seq = [p, primitive(derivative(p))] if len(p) > 1 else [p]
+        while len(seq) > 1 and seq[-1]:
+            seq.append([-c for c in primitive(divmod_(seq[-2], seq[-1])[1])])
+        self.seq = [s for s in seq if s]
+
+    def _variations_at(self, x):
+        if x is None:  # +oo
+            values = [s[-1] for s in self.seq]
+        else:
+            values = [evaluate(s, x) for s in self.seq]
+        signs = [v > 0 for v in values if v != 0]
+        return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+
+    def count(self, a, b):
+        """Distinct real roots in (a, b]; b = None means +oo."""
+        return self._variations_at(a) - self._variations_at(b)
+
+
+def count_roots(p, a, b):
+    """Distinct real roots of p in (a, b] (b = None: +oo)."""
+    if len(trim(p)) <= 1:
+        return 0
+    return Sturm(p).count(a, b)
+
+
+def cauchy_bound(p):
+    """Every real root of p lies in [-B, B]."""
+    p = trim(p)
+    return 1 + max(abs(c / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
+
+
+def positive_roots(p):
+    """The distinct positive real roots of p as isolating data, in increasing order:
+    a list of (lo, hi) with lo < hi (one root in the open (lo, hi), none at the ends)
+    or (q, q) for an exact rational root q."""
+    p = strip_zero_roots(p)
+    if len(p) <= 1:
+        return []
+    sturm = Sturm(squarefree(p))
+    q = sturm.p
+    out = []
+    stack = [(Fraction(0), cauchy_bound(p))]  # open intervals; every root is < the Cauchy bound
+    steps = 0
+    while stack:
+        a, b = stack.pop()
+        steps += 1
+        require(steps <= MAX_BISECTIONS * len(p), "root isolation does not terminate")
+        b_root = evaluate(q, b) == 0
+        k = sturm.count(a, b) - b_root  # roots in the open (a, b)
+        if k == 0:
+            continue
+        if k == 1 and not b_root and evaluate(q, a) != 0:
+            out.append((a, b))
+            continue
+        m = (a + b) / 2
+        if evaluate(q, m) == 0:
+            out.append((m, m))
+        stack.append((m, b))
+        stack.append((a, m))
+    out.sort(key=lambda iv: iv[0])
+    return out
+
+
+def resultant(f, g):
+    """The resultant of f and g over Q (Euclid's algorithm on the defining identity
+    res(f, g) = lc(g)^deg f * prod_{g(b)=0} f(b))."""
+    f, g = trim(f), trim(g)
+    if not f or not g:
+        return Fraction(0)
+    result = Fraction(1)
+    while len(g) > 1:
+        df, dg = len(f) - 1, len(g) - 1
+        r = divmod_(f, g)[1]
+        if not r:
+            return Fraction(0)
+        dr = len(r) - 1
+        # res(f, g) = (-1)^(df dg) res(g, f) = (-1)^(df dg) lc(g)^(df - dr) res(g, r)
+        result *= (-1) ** (df * dg) * g[-1] ** (df - dr)
+        f, g = g, r
+    return result * g[0] ** (len(f) - 1)
+
+
+def interpolate(points, values):
+    """The polynomial of degree < len(points) through (points, values) (Newton form)."""
+    k = len(points)
+    coef = list(values)
+    for level in range(1, k):
+        for i in range(k - 1, level - 1, -1):
+            coef[i] = (coef[i] - coef[i - 1]) / (points[i] - points[i - level])
+    result = [coef[-1]] if coef else []
+    for i in range(k - 2, -1, -1):
+        result = add(mul(result, [-points[i], Fraction(1)]), [coef[i]])
+    return trim(result)
+
+
+def quotient_polynomial(p, q):
+    """A nonzero polynomial in t vanishing at a/b for every root a of p and b != 0 of q:
+    res_y(p(t y), q(y)), by evaluation and interpolation."""
+    p, q = strip_zero_roots(p), strip_zero_roots(q)
+    dp, dq = len(p) - 1, len(q) - 1
+    require(dp * dq <= MAX_DEGREE, "the quotient of two algebraic numbers has too large a degree for this kernel")
+    points = [Fraction(k) for k in range(dp * dq + 1)]
+    values = [resultant([c * t ** k for k, c in enumerate(p)], q) for t in points]
+    return interpolate(points, values)

@@ -1,0 +1,159 @@
+"""Exact rationals, vectors and matrices read from a certificate -- strictly.
+
+Every number in a certificate is a string: an integer or a fraction
+("-3/4"), a finite decimal ("0.125"), or "oo" / "-oo" where the format
+allows an infinity.  Anything else -- a JSON float, a bool, an exponent, an
+over-long string -- is rejected, so parsing can neither hang nor guess.
+"""
+
+import re
+from fractions import Fraction
+
+MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
+MAX_DIMENSION = 2000  # bound on every vector and matrix dimension
+
+_NUMBER = re.compile(r"[+-]?[0-9]+(?:/[0-9]+|\.[0-9]+)?")
+
+
+class CheckFailure(Exception):
+    """A claim did not verify; the message says which fact failed."""
+
+
+def require(condition, message):
+    """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
+    if not condition:
+        raise CheckFailure(message)
+
+
+def rational(s, what="number"):
+    """A Fraction from an exact number string (never from a float or bool)."""
+    if isinstance(s, bool) or not isinstance(s, (str, int)):
+        raise CheckFailure(f"{what}: expected an exact number string, got {s!r}")
+    if isinstance(s, int):
+        require(abs(s).bit_length() <= 4 * MAX_DIGITS, f"{what}: integer too large")
+        return Fraction(s)
+    require(len(s) <= MAX_DIGITS, f"{what}: number string longer than {MAX_DIGITS} characters")
+    require(_NUMBER.fullmatch(s) is not None, f"{what}: {s!r} is not an exact rational")
+    try:
+        return Fraction(s)
+    except ZeroDivisionError:
+        raise CheckFailure(f"{what}: {s!r} has a zero denominator") from None
+
+
+def integer(x, what, low=None, high=None):
+    """A JSON integer (not a bool) in [low, high)."""
+    require(isinstance(x, int) and not isinstance(x, bool), f"{what}: expected an integer, got {x!r}")
+    require((low is None or x >= low) and (high is None or x < high), f"{what}: {x} is out of range")
+    return x
+
+
+def boolean(x, what):
+    """A JSON boolean (not the string "false", not 0/1)."""
+    require(isinstance(x, bool), f"{what}: expected true or false, got {x!r}")
+    return x
+
+
+def vector(v, what, length=None):
+    """A list of rationals, of the given length when one is given."""
+    require(isinstance(v, list), f"{what}: expected a list")
+    require(len(v) <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too long")
+    require(length is None or len(v) == length, f"{what}: expected {length} entries, got {len(v)}")
+    return [rational(x, what) for x in v]
+
+
+def matrix(M, what, rows=None, cols=None):
+    """A list of equal-length rows of rationals (shape checked when given)."""
+    require(isinstance(M, list), f"{what}: expected a list of rows")
+    require(rows is None or len(M) == rows, f"{what}: expected {rows} rows, got {len(M)}")
+    out = [vector(r, what) for r in M]
+    width = cols if cols is not None else (len(out[0]) if out else 0)
+    require(all(len(r) == width for r in out), f"{what}: rows of unequal or wrong length")
+    return out
+
+
+def dot(u, v):
+    require(len(u) == len(v), "vector lengths differ")
+    return sum(a * b for a, b in zip(u, v))
+
+
+def matvec(X, v):
+    return [dot(row, v) for row in X]
+
+
+def matmul(X, Y):
+    cols = list(zip(*Y)) if Y else []
+    return [[dot(row, col) for col in cols] for row in X]
+
+
+def transpose(X):
+    return [list(r) for r in zip(*X)]
+
+
+def identity(n):
+    return [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
+
+
+def rank_and_nullspace(M, n):
+    """(rank, a basis of {x : Mx = 0}) of a list of rows of length n, by Gauss-Jordan."""
+    rows = [list(r) for r in M]
+    pivots = []
+    r = 0
+    for col in range(n):
+        pivot = next((i for i in range(r, len(rows)) if rows[i][col] != 0), None)
+        if pivot is None:
+            continue
+        rows[r], rows[pivot] = rows[pivot], rows[r]
+        inv = 1 / rows[r][col]
+        rows[r] = [v * inv for v in rows[r]]
+        for i in range(len(rows)):
+            if i != r and rows[i][col] != 0:
+                f = rows[i][col]
+                rows[i] = [a - f * c for a, c in zip(rows[i], rows[r])]
+        pivots.append(col)
+        r += 1
+    free = [c for c in range(n) if c not in pivots]
+    basis = []
+    for f in free:
+        x = [Fraction(0)] * n
+        x[f] = Fraction(1)
+        for i, c in enumerate(pivots):
+            x[c] = -rows[i][f]
+        basis.append(x)
+    return r, basis
+
+
+def solve(M, B):
+    """X with M X = B (Gauss-Jordan over Q, M square); None if M is singular."""
+    n = len(M)
+    aug = [list(M[i]) + list(B[i]) for i in range(n)]
+    for col in range(n):
+        pivot = next((r for r in range(col, n) if aug[r][col] != 0), None)
+        if pivot is None:
+            return None
+        aug[col], aug[pivot] = aug[pivot], aug[col]
+        inv = 1 / aug[col][col]
+        aug[col] = [v * inv for v in aug[col]]
+        for r in range(n):
+            if r != col and aug[r][col] != 0:
+                f = aug[r][col]
+                aug[r] = [a - f * c for a, c in zip(aug[r], aug[col])]
+    return [row[n:] for row in aug]
+
+
+def determinant(M):
+    n = len(M)
+    a = [list(r) for r in M]
+    det = Fraction(1)
+    for col in range(n):
+        pivot = next((r for r in range(col, n) if a[r][col] != 0), None)
+        if pivot is None:
+            return Fraction(0)
+        if pivot != col:
+            a[col], a[pivot] = a[pivot], a[col]
+            det = -det
+        det *= a[col][col]
+        for r in range(col + 1, n):
+            f = a[r][col] / a[col][col]
+            if f:
+                a[r] = [x - f * y for x, y in zip(a[r], a[col])]
+    return det

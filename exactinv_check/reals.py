@@ -1,0 +1,202 @@
+"""Exact real numbers of a certificate: rationals, +-infinity, real algebraic numbers.
+
+A real algebraic number is written ``{"poly": [c0, c1, ...], "interval": [lo, hi]}``:
+the unique root of c0 + c1 x + ... in the open interval (lo, hi).  The kernel
+accepts it only after proving, by a Sturm count of the squarefree part, that
+(lo, hi) holds exactly one root and that neither end is a root.  Ordering and
+equality are then decided exactly (bisection and gcds), never by tolerance.
+"""
+
+from fractions import Fraction
+
+from . import polys
+from .polys import evaluate, sign
+from .rationals import CheckFailure, rational, require
+
+MAX_REFINEMENTS = 3000
+
+
+class Real:
+    """A proved real: ``q`` (a Fraction), ``inf`` (+1/-1) or an isolated root."""
+
+    __slots__ = ("inf", "q", "poly", "lo", "hi", "_sturm")
+
+    def __init__(self, inf=0, q=None, poly=None, lo=None, hi=None):
+        self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
+        self._sturm = None
+
+    # -------------------------------------------------------- construction
+    @classmethod
+    def parse(cls, data, what="number", infinite=True):
+        if isinstance(data, str) and data in ("oo", "-oo"):
+            require(infinite, f"{what}: infinity is not allowed here")
+            return cls(inf=1 if data == "oo" else -1)
+        if isinstance(data, dict):
+            require(set(data) == {"poly", "interval"}, f"{what}: an algebraic number has exactly the keys poly, interval")
+            poly = polys.trim([rational(c, what) for c in data["poly"]])
+            require(isinstance(data["interval"], list) and len(data["interval"]) == 2, f"{what}: interval needs two ends")
+            lo, hi = (rational(x, what) for x in data["interval"])
+            return cls.algebraic(poly, lo, hi, what)
+        return cls(q=rational(data, what))
+
+    @classmethod
+    def rational(cls, q):
+        return cls(q=Fraction(q))
+
+    @classmethod
+    def algebraic(cls, poly, lo, hi, what="number"):
+        """The unique root of poly in the open (lo, hi) -- proved, or CheckFailure."""
+        require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
+        require(lo < hi, f"{what}: empty isolating interval")
+        p = polys.squarefree(poly)
+        require(evaluate(p, lo) != 0 and evaluate(p, hi) != 0, f"{what}: an end of the interval is a root")
+        require(polys.count_roots(p, lo, hi) == 1, f"{what}: the interval does not isolate exactly one root")
+        return cls._made(p, lo, hi)
+
+    @classmethod
+    def _made(cls, p, lo, hi):
+        if len(p) == 2:  # a linear polynomial: the root is rational
+            return cls(q=-p[0] / p[1])
+        return cls(poly=p, lo=lo, hi=hi)
+
+    @classmethod
+    def root_in(cls, p, lo, hi):
+        """From (lo, hi) data of polys.positive_roots (lo == hi: the rational root)."""
+        return cls(q=lo) if lo == hi else cls._made(polys.squarefree(polys.strip_zero_roots(p)), lo, hi)
+
+    # -------------------------------------------------------------- queries
+    @property
+    def is_rational(self):
+        return not self.inf and self.poly is None
+
+    def is_zero(self):
+        return self.is_rational and self.q == 0
+
+    def bounds(self):
+        """Rational (lower, upper) with lower <= self <= upper; None for infinities."""
+        if self.inf:
+            return None
+        return (self.q, self.q) if self.poly is None else (self.lo, self.hi)
+
+    def bisect(self):
+        mid = (self.lo + self.hi) / 2
+        s = sign(evaluate(self.poly, mid))
+        if s == 0:
+            self.q, self.poly = mid, None
+        elif s == sign(evaluate(self.poly, self.lo)):
+            self.lo = mid
+        else:
+            self.hi = mid
+
+    def refine_below(self, width):
+        """Bisect until the enclosure is narrower than width."""
+        for _ in range(MAX_REFINEMENTS):
+            if self.poly is None or self.hi - self.lo < width:
+                return
+            self.bisect()
+
+    def sign_of(self, f):
+        """The exact sign of the polynomial f at this (finite) real."""
+        require(not self.inf, "sign at infinity")
+        f = polys.trim(f)
+        if not f:
+            return 0
+        if self.poly is None:
+            return sign(evaluate(f, self.q))
+        g = polys.gcd(f, self.poly)
+        if len(g) > 1 and sign(evaluate(g, self.lo)) * sign(evaluate(g, self.hi)) < 0:
+            return 0  # g divides the squarefree poly, so it has at most this one root in (lo, hi)
+        fs = polys.squarefree(f)
+        sturm = polys.Sturm(fs)
+        for _ in range(MAX_REFINEMENTS):
+            if self.poly is None:
+                return sign(evaluate(f, self.q))
+            if evaluate(fs, self.lo) != 0 and sturm.count(self.lo, self.hi) == 0:
+                return sign(evaluate(f, self.lo))
+            self.bisect()
+        raise CheckFailure("could not decide a sign at an algebraic number")
+
+    def compare(self, other):
+        """-1, 0 or 1: the exact order of self and other."""
+        if self.inf or other.inf:
+            return sign(self.inf - other.inf)
+        if self.poly is None and other.poly is None:
+            return sign(self.q - other.q)
+        if self.poly is None:
+            return -other.compare(self)
+        if other.poly is None:  # self algebraic, other rational
+            s = self.sign_of([-other.q, Fraction(1)])
+            return s
+        for _ in range(MAX_REFINEMENTS):
+            if self.poly is None or other.poly is None:
+                return self.compare(other)
+            if self.hi <= other.lo:
+                return -1
+            if other.hi <= self.lo:
+                return 1
+            lo, hi = max(self.lo, other.lo), min(self.hi, other.hi)
+            g = polys.gcd(self.poly, other.poly)
+            if len(g) > 1:
+                # a common root in the overlap is the root of both (each interval isolates one)
+                if evaluate(g, lo) != 0 and evaluate(g, hi) != 0 and polys.count_roots(g, lo, hi) == 1:
+                    return 0
+            self.bisect()
+            other.bisect()
+        raise CheckFailure("could not separate two real numbers")
+
+    def __str__(self):
+        if self.inf:
+            return "oo" if self.inf > 0 else "-oo"
+        if self.poly is None:
+            return str(self.q)
+        return f"root of {[str(c) for c in self.poly]} in ({self.lo}, {self.hi})"
+
+
+def separate(a, b):
+    """Rationals a1 < b0 with a <= a1 < b0 <= b, for reals a < b (refining them)."""
+    for _ in range(MAX_REFINEMENTS):
+        a1, b0 = a.bounds()[1], b.bounds()[0]
+        if a1 < b0:
+            return a1, b0
+        if a.poly is not None:
+            a.bisect()
+        if b.poly is not None:
+            b.bisect()
+    raise CheckFailure("two reals could not be separated")
+
+
+def quotient(a, b):
+    """a / b as a Real, for a finite Real a and a rational or algebraic b > 0."""
+    require(not a.inf and not b.inf and b.compare(Real.rational(0)) > 0, "quotient needs finite a and b > 0")
+    if b.poly is None:
+        if a.poly is None:
+            return Real.rational(a.q / b.q)
+        return Real._made(polys.squarefree([c * b.q ** k for k, c in enumerate(a.poly)]), a.lo / b.q, a.hi / b.q)
+    if a.poly is None:
+        if a.q == 0:
+            return Real.rational(0)
+        while b.poly is not None and b.lo <= 0:
+            b.bisect()
+        if b.poly is None:
+            return quotient(a, b)
+        # b root of p  =>  a/b root of x^d p(a/x)
+        rev = list(reversed(b.poly))
+        poly = polys.squarefree([c / a.q ** k for k, c in enumerate(rev)])
+        lo, hi = sorted((a.q / b.hi, a.q / b.lo))
+        return Real.algebraic(poly, lo, hi, "quotient")
+    for x in (a, b):
+        while x.poly is not None and x.lo <= 0:
+            x.bisect()
+    if a.poly is None or b.poly is None:
+        return quotient(a, b)
+    t = polys.squarefree(polys.quotient_polynomial(a.poly, b.poly))
+    sturm = polys.Sturm(t)
+    for _ in range(MAX_REFINEMENTS):  # refine a and b until their quotient's enclosure isolates one root of t
+        if a.poly is None or b.poly is None:
+            return quotient(a, b)
+        lo, hi = a.lo / b.hi, a.hi / b.lo
+        if evaluate(t, lo) != 0 and evaluate(t, hi) != 0 and sturm.count(lo, hi) == 1:
+            return Real._made(t, lo, hi)
+        a.bisect()
+        b.bisect()
+    raise CheckFailure("could not isolate a quotient of two algebraic numbers")

@@ -1,0 +1,148 @@
+"""The exact set {h >= 0 : every inequality >= 0, every equality = 0, D(h) != 0}.
+
+Recomputed from scratch, trusting no claimed end: every positive root of
+every condition and of D is isolated (Sturm), the roots are merged in exact
+order, the sign of each condition on each open cell is decided at a rational
+sample point and tracked across the roots, and each root itself is decided
+exactly (a condition vanishes there iff the root is one of its own).  The
+result is the list of maximal intervals, each end exact and marked closed or
+open -- what a valid-set claim must equal.
+"""
+
+from fractions import Fraction
+from functools import cmp_to_key
+
+from . import polys
+from .reals import Real, separate
+
+
+class Interval:
+    """[lo, hi] with open/closed ends; hi may be +infinity (then open)."""
+
+    __slots__ = ("lo", "hi", "lo_closed", "hi_closed")
+
+    def __init__(self, lo, hi, lo_closed, hi_closed):
+        self.lo, self.hi, self.lo_closed, self.hi_closed = lo, hi, lo_closed, hi_closed
+
+    def __repr__(self):
+        return f"{'[' if self.lo_closed else '('}{self.lo}, {self.hi}{']' if self.hi_closed else ')'}"
+
+
+def _no_positive_root(p):
+    """Descartes: no sign variation among the coefficients means no positive root."""
+    signs = [c > 0 for c in p if c != 0]
+    return all(s == signs[0] for s in signs)
+
+
+def _breakpoints(named):
+    """Sorted distinct positive roots of the named polynomials, each with the
+    set of names that vanish there."""
+    roots = []
+    for name, p in named:
+        if _no_positive_root(p):
+            continue
+        for lo, hi in polys.positive_roots(p):
+            roots.append((Real.root_in(p, lo, hi), name))
+    roots.sort(key=cmp_to_key(lambda x, y: x[0].compare(y[0])))
+    merged = []
+    for real, name in roots:
+        if merged and merged[-1][0].compare(real) == 0:
+            merged[-1][1].add(name)
+        else:
+            merged.append((real, {name}))
+    return merged
+
+
+def valid_set(D, inequalities, equalities):
+    """The maximal intervals of valid h >= 0 (see the module docstring)."""
+    ineq = [("i", k, list(p)) for k, p in enumerate(inequalities)]
+    eq = [("e", k, list(p)) for k, p in enumerate(equalities)]
+    D = polys.trim(D)
+    named = [((kind, k), p) for kind, k, p in ineq + eq]
+    if len(D) > 1:
+        named.append((("D", 0), D))
+    polys_by_name = dict(named)
+    points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
+    points += _breakpoints(named)
+
+    def cell_sample(k):
+        if k + 1 < len(points):
+            a1, b0 = separate(points[k][0], points[k + 1][0])
+            return (a1 + b0) / 2
+        return points[k][0].bounds()[1] + 1
+
+    # signs of the inequalities on the current cell; only those vanishing at a
+    # breakpoint can change sign there, so only they are re-evaluated
+    sample = cell_sample(0)
+    negative = {("i", k) for _, k, p in ineq if polys.evaluate(p, sample) < 0}
+    elements = []  # (kind, index, valid): ("point", k) then ("cell", k) alternately
+    eq_names = {("e", k) for _, k, _ in eq}
+    for k, (real, vanishing) in enumerate(points):
+        if k == 0:  # decided by evaluation: the cell signs say nothing about h = 0 itself
+            point_ok = (eq_names <= vanishing and ("D", 0) not in vanishing
+                        and all(polys.evaluate(p, Fraction(0)) >= 0 for _, _, p in ineq))
+        else:  # an inequality not vanishing here has the sign of the cell on the left
+            point_ok = eq_names <= vanishing and ("D", 0) not in vanishing and not (negative - vanishing)
+        elements.append(("point", k, point_ok))
+        sample = cell_sample(k)
+        for name in vanishing:
+            if name[0] == "i":
+                if polys.evaluate(polys_by_name[name], sample) < 0:
+                    negative.add(name)
+                else:
+                    negative.discard(name)
+        elements.append(("cell", k, not negative and not eq))
+    return _intervals(points, elements)
+
+
+def _intervals(points, elements):
+    out = []
+    current = None
+    for kind, k, ok in elements:
+        if ok and current is None:
+            current = Interval(points[k][0], None, kind == "point", False)
+        if ok:
+            end = (kind, k)
+        if not ok and current is not None:
+            kind_e, k_e = end
+            current.hi = points[k_e][0] if kind_e == "point" else points[k_e + 1][0]
+            current.hi_closed = kind_e == "point"
+            out.append(current)
+            current = None
+    if current is not None:
+        current.hi = Real(inf=1)
+        out.append(current)
+    return out
+
+
+def first_end(D, inequalities, equalities):
+    """(tau, attained): the end of the valid interval that starts at 0.
+
+    tau = min over the inequalities c of sup{T : c >= 0 on [0, T]} (the first
+    sign change of c, or 0 if c < 0 right after 0), over the equalities (0 if
+    any is not identically zero) and over the first positive root of D (not
+    attained there)."""
+    if equalities:
+        return Real.rational(0), True
+    best, attained = Real(inf=1), True
+    for p in inequalities:
+        p = list(p)
+        if polys.sign_right_of(p, Fraction(0)) < 0:
+            return Real.rational(0), True
+        if _no_positive_root(p):
+            continue
+        odd = polys.strip_zero_roots(polys.odd_part(p))
+        roots = polys.positive_roots(odd) if len(odd) > 1 else []
+        if roots:
+            tau = Real.root_in(odd, *roots[0])
+            if tau.compare(best) < 0:
+                best = tau
+    D = polys.trim(D)
+    if len(D) > 1:
+        roots = polys.positive_roots(D)
+        if roots:
+            pole = Real.root_in(D, *roots[0])
+            c = pole.compare(best)
+            if c <= 0:
+                best, attained = pole, False
+    return best, attained
