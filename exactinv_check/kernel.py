@@ -9,6 +9,7 @@ context holds only such proved facts, never data the certificate asserts.
 """
 
 import json
+import os
 from fractions import Fraction
 
 from . import claims_invariance, claims_radius, claims_sets, claims_thresholds, polys
@@ -16,6 +17,9 @@ from .rationals import CheckFailure, matrix, require, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2)
+MAX_METHOD_DEGREE = 64
+_ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
+           RecursionError, OverflowError, MemoryError)
 
 # claim type -> (handler, required keys, optional keys)
 CLAIMS = {
@@ -50,9 +54,14 @@ class Method:
         den = polys.trim(vector(record["denominator"], "method denominator"))
         require(den and den[0] != 0, "the method's denominator vanishes at 0")
         require(num and num[0] == den[0], "r(0) != 1")
-        require(len(num) - 1 <= polys.MAX_DEGREE and len(den) - 1 <= polys.MAX_DEGREE, "method degree too large")
+        require(len(num) - 1 <= MAX_METHOD_DEGREE and len(den) - 1 <= MAX_METHOD_DEGREE,
+                f"method degree above the kernel's bound {MAX_METHOD_DEGREE}")
         if den[0] < 0:
             num, den = [-c for c in num], [-c for c in den]
+        common = polys.gcd(num, den)
+        if len(common) > 1:  # r is the reduced function: a cancelled factor is no pole
+            num, den = polys.divmod_(num, common)[0], polys.divmod_(den, common)[0]
+            num, den = [c / den[0] for c in num], [c / den[0] for c in den]
         if len(den) == 1:
             num, den = [c / den[0] for c in num], [Fraction(1)]
         self.name = record.get("name")
@@ -106,19 +115,29 @@ def load(certificate):
     """A certificate dict from a dict, a JSON string or a path; BadInput otherwise."""
     if isinstance(certificate, dict):
         return certificate
+    if not isinstance(certificate, (str, os.PathLike)):
+        raise BadInput(f"expected a certificate dict, JSON text or a path, got {type(certificate).__name__}")
+    strict = {"parse_float": _no_float, "parse_constant": _no_float, "object_pairs_hook": _no_duplicates}
     try:
         if isinstance(certificate, str) and certificate.lstrip().startswith("{"):
-            data = json.loads(certificate, parse_float=_no_float, parse_constant=_no_float)
+            data = json.loads(certificate, **strict)
         else:
             with open(certificate, encoding="utf-8") as fh:
-                data = json.load(fh, parse_float=_no_float, parse_constant=_no_float)
-    except (OSError, TypeError) as exc:
+                data = json.load(fh, **strict)
+    except OSError as exc:
         raise BadInput(f"cannot read {certificate!r}: {exc}") from None
-    except (ValueError, CheckFailure) as exc:
-        raise BadInput(f"not valid JSON: {exc}") from None
+    except (ValueError, CheckFailure, RecursionError) as exc:
+        raise BadInput(f"not valid JSON: {type(exc).__name__}: {exc}") from None
     if not isinstance(data, dict):
         raise BadInput("a certificate is a JSON object")
     return data
+
+
+def _no_duplicates(pairs):
+    keys = [k for k, _ in pairs]
+    if len(set(keys)) != len(keys):
+        raise CheckFailure(f"duplicate JSON keys {sorted({k for k in keys if keys.count(k) > 1})}: ambiguous")
+    return dict(pairs)
 
 
 def _no_float(text):
@@ -151,8 +170,7 @@ def check(certificate):
                 f"unsupported certificate version {cert['version']!r}")
         problem = Problem(cert["problem"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
-    except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
-            RecursionError) as exc:
+    except _ERRORS as exc:
         return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
     context, verdicts = {}, []
     for claim in cert["claims"]:
@@ -163,7 +181,6 @@ def check(certificate):
             if kind != "absolute_monotonicity_radius":
                 require(problem.A is not None, f"a {kind} claim needs A, G and b in the problem")
             verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
-        except (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
-                RecursionError) as exc:
+        except _ERRORS as exc:
             verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))
     return CheckReport(verdicts)

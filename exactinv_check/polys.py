@@ -10,7 +10,7 @@ from math import gcd as _igcd
 
 from .rationals import CheckFailure, require
 
-MAX_DEGREE = 400  # bound on every polynomial the kernel builds from a certificate
+MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 MAX_BISECTIONS = 4000
 
 
@@ -34,6 +34,36 @@ def evaluate(p, x):
 
 def sign(x):
     return (x > 0) - (x < 0)
+
+
+def integer_coefficients(p):
+    """Coprime integers proportional to p by a positive factor (so signs agree)."""
+    return [int(c) for c in primitive(p)]
+
+
+def sign_at(ints, x):
+    """The sign of the integer polynomial ints at the rational x, in integer arithmetic
+    (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
+    n, d = x.numerator, x.denominator
+    acc, power = 0, 1
+    for c in ints:  # low to high: acc = sum_{k<=i} c_k n^k d^(i-k), rescaled as i grows
+        acc = acc * d + c * power
+        power *= n
+    return (acc > 0) - (acc < 0)
+
+
+def no_root_in(p, T):
+    """Descartes' rule on (0, T): (1+x)^D p(T/(1+x)) has no sign variation, so p
+    has no root in the open (0, T).  Exact; True proves it, False says nothing."""
+    ints = integer_coefficients(p)
+    n, d = T.numerator, T.denominator
+    D = len(ints) - 1
+    q = [ints[k] * n ** k * d ** (D - k) for k in range(D + 1)][::-1]  # x^D p(T/x) (scaled by d^D)
+    for i in range(D):  # Taylor shift x -> x + 1
+        for k in range(D - 1, i - 1, -1):
+            q[k] += q[k + 1]
+    signs = [c > 0 for c in q if c]
+    return all(s == signs[0] for s in signs)
 
 
 def add(p, q):
@@ -108,15 +138,20 @@ def monic(p):
 
 
 def gcd(p, q):
-    p, q = primitive(p), primitive(q)
+    p, q = primitive(_bounded(p)), primitive(_bounded(q))
     while q:
         p, q = q, primitive(divmod_(p, q)[1])
     return monic(p)
 
 
+def _bounded(p):
+    require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
+    return p
+
+
 def squarefree(p):
     """The squarefree part p / gcd(p, p'), primitive, with p's leading sign."""
-    p = trim(p)
+    p = _bounded(trim(p))
     if len(p) <= 2:
         return primitive(p)
     g = gcd(p, derivative(p))
@@ -125,7 +160,7 @@ def squarefree(p):
 
 def odd_part(p):
     """The product of the squarefree factors of odd multiplicity (Yun), monic."""
-    p = trim(p)
+    p = _bounded(trim(p))
     if len(p) <= 1:
         return [Fraction(1)]
     a = gcd(p, derivative(p))
@@ -183,13 +218,13 @@ class Sturm:
         while len(seq) > 1 and seq[-1]:
             seq.append([-c for c in primitive(divmod_(seq[-2], seq[-1])[1])])
         self.seq = [s for s in seq if s]
+        self.ints = [[int(c) for c in s] for s in self.seq]
 
     def _variations_at(self, x):
         if x is None:  # +oo
-            values = [s[-1] for s in self.seq]
+            signs = [s[-1] > 0 for s in self.ints]
         else:
-            values = [evaluate(s, x) for s in self.seq]
-        signs = [v > 0 for v in values if v != 0]
+            signs = [v > 0 for v in (sign_at(s, x) for s in self.ints) if v]
         return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
     def count(self, a, b):
@@ -205,36 +240,43 @@ def count_roots(p, a, b):
 
 
 def cauchy_bound(p):
-    """Every real root of p lies in [-B, B]."""
+    """A power of two B with every real root of p in (-B, B) (Cauchy's bound, rounded
+    up to a power of two so that bisection points stay dyadic and short)."""
     p = trim(p)
-    return 1 + max(abs(c / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
+    bound = 1 + max(abs(c / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
+    return Fraction(2 ** max(int(bound).bit_length(), 1))
 
 
-def positive_roots(p):
-    """The distinct positive real roots of p as isolating data, in increasing order:
-    a list of (lo, hi) with lo < hi (one root in the open (lo, hi), none at the ends)
-    or (q, q) for an exact rational root q."""
+def positive_roots(p, upper=None):
+    """The distinct real roots of p in (0, upper] (upper = None: all positive roots)
+    as isolating data, in increasing order: a list of (lo, hi) with lo < hi (one root
+    in the open (lo, hi), none at the ends) or (q, q) for an exact rational root q."""
     p = strip_zero_roots(p)
     if len(p) <= 1:
         return []
     sturm = Sturm(squarefree(p))
-    q = sturm.p
+    q = sturm.ints[0]
     out = []
-    stack = [(Fraction(0), cauchy_bound(p))]  # open intervals; every root is < the Cauchy bound
+    top = cauchy_bound(p)  # every root is below the Cauchy bound
+    if upper is not None and upper < top:
+        top = upper
+        if sign_at(q, upper) == 0:
+            out.append((upper, upper))
+    stack = [(Fraction(0), top)]  # open intervals
     steps = 0
     while stack:
         a, b = stack.pop()
         steps += 1
         require(steps <= MAX_BISECTIONS * len(p), "root isolation does not terminate")
-        b_root = evaluate(q, b) == 0
+        b_root = sign_at(q, b) == 0
         k = sturm.count(a, b) - b_root  # roots in the open (a, b)
         if k == 0:
             continue
-        if k == 1 and not b_root and evaluate(q, a) != 0:
+        if k == 1 and not b_root and sign_at(q, a) != 0:
             out.append((a, b))
             continue
         m = (a + b) / 2
-        if evaluate(q, m) == 0:
+        if sign_at(q, m) == 0:
             out.append((m, m))
         stack.append((m, b))
         stack.append((a, m))

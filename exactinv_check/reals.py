@@ -13,17 +13,19 @@ from . import polys
 from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
 
-MAX_REFINEMENTS = 3000
+MAX_REFINEMENTS = 20000
 
 
 class Real:
     """A proved real: ``q`` (a Fraction), ``inf`` (+1/-1) or an isolated root."""
 
-    __slots__ = ("inf", "q", "poly", "lo", "hi", "_sturm")
+    __slots__ = ("inf", "q", "poly", "lo", "hi", "_ints", "_sign_lo")
 
     def __init__(self, inf=0, q=None, poly=None, lo=None, hi=None):
         self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
-        self._sturm = None
+        if poly is not None:
+            self._ints = polys.integer_coefficients(poly)
+            self._sign_lo = polys.sign_at(self._ints, lo)
 
     # -------------------------------------------------------- construction
     @classmethod
@@ -33,6 +35,8 @@ class Real:
             return cls(inf=1 if data == "oo" else -1)
         if isinstance(data, dict):
             require(set(data) == {"poly", "interval"}, f"{what}: an algebraic number has exactly the keys poly, interval")
+            require(isinstance(data["poly"], list) and len(data["poly"]) <= polys.MAX_DEGREE + 1,
+                    f"{what}: the polynomial must be a list of at most {polys.MAX_DEGREE + 1} coefficients")
             poly = polys.trim([rational(c, what) for c in data["poly"]])
             require(isinstance(data["interval"], list) and len(data["interval"]) == 2, f"{what}: interval needs two ends")
             lo, hi = (rational(x, what) for x in data["interval"])
@@ -80,10 +84,10 @@ class Real:
 
     def bisect(self):
         mid = (self.lo + self.hi) / 2
-        s = sign(evaluate(self.poly, mid))
+        s = polys.sign_at(self._ints, mid)
         if s == 0:
             self.q, self.poly = mid, None
-        elif s == sign(evaluate(self.poly, self.lo)):
+        elif s == self._sign_lo:
             self.lo = mid
         else:
             self.hi = mid
@@ -106,13 +110,13 @@ class Real:
         g = polys.gcd(f, self.poly)
         if len(g) > 1 and sign(evaluate(g, self.lo)) * sign(evaluate(g, self.hi)) < 0:
             return 0  # g divides the squarefree poly, so it has at most this one root in (lo, hi)
-        fs = polys.squarefree(f)
-        sturm = polys.Sturm(fs)
+        sturm = polys.Sturm(polys.squarefree(f))
+        fs, fi = sturm.ints[0], polys.integer_coefficients(f)
         for _ in range(MAX_REFINEMENTS):
             if self.poly is None:
-                return sign(evaluate(f, self.q))
-            if evaluate(fs, self.lo) != 0 and sturm.count(self.lo, self.hi) == 0:
-                return sign(evaluate(f, self.lo))
+                return polys.sign_at(fi, self.q)
+            if polys.sign_at(fs, self.lo) != 0 and sturm.count(self.lo, self.hi) == 0:
+                return polys.sign_at(fi, self.lo)
             self.bisect()
         raise CheckFailure("could not decide a sign at an algebraic number")
 
@@ -127,22 +131,38 @@ class Real:
         if other.poly is None:  # self algebraic, other rational
             s = self.sign_of([-other.q, Fraction(1)])
             return s
-        for _ in range(MAX_REFINEMENTS):
+        if self.hi <= other.lo:
+            return -1
+        if other.hi <= self.lo:
+            return 1
+        if self._shares_root_with(other):
+            return 0
+        for _ in range(MAX_REFINEMENTS):  # different numbers: refine until the enclosures part
             if self.poly is None or other.poly is None:
                 return self.compare(other)
             if self.hi <= other.lo:
                 return -1
             if other.hi <= self.lo:
                 return 1
-            lo, hi = max(self.lo, other.lo), min(self.hi, other.hi)
-            g = polys.gcd(self.poly, other.poly)
-            if len(g) > 1:
-                # a common root in the overlap is the root of both (each interval isolates one)
-                if evaluate(g, lo) != 0 and evaluate(g, hi) != 0 and polys.count_roots(g, lo, hi) == 1:
-                    return 0
-            self.bisect()
-            other.bisect()
+            # refine the wider enclosure only: a number compared often (a running
+            # minimum) then keeps the precision it needs, instead of gaining bits each time
+            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()
         raise CheckFailure("could not separate two real numbers")
+
+    def _shares_root_with(self, other):
+        """Are these two overlapping algebraic numbers equal?  Each is a root of
+        g = gcd iff g changes sign on its own isolating interval (g divides the
+        squarefree poly, so it has at most that one root there); if both are,
+        they are equal iff g has a single root in the union of the intervals."""
+        g = polys.gcd(self.poly, other.poly)
+        if len(g) <= 1:
+            return False
+        gi = polys.integer_coefficients(g)
+        for x in (self, other):
+            if polys.sign_at(gi, x.lo) * polys.sign_at(gi, x.hi) >= 0:
+                return False
+        lo, hi = min(self.lo, other.lo), max(self.hi, other.hi)
+        return polys.count_roots(g, lo, hi) == 1
 
     def __str__(self):
         if self.inf:
@@ -155,12 +175,12 @@ class Real:
 def separate(a, b):
     """Rationals a1 < b0 with a <= a1 < b0 <= b, for reals a < b (refining them)."""
     for _ in range(MAX_REFINEMENTS):
-        a1, b0 = a.bounds()[1], b.bounds()[0]
+        (a0, a1), (b0, b1) = a.bounds(), b.bounds()
         if a1 < b0:
             return a1, b0
-        if a.poly is not None:
+        if a.poly is not None and (b.poly is None or a1 - a0 >= b1 - b0):
             a.bisect()
-        if b.poly is not None:
+        else:
             b.bisect()
     raise CheckFailure("two reals could not be separated")
 

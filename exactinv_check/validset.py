@@ -34,15 +34,18 @@ def _no_positive_root(p):
     return all(s == signs[0] for s in signs)
 
 
-def _breakpoints(named):
-    """Sorted distinct positive roots of the named polynomials, each with the
-    set of names that vanish there."""
+def _breakpoints(named, bounds):
+    """Sorted distinct positive roots of the named polynomials (those of a name
+    with a bound only up to that bound), each with the set of names vanishing there."""
     roots = []
     for name, p in named:
         if _no_positive_root(p):
             continue
-        for lo, hi in polys.positive_roots(p):
-            roots.append((Real.root_in(p, lo, hi), name))
+        for lo, hi in polys.positive_roots(p, bounds.get(name)):
+            real = Real.root_in(p, lo, hi)
+            if real.poly is not None:  # narrow enclosures: most comparisons then need no gcd
+                real.refine_below((hi - lo) / 2**24)
+            roots.append((real, name))
     roots.sort(key=cmp_to_key(lambda x, y: x[0].compare(y[0])))
     merged = []
     for real, name in roots:
@@ -53,8 +56,42 @@ def _breakpoints(named):
     return merged
 
 
+def _tightness(p):
+    """p(0) relative to p's size: small for a condition close to binding at h = 0."""
+    return Fraction(abs(p[0]), max(abs(c) for c in p)) if p else Fraction(0)
+
+
+def _drop_positive_on(inequalities, T):
+    """The inequalities that may be negative somewhere in (0, T): those proved
+    positive there (positive right of 0 and no root in (0, T) by Descartes' rule)
+    cannot change a valid set that lies in [0, T]."""
+    return [p for p in inequalities if polys.sign_right_of(p, Fraction(0)) < 0 or not polys.no_root_in(p, T)]
+
+
 def valid_set(D, inequalities, equalities):
-    """The maximal intervals of valid h >= 0 (see the module docstring)."""
+    """The maximal intervals of valid h >= 0 (see the module docstring).
+
+    Pruning, exact: the valid set lies inside the valid set V_S of any subset
+    S of the conditions.  S = the tightest few conditions; if V_S lies in
+    [0, T], every inequality positive on (0, T) is dropped before the full
+    computation."""
+    inequalities = sorted((list(p) for p in inequalities), key=_tightness)
+    top = None
+    if len(inequalities) > 32:
+        subset = inequalities[:16]
+        first = _valid_set(D, subset, equalities, len(subset), None)
+        if first and not first[-1].hi.inf:
+            end = first[-1].hi
+            top = end.bounds()[1] + 1
+            inequalities = subset + _drop_positive_on(inequalities[16:], top)
+            return _valid_set(D, inequalities, equalities, 16, top)
+    return _valid_set(D, inequalities, equalities, len(inequalities), None)
+
+
+def _valid_set(D, inequalities, equalities, exact_count, top):
+    """The valid set; the first exact_count inequalities (and D and the
+    equalities) have all their roots isolated, the others only up to top -- sound
+    when those first ones already make every h > top invalid."""
     ineq = [("i", k, list(p)) for k, p in enumerate(inequalities)]
     eq = [("e", k, list(p)) for k, p in enumerate(equalities)]
     D = polys.trim(D)
@@ -63,7 +100,8 @@ def valid_set(D, inequalities, equalities):
         named.append((("D", 0), D))
     polys_by_name = dict(named)
     points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
-    points += _breakpoints(named)
+    bounds = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
+    points += _breakpoints(named, bounds)
 
     def cell_sample(k):
         if k + 1 < len(points):
@@ -115,6 +153,18 @@ def _intervals(points, elements):
     return out
 
 
+def _first_sign_change(p, upper):
+    """The first root in (0, upper] where p (positive right of 0) changes sign, or None."""
+    ints = polys.integer_coefficients(p)
+    for lo, hi in polys.positive_roots(p, upper):
+        if lo == hi:
+            if polys.sign_right_of(p, lo) < 0:
+                return Real.rational(lo)
+        elif polys.sign_at(ints, hi) < 0:  # (lo, hi) isolates the root among all of p's roots
+            return Real.root_in(p, lo, hi)
+    return None
+
+
 def first_end(D, inequalities, equalities):
     """(tau, attained): the end of the valid interval that starts at 0.
 
@@ -125,18 +175,17 @@ def first_end(D, inequalities, equalities):
     if equalities:
         return Real.rational(0), True
     best, attained = Real(inf=1), True
-    for p in inequalities:
-        p = list(p)
+    for p in sorted((list(p) for p in inequalities), key=_tightness):  # the tightest first
         if polys.sign_right_of(p, Fraction(0)) < 0:
             return Real.rational(0), True
         if _no_positive_root(p):
             continue
-        odd = polys.strip_zero_roots(polys.odd_part(p))
-        roots = polys.positive_roots(odd) if len(odd) > 1 else []
-        if roots:
-            tau = Real.root_in(odd, *roots[0])
-            if tau.compare(best) < 0:
-                best = tau
+        upper = None if best.inf else best.bounds()[1]
+        if upper is not None and polys.no_root_in(p, upper):
+            continue  # p > 0 on (0, best]: it cannot end the interval earlier
+        tau = _first_sign_change(p, upper)
+        if tau is not None and tau.compare(best) < 0:
+            best = tau
     D = polys.trim(D)
     if len(D) > 1:
         roots = polys.positive_roots(D)
