@@ -153,6 +153,14 @@ def _intervals(points, elements):
     return out
 
 
+def _coarse_above(x):
+    """A dyadic rational >= x with about 64 significant bits: bisection from it
+    keeps short numbers, where x itself may carry thousands of bits."""
+    shift = 64 - (x.numerator.bit_length() - x.denominator.bit_length())
+    return Fraction(-((-x.numerator << shift) // x.denominator), 1 << shift) if shift > 0 else \
+        Fraction(-(-x.numerator // (x.denominator << -shift)) << -shift)
+
+
 def _first_sign_change(p, upper):
     """The first root in (0, upper] where p (positive right of 0) changes sign, or None."""
     ints = polys.integer_coefficients(p)
@@ -180,7 +188,7 @@ def first_end(D, inequalities, equalities):
             return Real.rational(0), True
         if _no_positive_root(p):
             continue
-        upper = None if best.inf else best.bounds()[1]
+        upper = None if best.inf else _coarse_above(best.bounds()[1])
         if upper is not None and polys.no_root_in(p, upper):
             continue  # p > 0 on (0, best]: it cannot end the interval earlier
         tau = _first_sign_change(p, upper)
