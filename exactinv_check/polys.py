@@ -38,7 +38,12 @@ def sign(x):
 
 def integer_coefficients(p):
     """Coprime integers proportional to p by a positive factor (so signs agree)."""
-    return [int(c) for c in primitive(p)]
+    p = trim(p)
+    den = 1
+    for c in p:
+        if not isinstance(c, int):
+            den = den * c.denominator // _igcd(den, c.denominator)
+    return _content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
 
 
 def sign_at(ints, x):
@@ -119,29 +124,68 @@ def divmod_(p, d):
 
 def primitive(p):
     """p scaled by a POSITIVE rational to coprime integer coefficients (sign kept)."""
-    p = trim(p)
-    if not p:
-        return []
-    den = 1
-    for c in p:
-        den = den * Fraction(c).denominator // _igcd(den, Fraction(c).denominator)
-    ints = [int(c * den) for c in p]
-    g = 0
-    for c in ints:
-        g = _igcd(g, c)
-    return [Fraction(c // g) for c in ints]
+    return [Fraction(c) for c in integer_coefficients(p)]
 
 
 def monic(p):
     p = trim(p)
-    return [c / p[-1] for c in p] if p else p
+    return [Fraction(c, 1) / p[-1] for c in p] if p else p
+
+
+# --------------------------------------------- integer core (Python ints, no Fractions)
+def _content_free(a):
+    """a divided by the positive gcd of its coefficients (signs kept)."""
+    g = 0
+    for c in a:
+        g = _igcd(g, c)
+    return [c // g for c in a] if g > 1 else a
+
+
+def _pseudo_remainder(a, b):
+    """r with s^k a = q b + r for s = |lc(b)| > 0: the remainder up to a POSITIVE factor,
+    so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
+    s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
+    r = list(a)
+    while len(r) >= len(b) and r:
+        shift, c = len(r) - len(b), r[-1] * sgn
+        r = [s * x for x in r]
+        for k, bk in enumerate(b):
+            r[k + shift] -= c * bk
+        while r and r[-1] == 0:
+            r.pop()
+        r = _content_free(r)
+    return r
+
+
+def _integer_gcd(a, b):
+    """gcd of two integer polynomials: primitive, positive leading coefficient."""
+    while b:
+        a, b = b, _pseudo_remainder(a, b)
+    a = _content_free(a)
+    return [-c for c in a] if a and a[-1] < 0 else a
+
+
+def _exact_quotient(a, b):
+    """a / b for integer polynomials where b divides a over Z (checked)."""
+    a, q = list(a), [0] * (len(a) - len(b) + 1)
+    for shift in range(len(a) - len(b), -1, -1):
+        c, rest = divmod(a[shift + len(b) - 1], b[-1])
+        require(rest == 0, "internal: inexact polynomial division")
+        q[shift] = c
+        for k, bk in enumerate(b):
+            a[k + shift] -= c * bk
+    require(not any(a), "internal: inexact polynomial division")
+    return q
+
+
+def _integer_derivative(a):
+    return [k * a[k] for k in range(1, len(a))]
 
 
 def gcd(p, q):
-    p, q = primitive(_bounded(p)), primitive(_bounded(q))
-    while q:
-        p, q = q, primitive(divmod_(p, q)[1])
-    return monic(p)
+    """The monic gcd over Q."""
+    g = _integer_gcd(integer_coefficients(_bounded(p)), integer_coefficients(_bounded(q)))
+    return [Fraction(c, g[-1]) for c in g] if g else []
 
 
 def _bounded(p):
@@ -150,12 +194,12 @@ def _bounded(p):
 
 
 def squarefree(p):
-    """The squarefree part p / gcd(p, p'), primitive, with p's leading sign."""
-    p = _bounded(trim(p))
-    if len(p) <= 2:
-        return primitive(p)
-    g = gcd(p, derivative(p))
-    return primitive(divmod_(p, g)[0]) if len(g) > 1 else primitive(p)
+    """The squarefree part p / gcd(p, p') as coprime integers, with p's leading sign."""
+    a = integer_coefficients(_bounded(trim(p)))
+    if len(a) <= 2:
+        return a
+    g = _integer_gcd(a, _integer_derivative(a))
+    return _exact_quotient(a, g) if len(g) > 1 else a
 
 
 def odd_part(p):
@@ -211,14 +255,13 @@ class Sturm:
     """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
 
     def __init__(self, p):
-        p = primitive(p)
-        require(len(p) - 1 <= MAX_DEGREE, f"polynomial of degree {len(p) - 1} exceeds the kernel's bound")
-        self.p = p
-        seq = [p, primitive(derivative(p))] if len(p) > 1 else [p]
+        a = integer_coefficients(_bounded(p))
+        self.p = a
+        seq = [a, _content_free(_integer_derivative(a))] if len(a) > 1 else [a]
         while len(seq) > 1 and seq[-1]:
-            seq.append([-c for c in primitive(divmod_(seq[-2], seq[-1])[1])])
-        self.seq = [s for s in seq if s]
-        self.ints = [[int(c) for c in s] for s in self.seq]
+            seq.append([-c for c in _pseudo_remainder(seq[-2], seq[-1])])
+        self.ints = [s for s in seq if s]
+        self.seq = self.ints
 
     def _variations_at(self, x):
         if x is None:  # +oo
@@ -243,7 +286,7 @@ def cauchy_bound(p):
     """A power of two B with every real root of p in (-B, B) (Cauchy's bound, rounded
     up to a power of two so that bisection points stay dyadic and short)."""
     p = trim(p)
-    bound = 1 + max(abs(c / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
+    bound = 1 + max(abs(Fraction(c) / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
     return Fraction(2 ** max(int(bound).bit_length(), 1))
 
 

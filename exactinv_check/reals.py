@@ -60,7 +60,7 @@ class Real:
     @classmethod
     def _made(cls, p, lo, hi):
         if len(p) == 2:  # a linear polynomial: the root is rational
-            return cls(q=-p[0] / p[1])
+            return cls(q=-Fraction(p[0]) / p[1])
         return cls(poly=p, lo=lo, hi=hi)
 
     @classmethod

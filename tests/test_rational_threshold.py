@@ -95,3 +95,29 @@ def test_the_e2_bound_uses_the_best_certificate_H():
     claim = next(c for c in cert["claims"] if c["type"] == "rational_threshold")
     claim["H"][0][1] = "-1"  # no longer a certificate
     assert not ei.check(cert).ok
+
+
+def test_erratum_e2_prime_lineality_space_hides_a_singular_point():
+    """Backward Euler, A = diag(-1, 1), P = {x1 <= 1}: H sees only the row of G,
+    alpha(H) = -1, so the E2 bound says infinity; but I - dt A is singular at dt = 1."""
+    S, P = ei.LinearSystem([[-1, 0], [0, 1]]), ei.Polyhedron([[1, 0]], [1])
+    m = ei.methods.backward_euler()
+    t = ei.steplength_threshold(S, P, m)
+    assert t.value == 1 and t.attained is False
+    assert t.paper == ei.INF  # the paper (and the E2 bound alone) say infinity
+    V = ei.valid_steplengths(S, P, m)
+    assert [(iv.lo, iv.hi, iv.lo_closed, iv.hi_closed) for iv in V] == [(0, 1, True, False), (1, ei.INF, False, False)]
+    with pytest.raises(ei.ExactinvError):  # r(dt A) does not exist at dt = 1
+        m.matrix(S, Fraction(1))
+    assert ei.check(t.certificate).ok
+
+
+def test_erratum_e2_prime_strip_trapezoid_not_attained():
+    """Trapezoid, A = diag(-3/2, 3/2), strip 0 <= x1 <= 3/2: 4/3 is singular."""
+    S = ei.LinearSystem([["-3/2", 0], [0, "3/2"]])
+    P = ei.Polyhedron([[1, 0], [-1, 0]], ["3/2", 0])
+    t = ei.steplength_threshold(S, P, ei.methods.trapezoid())
+    assert t.value == Fraction(4, 3) and t.attained is False
+    L = ei.largest_threshold(S, P, ei.methods.trapezoid())
+    assert L.value == Fraction(4, 3) and L.attained is False
+    assert ei.check(t.certificate).ok
