@@ -100,7 +100,8 @@ class SteplengthThreshold(ExactValueMixin):
             "attained": self.attained,
             "rho": encode_real(self.radius.value),
             "pole": None if self.pole is None else encode_real(self.pole),
-            "alpha": None if self.spectral_abscissa is None else encode_real(self.spectral_abscissa),
+            # alpha(H) is recorded where the E2 bound z_p/alpha(H) is the binding one
+            "alpha": encode_real(self.spectral_abscissa) if "erratum E2:" in self.theorem else None,
         }
         if self.certificate_H is not None:  # another H than gamma*'s was better for the E2 bound
             H, g_H = self.certificate_H

@@ -59,3 +59,38 @@ def test_missing_file(capsys):
 def test_console_entry_point_runs():
     proc = subprocess.run([sys.executable, "-m", "exactinv", "certify", str(BOX)], capture_output=True, text=True)
     assert proc.returncode == 0 and "VERIFIED" in proc.stdout
+
+
+def test_certify_never_writes_a_certificate_the_kernel_rejects(tmp_path, monkeypatch, capsys):
+    import exactinv_check
+
+    rejected = exactinv_check.CheckReport([("largest_threshold", False, "forced rejection for the test")])
+    monkeypatch.setattr(exactinv_check, "check", lambda cert: rejected)
+    out = tmp_path / "cert.json"
+    assert main(["certify", str(BOX), "-o", str(out)]) == 1
+    assert not out.exists()
+    assert "NOT written" in capsys.readouterr().err
+    assert main(["certify", str(BOX), "--no-check", "-o", str(out)]) == 0  # the user's explicit choice
+    assert out.exists() and "skipped" in capsys.readouterr().out
+
+
+def test_check_exit_codes_for_bad_input(tmp_path):
+    missing = tmp_path / "missing.json"
+    assert main(["check", str(missing)]) == 2
+    problem = tmp_path / "problem.json"
+    problem.write_text(BOX.read_text())
+    assert main(["check", str(problem)]) == 2  # a problem file is not a certificate
+
+
+def test_version_1_certificates_stay_checkable():
+    """Certificates attached to papers must not expire: every corpus certificate,
+    relabelled version 1 (the format v2 only adds optional data to), verifies."""
+    import copy
+
+    from certificate_corpus import corpus
+    from exactinv_check import check
+
+    for name, cert in corpus().items():
+        old = copy.deepcopy(cert)
+        old["version"] = 1
+        assert check(old).ok, name
