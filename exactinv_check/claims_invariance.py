@@ -82,6 +82,10 @@ def discrete_invariance(problem, claim, context):
 def gamma_star(problem, claim, context):
     A, G, b, m, n = problem.A, problem.G, problem.b, problem.m, problem.n
     value = Real.parse(claim["value"], "gamma* value")
+    allowed = {"oo": {"witness"}, "-oo": {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
+    extra = set(claim) - allowed - {"type", "value", "paths"}
+    require(not extra, f"keys {sorted(extra)} do not belong to gamma* = {claim['value']}")
+    require(isinstance(claim.get("paths", {}), dict), "paths is an object")
     if value.inf == 1:
         j, rate = facet_witness(problem, A, claim["witness"], on_facet=True)
         require(rate > 0, f"the witness does not leave P through facet {j}")

@@ -111,7 +111,11 @@ def absolute_monotonicity_radius(problem, claim, context):
     attained = claim["attained"]
     reason = claim["reason"]
     require(reason in REASONS, f"unknown reason {reason!r}")
+    require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product"},
+            "binding belongs to the coefficient reasons only")
     if method.is_polynomial:
+        require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
         rho, rho_attained, d = recompute(num, den, len(num), True)
         how = f"recomputed from c_0 .. c_{len(num) - 1}"
     elif reason in ZERO_REASONS:

@@ -85,6 +85,7 @@ def rational_threshold(problem, claim, context):
     value = Real.parse(claim["value"], "tau")
     attained = claim["attained"]
     H = context.get("H")
+    require((claim.get("H") is None) == (claim.get("gamma_H") is None), "H and gamma_H come together")
     if claim.get("H") is not None:  # another certificate H with its own gamma_H >= gamma*
         from .claims_invariance import check_H
 

@@ -64,6 +64,7 @@ class Method:
             num, den = [c / den[0] for c in num], [c / den[0] for c in den]
         if len(den) == 1:
             num, den = [c / den[0] for c in num], [Fraction(1)]
+        require(isinstance(record.get("name", ""), str), "the method's name is a string")
         self.name = record.get("name")
         self.numerator, self.denominator = num, den
         self.is_polynomial = len(den) == 1
@@ -166,7 +167,7 @@ def check(certificate):
     try:
         require(set(cert) == {"format", "version", "problem", "claims"}, "a certificate has exactly the keys "
                 "format, version, problem, claims")
-        require(cert["version"] in VERSIONS and not isinstance(cert["version"], bool),
+        require(type(cert["version"]) is int and cert["version"] in VERSIONS,
                 f"unsupported certificate version {cert['version']!r}")
         problem = Problem(cert["problem"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")

@@ -57,18 +57,40 @@ def sign_at(ints, x):
     return (acc > 0) - (acc < 0)
 
 
-def no_root_in(p, T):
-    """Descartes' rule on (0, T): (1+x)^D p(T/(1+x)) has no sign variation, so p
-    has no root in the open (0, T).  Exact; True proves it, False says nothing."""
-    ints = integer_coefficients(p)
-    n, d = T.numerator, T.denominator
+def descartes_variations(ints, a, b):
+    """Sign variations of (1+x)^D q(1/(1+x)), q(y) = p(a + (b - a) y): an upper bound,
+    of the same parity, on the number of roots of p in the open (a, b) (Descartes'
+    rule after the Moebius map (0, oo) -> (a, b)).  Integer arithmetic throughout."""
     D = len(ints) - 1
-    q = [ints[k] * n ** k * d ** (D - k) for k in range(D + 1)][::-1]  # x^D p(T/x) (scaled by d^D)
+    w = b - a
+    s = a.denominator * w.denominator
+    u, v = a.numerator * w.denominator, w.numerator * a.denominator  # a + w y = (u + v y) / s
+    q = [ints[-1]]
+    for k in range(D - 1, -1, -1):  # Horner: q <- q (u + v y) + c_k s^(D-k)
+        q = [u * q[0]] + [u * q[i] + v * q[i - 1] for i in range(1, len(q))] + [v * q[-1]]
+        q[0] += ints[k] * s ** (D - k)
+    q.reverse()  # x^D q(1/x)
     for i in range(D):  # Taylor shift x -> x + 1
         for k in range(D - 1, i - 1, -1):
             q[k] += q[k + 1]
     signs = [c > 0 for c in q if c]
-    return all(s == signs[0] for s in signs)
+    return sum(1 for x, y in zip(signs, signs[1:]) if x != y)
+
+
+def no_root_in(p, T, depth=4):
+    """True proves that p has no root in the open (0, T): Descartes' rule on (0, T),
+    on halves where it is inconclusive, up to depth times.  False says nothing."""
+    ints = integer_coefficients(p)
+    stack = [(Fraction(0), Fraction(T), depth)]
+    while stack:
+        a, b, left = stack.pop()
+        if descartes_variations(ints, a, b) == 0:
+            continue
+        m = (a + b) / 2
+        if left == 0 or sign_at(ints, m) == 0:
+            return False
+        stack += [(a, m, left - 1), (m, b, left - 1)]
+    return True
 
 
 def add(p, q):

@@ -81,8 +81,7 @@ def valid_set(D, inequalities, equalities):
         subset = inequalities[:16]
         first = _valid_set(D, subset, equalities, len(subset), None)
         if first and not first[-1].hi.inf:
-            end = first[-1].hi
-            top = end.bounds()[1] + 1
+            top = _coarse_above(first[-1].hi.bounds()[1])
             inequalities = subset + _drop_positive_on(inequalities[16:], top)
             return _valid_set(D, inequalities, equalities, 16, top)
     return _valid_set(D, inequalities, equalities, len(inequalities), None)
