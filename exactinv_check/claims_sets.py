@@ -18,20 +18,32 @@ from .reals import Real
 from .validset import first_end, valid_set
 
 
-def _conditions(problem, claim):
+def _conditions(problem, claim, context):
+    """The proved generators and their conditions; computed once per certificate for
+    the same generator lists (a fact this kernel derived itself, kept in the context)."""
     require(problem.method is not None, "a method is needed")
-    gens = prove_generators(problem.G, problem.b, *(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines")))
-    D, inequalities, equalities = condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
-                                                        problem.method.denominator, gens)
+    lists = tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
+    key = ("conditions", repr(lists))
+    if key not in context:
+        gens = prove_generators(problem.G, problem.b, *lists)
+        context[key] = (gens,) + condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
+                                                       problem.method.denominator, gens)
+    gens, D, inequalities, equalities = context[key]
     if claim.get("determinant") is not None:
         claimed = polys.trim(vector(claim["determinant"], "determinant"))
         require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
     return gens, D, inequalities, equalities
 
 
+def _first_vertex(inequalities):
+    """The conditions of vertex 0: A_d(h)v in P alone already bounds the valid set
+    for a bounded P, which lets the others be pruned (validset.valid_set)."""
+    return [p for p, origin in inequalities.items() if origin[:2] == ("vertex", 0)]
+
+
 def largest_threshold(problem, claim, context):
-    gens, D, inequalities, equalities = _conditions(problem, claim)
-    tau, attained = first_end(D, inequalities, equalities)
+    gens, D, inequalities, equalities = _conditions(problem, claim, context)
+    tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities))
     value = Real.parse(claim["value"], "tau")
     require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")
     require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
@@ -60,8 +72,8 @@ def largest_threshold(problem, claim, context):
 
 
 def valid_steplengths(problem, claim, context):
-    gens, D, inequalities, equalities = _conditions(problem, claim)
-    truth = valid_set(D, list(inequalities), list(equalities))
+    gens, D, inequalities, equalities = _conditions(problem, claim, context)
+    truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities))
     claimed = claim["intervals"]
     require(isinstance(claimed, list), "intervals is a list")
     require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")

@@ -15,6 +15,7 @@ D(h) = 0, r(hA) does not exist and h is not a valid steplength.
 """
 
 from fractions import Fraction
+from math import gcd
 
 from . import polys
 from .rationals import determinant, identity, matmul, require, solve
@@ -67,27 +68,60 @@ def method_matrices(A, numerator, denominator):
     return D, N
 
 
+def _common_denominator(values):
+    d = 1
+    for x in values:
+        d = d * x.denominator // gcd(d, x.denominator)
+    return d
+
+
+def _integer_polynomial_product(p, q):
+    out = [0] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for j, c in enumerate(q):
+                out[i + j] += a * c
+    return out
+
+
 def condition_polynomials(A, G, b, numerator, denominator, generators):
     """(D, inequalities, equalities): the distinct nonzero condition polynomials
-    (each inequality must be >= 0, each equality = 0), keyed by where they come
-    from ((kind, index, facet) of one generator-facet pair producing it)."""
+    (each inequality must be >= 0, each equality = 0), as tuples of coprime
+    integers (a positive multiple of the condition, so with its signs), keyed to
+    where they come from ((kind, index, facet) of one generator-facet pair)."""
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
     pairs = m * (len(generators.vertices) + len(generators.rays) + len(generators.lines))
     require(pairs <= MAX_CONDITIONS, f"{pairs} generator-facet conditions exceed the kernel's bound")
-    GN = [matmul(G, Nk) for Nk in N]  # m x n per power of h
+    # integers throughout: G N_k = GN_k / d_k, D = D_int / dD, w = w_int / d_w, b_j = bn_j / bd_j
+    GN = [matmul(G, Nk) for Nk in N]
+    dk = [_common_denominator(x for row in M for x in row) for M in GN]
+    L = 1
+    for d in dk:
+        L = L * d // gcd(L, d)
+    GN_int = [[[int(x * d) * (L // d) for x in row] for row in M] for M, d in zip(GN, dk)]  # L * G N_k
+    dD = _common_denominator(D)
+    D_int = [int(c * dD) for c in D]
     inequalities, equalities = {}, {}
     for kind, vectors in (("vertex", generators.vertices), ("ray", generators.rays), ("line", generators.lines)):
         for index, w in enumerate(vectors):
-            images = [[sum(a * x for a, x in zip(row, w)) for row in GNk] for GNk in GN]  # per k: m values
+            dw = _common_denominator(w)
+            w_int = [int(x * dw) for x in w]
+            images = [[sum(a * x for a, x in zip(row, w_int)) for row in M] for M in GN_int]  # L dw g_j N_k w
             for j in range(m):
-                e = polys.trim([images[k][j] for k in range(len(GN))])
+                e = polys.trim([images[k][j] for k in range(len(images))])  # L dw (g_j N(h) w)
                 if kind == "line":
                     if e:
-                        equalities.setdefault(tuple(polys.primitive(e)), (kind, index, j))
+                        equalities.setdefault(tuple(polys.integer_coefficients(e)), (kind, index, j))
                     continue
-                q = polys.sub(polys.scale(D, b[j]), e) if kind == "vertex" else [-c for c in e]
-                c = polys.mul(q, D)
+                if kind == "vertex":  # (b_j D - g_j N v) times the positive L dw dD bd_j
+                    bn, bd = b[j].numerator, b[j].denominator
+                    width = max(len(D_int), len(e))
+                    q = [bn * L * dw * (D_int[i] if i < len(D_int) else 0) - dD * bd * (e[i] if i < len(e) else 0)
+                         for i in range(width)]
+                else:
+                    q = [-c for c in e]
+                c = polys.trim(_integer_polynomial_product(q, D_int) if len(D_int) > 1 else q)
                 if c:
-                    inequalities.setdefault(tuple(polys.primitive(c)), (kind, index, j))
+                    inequalities.setdefault(tuple(polys.integer_coefficients(c)), (kind, index, j))
     return D, inequalities, equalities

@@ -68,23 +68,22 @@ def _drop_positive_on(inequalities, T):
     return [p for p in inequalities if polys.sign_right_of(p, Fraction(0)) < 0 or not polys.no_root_in(p, T)]
 
 
-def valid_set(D, inequalities, equalities):
+def valid_set(D, inequalities, equalities, first=()):
     """The maximal intervals of valid h >= 0 (see the module docstring).
 
     Pruning, exact: the valid set lies inside the valid set V_S of any subset
-    S of the conditions.  S = the tightest few conditions; if V_S lies in
-    [0, T], every inequality positive on (0, T) is dropped before the full
-    computation."""
-    inequalities = sorted((list(p) for p in inequalities), key=_tightness)
-    top = None
-    if len(inequalities) > 32:
-        subset = inequalities[:16]
-        first = _valid_set(D, subset, equalities, len(subset), None)
-        if first and not first[-1].hi.inf:
-            top = _coarse_above(first[-1].hi.bounds()[1])
-            inequalities = subset + _drop_positive_on(inequalities[16:], top)
-            return _valid_set(D, inequalities, equalities, 16, top)
-    return _valid_set(D, inequalities, equalities, len(inequalities), None)
+    S of the conditions -- here ``first`` (e.g. the conditions of one vertex).
+    If V_S lies in [0, T], every other inequality proved positive on (0, T)
+    is dropped, and the rest need their roots only up to T."""
+    subset = [list(p) for p in first]
+    rest = [list(p) for p in inequalities if tuple(p) not in set(map(tuple, subset))]
+    if subset and rest:
+        V_S = _valid_set(D, subset, equalities, len(subset), None)
+        if V_S and not V_S[-1].hi.inf:
+            top = _coarse_above(V_S[-1].hi.bounds()[1])
+            return _valid_set(D, subset + _drop_positive_on(rest, top), equalities, len(subset), top)
+    everything = subset + rest
+    return _valid_set(D, everything, equalities, len(everything), None)
 
 
 def _valid_set(D, inequalities, equalities, exact_count, top):
@@ -172,7 +171,7 @@ def _first_sign_change(p, upper):
     return None
 
 
-def first_end(D, inequalities, equalities):
+def first_end(D, inequalities, equalities, first=()):
     """(tau, attained): the end of the valid interval that starts at 0.
 
     tau = min over the inequalities c of sup{T : c >= 0 on [0, T]} (the first
@@ -182,7 +181,8 @@ def first_end(D, inequalities, equalities):
     if equalities:
         return Real.rational(0), True
     best, attained = Real(inf=1), True
-    for p in sorted((list(p) for p in inequalities), key=_tightness):  # the tightest first
+    early = set(map(tuple, first))  # e.g. one vertex's conditions: a finite bound early on
+    for p in sorted((list(p) for p in inequalities), key=lambda p: (tuple(p) not in early, _tightness(p))):
         if polys.sign_right_of(p, Fraction(0)) < 0:
             return Real.rational(0), True
         if _no_positive_root(p):
