@@ -19,8 +19,14 @@ def main(argv=None):
     parser.add_argument("-q", "--quiet", action="store_true", help="print only the final verdict per file")
     args = parser.parse_args(argv)
     status = 0
+    def progress(k, total, kind):
+        if sys.stderr.isatty():
+            print(f"\r  checking claim {k + 1}/{total}: {kind:<32}", end="", file=sys.stderr, flush=True)
+
     for path in args.certificates:
-        report = check(path)
+        report = check(path, progress)
+        if sys.stderr.isatty():
+            print("\r" + " " * 60 + "\r", end="", file=sys.stderr)
         text = str(report).splitlines()
         print(f"{path}:")
         print("\n".join(text[-1:] if args.quiet else text))

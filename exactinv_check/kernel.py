@@ -154,10 +154,11 @@ def _check_keys(claim, kind):
         require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
 
 
-def check(certificate):
+def check(certificate, progress=None):
     """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
 
-    Returns a :class:`CheckReport`, truthy only if every claim was proved."""
+    Returns a :class:`CheckReport`, truthy only if every claim was proved.
+    ``progress(k, total, claim_type)``, if given, is called before each claim."""
     try:
         cert = load(certificate)
     except BadInput as exc:
@@ -174,8 +175,10 @@ def check(certificate):
     except _ERRORS as exc:
         return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
     context, verdicts = {}, []
-    for claim in cert["claims"]:
+    for k, claim in enumerate(cert["claims"]):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
+        if progress is not None:
+            progress(k, len(cert["claims"]), kind)
         try:
             require(kind in CLAIMS, f"unknown claim type {kind!r}")
             _check_keys(claim, kind)

@@ -63,3 +63,11 @@ def test_the_engine_entry_points_call_the_kernel():
 
     assert exactinv.check is exactinv_check.check
     assert importlib.import_module("exactinv.check").check is exactinv_check.check
+
+
+def test_progress_is_reported_per_claim():
+    seen = []
+    cert = corpus()["box-taylor4"]
+    assert exactinv_check.check(cert, progress=lambda k, total, kind: seen.append((k, total, kind))).ok
+    assert [k for k, _, _ in seen] == list(range(len(cert["claims"])))
+    assert [kind for _, _, kind in seen] == [c["type"] for c in cert["claims"]]
