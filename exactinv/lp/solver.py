@@ -41,8 +41,8 @@ import highspy
 import numpy as np
 import ppl
 
-from .errors import VerificationFailed
-from .numbers import INF, Infinity, fraction_of
+from ..errors import VerificationFailed
+from ..core.scalars import INF, Infinity, fraction_of
 
 __all__ = ["LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
 
