@@ -18,6 +18,7 @@ positive root (Descartes) never binds and is skipped.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import StrEnum
 from fractions import Fraction
 
 import flint
@@ -26,7 +27,15 @@ from ..core.polys import integer_part, sign_variations
 from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 
-__all__ = ["Condition", "conditions_of", "distinct_conditions"]
+__all__ = ["Kind", "Condition", "conditions_of", "distinct_conditions"]
+
+
+class Kind(StrEnum):
+    """Which generator of P a condition is about (equal to the old strings)."""
+
+    VERTEX = "vertex"
+    RAY = "ray"
+    LINE = "line"
 
 
 @dataclass(frozen=True)
@@ -35,7 +44,7 @@ class Condition:
     ``generator`` the index in P.vertices / P.rays / P.lines; ``facet`` the row
     of G; ``poly`` the coefficients (dt^0 ..) of c (>= 0 required) or e (= 0)."""
 
-    kind: str
+    kind: Kind
     generator: int
     facet: int
     p: flint.fmpq_poly = field(repr=False, compare=False)
@@ -119,26 +128,26 @@ def conditions_of(system: LinearSystem, P: Polyhedron, method: Method):
     Dcoeffs = [fraction_of(c) for c in D.coeffs()]
     conditions: list[Condition] = []
     equalities: list[Condition] = []
-    for kind, W in (("vertex", V), ("ray", R), ("line", L)):
+    for kind, W in ((Kind.VERTEX, V), (Kind.RAY, R), (Kind.LINE, L)):
         if W is None:
             continue
         blocks = coefficient_blocks(W)
         entries = [blk.entries() for blk in blocks]
         cols = W.ncols()
-        cheap_skip = method.is_polynomial and kind != "line"
+        cheap_skip = method.is_polynomial and kind != Kind.LINE
         for j in range(P.m):
             for i in range(cols):
                 idx = j * cols + i
-                if cheap_skip and all(e[idx] <= 0 for e in entries[1:]) and (kind == "ray" or entries[0][idx] <= b[j]):
+                if cheap_skip and all(e[idx] <= 0 for e in entries[1:]) and (kind == Kind.RAY or entries[0][idx] <= b[j]):
                     continue  # every coefficient of c is >= 0: never binds (Descartes), decided before building c
                 gN = [e[idx] for e in entries]  # g_j N(dt) w, coefficients
-                if kind == "line":
+                if kind == Kind.LINE:
                     poly = flint.fmpq_poly(gN)
                     if not poly.is_zero():
                         equalities.append(Condition(kind, i, j, poly))
                     continue
                 q = -flint.fmpq_poly(gN)
-                if kind == "vertex":
+                if kind == Kind.VERTEX:
                     q += D * b[j]
                 c = q * D
                 if _never_binds(c.coeffs()):

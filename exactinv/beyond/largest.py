@@ -27,7 +27,7 @@ from ..core.scalars import INF, Infinity, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 from ..model.validate import check_problem
-from .conditions import Condition, conditions_of, distinct_conditions
+from .conditions import Condition, Kind, conditions_of, distinct_conditions
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold"]
 
@@ -131,14 +131,14 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     # The valid set lies inside the valid set of any single generator: take the
     # conditions of the first vertex exactly, then skip every other condition
     # that Descartes' rule shows nonnegative on [0, T], T the end of that set.
-    first = [c for c in distinct.values() if c.kind == "vertex" and c.generator == 0]
+    first = [c for c in distinct.values() if c.kind == Kind.VERTEX and c.generator == 0]
     bad: list[tuple[Real, Real]] = []
     for c in first:
         bad.extend(negative_segments(c.p))
     bound = complement_of_open(bad, singular)
     T = bound.intervals[-1].hi if bound.intervals else Fraction(0)
     for c in distinct.values():
-        if c.kind == "vertex" and c.generator == 0:
+        if c.kind == Kind.VERTEX and c.generator == 0:
             continue
         if not isinstance(T, Infinity) and positive_right_of_zero(c.p) and no_positive_root_below(c.p, upper_bound(T)):
             continue

@@ -22,6 +22,7 @@ import json
 import math
 import os
 from dataclasses import dataclass
+from enum import StrEnum
 from fractions import Fraction
 from typing import Any
 
@@ -35,17 +36,25 @@ from ..paper.invariance import discrete_invariance, optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
 from .problem import load_problem, parse_method
 
-__all__ = ["Verdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold",
+__all__ = ["Status", "Verdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold",
            "judge_batch"]
 
-VALID, TIGHT, INVALID = "valid", "tight", "invalid"
+class Status(StrEnum):
+    """An oracle verdict (equal to the old strings: ``Status.TIGHT == "tight"``)."""
+
+    VALID = "valid"
+    TIGHT = "tight"
+    INVALID = "invalid"
+
+
+VALID, TIGHT, INVALID = Status.VALID, Status.TIGHT, Status.INVALID
 
 
 @dataclass(frozen=True)
 class Verdict:
     """The oracle's judgement of one float result."""
 
-    status: str
+    status: Status
     quantity: str
     claimed: Fraction | Infinity
     exact: Any

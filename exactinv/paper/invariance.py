@@ -73,8 +73,48 @@ class FacetWitness:
         return f"FacetWitness(x={vector_text(self.x)}, facet={self.facet}, value={self.value})"
 
 
-@dataclass(frozen=True)
-class ContinuousInvariance(LatexMixin):
+class _Invariance(LatexMixin):
+    """What the continuous and the discrete answer share: ``holds``, the
+    certificate matrix ``H`` or the ``witness``, and their claim."""
+
+    holds: bool
+    H: Matrix | None
+    witness: FacetWitness | None
+    _kind = ""
+    _H_name = "H"
+    _H_text = "H"
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    @property
+    def certificate(self) -> Matrix | None:
+        """Deprecated alias of :attr:`H` (the JSON certificate is ``certificate_json``)."""
+        return self.H
+
+    def _claim(self, **data) -> list[dict]:
+        claim = {"type": self._kind, "holds": self.holds, **data}
+        if self.holds:
+            claim["H"] = mat(self.H)
+        else:
+            claim["witness"] = self.witness.record()
+        return [claim]
+
+    def to_latex(self) -> str:
+        if self.holds:
+            return rf"\text{{invariant}},\ {self._H_name} = {latex_matrix(self.H)}"
+        w = self.witness
+        return rf"\text{{not invariant: }} x = {latex_column(w.x)},\ \text{{facet {w.facet}}}"
+
+    def __repr__(self) -> str:
+        name = type(self).__name__
+        if self.holds:
+            return f"{name}(holds=True, {self._H_text}={matrix_text(self.H)})"
+        return f"{name}(holds=False, witness={self.witness!r})"
+
+
+@dataclass(frozen=True, repr=False)
+class ContinuousInvariance(_Invariance):
     """Is P invariant for x' = Ax?  ``H`` is an exact H (off-diagonal
     >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
     when it is not.  ``certificate_json`` is the JSON certificate;
@@ -85,14 +125,7 @@ class ContinuousInvariance(LatexMixin):
     witness: FacetWitness | None
     system: LinearSystem = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
-
-    def __bool__(self) -> bool:
-        return self.holds
-
-    @property
-    def certificate(self) -> Matrix | None:
-        """Deprecated alias of :attr:`H` (use ``certificate_json`` for the JSON certificate)."""
-        return self.H
+    _kind = "continuous_invariance"
 
     @property
     def certificate_json(self) -> dict:
@@ -100,24 +133,11 @@ class ContinuousInvariance(LatexMixin):
         return make_certificate(self.system, self.polyhedron, None, [self])
 
     def claims(self) -> list[dict]:
-        claim = {"type": "continuous_invariance", "holds": self.holds}
-        if self.holds:
-            claim["H"] = mat(self.H)
-        else:
-            claim["witness"] = self.witness.record()
-        return [claim]
-
-    def to_latex(self) -> str:
-        return _invariance_latex(self, "H")
-
-    def __repr__(self) -> str:
-        if self.holds:
-            return f"ContinuousInvariance(holds=True, H={matrix_text(self.H)})"
-        return f"ContinuousInvariance(holds=False, witness={self.witness!r})"
+        return self._claim()
 
 
-@dataclass(frozen=True)
-class DiscreteInvariance(LatexMixin):
+@dataclass(frozen=True, repr=False)
+class DiscreteInvariance(_Invariance):
     """Is P invariant for x+ = A_d x?  ``H`` is an exact H~ >= 0 with
     H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
     (``witness.facet`` the violated row).  ``certificate`` is kept as an
@@ -128,30 +148,12 @@ class DiscreteInvariance(LatexMixin):
     witness: FacetWitness | None
     Ad: Matrix = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
-
-    def __bool__(self) -> bool:
-        return self.holds
-
-    @property
-    def certificate(self) -> Matrix | None:
-        """Deprecated alias of :attr:`H`."""
-        return self.H
+    _kind = "discrete_invariance"
+    _H_name = r"\tilde H"
+    _H_text = "H~"
 
     def claims(self) -> list[dict]:
-        claim = {"type": "discrete_invariance", "holds": self.holds, "Ad": mat(self.Ad)}
-        if self.holds:
-            claim["H"] = mat(self.H)
-        else:
-            claim["witness"] = self.witness.record()
-        return [claim]
-
-    def to_latex(self) -> str:
-        return _invariance_latex(self, r"\tilde H")
-
-    def __repr__(self) -> str:
-        if self.holds:
-            return f"DiscreteInvariance(holds=True, H~={matrix_text(self.H)})"
-        return f"DiscreteInvariance(holds=False, witness={self.witness!r})"
+        return self._claim(Ad=mat(self.Ad))
 
 
 @dataclass(frozen=True)
@@ -264,12 +266,6 @@ class OptimalGamma(LatexMixin):
         if self.witness is not None:
             return f"OptimalGamma(value=INF, not invariant, witness={self.witness!r})"
         return f"OptimalGamma(value={self.value!r}, binding_row={self.binding_row}, paths={self.paths})"
-
-
-def _invariance_latex(result, name: str) -> str:
-    if result.holds:
-        return rf"\text{{invariant}},\ {name} = {latex_matrix(result.H)}"
-    return rf"\text{{not invariant: }} x = {latex_column(result.witness.x)},\ \text{{facet {result.witness.facet}}}"
 
 
 # ---------------------------------------------------------------- the API
