@@ -27,7 +27,7 @@ import cvxpy as cp
 import numpy as np
 
 import exactinv as ei
-from exactinv.lp import _ppl_maximize
+from exactinv.lp.solver import _ppl_maximize
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 

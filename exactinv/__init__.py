@@ -7,6 +7,9 @@ real algebraic number with a certified rational enclosure, or infinity, and
 comes with a certificate that the standard-library checker
 (:mod:`exactinv.check`) re-verifies.
 
+The package is layered; imports point one way only (tests/test_layering.py):
+errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces.
+
 >>> import exactinv as ei
 >>> S = ei.LinearSystem([[-1, 1], [-1, -1]])
 >>> P = ei.Polyhedron.box([-1, -1], [1, 1])
@@ -16,11 +19,18 @@ Fraction(1, 1)
 Fraction(1, 1)
 """
 
-from . import display, methods, oracle
-from .algebraic import RealAlgebraic
+from .beyond.largest import LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
 from .check import check
+from .core import scalars as numbers
+from .core.algebraic import RealAlgebraic
+from .core.roots import first_sign_change, nonnegative_until, real_roots
+from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed
-from .invariance import (
+from .interfaces import display, oracle
+from .interfaces.compare import ThresholdComparison, compare_thresholds
+from .model import LinearSystem, Method, Polyhedron, methods
+from .paper.forward_euler import ForwardEulerThreshold, forward_euler_threshold
+from .paper.invariance import (
     ContinuousInvariance,
     DiscreteInvariance,
     FacetWitness,
@@ -29,22 +39,9 @@ from .invariance import (
     discrete_invariance,
     optimal_gamma,
 )
-from .largest import (
-    ForwardEulerThreshold,
-    LargestThreshold,
-    ThresholdComparison,
-    ValidSteplengths,
-    compare_thresholds,
-    forward_euler_threshold,
-    largest_threshold,
-    valid_steplengths,
-)
-from .methods import Method
-from .model import LinearSystem, Polyhedron
-from .monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
-from .numbers import INF, Infinity, exact_from_float, nearest_rational
-from .roots import first_sign_change, nonnegative_until, real_roots
-from .thresholds import SteplengthThreshold, steplength_threshold
+from .paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
+from .paper.polynomial import SteplengthThreshold
+from .paper.threshold import steplength_threshold
 
 __version__ = "0.1.0"
 

@@ -1,15 +1,25 @@
-"""The exceptions exactinv raises.
+"""The exceptions exactinv raises (the bottom layer: imports nothing from exactinv).
 
-Every error on bad input derives from :class:`ExactinvError`, which is also a
-:class:`ValueError`, so callers may catch either.  Following python-flint's
-three outcomes of a verifier, a claim is *proved* (a result is returned),
-*refuted with a witness* (a result with ``holds == False`` and a witness), or
-*undecided* (:class:`Undecided` is raised) -- never silently guessed.
+Following python-flint's three outcomes of a verifier, a claim is *proved*
+(a result is returned), *refuted with a witness* (a result with
+``holds == False`` and a witness), or *undecided* (:class:`Undecided` is
+raised) -- never silently guessed.
+
+Every exception derives from :class:`ExactinvException`.  Errors about the
+*input* derive from :class:`ExactinvError`, which is also a :class:`ValueError`
+(callers may catch either, as with hypothesis' ``InvalidArgument``).  An
+engine bug (:class:`VerificationFailed`, a :class:`RuntimeError`) and a
+question the engine cannot decide (:class:`Undecided`) are *not*
+``ValueError``s, so catching bad input never hides them.
+
+>>> issubclass(InvalidInput, ValueError), issubclass(VerificationFailed, ValueError)
+(True, False)
 """
 
 from __future__ import annotations
 
 __all__ = [
+    "ExactinvException",
     "ExactinvError",
     "InvalidInput",
     "EmptyPolyhedron",
@@ -19,8 +29,12 @@ __all__ = [
 ]
 
 
-class ExactinvError(ValueError):
+class ExactinvException(Exception):
     """Base class of every exception exactinv raises."""
+
+
+class ExactinvError(ExactinvException, ValueError):
+    """Base class of every error about the input (a :class:`ValueError`)."""
 
 
 class InvalidInput(ExactinvError):
@@ -44,12 +58,12 @@ class NotInvariant(ExactinvError):
         self.witness = witness
 
 
-class VerificationFailed(ExactinvError):
+class VerificationFailed(ExactinvException, RuntimeError):
     """An exact re-verification of a certificate failed.  Raised when an
     internal consistency check fails (a bug in the untrusted engine, never a
     property of the input); the checker reports such failures as verdicts."""
 
 
-class Undecided(ExactinvError):
+class Undecided(ExactinvException):
     """exactinv could neither prove nor refute the claim (for example a
     certificate that the exact fallback could not repair)."""

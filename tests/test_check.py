@@ -74,7 +74,7 @@ def test_round_trip_through_json(tmp_path):
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.stem)
 def test_every_example_round_trips(example):
-    from exactinv.problem import load_problem
+    from exactinv.interfaces.problem import load_problem
 
     prob = load_problem(example)
     results = [ei.optimal_gamma(prob.system, prob.polyhedron)]

@@ -14,7 +14,7 @@ from fractions import Fraction
 
 import exactinv as ei
 from certificate_corpus import corpus
-from exactinv.problem import parse_method
+from exactinv.interfaces.problem import parse_method
 from exactinv_check import check
 
 PER_CERTIFICATE = 160  # mutants sampled per certificate (deterministic)
@@ -101,7 +101,7 @@ def _root_equals(engine_value, d):
     """engine_value is the unique root of d's poly in its interval (reducible poly)."""
     import flint
 
-    from exactinv.roots import real_roots
+    from exactinv.core.roots import real_roots
 
     poly, lo, hi = _algebraic(d)
     inside = [r for r, _ in real_roots(flint.fmpq_poly(poly)) if lo < r < hi]

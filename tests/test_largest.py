@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.largest import compare_thresholds, forward_euler_threshold, largest_threshold, valid_steplengths
+from exactinv import compare_thresholds, forward_euler_threshold, largest_threshold, valid_steplengths
 from strategies import metzler_cones as cones
 
 BOX_S = ei.LinearSystem([[-1, 1], [-1, -1]])

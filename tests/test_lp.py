@@ -4,7 +4,7 @@ import flint
 from hypothesis import given
 from hypothesis import strategies as st
 
-from exactinv import lp
+from exactinv.lp import solver as lp
 from exactinv.lp import ExactLPSolver, solve_lp
 
 

@@ -8,7 +8,7 @@ import pytest
 import sympy
 
 import exactinv as ei
-from exactinv.numbers import INF, exact_from_float, nearest_rational, to_matrix, to_rational, to_vector
+from exactinv.core.scalars import INF, exact_from_float, nearest_rational, to_matrix, to_rational, to_vector
 
 
 @pytest.mark.parametrize(

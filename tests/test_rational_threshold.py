@@ -6,8 +6,8 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.numbers import fmpq_matrix
-from exactinv.rational_threshold import rational_threshold, spectral_abscissa
+from exactinv.core.scalars import fmpq_matrix
+from exactinv.paper.rational import rational_threshold, spectral_abscissa
 from strategies import metzler_cones as cones
 
 E2_SYSTEM = ei.LinearSystem([[-1, 2], [0, 1]])

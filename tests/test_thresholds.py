@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.check import check
-from exactinv.numbers import fmpq_matrix
+from exactinv.core.scalars import fmpq_matrix
 
 
 @st.composite

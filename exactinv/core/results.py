@@ -4,30 +4,18 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .algebraic import RealAlgebraic
-from .numbers import Infinity
+from .algebraic import RealAlgebraic, Real
+from .latex import LatexMixin
+from .scalars import Infinity
 
 __all__ = ["LatexMixin", "ExactValueMixin"]
-
-
-class LatexMixin:
-    """``to_latex()`` (for papers) and ``_repr_latex_`` (for Jupyter)."""
-
-    def to_latex(self) -> str:
-        """LaTeX for papers (exact values; algebraic numbers with certified digits)."""
-        from .display import to_latex
-
-        return to_latex(self)
-
-    def _repr_latex_(self) -> str:
-        return "$" + self.to_latex() + "$"
 
 
 class ExactValueMixin(LatexMixin):
     """For results with an exact ``value``: rational ``lower``/``upper`` bounds
     (``lower`` is itself a safe value) and ``refine(bits)``."""
 
-    value: Fraction | RealAlgebraic | Infinity
+    value: Real
 
     @property
     def lower(self) -> Fraction | Infinity:

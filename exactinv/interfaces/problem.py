@@ -15,10 +15,10 @@ import os
 from dataclasses import dataclass
 from typing import Any
 
-from . import methods as _methods
-from .errors import InvalidInput
-from .methods import Method
-from .model import LinearSystem, Polyhedron
+from ..model import methods as _methods
+from ..errors import InvalidInput
+from ..model.methods import Method
+from ..model import LinearSystem, Polyhedron
 
 __all__ = ["Problem", "load_problem", "parse_method"]
 

@@ -31,6 +31,7 @@ Infeasible and unbounded programs get certificates too: a Farkas vector
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import StrEnum
 from fractions import Fraction
 from functools import cached_property
 from math import lcm
@@ -41,12 +42,21 @@ import highspy
 import numpy as np
 import ppl
 
-from .errors import VerificationFailed
-from .numbers import INF, Infinity, fraction_of
+from ..errors import VerificationFailed
+from ..core.scalars import INF, Infinity, fraction_of
 
-__all__ = ["LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
+__all__ = ["LPStatus", "LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
 
-OPTIMAL, INFEASIBLE, UNBOUNDED = "optimal", "infeasible", "unbounded"
+class LPStatus(StrEnum):
+    """The outcome of an LP (equal to its old string: ``LPStatus.OPTIMAL == "optimal"``)."""
+
+    OPTIMAL = "optimal"
+    INFEASIBLE = "infeasible"
+    UNBOUNDED = "unbounded"
+    UNKNOWN = "unknown"  # a float hint that gave up (never a returned result)
+
+
+OPTIMAL, INFEASIBLE, UNBOUNDED, UNKNOWN = LPStatus.OPTIMAL, LPStatus.INFEASIBLE, LPStatus.UNBOUNDED, LPStatus.UNKNOWN
 _ROUNDING_DENOMINATOR = 1 << 24
 
 
@@ -135,15 +145,19 @@ class ExactLPSolver:
             for path, x, y in self._reconstructions(cq, bq, nonneg, x_float, y_float, highs):
                 if x is not None and y is not None and self._verify_optimal(cq, bq, nonneg, x, y):
                     return _optimal(cq, x, y, path)
-        elif status == INFEASIBLE:
-            certificate = self._farkas(bq, nonneg)
-            if certificate is not None:
-                return certificate
-        elif status == UNBOUNDED:
-            certificate = self._unbounded(cq, bq, nonneg)
+        else:
+            certificate = self._certified_failure(status, cq, bq, nonneg)
             if certificate is not None:
                 return certificate
         return self._exact_solve(cq, bq, nonneg)
+
+    def _certified_failure(self, status: str, cq, bq, nonneg) -> LPResult | None:
+        """A verified Farkas certificate (INFEASIBLE) or point and ray (UNBOUNDED), or None."""
+        if status == INFEASIBLE:
+            return self._farkas(bq, nonneg)
+        if status == UNBOUNDED:
+            return self._unbounded(cq, bq, nonneg)
+        return None
 
     def solve_many(self, costs: flint.fmpq_mat, rhss: flint.fmpq_mat,
                    nonnegatives: Sequence[Sequence[bool]]) -> list[LPResult]:
@@ -217,7 +231,7 @@ class ExactLPSolver:
     def _float_solve(self, c, b, nonneg):
         cost, rhs = _floats(c.entries()), _floats(b.entries())
         if self._A_float is None or cost is None or rhs is None:
-            return "unknown", None, None, None  # beyond double range: exact route only
+            return UNKNOWN, None, None, None  # beyond double range: exact route only
         cost = -cost  # HiGHS minimizes
         rhs = rhs * self._row_scale
         h = self._highs
@@ -257,7 +271,7 @@ class ExactLPSolver:
         if status == S.kUnbounded:
             return UNBOUNDED, None, None, None
         self._highs = None  # a model in an odd state is rebuilt next time
-        return "unknown", None, None, None
+        return UNKNOWN, None, None, None
 
     # -------------------------------------------------------- map back to Q
     def _reconstructions(self, cq, bq, nonneg, x_float, y_float, highs):
@@ -442,12 +456,8 @@ class ExactLPSolver:
             dstatus, y = _ppl_maximize(dual_A, [not v for v in nonneg], neg_c, -bq, [not e for e in self.equality])
             if dstatus == OPTIMAL and self._verify_optimal(cq, bq, nonneg, x, y):
                 return _optimal(cq, x, y, "exact-ppl")
-        elif status == INFEASIBLE:
-            certificate = self._farkas(bq, nonneg)
-            if certificate is not None:
-                return certificate
-        elif status == UNBOUNDED:
-            certificate = self._unbounded(cq, bq, nonneg)
+        else:
+            certificate = self._certified_failure(status, cq, bq, nonneg)
             if certificate is not None:
                 return certificate
         raise VerificationFailed(

@@ -17,30 +17,44 @@ For pytest: ``assert_threshold(system, polyhedron, method, claimed)``.
 
 from __future__ import annotations
 
+import csv
+import json
 import math
+import os
 from dataclasses import dataclass
+from enum import StrEnum
 from fractions import Fraction
 from typing import Any
 
-from .algebraic import RealAlgebraic
-from .errors import InvalidInput
-from .largest import largest_threshold, valid_steplengths
-from .methods import Method, forward_euler
-from .monotonicity import absolute_monotonicity_radius
-from .numbers import INF, Infinity, exact_from_float, to_rational
-from .roots import first_sign_change
-from .invariance import discrete_invariance, optimal_gamma
+from ..beyond.largest import largest_threshold, valid_steplengths
+from ..core.algebraic import RealAlgebraic
+from ..core.roots import first_sign_change
+from ..core.scalars import INF, Infinity, exact_from_float, to_rational
+from ..errors import ExactinvError, InvalidInput
+from ..model.methods import Method, forward_euler
+from ..paper.invariance import discrete_invariance, optimal_gamma
+from ..paper.monotonicity import absolute_monotonicity_radius
+from .problem import load_problem, parse_method
 
-__all__ = ["Verdict", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold"]
+__all__ = ["Status", "Verdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold",
+           "judge_batch"]
 
-VALID, TIGHT, INVALID = "valid", "tight", "invalid"
+class Status(StrEnum):
+    """An oracle verdict (equal to the old strings: ``Status.TIGHT == "tight"``)."""
+
+    VALID = "valid"
+    TIGHT = "tight"
+    INVALID = "invalid"
+
+
+VALID, TIGHT, INVALID = Status.VALID, Status.TIGHT, Status.INVALID
 
 
 @dataclass(frozen=True)
 class Verdict:
     """The oracle's judgement of one float result."""
 
-    status: str
+    status: Status
     quantity: str
     claimed: Fraction | Infinity
     exact: Any
@@ -199,3 +213,45 @@ def assert_threshold(system, polyhedron, method: Method, claimed: Any, tolerance
     if v.status == INVALID or (require_tight and v.status != TIGHT):
         raise AssertionError(str(v))
     return v
+
+
+@dataclass(frozen=True)
+class BatchRow:
+    """One judged row of a batch file: where it came from and its :class:`Verdict`."""
+
+    name: str
+    quantity: str
+    method: str
+    claimed: str
+    verdict: Verdict
+
+
+def judge_batch(path: str, tolerance: Any = "1e-9") -> list[BatchRow]:
+    """Judge a batch of float results: CSV (problem,quantity,method,claimed) or
+    JSON lines; problem paths are relative to the batch file."""
+    base = os.path.dirname(os.path.abspath(path))
+    with open(path) as fh:
+        if path.endswith(".jsonl"):
+            rows = [json.loads(line) for line in fh if line.strip()]
+        else:
+            rows = list(csv.DictReader(fh))
+    return [_judge_row(k, row, base, tolerance) for k, row in enumerate(rows, 1)]
+
+
+def _judge_row(k: int, row: dict, base: str, tolerance: Any) -> BatchRow:
+    source = row["problem"]
+    prob = load_problem(source if isinstance(source, dict) else os.path.join(base, source))
+    spec = row.get("method") or None
+    method = parse_method(json.loads(spec) if isinstance(spec, str) else spec) if spec else prob.method
+    claimed = float(row["claimed"])
+    quantity = row.get("quantity", "threshold")
+    if quantity == "threshold":
+        v = judge_threshold(prob.system, prob.polyhedron, method, claimed, tolerance)
+    elif quantity == "gamma":
+        v = judge_gamma(prob.system, prob.polyhedron, claimed, tolerance)
+    elif quantity == "radius":
+        v = judge_radius(method, claimed, tolerance)
+    else:
+        raise ExactinvError(f"row {k}: unknown quantity {quantity!r} (threshold, gamma, radius)")
+    name = prob.name if isinstance(source, dict) else os.path.basename(str(source))
+    return BatchRow(name, quantity, method.name if method else "-", str(row["claimed"]), v)

@@ -27,7 +27,7 @@ from typing import Any, Iterable, Sequence
 
 import flint
 
-from .errors import InvalidInput
+from ..errors import InvalidInput
 
 __all__ = [
     "INF",
@@ -292,3 +292,28 @@ def vector_of(M: flint.fmpq_mat) -> Vector:
 def format_rational(x: Fraction | Infinity) -> str:
     """The exact string form used in JSON and on the command line ("-3/4")."""
     return str(x)
+
+
+def dyadic_of(a: flint.arb) -> Fraction:
+    """The midpoint of an Arb ball as an exact dyadic Fraction."""
+    man, exp = a.mid().man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
+def frac_latex(q: Fraction) -> str:
+    """A Fraction as a compact LaTeX ``\\tfrac``."""
+    if q.denominator == 1:
+        return str(q.numerator)
+    sign = "-" if q < 0 else ""
+    return f"{sign}\\tfrac{{{abs(q.numerator)}}}{{{q.denominator}}}"
+
+
+def vector_text(v: Sequence[Fraction]) -> str:
+    """A vector of exact values as "[a, b, ...]"."""
+    return "[" + ", ".join(str(x) for x in v) + "]"
+
+
+def matrix_text(M: Sequence[Sequence[Fraction]]) -> str:
+    """A matrix of exact values as "[[a, b], ...]"."""
+    return "[" + ", ".join(vector_text(r) for r in M) + "]"

@@ -21,12 +21,28 @@ from typing import Any
 
 import flint
 
-from .algebraic import ExactKey
-from .errors import EmptyPolyhedron, InvalidInput, VerificationFailed
-from .lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
-from .model import LinearSystem, Polyhedron, _matrix_text, _vector_text
-from .numbers import INF, Infinity, Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational
-from .results import LatexMixin
+from ..core.algebraic import ExactKey
+from ..core.encode import encode_real, mat, vec
+from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
+from ..core.scalars import (
+    INF,
+    Infinity,
+    Matrix,
+    Vector,
+    fmpq_matrix,
+    fmpq_of,
+    fraction_of,
+    matrix_of,
+    matrix_text,
+    to_matrix,
+    to_rational,
+    vector_text,
+)
+from ..errors import EmptyPolyhedron, InvalidInput, VerificationFailed
+from ..lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from ..model import LinearSystem, Polyhedron
+from ..model.record import certificate as make_certificate
+from ..model.validate import check_pair, check_polyhedron
 
 __all__ = [
     "FacetWitness",
@@ -49,57 +65,95 @@ class FacetWitness:
     facet: int
     value: Fraction
 
+    def record(self) -> dict:
+        """The witness as exact strings (for a claim)."""
+        return {"x": vec(self.x), "facet": self.facet, "value": str(self.value)}
+
     def __repr__(self) -> str:
-        return f"FacetWitness(x={_vector_text(self.x)}, facet={self.facet}, value={self.value})"
+        return f"FacetWitness(x={vector_text(self.x)}, facet={self.facet}, value={self.value})"
 
 
-@dataclass(frozen=True)
-class ContinuousInvariance(LatexMixin):
-    """Is P invariant for x' = Ax?  ``certificate`` is an exact H (off-diagonal
-    >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
-    when it is not."""
+class _Invariance(LatexMixin):
+    """What the continuous and the discrete answer share: ``holds``, the
+    certificate matrix ``H`` or the ``witness``, and their claim."""
 
     holds: bool
-    certificate: Matrix | None
+    H: Matrix | None
     witness: FacetWitness | None
-    system: LinearSystem = field(repr=False)
-    polyhedron: Polyhedron = field(repr=False)
+    _kind = ""
+    _H_name = "H"
+    _H_text = "H"
 
     def __bool__(self) -> bool:
         return self.holds
 
     @property
-    def certificate_json(self) -> dict:
-        """The JSON certificate of this claim for :func:`exactinv.check`."""
-        from .certificates import certificate
+    def certificate(self) -> Matrix | None:
+        """Deprecated alias of :attr:`H` (the JSON certificate is ``certificate_json``)."""
+        return self.H
 
-        return certificate(self.system, self.polyhedron, None, [self])
+    def _claim(self, **data) -> list[dict]:
+        claim = {"type": self._kind, "holds": self.holds, **data}
+        if self.holds:
+            claim["H"] = mat(self.H)
+        else:
+            claim["witness"] = self.witness.record()
+        return [claim]
+
+    def to_latex(self) -> str:
+        if self.holds:
+            return rf"\text{{invariant}},\ {self._H_name} = {latex_matrix(self.H)}"
+        w = self.witness
+        return rf"\text{{not invariant: }} x = {latex_column(w.x)},\ \text{{facet {w.facet}}}"
 
     def __repr__(self) -> str:
+        name = type(self).__name__
         if self.holds:
-            return f"ContinuousInvariance(holds=True, H={_matrix_text(self.certificate)})"
-        return f"ContinuousInvariance(holds=False, witness={self.witness!r})"
+            return f"{name}(holds=True, {self._H_text}={matrix_text(self.H)})"
+        return f"{name}(holds=False, witness={self.witness!r})"
 
 
-@dataclass(frozen=True)
-class DiscreteInvariance(LatexMixin):
-    """Is P invariant for x+ = A_d x?  ``certificate`` is an exact H~ >= 0 with
-    H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
-    (``witness.facet`` the violated row)."""
+@dataclass(frozen=True, repr=False)
+class ContinuousInvariance(_Invariance):
+    """Is P invariant for x' = Ax?  ``H`` is an exact H (off-diagonal
+    >= 0, HG = GA, Hb <= 0) when it is, ``witness`` a :class:`FacetWitness`
+    when it is not.  ``certificate_json`` is the JSON certificate;
+    ``certificate`` is kept as an alias of ``H`` (deprecated name)."""
 
     holds: bool
-    certificate: Matrix | None
+    H: Matrix | None
+    witness: FacetWitness | None
+    system: LinearSystem = field(repr=False)
+    polyhedron: Polyhedron = field(repr=False)
+    _kind = "continuous_invariance"
+
+    @property
+    def certificate_json(self) -> dict:
+        """The JSON certificate of this claim for :func:`exactinv.check`."""
+        return make_certificate(self.system, self.polyhedron, None, [self])
+
+    def claims(self) -> list[dict]:
+        return self._claim()
+
+
+@dataclass(frozen=True, repr=False)
+class DiscreteInvariance(_Invariance):
+    """Is P invariant for x+ = A_d x?  ``H`` is an exact H~ >= 0 with
+    H~G = GA_d and H~b <= b, or ``witness`` a point x in P with A_d x not in P
+    (``witness.facet`` the violated row).  ``certificate`` is kept as an
+    alias of ``H`` (deprecated name)."""
+
+    holds: bool
+    H: Matrix | None
     witness: FacetWitness | None
     Ad: Matrix = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
+    _kind = "discrete_invariance"
+    _H_name = r"\tilde H"
+    _H_text = "H~"
 
-    def __bool__(self) -> bool:
-        return self.holds
-
-    def __repr__(self) -> str:
-        if self.holds:
-            return f"DiscreteInvariance(holds=True, H~={_matrix_text(self.certificate)})"
-        return f"DiscreteInvariance(holds=False, witness={self.witness!r})"
+    def claims(self) -> list[dict]:
+        return self._claim(Ad=mat(self.Ad))
 
 
 @dataclass(frozen=True)
@@ -175,9 +229,31 @@ class OptimalGamma(LatexMixin):
     def certificate(self) -> dict:
         """The JSON certificate (H and the binding row's dual, the rays, or
         the witness) for :func:`exactinv.check`."""
-        from .certificates import certificate
+        return make_certificate(self.system, self.polyhedron, None, [self])
 
-        return certificate(self.system, self.polyhedron, None, [self])
+    def claims(self) -> list[dict]:
+        """The gamma_star claim: the witness, the rows' points and rays (-oo),
+        or H with the binding row's dual."""
+        claim = {"type": "gamma_star", "value": encode_real(self.value), "paths": self.paths}
+        if self.witness is not None:
+            claim["witness"] = self.witness.record()
+        elif isinstance(self.value, Infinity):  # -oo: a point and a ray per row
+            claim["rows"] = [{"h": vec(r.h), "ray": vec(r.ray)} for r in self.rows]
+            claim["H"] = mat(self.H)
+        else:
+            y, lam = self.dual
+            m = self.H_flint.nrows()
+            H = self.H_flint.entries()
+            claim.update(H=[[str(v) for v in H[i * m:(i + 1) * m]] for i in range(m)], binding_row=self.binding_row,
+                         dual={"y": vec(y), "lambda": str(lam)})
+        return [claim]
+
+    def to_latex(self) -> str:
+        if self.witness is not None:
+            w = self.witness
+            return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_column(w.x)}"
+                    rf"\text{{ on facet {w.facet}, }} g^T A x = {latex_real(w.value)} > 0)")
+        return rf"\gamma^* = {latex_real(self.value)}, \quad H = {latex_matrix(self.H)}"
 
     @property
     def forward_euler_step(self) -> Fraction | Infinity:
@@ -202,7 +278,7 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     is warm-started from row to row.  Exact: every row value is verified by
     primal and dual certificates in Q (see :mod:`exactinv.lp`).
     """
-    S, P = _check_pair(system, polyhedron)
+    S, P = check_pair(system, polyhedron)
     m, n = P.m, P.n
     GA = P.G_flint * S.A_flint
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
@@ -249,7 +325,7 @@ def discrete_invariance(
     and its optimal point is a witness x in P with A_d x not in P otherwise.
     The m LPs share G and are verified as one batch (:meth:`ExactLPSolver.solve_many`).
     """
-    P = _check_polyhedron(polyhedron)
+    P = check_polyhedron(polyhedron)
     if isinstance(Ad, LinearSystem):
         if method is None or dt is None:
             raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
@@ -282,23 +358,6 @@ def discrete_invariance(
 
 
 # ---------------------------------------------------------------- helpers
-def _check_polyhedron(P: Any) -> Polyhedron:
-    if not isinstance(P, Polyhedron):
-        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
-    if P.is_empty:
-        raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty; invariance questions about it are vacuous")
-    return P
-
-
-def _check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
-    if not isinstance(S, LinearSystem):
-        raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
-    P = _check_polyhedron(P)
-    if S.n != P.n:
-        raise InvalidInput(f"system/polyhedron: A is {S.n}x{S.n} but G has {P.n} columns")
-    return S, P
-
-
 def _gamma_row(res: LPResult) -> GammaRow:
     if res.status == OPTIMAL:
         return GammaRow(-res.value, res)

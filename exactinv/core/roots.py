@@ -27,74 +27,35 @@ from typing import Any, Iterable
 
 import flint
 
-from .algebraic import ExactKey, RealAlgebraic, _dyadic, sign_at
-from .errors import InvalidInput, VerificationFailed
-from .numbers import INF, Infinity, fmpq_of, to_rational
+from ..errors import InvalidInput, VerificationFailed
+from .algebraic import ExactKey, FiniteReal, Real, RealAlgebraic
+from .polys import (
+    as_polynomial,
+    count_real_roots,
+    integer_part,
+    no_root_between,
+    shift,
+    sign_at,
+    sign_right_of,
+    sign_variations,
+)
+from .scalars import INF, Infinity, dyadic_of, to_rational
 
 __all__ = [
     "as_polynomial",
     "real_roots",
     "count_real_roots",
+    "no_root_between",
     "sign_variations",
     "first_sign_change",
     "nonnegative_until",
     "sign_right_of",
+    "positive_roots",
+    "negative_segments",
 ]
 
-Real = Fraction | RealAlgebraic
 
-
-def as_polynomial(f: Any, name: str = "f") -> flint.fmpq_poly:
-    """An exact polynomial from an fmpq_poly/fmpz_poly, a sympy Poly, or a
-    sequence of coefficients from the constant term up."""
-    if isinstance(f, flint.fmpq_poly):
-        return f
-    if isinstance(f, flint.fmpz_poly):
-        return flint.fmpq_poly(f)
-    if hasattr(f, "all_coeffs") and hasattr(f, "gens"):  # sympy Poly (high to low)
-        coeffs = list(reversed(f.all_coeffs()))
-    elif isinstance(f, (str, bytes)) or not isinstance(f, Iterable):
-        raise InvalidInput(f"{name}: expected a polynomial or a list of coefficients (constant term first)")
-    else:
-        coeffs = list(f)
-    return flint.fmpq_poly([fmpq_of(to_rational(c, f"{name}[{k}]")) for k, c in enumerate(coeffs)])
-
-
-def _integer(f: flint.fmpq_poly) -> flint.fmpz_poly:
-    """The primitive integer polynomial with the same roots and sign as f."""
-    num = f.numer()
-    return num // num.content() if not num.is_zero() else num
-
-
-def _shift(f: flint.fmpq_poly, start: Fraction) -> flint.fmpq_poly:
-    """f(start + x)."""
-    if start == 0:
-        return f
-    return f(flint.fmpq_poly([fmpq_of(start), 1]))
-
-
-_ONE_PLUS_X = flint.fmpq_poly([1, 1])
-
-
-def no_root_between(p: Any, a: Fraction, b: Fraction) -> bool:
-    """True if Descartes' rule proves that p has no root in the open interval
-    (a, b): the Moebius-transformed (1+x)^d p((a + b x)/(1 + x)) has no sign
-    variation.  (False means: not proved.)  Exact; a Taylor shift in FLINT."""
-    pq = as_polynomial(p)
-    shifted = pq(flint.fmpq_poly([fmpq_of(a), fmpq_of(b - a)]))  # p(a + (b - a) y), y in (0, 1)
-    transformed = flint.fmpq_poly(list(reversed(shifted.coeffs())))(_ONE_PLUS_X)
-    return sign_variations(transformed.coeffs()) == 0
-
-
-def sign_variations(coeffs: Iterable[Any]) -> int:
-    """Number of sign changes in a coefficient sequence, zeros ignored.
-    By Descartes' rule it bounds the number of positive roots (with
-    multiplicity) and has the same parity."""
-    signs = [c > 0 for c in coeffs if c != 0]
-    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
-
-
-def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
+def _isolate_irreducible(p: flint.fmpz_poly) -> list[FiniteReal]:
     """The real roots of an irreducible integer polynomial, sorted."""
     if p.degree() == 1:
         a, b = (int(c) for c in p.coeffs())  # b x + a
@@ -103,7 +64,7 @@ def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
     for z, _ in p.complex_roots():
         if not z.imag.is_zero():
             continue
-        lo, hi = _dyadic(z.real.lower()), _dyadic(z.real.upper())
+        lo, hi = dyadic_of(z.real.lower()), dyadic_of(z.real.upper())
         if sign_at(p, lo) * sign_at(p, hi) >= 0:
             raise VerificationFailed(f"root isolation: Arb enclosure ({lo}, {hi}) of a root of {p} has no sign change")
         out.append(RealAlgebraic(p, lo, hi, _trusted=True))
@@ -111,7 +72,7 @@ def _isolate_irreducible(p: flint.fmpz_poly) -> list[Real]:
     return out
 
 
-def real_roots(f: Any) -> list[tuple[Real, int]]:
+def real_roots(f: Any) -> list[tuple[FiniteReal, int]]:
     """All distinct real roots of f with their multiplicities, sorted; exact.
 
     >>> real_roots([2, -3, 1])                      # (x - 1)(x - 2)
@@ -122,47 +83,10 @@ def real_roots(f: Any) -> list[tuple[Real, int]]:
     fq = as_polynomial(f)
     if fq.is_zero():
         raise InvalidInput("f: the zero polynomial has every number as a root")
-    _, factors = _integer(fq).factor()
+    _, factors = integer_part(fq).factor()
     roots = [(r, int(m)) for p, m in factors for r in _isolate_irreducible(p)]
     roots.sort(key=lambda rm: ExactKey(rm[0]))
     return roots
-
-
-def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:
-    """Number of distinct real roots of p in the open interval (lower, upper)
-    (None = unbounded), by Sturm's theorem in exact arithmetic.  The ends must
-    not be roots."""
-    pq = as_polynomial(p)
-    seq = [pq, pq.derivative()]
-    while not seq[-1].is_zero():
-        seq.append(-(seq[-2] % seq[-1]))
-    seq.pop()
-
-    def variations(x):
-        if x is None:
-            return None
-        return sign_variations([s(fmpq_of(x)) for s in seq])
-
-    def at_infinity(sign):
-        vals = []
-        for s in seq:
-            lead = s.coeffs()[-1] if s.degree() >= 0 else 0
-            vals.append(lead * (sign ** s.degree()))
-        return sign_variations(vals)
-
-    left = at_infinity(-1) if lower is None else variations(lower)
-    right = at_infinity(1) if upper is None else variations(upper)
-    return left - right
-
-
-def sign_right_of(f: Any, t: Fraction) -> int:
-    """The sign of f on (t, t + eps) for small eps > 0: the sign of the first
-    nonzero Taylor coefficient of f at t (0 only for the zero polynomial)."""
-    g = _shift(as_polynomial(f), Fraction(t))
-    for c in g.coeffs():
-        if c != 0:
-            return 1 if c > 0 else -1
-    return 0
 
 
 def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fraction] | Fraction | None:
@@ -201,7 +125,7 @@ def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fractio
     return None
 
 
-def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
+def first_sign_change(f: Any, start: Any = 0) -> Real:
     """The smallest t > start at which f changes sign (a root of odd
     multiplicity), or INF if there is none.  Exact.
 
@@ -219,7 +143,7 @@ def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
     start = to_rational(start, "start")
     if fq.is_zero() or fq.degree() == 0:
         return INF
-    shifted = _integer(_shift(fq, start))
+    shifted = integer_part(shift(fq, start))
     if sign_variations(shifted.coeffs()) == 0:  # Descartes: no root beyond start
         return INF
     _, parts = shifted.factor_squarefree()
@@ -236,7 +160,7 @@ def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
         return start + found
     a, b = found
     lo, hi = start + a, start + b
-    _, factors = _integer(fq).factor()
+    _, factors = integer_part(fq).factor()
     for p, mult in factors:
         if mult % 2 == 0:
             continue
@@ -251,7 +175,7 @@ def first_sign_change(f: Any, start: Any = 0) -> Real | Infinity:
     raise VerificationFailed("first_sign_change: the isolated root belongs to no factor")
 
 
-def nonnegative_until(f: Any, start: Any = 0) -> Real | Infinity:
+def nonnegative_until(f: Any, start: Any = 0) -> Real:
     """sup{T >= start : f >= 0 on [start, T]} when f >= 0 just right of start
     (f(start) itself is not inspected); ``start`` when f < 0 just right of it.
     This is the paper's tau_i for f_i, with tangent roots stepped over."""
@@ -259,3 +183,27 @@ def nonnegative_until(f: Any, start: Any = 0) -> Real | Infinity:
     if sign_right_of(f, start) < 0:
         return start
     return first_sign_change(f, start)
+
+
+def positive_roots(p: flint.fmpq_poly) -> list[tuple[FiniteReal, int]]:
+    """The distinct positive roots of p with multiplicities, sorted (none for a constant)."""
+    if p.degree() < 1:
+        return []
+    return [(r, m) for r, m in real_roots(p) if r > 0]
+
+
+def negative_segments(p: flint.fmpq_poly) -> list[tuple[Real, Real]]:
+    """The open intervals (a, b) in (0, oo) where the polynomial is negative:
+    its sign right of 0, flipped at every root of odd multiplicity."""
+    sign = sign_right_of(p, 0)
+    out = []
+    left: Real = Fraction(0)
+    for r, m in positive_roots(p):
+        if sign < 0:
+            out.append((left, r))
+        if m % 2:
+            sign = -sign
+        left = r
+    if sign < 0:
+        out.append((left, INF))
+    return out

@@ -31,12 +31,13 @@ from fractions import Fraction
 
 import flint
 
-from .algebraic import ExactKey, RealAlgebraic
+from ..core.algebraic import ExactKey, RealAlgebraic
+from ..core.roots import real_roots
+from ..core.scalars import INF, Infinity, fraction_of
+from ..model.methods import Method
 from .invariance import OptimalGamma
-from .methods import Method
 from .monotonicity import absolute_monotonicity_radius
-from .numbers import INF, Infinity, fraction_of
-from .roots import real_roots
+from .polynomial import SteplengthThreshold
 
 __all__ = ["rational_threshold", "spectral_abscissa", "smallest_positive_pole"]
 
@@ -126,10 +127,8 @@ def _certificate_candidates(gamma: OptimalGamma):
         yield H, max(-fraction_of(H[i, i]) for i in range(m))
 
 
-def rational_threshold(method: Method, gamma: OptimalGamma):
+def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
     """tau = min(rho/gamma_H, z_p/alpha(H)) for the best certificate H tried (module docstring)."""
-    from .thresholds import SteplengthThreshold
-
     radius = absolute_monotonicity_radius(method)
     rho, g = radius.value, gamma.value
     if rho == 0:

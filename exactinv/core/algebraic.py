@@ -17,22 +17,11 @@ from typing import Any
 
 import flint
 
-from .errors import InvalidInput
-from .numbers import Infinity, fmpq_of
+from ..errors import InvalidInput
+from .polys import count_real_roots, no_root_between, poly_latex, sign_at
+from .scalars import Infinity, frac_latex, to_rational
 
-__all__ = ["RealAlgebraic", "sign_at"]
-
-
-def sign_at(p: flint.fmpz_poly | flint.fmpq_poly, x: Fraction) -> int:
-    """The exact sign of p(x) at a rational x."""
-    v = p(fmpq_of(x))
-    return (v > 0) - (v < 0)
-
-
-def _dyadic(a: flint.arb) -> Fraction:
-    man, exp = a.mid().man_exp()
-    man, exp = int(man), int(exp)
-    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "exact_cmp", "upper_bound", "sign_at"]
 
 
 @total_ordering
@@ -60,8 +49,6 @@ class RealAlgebraic:
                 raise InvalidInput(f"RealAlgebraic: empty interval ({lower}, {upper})")
             if sign_at(poly, lower) * sign_at(poly, upper) >= 0:
                 raise InvalidInput(f"RealAlgebraic: {poly} does not change sign on ({lower}, {upper})")
-            from .roots import count_real_roots  # local: roots imports this module
-
             if count_real_roots(poly, lower, upper) != 1:
                 raise InvalidInput(f"RealAlgebraic: ({lower}, {upper}) holds more than one root of {poly}")
             content = poly.content()
@@ -75,8 +62,6 @@ class RealAlgebraic:
     def from_isolating_interval(cls, poly: Any, lower: Any, upper: Any) -> "RealAlgebraic":
         """The root of the irreducible integer polynomial ``poly`` (coefficients
         low to high, or an fmpz_poly) in (lower, upper); verified exactly."""
-        from .numbers import to_rational
-
         return cls(flint.fmpz_poly(list(poly) if not isinstance(poly, flint.fmpz_poly) else poly),
                    to_rational(lower, "lower"), to_rational(upper, "upper"))
 
@@ -106,8 +91,6 @@ class RealAlgebraic:
         """Replace the isolating interval by a short decimal one (for readable
         output and certificates); the added slivers are proved root-free by
         Descartes' rule, so the new interval still isolates the same root."""
-        from .roots import no_root_between
-
         self.refine(int(digits * 3.33) + 4)
         scale = 10**digits
         lo = Fraction(_floor(self._lower * scale), scale)
@@ -253,13 +236,11 @@ class RealAlgebraic:
 
         x = sympy.Symbol("x")
         expr = sum(int(c) * x**k for k, c in enumerate(self.poly.coeffs()))
-        from .roots import count_real_roots
-
         index = count_real_roots(self.poly, None, self._lower)
         return sympy.CRootOf(expr, index)
 
     def _repr_latex_(self) -> str:
-        return f"$\\text{{root of }} {_poly_latex(self.poly)} \\text{{ in }} ({_frac_latex(self._lower)}, {_frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$"
+        return f"$\\text{{root of }} {poly_latex(self.poly)} \\text{{ in }} ({frac_latex(self._lower)}, {frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$"
 
     def __reduce__(self):
         return (_rebuild, ([int(c) for c in self.poly.coeffs()], self._lower, self._upper))
@@ -267,6 +248,41 @@ class RealAlgebraic:
 
 def _rebuild(coeffs: list[int], lower: Fraction, upper: Fraction) -> RealAlgebraic:
     return RealAlgebraic(flint.fmpz_poly(coeffs), lower, upper, _trusted=True)
+
+
+FiniteReal = Fraction | RealAlgebraic
+"""An exact finite real: a Fraction or a RealAlgebraic."""
+
+Real = Fraction | RealAlgebraic | Infinity
+"""An exact extended real: a Fraction, a RealAlgebraic or +-INF (the one definition)."""
+
+
+def exact_lt(a: Real, b: Real) -> bool:
+    """a < b for mixed exact values, in either order (the one exact ordering).
+
+    >>> exact_lt(Fraction(1), RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2))
+    True
+    """
+    if isinstance(a, Fraction) and not isinstance(b, Fraction):
+        return b > a
+    return a < b
+
+
+def exact_eq(a: Real, b: Real) -> bool:
+    """a == b for mixed exact values, in either order."""
+    if isinstance(a, Fraction) and not isinstance(b, Fraction):
+        return b == a
+    return a == b
+
+
+def exact_cmp(a: Real, b: Real) -> int:
+    """-1, 0 or 1 as a <, =, > b (for ``functools.cmp_to_key``)."""
+    return -1 if exact_lt(a, b) else (1 if exact_lt(b, a) else 0)
+
+
+def upper_bound(v: Real) -> Fraction | Infinity:
+    """A rational (or infinite) upper bound of an exact value: v itself unless algebraic."""
+    return v.upper if isinstance(v, RealAlgebraic) else v
 
 
 class ExactKey:
@@ -279,10 +295,7 @@ class ExactKey:
         self.v = v
 
     def __lt__(self, other: "ExactKey") -> bool:
-        a, b = self.v, other.v
-        if isinstance(a, Fraction) and not isinstance(b, Fraction):
-            return b > a
-        return a < b
+        return exact_lt(self.v, other.v)
 
 
 def _floor(q: Fraction) -> int:
@@ -297,25 +310,3 @@ def _gcd(a: int, b: int) -> int:
 
 def _poly_text(p: flint.fmpz_poly) -> str:
     return str(p).replace("^", "**")
-
-
-def _poly_latex(p) -> str:
-    terms = []
-    coeffs = [int(c) for c in p.coeffs()]
-    for k in range(len(coeffs) - 1, -1, -1):
-        c = coeffs[k]
-        if c == 0:
-            continue
-        mag = abs(c)
-        mono = "" if k == 0 else ("x" if k == 1 else f"x^{{{k}}}")
-        body = str(mag) if (mag != 1 or k == 0) else ""
-        terms.append(("-" if c < 0 else "+") + body + mono)
-    text = "".join(terms) or "0"
-    return text[1:] if text.startswith("+") else text
-
-
-def _frac_latex(q: Fraction) -> str:
-    if q.denominator == 1:
-        return str(q.numerator)
-    sign = "-" if q < 0 else ""
-    return f"{sign}\\tfrac{{{abs(q.numerator)}}}{{{q.denominator}}}"

@@ -41,16 +41,19 @@ from math import comb
 
 import flint
 
-from .algebraic import ExactKey, RealAlgebraic, sign_at
-from .errors import InvalidInput, Undecided
-from .methods import Method
-from .numbers import INF, Infinity, fmpq_of, fraction_of
-from .roots import nonnegative_until, real_roots
-from .results import ExactValueMixin
+from ..core.algebraic import ExactKey, Real, RealAlgebraic
+from ..core.encode import encode_real, envelope
+from ..core.latex import latex_real
+from ..core.polys import count_real_roots, integer_part, sign_at
+from ..core.results import ExactValueMixin
+from ..core.roots import nonnegative_until, real_roots
+from ..core.scalars import INF, Infinity, dyadic_of, fmpq_of, fraction_of
+from ..errors import Undecided
+from ..model.methods import Method
+from ..model.record import method_record
+from ..model.validate import check_method
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
-
-Real = Fraction | RealAlgebraic | Infinity
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_COEFFICIENTS = 64  # coefficients tried below a dominance bound
@@ -86,16 +89,12 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
     @property
     def certificate(self) -> dict:
         """A certificate with the method only (no system or polyhedron)."""
-        from .certificates import FORMAT, VERSION, _vec
+        return envelope({"method": method_record(self.method)}, [self])
 
-        return {"format": FORMAT, "version": VERSION,
-                "problem": {"method": {"name": self.method.name, "numerator": _vec(self.method.numerator),
-                                       "denominator": _vec(self.method.denominator)}},
-                "claims": self._claims()}
+    def to_latex(self) -> str:
+        return rf"\rho = {latex_real(self.value)}\ \text{{({self.reason})}}"
 
-    def _claims(self) -> list[dict]:
-        from .certificates import encode_real
-
+    def claims(self) -> list[dict]:
         claim = {"type": "absolute_monotonicity_radius", "value": encode_real(self.value), "reason": self.reason,
                  "attained": self.attained}
         if self.binding is not None:
@@ -137,8 +136,7 @@ def taylor_coefficient_polynomials(method: Method, count: int) -> list[flint.fmp
 
 def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
     """The exact radius of absolute monotonicity (with j = 0, erratum E1)."""
-    if not isinstance(method, Method):
-        raise InvalidInput(f"method: expected an exactinv method, got {type(method).__name__}")
+    check_method(method)
     if method.is_polynomial:
         return _polynomial_radius(method)
     return _rational_radius(method)
@@ -188,9 +186,7 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
     """Exact sign of p at a Fraction or RealAlgebraic alpha."""
     if isinstance(alpha, Fraction):
         return sign_at(p, alpha)
-    from .roots import _integer, count_real_roots
-
-    q = _integer(p)
+    q = integer_part(p)
     g = q.gcd(alpha.poly)
     if g.degree() > 0 and sign_at(g, alpha.lower) * sign_at(g, alpha.upper) < 0:
         return 0
@@ -298,11 +294,9 @@ def _pole_balls(method: Method) -> list[tuple[flint.acb, int, list[flint.acb]]]:
     """Every pole z_k of r = g/h (an Arb ball), its multiplicity M and the
     coefficients b_{k,m} = a_{k,m} (-1)^m (m = 1..M) of the partial fraction
     expansion r = q + sum_k sum_m a_{k,m}/(z - z_k)^m (certified balls)."""
-    from .roots import _integer
-
     g = [_acb(c) for c in method.numerator]
     h = [_acb(c) for c in method.denominator]
-    _, factors = _integer(method.h).factor()
+    _, factors = integer_part(method.h).factor()
     out = []
     for p, M in factors:
         for z, _ in p.complex_roots():
@@ -325,11 +319,9 @@ def _pole_balls(method: Method) -> list[tuple[flint.acb, int, list[flint.acb]]]:
 
 def _star_ball(balls, p_star) -> int:
     """The index of the ball that holds the exact pole p*."""
-    from .algebraic import _dyadic
-
     lo, hi = (p_star.lower, p_star.upper) if isinstance(p_star, RealAlgebraic) else (p_star, p_star)
     for k, (z, _, _) in enumerate(balls):
-        if z.imag.is_zero() and _dyadic(z.real.lower()) <= hi and lo <= _dyadic(z.real.upper()):
+        if z.imag.is_zero() and dyadic_of(z.real.lower()) <= hi and lo <= dyadic_of(z.real.upper()):
             return k
     raise Undecided("could not match the smallest positive pole to its Arb enclosure")
 

@@ -9,26 +9,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cmp_to_key
 from typing import Any, Iterator
 
-from .algebraic import RealAlgebraic
-from .numbers import INF, Infinity, to_rational
+from .algebraic import Real, RealAlgebraic, exact_cmp, exact_eq, exact_lt
+from .scalars import INF, Infinity, to_rational
 
-__all__ = ["Interval", "IntervalUnion"]
-
-Real = Fraction | RealAlgebraic | Infinity
-
-
-def _lt(a: Real, b: Real) -> bool:
-    if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
-        return b > a
-    return a < b
-
-
-def _eq(a: Real, b: Real) -> bool:
-    if isinstance(a, Fraction) and isinstance(b, RealAlgebraic):
-        return b == a
-    return a == b
+__all__ = ["Interval", "IntervalUnion", "complement_of_open"]
 
 
 @dataclass(frozen=True)
@@ -42,8 +29,8 @@ class Interval:
 
     def __contains__(self, t: Any) -> bool:
         t = t if isinstance(t, (Fraction, RealAlgebraic)) else to_rational(t, "dt")
-        above = _lt(self.lo, t) or (self.lo_closed and _eq(self.lo, t))
-        below = _lt(t, self.hi) or (self.hi_closed and _eq(self.hi, t))
+        above = exact_lt(self.lo, t) or (self.lo_closed and exact_eq(self.lo, t))
+        below = exact_lt(t, self.hi) or (self.hi_closed and exact_eq(self.hi, t))
         return above and below
 
     def __repr__(self) -> str:
@@ -96,16 +83,11 @@ class IntervalUnion:
 def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> IntervalUnion:
     """[0, oo) minus the union of open intervals ``bad`` (a, b) (a >= 0, b may
     be INF) and minus the isolated ``points`` (all > 0)."""
-    from functools import cmp_to_key
-
-    def cmp(x, y):
-        return -1 if _lt(x, y) else (1 if _lt(y, x) else 0)
-
-    bad = sorted(bad, key=cmp_to_key(lambda u, v: cmp(u[0], v[0])))
+    bad = sorted(bad, key=cmp_to_key(lambda u, v: exact_cmp(u[0], v[0])))
     merged: list[list[Real]] = []
     for a, b in bad:
-        if merged and _lt(a, merged[-1][1]):  # overlaps (open intervals sharing an end do not merge)
-            if _lt(merged[-1][1], b):
+        if merged and exact_lt(a, merged[-1][1]):  # overlaps (open intervals sharing an end do not merge)
+            if exact_lt(merged[-1][1], b):
                 merged[-1][1] = b
         else:
             merged.append([a, b])
@@ -114,7 +96,7 @@ def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> Inte
     start: Real = Fraction(0)
     start_closed = True
     for a, b in merged:
-        if _lt(start, a) or (_eq(start, a) and start_closed):
+        if exact_lt(start, a) or (exact_eq(start, a) and start_closed):
             pieces.append(Interval(start, a, start_closed, True))
         start, start_closed = b, True
         if isinstance(b, Infinity):
@@ -123,15 +105,15 @@ def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> Inte
         pieces.append(Interval(start, INF, start_closed, False))
     # a zero-length piece [a, a] between (.., a) and (a, ..) is a valid point
     # remove isolated excluded points
-    for p in sorted(points, key=cmp_to_key(cmp)):
+    for p in sorted(points, key=cmp_to_key(exact_cmp)):
         new: list[Interval] = []
         for iv in pieces:
             if p not in iv:
                 new.append(iv)
                 continue
-            if _lt(iv.lo, p):
+            if exact_lt(iv.lo, p):
                 new.append(Interval(iv.lo, p, iv.lo_closed, False))
-            if _lt(p, iv.hi):
+            if exact_lt(p, iv.hi):
                 new.append(Interval(p, iv.hi, False, iv.hi_closed))
         pieces = new
     return IntervalUnion(tuple(pieces))

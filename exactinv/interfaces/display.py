@@ -8,11 +8,19 @@ number printed on a plot comes from the exact result.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any, Sequence
 
-from .algebraic import RealAlgebraic, _poly_latex
-from .numbers import Infinity
+import numpy as np
+
+from ..beyond.largest import largest_threshold, valid_steplengths
+from ..core.algebraic import RealAlgebraic
+from ..core.latex import latex_matrix, latex_real
+from ..core.scalars import Infinity
+from ..errors import InvalidInput
+from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
+from ..paper.threshold import steplength_threshold
 
 __all__ = [
     "latex_real",
@@ -25,78 +33,12 @@ __all__ = [
 ]
 
 
-def latex_real(v: Any, digits: int = 10) -> str:
-    """A Fraction as \\frac, INF as \\infty, an algebraic number as its certified
-    decimal with the defining polynomial ("1.4142135623\\ldots, root of x^2-2")."""
-    if isinstance(v, Infinity):
-        return r"\infty" if v.sign > 0 else r"-\infty"
-    if isinstance(v, RealAlgebraic):
-        decimal = v.certified_digits(digits).replace("...", "\\ldots")
-        return rf"{decimal}\ (\text{{root of }} {_poly_latex(v.poly)})"
-    v = Fraction(v)
-    if v.denominator == 1:
-        return str(v.numerator)
-    sign = "-" if v < 0 else ""
-    return rf"{sign}\frac{{{abs(v.numerator)}}}{{{v.denominator}}}"
-
-
-def latex_matrix(M: Sequence[Sequence[Any]]) -> str:
-    rows = r" \\ ".join(" & ".join(latex_real(x) for x in row) for row in M)
-    return rf"\begin{{pmatrix}} {rows} \end{{pmatrix}}"
-
-
 def to_latex(result: Any) -> str:
-    """LaTeX for any exactinv result (used by the results' ``to_latex`` and ``_repr_latex_``)."""
-    from .invariance import ContinuousInvariance, DiscreteInvariance, OptimalGamma
-    from .largest import ForwardEulerThreshold, LargestThreshold
-    from .model import LinearSystem, Polyhedron
-    from .monotonicity import AbsoluteMonotonicityRadius
-    from .thresholds import SteplengthThreshold
-
-    if isinstance(result, LinearSystem):
-        return rf"\dot x = {latex_matrix(result.A)}\, x"
-    if isinstance(result, Polyhedron):
-        return rf"P = \{{x : {latex_matrix(result.G)} x \le {latex_matrix([[v] for v in result.b])}\}}"
-    if isinstance(result, OptimalGamma):
-        if result.witness is not None:
-            w = result.witness
-            return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_matrix([[v] for v in w.x])}"
-                    rf"\text{{ on facet {w.facet}, }} g^T A x = {latex_real(w.value)} > 0)")
-        return rf"\gamma^* = {latex_real(result.value)}, \quad H = {latex_matrix(result.H)}"
-    if isinstance(result, SteplengthThreshold):
-        text = rf"\tau = {latex_real(result.value)}\ \text{{({result.theorem}{'' if result.attained else ', not attained'})}}"
-        if result.table:
-            rows = r" \\ ".join(rf"{r.i} & {_f_latex(r.f)} & {latex_real(r.tau)}" for r in result.table)
-            text += rf"\\ \begin{{array}}{{c|l|l}} i & f_i(\Delta t) & \tau_i \\ \hline {rows} \end{{array}}"
-        return text
-    if isinstance(result, LargestThreshold):
-        return rf"\tau_{{\max}} = {latex_real(result.value)}\ \text{{({'attained' if result.attained else 'not attained'})}}"
-    if isinstance(result, ForwardEulerThreshold):
-        return rf"\tau_{{FE}} = 1/\gamma^* = {latex_real(result.value)}"
-    if isinstance(result, AbsoluteMonotonicityRadius):
-        return rf"\rho = {latex_real(result.value)}\ \text{{({result.reason})}}"
-    if isinstance(result, (ContinuousInvariance, DiscreteInvariance)):
-        name = "H" if isinstance(result, ContinuousInvariance) else r"\tilde H"
-        if result.holds:
-            return rf"\text{{invariant}},\ {name} = {latex_matrix(result.certificate)}"
-        return rf"\text{{not invariant: }} x = {latex_matrix([[v] for v in result.witness.x])},\ \text{{facet {result.witness.facet}}}"
-    raise TypeError(f"no LaTeX for {type(result).__name__}")
-
-
-def _f_latex(coeffs: Sequence[Fraction]) -> str:
-    terms = []
-    for k, c in enumerate(coeffs):
-        if c == 0:
-            continue
-        mono = "" if k == 0 else (r"\Delta t" if k == 1 else rf"\Delta t^{{{k}}}")
-        body = latex_real(abs(c)) if (abs(c) != 1 or k == 0) else ""
-        terms.append(("-" if c < 0 else "+") + body + mono)
-    text = "".join(terms) or "0"
-    return text[1:] if text.startswith("+") else text
-
-
-def _repr_latex(self) -> str:
-    return "$" + to_latex(self) + "$"
+    """LaTeX for any exactinv result or model object: its own ``to_latex()``."""
+    method = getattr(result, "to_latex", None)
+    if method is None:
+        raise TypeError(f"no LaTeX for {type(result).__name__}")
+    return method()
 
 
 # ------------------------------------------------------------------ plots
@@ -121,8 +63,6 @@ def _polyval(coeffs, x):
 
 def plot_f_i(threshold, upto: float | None = None):
     """The f_i(dt) of a polynomial-method threshold with tau_i and tau marked."""
-    import numpy as np
-
     plt = _plt()
     finite = [r.tau for r in threshold.table if not isinstance(r.tau, Infinity)]
     top = upto or (2.0 * max([_f(t) for t in finite] + [_f(threshold.value) if not isinstance(threshold.value, Infinity) else 1.0]))
@@ -145,10 +85,6 @@ def plot_f_i(threshold, upto: float | None = None):
 
 def plot_coefficients(method, count: int = 6, upto: float | None = None):
     """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! at -kappa, each scaled to [-1, 1], with rho marked."""
-    import numpy as np
-
-    from .monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
-
     plt = _plt()
     rho = absolute_monotonicity_radius(method)
     top = upto or (2.0 * _f(rho.value) if not isinstance(rho.value, Infinity) and rho.value != 0 else 4.0)
@@ -177,9 +113,6 @@ def plot_coefficients(method, count: int = 6, upto: float | None = None):
 def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     """The exact valid steplengths on a number line, with the paper's, the
     corrected and the exact largest threshold."""
-    from .largest import largest_threshold, valid_steplengths
-    from .thresholds import steplength_threshold
-
     plt = _plt()
     V = valid_steplengths(system, polyhedron, method)
     t = steplength_threshold(system, polyhedron, method)
@@ -217,10 +150,7 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     """A 2-D polytope P and its images A_d(dt) P; vertices mapped outside P in red."""
     plt = _plt()
     if polyhedron.n != 2 or not polyhedron.is_bounded:
-        from .errors import InvalidInput
-
         raise InvalidInput("polyhedron: plot_images draws bounded polygons in the plane")
-    import math
 
     def ordered(points):
         cx = sum(p[0] for p in points) / len(points)

@@ -1,6 +1,6 @@
-"""The model: a linear system x' = Ax and a polyhedron P = {x : Gx <= b}.
+"""The polyhedron P = {x : Gx <= b}, immutable and exact (entries are Fractions).
 
-Both are immutable and exact (entries are Fractions).  A polyhedron knows its
+It knows its
 H-representation (G, b) and, computed exactly with the Parma Polyhedra Library
 (pplpy) on first use, its V-representation: vertices, rays and lines.
 """
@@ -16,48 +16,12 @@ from typing import Any, Sequence
 import flint
 import ppl
 
-from .errors import InvalidInput
-from .numbers import Matrix, Vector, fmpq_matrix, to_matrix, to_vector
-from .results import LatexMixin
+from ..core.latex import LatexMixin, latex_column, latex_matrix
+from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_text, to_matrix, to_vector, vector_text
+from ..errors import InvalidInput
+from ..lp import INFEASIBLE, ExactLPSolver
 
-__all__ = ["LinearSystem", "Polyhedron"]
-
-
-@dataclass(frozen=True, init=False)
-class LinearSystem(LatexMixin):
-    """The linear dynamical system x' = A x with an exact square matrix A.
-
-    >>> LinearSystem([[-1, 1], [-1, "-1"]]).A
-    ((Fraction(-1, 1), Fraction(1, 1)), (Fraction(-1, 1), Fraction(-1, 1)))
-    """
-
-    A: Matrix
-
-    def __init__(self, A: Any, *, allow_float: bool = False):
-        object.__setattr__(self, "A", to_matrix(A, "A", square=True, allow_float=allow_float))
-
-    @classmethod
-    def closed_loop(cls, A0: Any, B: Any, F: Any, *, allow_float: bool = False) -> "LinearSystem":
-        """The closed loop x' = (A0 + B F) x of x' = A0 x + B u under the
-        linear feedback u = F x."""
-        A0m = to_matrix(A0, "A0", square=True, allow_float=allow_float)
-        n = len(A0m)
-        Bm = to_matrix(B, "B", shape=(n, None), allow_float=allow_float)
-        Fm = to_matrix(F, "F", shape=(len(Bm[0]), n), allow_float=allow_float)
-        A = fmpq_matrix(A0m) + fmpq_matrix(Bm) * fmpq_matrix(Fm)
-        return cls([[A[i, j] for j in range(n)] for i in range(n)])
-
-    @property
-    def n(self) -> int:
-        """The state dimension."""
-        return len(self.A)
-
-    @cached_property
-    def A_flint(self) -> flint.fmpq_mat:
-        return fmpq_matrix(self.A)
-
-    def __repr__(self) -> str:
-        return f"LinearSystem(A={_matrix_text(self.A)})"
+__all__ = ["Polyhedron"]
 
 
 @dataclass(frozen=True, init=False)
@@ -200,8 +164,6 @@ class Polyhedron(LatexMixin):
     def is_empty(self) -> bool:
         """Exact emptiness test by a verified LP (a Farkas certificate when
         empty); unlike PPL's own test it never enumerates generators."""
-        from .lp import INFEASIBLE, ExactLPSolver
-
         res = ExactLPSolver(self.G_flint, [False] * self.m).solve([0] * self.n, self.b, [False] * self.n)
         return res.status == INFEASIBLE
 
@@ -222,8 +184,12 @@ class Polyhedron(LatexMixin):
     def __contains__(self, x: Sequence[Any]) -> bool:
         return self.contains(x)
 
+    def to_latex(self) -> str:
+        """LaTeX: P = {x : G x <= b}."""
+        return rf"P = \{{x : {latex_matrix(self.G)} x \le {latex_column(self.b)}\}}"
+
     def __repr__(self) -> str:
-        return f"Polyhedron(G={_matrix_text(self.G)}, b={_vector_text(self.b)})"
+        return f"Polyhedron(G={matrix_text(self.G)}, b={vector_text(self.b)})"
 
 
 def _nonempty(x: Any) -> bool:
@@ -250,11 +216,3 @@ def _inequalities_of(poly: ppl.C_Polyhedron, n: int) -> tuple[list, list]:
             G.append(coeffs)
             b.append(-beta)
     return G, b
-
-
-def _vector_text(v: Sequence[Fraction]) -> str:
-    return "[" + ", ".join(str(x) for x in v) + "]"
-
-
-def _matrix_text(M: Sequence[Sequence[Fraction]]) -> str:
-    return "[" + ", ".join(_vector_text(r) for r in M) + "]"

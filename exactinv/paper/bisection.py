@@ -23,8 +23,8 @@ from typing import Any, Sequence
 import flint
 import numpy as np
 
-from .errors import InvalidInput
-from .numbers import INF, fmpq_of, to_rational, to_vector
+from ..errors import InvalidInput
+from ..core.scalars import INF, fmpq_of, to_rational, to_vector
 
 __all__ = ["PaperBisectionResult", "paper_bisection", "paper_bisection_float", "paper_bound"]
 

@@ -23,18 +23,17 @@ from fractions import Fraction
 from math import comb
 from typing import Any
 
-from .algebraic import ExactKey, RealAlgebraic
-from .errors import InvalidInput, NotInvariant
-from .invariance import OptimalGamma, optimal_gamma
-from .methods import Method
-from .model import LinearSystem, Polyhedron
-from .numbers import INF, Infinity
-from .roots import nonnegative_until
-from .results import ExactValueMixin
+from ..core.algebraic import ExactKey, Real
+from ..core.encode import encode_real
+from ..core.latex import dt_poly_latex, latex_real
+from ..core.results import ExactValueMixin
+from ..core.roots import nonnegative_until
+from ..core.scalars import INF, Infinity
+from ..model import Method
+from ..model.record import certificate as make_certificate
+from .invariance import OptimalGamma
 
-__all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "steplength_threshold"]
-
-Real = Fraction | RealAlgebraic | Infinity
+__all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "polynomial_threshold"]
 
 
 @dataclass(frozen=True)
@@ -84,9 +83,11 @@ class SteplengthThreshold(ExactValueMixin):
 
 
 
-    def _claims(self) -> list[dict]:
-        from .certificates import encode_real
+    def claims(self) -> list[dict]:
+        """gamma*'s claim, then the threshold's (with the radius' claim for a rational method)."""
+        return self.gamma.claims() + self._own_claims()
 
+    def _own_claims(self) -> list[dict]:
         if self.method.is_polynomial:
             return [{
                 "type": "polynomial_threshold",
@@ -108,14 +109,19 @@ class SteplengthThreshold(ExactValueMixin):
             m = H.nrows()
             claim["H"] = [[str(H[i, j]) for j in range(m)] for i in range(m)]
             claim["gamma_H"] = str(g_H)
-        return self.radius._claims() + [claim]
+        return self.radius.claims() + [claim]
 
     @property
     def certificate(self) -> dict:
         """The JSON certificate (gamma* and this threshold) for :func:`exactinv.check`."""
-        from .certificates import certificate
+        return make_certificate(self.gamma.system, self.gamma.polyhedron, self.method, [self])
 
-        return certificate(self.gamma.system, self.gamma.polyhedron, self.method, [self])
+    def to_latex(self) -> str:
+        text = rf"\tau = {latex_real(self.value)}\ \text{{({self.theorem}{'' if self.attained else ', not attained'})}}"
+        if self.table:
+            rows = r" \\ ".join(rf"{r.i} & {dt_poly_latex(r.f)} & {latex_real(r.tau)}" for r in self.table)
+            text += rf"\\ \begin{{array}}{{c|l|l}} i & f_i(\Delta t) & \tau_i \\ \hline {rows} \end{{array}}"
+        return text
 
     def f_symbolic(self):
         """The f_i as sympy expressions in dt and gamma (the paper's eq. (20))."""
@@ -137,7 +143,7 @@ def f_i(sigmas: tuple[Fraction, ...], gamma: Fraction, i: int) -> tuple[Fraction
 
 def f_i_symbolic(method: Method):
     """[f_0, ..., f_p] as sympy expressions in the symbols dt and gamma."""
-    import sympy
+    import sympy  # for display only
 
     dt, gamma = sympy.symbols("Delta_t gamma", positive=True)
     s = [sympy.Rational(c.numerator, c.denominator) for c in method.sigmas]
@@ -148,26 +154,8 @@ def f_i_symbolic(method: Method):
     ]
 
 
-def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> SteplengthThreshold:
-    """The paper's valid threshold for ``method`` on P, with gamma = gamma*.
-
-    Polynomial methods: Theorem 3.4 with tau_i as in the module docstring.
-    Raises :class:`~exactinv.NotInvariant` (carrying the witness) when P is
-    not invariant for x' = Ax: the paper's theorems then give nothing.
-    """
-    if not isinstance(method, Method):
-        raise InvalidInput(f"method: expected an exactinv method (exactinv.methods.*), got {type(method).__name__}")
-    gamma = optimal_gamma(system, polyhedron)
-    if gamma.witness is not None:
-        raise NotInvariant("P is not invariant for x' = Ax (gamma* = +oo); no threshold exists", gamma.witness)
-    if method.is_polynomial:
-        return _polynomial_threshold(method, gamma)
-    from .rational_threshold import rational_threshold
-
-    return rational_threshold(method, gamma)
-
-
-def _polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
+def polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
+    """The paper's threshold for a polynomial method (Theorems 3.4 and 3.13), gamma = gamma*."""
     sigmas = method.sigmas
     g = gamma.value
     if isinstance(g, Infinity) or g <= 0:

@@ -18,8 +18,9 @@ from typing import Any, Sequence
 
 import flint
 
-from .errors import InvalidInput
-from .numbers import Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational, to_vector
+from ..core.scalars import Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational, to_vector
+from ..errors import InvalidInput
+from .system import LinearSystem
 
 __all__ = [
     "Method",
@@ -90,8 +91,6 @@ class Method:
     def matrix(self, system: Any, dt: Fraction) -> Matrix:
         """A_d = r(dt A) = h(dt A)^{-1} g(dt A), exactly; an error if h(dt A)
         is singular (dt A has an eigenvalue at a pole of r)."""
-        from .model import LinearSystem
-
         A = system.A_flint if isinstance(system, LinearSystem) else fmpq_matrix(to_matrix(system, "A", square=True))
         M = A * fmpq_of(to_rational(dt, "dt"))
         G = _polyval_matrix(self.numerator, M)

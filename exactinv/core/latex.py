@@ -1,0 +1,68 @@
+"""LaTeX for exact values: fractions, infinities, algebraic numbers (certified
+digits and their defining polynomial), matrices and polynomials in dt.
+
+>>> latex_real(Fraction(-3, 4))
+'-\\\\frac{3}{4}'
+>>> latex_matrix([[1, 0], [0, 1]])
+'\\\\begin{pmatrix} 1 & 0 \\\\\\\\ 0 & 1 \\\\end{pmatrix}'
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Sequence
+
+from .algebraic import RealAlgebraic
+from .polys import poly_latex
+from .scalars import Infinity
+
+__all__ = ["latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]
+
+
+def latex_real(v: Any, digits: int = 10) -> str:
+    """A Fraction as \\frac, INF as \\infty, an algebraic number as its certified
+    decimal with the defining polynomial ("1.4142135623\\ldots, root of x^2-2")."""
+    if isinstance(v, Infinity):
+        return r"\infty" if v.sign > 0 else r"-\infty"
+    if isinstance(v, RealAlgebraic):
+        decimal = v.certified_digits(digits).replace("...", "\\ldots")
+        return rf"{decimal}\ (\text{{root of }} {poly_latex(v.poly)})"
+    v = Fraction(v)
+    if v.denominator == 1:
+        return str(v.numerator)
+    sign = "-" if v < 0 else ""
+    return rf"{sign}\frac{{{abs(v.numerator)}}}{{{v.denominator}}}"
+
+
+def latex_matrix(M: Sequence[Sequence[Any]]) -> str:
+    """A matrix of exact values as a LaTeX ``pmatrix``."""
+    rows = r" \\ ".join(" & ".join(latex_real(x) for x in row) for row in M)
+    return rf"\begin{{pmatrix}} {rows} \end{{pmatrix}}"
+
+
+def latex_column(v: Sequence[Any]) -> str:
+    """A vector as a LaTeX column."""
+    return latex_matrix([[x] for x in v])
+
+
+def dt_poly_latex(coeffs: Sequence[Fraction]) -> str:
+    """A polynomial in dt (coefficients from dt^0 up) in LaTeX."""
+    terms = []
+    for k, c in enumerate(coeffs):
+        if c == 0:
+            continue
+        mono = "" if k == 0 else (r"\Delta t" if k == 1 else rf"\Delta t^{{{k}}}")
+        body = latex_real(abs(c)) if (abs(c) != 1 or k == 0) else ""
+        terms.append(("-" if c < 0 else "+") + body + mono)
+    text = "".join(terms) or "0"
+    return text[1:] if text.startswith("+") else text
+
+
+class LatexMixin:
+    """``_repr_latex_`` (for Jupyter) from the class's own ``to_latex()`` (for papers)."""
+
+    def to_latex(self) -> str:  # pragma: no cover - every result defines it
+        raise NotImplementedError(f"no LaTeX for {type(self).__name__}")
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"

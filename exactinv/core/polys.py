@@ -1,0 +1,154 @@
+"""Primitives on Q[x] shared by root isolation and the valid-set computation.
+
+Exact sign evaluation, Descartes' rule of signs (on (0, oo) and on an interval
+(a, b) after a Moebius map), Sturm counting and the sign just right of a
+point.  Every function works on FLINT polynomials; :func:`as_polynomial`
+converts input once, at the boundary.
+
+>>> sign_variations([1, -2, 0, 3])
+2
+>>> no_root_between([-2, 0, 1], 0, 1)      # x^2 - 2 has no root in (0, 1)
+True
+>>> sign_right_of([0, -1, 1], 0)           # x^2 - x is negative just right of 0
+-1
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Iterable
+
+import flint
+
+from ..errors import InvalidInput
+from .scalars import fmpq_of, to_rational
+
+__all__ = [
+    "as_polynomial",
+    "integer_part",
+    "shift",
+    "sign_at",
+    "sign_variations",
+    "no_root_between",
+    "no_positive_root_below",
+    "count_real_roots",
+    "sign_right_of",
+    "positive_right_of_zero",
+    "poly_latex",
+]
+
+ONE_PLUS_X = flint.fmpq_poly([1, 1])
+
+
+def as_polynomial(f: Any, name: str = "f") -> flint.fmpq_poly:
+    """An exact polynomial from an fmpq_poly/fmpz_poly, a sympy Poly, or a
+    sequence of coefficients from the constant term up."""
+    if isinstance(f, flint.fmpq_poly):
+        return f
+    if isinstance(f, flint.fmpz_poly):
+        return flint.fmpq_poly(f)
+    if hasattr(f, "all_coeffs") and hasattr(f, "gens"):  # sympy Poly (high to low)
+        coeffs = list(reversed(f.all_coeffs()))
+    elif isinstance(f, (str, bytes)) or not isinstance(f, Iterable):
+        raise InvalidInput(f"{name}: expected a polynomial or a list of coefficients (constant term first)")
+    else:
+        coeffs = list(f)
+    return flint.fmpq_poly([fmpq_of(to_rational(c, f"{name}[{k}]")) for k, c in enumerate(coeffs)])
+
+
+def integer_part(f: flint.fmpq_poly) -> flint.fmpz_poly:
+    """The primitive integer polynomial with the same roots and sign as f."""
+    num = f.numer()
+    return num // num.content() if not num.is_zero() else num
+
+
+def shift(f: flint.fmpq_poly, start: Fraction) -> flint.fmpq_poly:
+    """f(start + x)."""
+    if start == 0:
+        return f
+    return f(flint.fmpq_poly([fmpq_of(start), 1]))
+
+
+def sign_at(p: flint.fmpz_poly | flint.fmpq_poly, x: Fraction) -> int:
+    """The exact sign of p(x) at a rational x."""
+    v = p(fmpq_of(x))
+    return (v > 0) - (v < 0)
+
+
+def sign_variations(coeffs: Iterable[Any]) -> int:
+    """Number of sign changes in a coefficient sequence, zeros ignored.
+    By Descartes' rule it bounds the number of positive roots (with
+    multiplicity) and has the same parity."""
+    signs = [c > 0 for c in coeffs if c != 0]
+    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+
+
+def no_root_between(p: Any, a: Fraction, b: Fraction) -> bool:
+    """True if Descartes' rule proves that p has no root in the open interval
+    (a, b): the Moebius-transformed (1+x)^d p((a + b x)/(1 + x)) has no sign
+    variation.  (False means: not proved.)  Exact; a Taylor shift in FLINT."""
+    pq = as_polynomial(p)
+    shifted = pq(flint.fmpq_poly([fmpq_of(a), fmpq_of(b - a)]))  # p(a + (b - a) y), y in (0, 1)
+    transformed = flint.fmpq_poly(list(reversed(shifted.coeffs())))(ONE_PLUS_X)
+    return sign_variations(transformed.coeffs()) == 0
+
+
+def no_positive_root_below(p: flint.fmpq_poly, T: Fraction) -> bool:
+    """Descartes' rule on (0, T): True proves that p has no root in (0, T)."""
+    return no_root_between(p, Fraction(0), T)
+
+
+def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:
+    """Number of distinct real roots of p in the open interval (lower, upper)
+    (None = unbounded), by Sturm's theorem in exact arithmetic.  The ends must
+    not be roots."""
+    pq = as_polynomial(p)
+    seq = [pq, pq.derivative()]
+    while not seq[-1].is_zero():
+        seq.append(-(seq[-2] % seq[-1]))
+    seq.pop()
+
+    def variations(x):
+        return sign_variations([s(fmpq_of(x)) for s in seq])
+
+    def at_infinity(sign):
+        vals = []
+        for s in seq:
+            lead = s.coeffs()[-1] if s.degree() >= 0 else 0
+            vals.append(lead * (sign ** s.degree()))
+        return sign_variations(vals)
+
+    left = at_infinity(-1) if lower is None else variations(lower)
+    right = at_infinity(1) if upper is None else variations(upper)
+    return left - right
+
+
+def sign_right_of(f: Any, t: Fraction) -> int:
+    """The sign of f on (t, t + eps) for small eps > 0: the sign of the first
+    nonzero Taylor coefficient of f at t (0 only for the zero polynomial)."""
+    g = shift(as_polynomial(f), Fraction(t))
+    for c in g.coeffs():
+        if c != 0:
+            return 1 if c > 0 else -1
+    return 0
+
+
+def positive_right_of_zero(p: Any) -> bool:
+    """p >= 0 just right of 0 (True for the zero polynomial)."""
+    return sign_right_of(p, Fraction(0)) >= 0
+
+
+def poly_latex(p: Any) -> str:
+    """LaTeX of an integer polynomial in x, highest degree first."""
+    terms = []
+    coeffs = [int(c) for c in p.coeffs()]
+    for k in range(len(coeffs) - 1, -1, -1):
+        c = coeffs[k]
+        if c == 0:
+            continue
+        mag = abs(c)
+        mono = "" if k == 0 else ("x" if k == 1 else f"x^{{{k}}}")
+        body = str(mag) if (mag != 1 or k == 0) else ""
+        terms.append(("-" if c < 0 else "+") + body + mono)
+    text = "".join(terms) or "0"
+    return text[1:] if text.startswith("+") else text

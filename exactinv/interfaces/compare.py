@@ -1,0 +1,91 @@
+"""How conservative is the paper?  For each method: the paper's threshold
+(taken literally), the corrected one and the exact largest one, side by side.
+
+It sits in ``interfaces`` because it joins ``paper`` and ``beyond``, which
+never import each other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from ..beyond.largest import largest_threshold
+from ..core.algebraic import Real, RealAlgebraic
+from ..core.scalars import Infinity
+from ..model import LinearSystem, Polyhedron
+from ..paper.threshold import steplength_threshold
+
+__all__ = ["ThresholdComparison", "compare_thresholds"]
+
+
+@dataclass(frozen=True)
+class ThresholdComparison:
+    """The paper's threshold (taken literally), the corrected one and the exact
+    largest one for a method on a problem, with ratios corrected/largest."""
+
+    method: str
+    paper: Real
+    corrected: Real
+    largest: Real
+    largest_attained: bool
+
+    @property
+    def ratio(self) -> Fraction | None:
+        """corrected / largest as an exact rational when both are rational,
+        else a float-free ``None`` (see ``ratio_interval``)."""
+        if isinstance(self.corrected, Fraction) and isinstance(self.largest, Fraction) and self.largest:
+            return self.corrected / self.largest
+        return None
+
+    @property
+    def ratio_interval(self) -> tuple[Fraction, Fraction] | None:
+        """A rational enclosure of corrected/largest (None if either is 0 or oo)."""
+        lo_c, hi_c = _bounds(self.corrected)
+        lo_l, hi_l = _bounds(self.largest)
+        if lo_c is None or lo_l is None or lo_l <= 0:
+            return None
+        return lo_c / hi_l, hi_c / lo_l
+
+    def row(self) -> dict:
+        return {"method": self.method, "paper": str(self.paper), "corrected": str(self.corrected),
+                "largest": str(self.largest) + ("" if self.largest_attained else " (open)"),
+                "corrected/largest": _ratio_text(self)}
+
+
+def _bounds(v):
+    if isinstance(v, Infinity):
+        return None, None
+    if isinstance(v, RealAlgebraic):
+        v.refine(40)
+        return v.lower, v.upper
+    return v, v
+
+
+def _ratio_text(c: ThresholdComparison) -> str:
+    """corrected/largest exactly when rational, else a certified 6-digit enclosure."""
+    if c.ratio is not None:
+        return str(c.ratio)
+    if isinstance(c.largest, Infinity):
+        return "0 (largest = oo)" if not isinstance(c.corrected, Infinity) else "1"
+    interval = c.ratio_interval
+    if interval is None:
+        return "0" if c.corrected == 0 else "-"
+    lo, hi = interval
+    scale = 10**6
+    return f"[{_decimal(lo, scale, floor=True)}, {_decimal(hi, scale, floor=False)}]"
+
+
+def _decimal(q: Fraction, scale: int, floor: bool) -> str:
+    n = q.numerator * scale // q.denominator if floor else -((-q.numerator * scale) // q.denominator)
+    return f"{n // scale}.{n % scale:06d}"
+
+
+def compare_thresholds(system: LinearSystem, polyhedron: Polyhedron, methods) -> list[ThresholdComparison]:
+    """For each method: the paper's, the corrected and the exact largest threshold."""
+    rows = []
+    for m in methods:
+        t = steplength_threshold(system, polyhedron, m)
+        L = largest_threshold(system, polyhedron, m)
+        rows.append(ThresholdComparison(m.name, t.paper, t.value, L.value, L.attained))
+    return rows

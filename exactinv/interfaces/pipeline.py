@@ -1,0 +1,136 @@
+"""The whole job on one problem: gamma*, forward Euler, the paper's threshold,
+the exact valid set and largest threshold, one certificate and (optionally)
+the trusted kernel's verdict on it -- as a :class:`Report`, without printing.
+
+The command line, the notebooks and a batch runner all call :func:`certify`.
+
+>>> import exactinv as ei
+>>> from exactinv.interfaces.problem import Problem
+>>> box = Problem(ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1]), name="box")
+>>> report = certify(box, ei.methods.taylor(2))
+>>> report.ok, report.lines[-1]
+(True, 'independent check: VERIFIED (5 claims)')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import exactinv_check
+
+from ..beyond.largest import largest_threshold, valid_steplengths
+from ..core.algebraic import RealAlgebraic
+from ..model import Method
+from ..model.record import certificate as make_certificate
+from ..paper.forward_euler import forward_euler_threshold
+from ..paper.invariance import optimal_gamma
+from ..paper.threshold import steplength_threshold
+from .problem import Problem
+
+__all__ = ["Report", "certify", "VERTEX_LIMIT"]
+
+VERTEX_LIMIT = 12  # dimension above which the vertex enumeration is not attempted by default
+
+
+@dataclass(frozen=True)
+class Report:
+    """What :func:`certify` found: the ``results`` (in certificate order), the
+    JSON ``certificate``, the kernel's ``check`` report (None when skipped)
+    and the human-readable ``lines``.  ``ok``: the kernel verified the
+    certificate (False when the check was skipped)."""
+
+    problem: Problem
+    method: Method | None
+    results: tuple[Any, ...] = field(repr=False)
+    certificate: dict = field(repr=False)
+    check: Any = None
+    lines: tuple[str, ...] = field(default=(), repr=False)
+
+    @property
+    def ok(self) -> bool:
+        return self.check is not None and self.check.ok
+
+    @property
+    def text(self) -> str:
+        return "\n".join(self.lines)
+
+
+def stages(method: Method | None, check: bool) -> int:
+    """How many progress steps :func:`certify` reports."""
+    return (5 if method is not None else 3) - (not check)
+
+
+def exact_text(v: Any) -> str:
+    """An exact value for a report line (an algebraic number with its polynomial and enclosure)."""
+    if isinstance(v, RealAlgebraic):
+        v.tidy()
+        return f"{v}  (root of {v.poly} in ({v.lower}, {v.upper}))"
+    return str(v)
+
+
+def certify(problem: Problem, method: Method | None = None, check: bool = True,
+            progress: Callable[[str], None] | None = None) -> Report:
+    """Compute and certify everything that applies to ``problem`` (``method``
+    overrides the problem's own) and, if ``check``, run the trusted kernel on
+    the certificate.  ``progress(stage)`` is called before each stage."""
+    method = method if method is not None else problem.method
+    step = progress or (lambda what: None)
+    S, P = problem.system, problem.polyhedron
+    lines = [f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else "")]
+    step("gamma* (verified row LPs)")
+    gamma = optimal_gamma(S, P)
+    results: list[Any] = [gamma]
+    if gamma.witness is not None:
+        w = gamma.witness
+        lines.append(f"continuous invariance: FAILS -- x = [{', '.join(map(str, w.x))}] lies on facet {w.facet} "
+                     f"and g_{w.facet}.Ax = {w.value} > 0")
+        lines.append("gamma*: oo (no steplength threshold exists)")
+    else:
+        lines.append("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
+        lines.append(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {gamma.paths}]")
+        step("forward Euler (vertex ratio tests)")
+        results += _forward_euler(S, P, lines)
+        if method is not None:
+            step(f"paper's threshold for {method.name}")
+            results += _paper_threshold(S, P, method, lines)
+    if method is not None and P.n <= VERTEX_LIMIT:
+        step("exact valid steplengths")
+        results += _largest(S, P, method, lines)
+    cert = make_certificate(S, P, method, results)
+    report = None
+    if check:
+        step("independent check (the trusted kernel)")
+        report = exactinv_check.check(cert)
+        lines.append(f"independent check: {'VERIFIED' if report.ok else 'REJECTED'} ({len(cert['claims'])} claims)")
+    else:
+        lines.append(f"independent check: skipped (--no-check); run `exactinv check` on the certificate "
+                     f"({len(cert['claims'])} claims)")
+    return Report(problem, method, tuple(results), cert, report, tuple(lines))
+
+
+def _forward_euler(S, P, lines: list[str]) -> list[Any]:
+    if P.n > VERTEX_LIMIT:
+        lines.append("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
+        return []
+    fe = forward_euler_threshold(S, P)
+    lines.append(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")
+    return [fe]
+
+
+def _paper_threshold(S, P, method: Method, lines: list[str]) -> list[Any]:
+    t = steplength_threshold(S, P, method)
+    lines.append(f"paper's threshold for {method.name} ({t.theorem}): {exact_text(t.value)}"
+                 + ("" if t.attained else "  (not attained: valid on [0, tau))"))
+    if t.paper != t.value:
+        lines.append(f"  the paper, taken literally, gives {exact_text(t.paper)}")
+    lines.extend(f"  note: {note}" for note in t.notes)
+    return [t]
+
+
+def _largest(S, P, method: Method, lines: list[str]) -> list[Any]:
+    V = valid_steplengths(S, P, method)
+    L = largest_threshold(S, P, method)
+    lines.append(f"exact valid steplengths for {method.name}: {V.intervals!r}")
+    lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)"))
+    return [L, V]

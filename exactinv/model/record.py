@@ -1,0 +1,37 @@
+"""The problem record of a certificate (A, G, b and the method's r = g/h) and
+the certificate of results computed on a problem (the one envelope)."""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+from ..core.encode import envelope, mat, vec
+from .methods import Method
+from .polyhedron import Polyhedron
+from .system import LinearSystem
+
+__all__ = ["method_record", "problem_record", "generator_record", "certificate"]
+
+
+def method_record(method: Method) -> dict:
+    """The method's name and the coefficients of r = g/h."""
+    return {"name": method.name, "numerator": vec(method.numerator), "denominator": vec(method.denominator)}
+
+
+def problem_record(system: LinearSystem, polyhedron: Polyhedron, method: Method | None = None) -> dict:
+    """A, G, b and (optionally) the method, as exact strings."""
+    record = {"A": mat(system.A), "G": mat(polyhedron.G), "b": vec(polyhedron.b)}
+    if method is not None:
+        record["method"] = method_record(method)
+    return record
+
+
+def generator_record(polyhedron: Polyhedron) -> dict:
+    """P's vertices, rays and lines (the kernel proves the list complete)."""
+    return {"vertices": mat(polyhedron.vertices), "rays": mat(polyhedron.rays), "lines": mat(polyhedron.lines)}
+
+
+def certificate(system: LinearSystem, polyhedron: Polyhedron, method: Method | None = None,
+                results: Iterable[Any] = ()) -> dict:
+    """One certificate for a problem and the results computed on it (each result owns ``claims()``)."""
+    return envelope(problem_record(system, polyhedron, method), results)

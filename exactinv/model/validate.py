@@ -1,0 +1,47 @@
+"""The one set of argument validators for the public functions that take a
+system, a polyhedron and a method (bad input -> :class:`~exactinv.InvalidInput`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..errors import EmptyPolyhedron, InvalidInput
+from .methods import Method
+from .polyhedron import Polyhedron
+from .system import LinearSystem
+
+__all__ = ["check_polyhedron", "check_pair", "check_method", "check_problem"]
+
+
+def check_polyhedron(P: Any) -> Polyhedron:
+    """P itself, if it is a nonempty :class:`Polyhedron`."""
+    if not isinstance(P, Polyhedron):
+        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
+    if P.is_empty:
+        raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty; invariance questions about it are vacuous")
+    return P
+
+
+def check_method(method: Any) -> Method:
+    """method itself, if it is a :class:`Method`."""
+    if not isinstance(method, Method):
+        raise InvalidInput(f"method: expected an exactinv method (exactinv.methods.*), got {type(method).__name__}")
+    return method
+
+
+def check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
+    """(S, P), if S is a :class:`LinearSystem` and P a nonempty polyhedron of its dimension."""
+    if not isinstance(S, LinearSystem):
+        raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
+    if not isinstance(P, Polyhedron):
+        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
+    if S.n != P.n:
+        raise InvalidInput(f"system/polyhedron: A is {S.n}x{S.n} but G has {P.n} columns")
+    return S, check_polyhedron(P)
+
+
+def check_problem(S: Any, P: Any, method: Any) -> tuple[LinearSystem, Polyhedron, Method]:
+    """(S, P, method), each checked."""
+    S, P = check_pair(S, P)
+    return S, P, check_method(method)
