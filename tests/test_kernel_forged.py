@@ -308,15 +308,11 @@ def test_json_floats_are_rejected():
 
 def test_discrete_invariance_with_dt_is_tied_to_the_method():
     S, P, m = ROT, BOX, ei.methods.taylor(2)
-    cert = certificate(S, P, m, [])
-    Ad = m.matrix(S, ei.numbers.Fraction(1, 2))
-    D = ei.discrete_invariance(Ad, P)
-    claim = {"type": "discrete_invariance", "holds": True, "dt": "1/2", "Ad": [[str(x) for x in r] for r in Ad],
-             "H": [[str(x) for x in r] for r in D.certificate_matrix]} if hasattr(D, "certificate_matrix") else None
-    if claim is None:
-        base = certificate(S, P, m, [D])
-        claim = dict(_claim(base, "discrete_invariance"), dt="1/2")
-    cert["claims"] = [claim]
-    assert check(cert).ok, check(cert)
-    claim["dt"] = "1/3"
-    _rejected(cert, "r(dt A)")
+    for dt in ("1/2", "2"):  # invariant at 1/2, not at 2
+        D = ei.discrete_invariance(S, P, m, dt)
+        cert = D.certificate_json
+        claim = _claim(cert, "discrete_invariance")
+        assert claim["dt"] == dt and cert["version"] == 2
+        assert check(cert).ok, check(cert)
+        claim["dt"] = "1/3"
+        _rejected(cert, "r(dt A)")

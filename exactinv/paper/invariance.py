@@ -148,12 +148,24 @@ class DiscreteInvariance(_Invariance):
     witness: FacetWitness | None
     Ad: Matrix = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
+    system: LinearSystem | None = field(default=None, repr=False)
+    method: Any = field(default=None, repr=False)
+    dt: Fraction | None = None
     _kind = "discrete_invariance"
     _H_name = r"\tilde H"
     _H_text = "H~"
 
     def claims(self) -> list[dict]:
-        return self._claim(Ad=mat(self.Ad))
+        """With dt (A_d = r(dt A) built from a system and a method), the claim names
+        dt, and the kernel recomputes A_d itself (certificate version 2)."""
+        return self._claim(Ad=mat(self.Ad), **({} if self.dt is None else {"dt": str(self.dt)}))
+
+    @property
+    def certificate_json(self) -> dict | None:
+        """The JSON certificate (only when A_d = r(dt A) came from a system and a method)."""
+        if self.system is None:
+            return None
+        return make_certificate(self.system, self.polyhedron, self.method, [self])
 
 
 @dataclass(frozen=True)
@@ -326,10 +338,13 @@ def discrete_invariance(
     The m LPs share G and are verified as one batch (:meth:`ExactLPSolver.solve_many`).
     """
     P = check_polyhedron(polyhedron)
+    origin: dict = {}
     if isinstance(Ad, LinearSystem):
         if method is None or dt is None:
             raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
-        Ad = method.matrix(Ad, to_rational(dt, "dt", allow_float=allow_float))
+        dt = to_rational(dt, "dt", allow_float=allow_float)
+        origin = {"system": Ad, "method": method, "dt": dt}
+        Ad = method.matrix(Ad, dt)
     elif method is not None or dt is not None:
         raise InvalidInput("discrete_invariance: method= and dt= need a LinearSystem as first argument")
     Adm = to_matrix(Ad, "Ad", square=True, allow_float=allow_float)
@@ -346,15 +361,15 @@ def discrete_invariance(
         if res.status == UNBOUNDED:
             x = _push_along_ray(res.x, res.ray, objective, P.b[j])
             value = sum(c * xi for c, xi in zip(objective, x))
-            return DiscreteInvariance(False, None, FacetWitness(x, j, value), Adm, P)
+            return DiscreteInvariance(False, None, FacetWitness(x, j, value), Adm, P, **origin)
         if res.status == INFEASIBLE:
             raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty")
         if res.value > P.b[j]:
-            return DiscreteInvariance(False, None, FacetWitness(res.x, j, res.value), Adm, P)
+            return DiscreteInvariance(False, None, FacetWitness(res.x, j, res.value), Adm, P, **origin)
         H_rows.append(res.y)
     H = tuple(H_rows)
     _recheck_discrete(P, Adm, H)
-    return DiscreteInvariance(True, H, None, Adm, P)
+    return DiscreteInvariance(True, H, None, Adm, P, **origin)
 
 
 # ---------------------------------------------------------------- helpers
