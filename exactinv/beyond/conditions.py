@@ -26,6 +26,7 @@ import flint
 from ..core.polys import integer_part, sign_variations
 from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
+from ..model.methods import matrix_polynomial
 
 __all__ = ["Kind", "Condition", "conditions_of", "distinct_conditions"]
 
@@ -56,22 +57,12 @@ class Condition:
 
 def _evaluate_rational(method: Method, A: flint.fmpq_mat, t: Fraction, W: flint.fmpq_mat):
     """(D(t), D(t) A_d(t) W) exactly, D = det h(t A)."""
-    n = A.nrows()
     M = A * fmpq_of(t)
-
-    def polyval(coeffs):
-        out = flint.fmpq_mat(n, n)
-        for c in reversed(coeffs):
-            out = out * M
-            for i in range(n):
-                out[i, i] += fmpq_of(c)
-        return out
-
-    Hm = polyval(method.denominator)
+    Hm = matrix_polynomial(method.denominator, M)
     D = Hm.det()
     if D == 0:
         return None
-    return D, Hm.solve(polyval(method.numerator) * W) * D
+    return D, Hm.solve(matrix_polynomial(method.numerator, M) * W) * D
 
 
 def _interpolate_columns(points: list[Fraction], values: list[flint.fmpq_mat]) -> list[flint.fmpq_mat]:

@@ -138,6 +138,24 @@ def positive_right_of_zero(p: Any) -> bool:
     return sign_right_of(p, Fraction(0)) >= 0
 
 
+def interpolate(points: Iterable[Any], values: Iterable[Any]) -> flint.fmpq_poly:
+    """The polynomial of degree < len(points) through (points, values), exactly (Lagrange).
+
+    >>> interpolate([0, 1, 2], [1, 2, 5])
+    x^2 + 1
+    """
+    points, values = list(points), list(values)
+    x = flint.fmpq_poly([0, 1])
+    total = flint.fmpq_poly([0])
+    for i, (xi, yi) in enumerate(zip(points, values)):
+        term = flint.fmpq_poly([fmpq_of(yi) if isinstance(yi, Fraction) else yi])
+        for j, xj in enumerate(points):
+            if j != i:
+                term = term * (x - fmpq_of(Fraction(xj))) / fmpq_of(Fraction(xi) - Fraction(xj))
+        total += term
+    return total
+
+
 def poly_latex(p: Any) -> str:
     """LaTeX of an integer polynomial in x, highest degree first."""
     terms = []

@@ -18,11 +18,13 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.polys import interpolate
 from ..core.scalars import Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational, to_vector
 from ..errors import InvalidInput
 from .system import LinearSystem
 
 __all__ = [
+    "matrix_polynomial",
     "Method",
     "taylor",
     "polynomial",
@@ -93,10 +95,10 @@ class Method:
         is singular (dt A has an eigenvalue at a pole of r)."""
         A = system.A_flint if isinstance(system, LinearSystem) else fmpq_matrix(to_matrix(system, "A", square=True))
         M = A * fmpq_of(to_rational(dt, "dt"))
-        G = _polyval_matrix(self.numerator, M)
+        G = matrix_polynomial(self.numerator, M)
         if self.is_polynomial:
             return matrix_of(G)
-        H = _polyval_matrix(self.denominator, M)
+        H = matrix_polynomial(self.denominator, M)
         try:
             return matrix_of(H.solve(G))
         except ZeroDivisionError:
@@ -119,7 +121,8 @@ class Method:
         return f"Method({self.name}: r(z) = {self.to_sympy()})"
 
 
-def _polyval_matrix(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fmpq_mat:
+def matrix_polynomial(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fmpq_mat:
+    """sum_k coeffs[k] M^k, exactly (Horner)."""
     n = M.nrows()
     out = flint.fmpq_mat(n, n)
     for c in reversed(coeffs):  # Horner
@@ -234,21 +237,10 @@ def from_butcher(A: Any, b: Any, name: str = "butcher") -> Method:
     points = list(range(s + 1))
     num_vals = [(I - Aq * z + ebT * z).det() for z in points]
     den_vals = [(I - Aq * z).det() for z in points]
-    num = _interpolate(points, num_vals)
-    den = _interpolate(points, den_vals)
+    num = interpolate(points, num_vals)
+    den = interpolate(points, den_vals)
     return _make(name, [fraction_of(c) for c in num.coeffs()] or [Fraction(0)],
                  [fraction_of(c) for c in den.coeffs()] or [Fraction(0)], butcher=(Am, bv))
-
-
-def _interpolate(xs: Sequence[int], ys: Sequence[flint.fmpq]) -> flint.fmpq_poly:
-    result = flint.fmpq_poly([0])
-    for i, (xi, yi) in enumerate(zip(xs, ys)):
-        term = flint.fmpq_poly([yi])
-        for j, xj in enumerate(xs):
-            if j != i:
-                term = term * flint.fmpq_poly([-xj, 1]) / (xi - xj)
-        result += term
-    return result
 
 
 # ---------------------------------------------------------------- RK presets

@@ -32,9 +32,10 @@ from fractions import Fraction
 import flint
 
 from ..core.algebraic import ExactKey, RealAlgebraic
+from ..core.polys import interpolate
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fraction_of
-from ..model.methods import Method
+from ..model.methods import Method, matrix_polynomial
 from .invariance import OptimalGamma
 from .monotonicity import absolute_monotonicity_radius
 from .polynomial import SteplengthThreshold
@@ -70,7 +71,7 @@ def _quotient(a, b):
     da, db = pa.degree(), pb.degree()
     points = list(range(da * db + 1))
     values = [flint.fmpz_poly([c * t**k for k, c in enumerate(pa.coeffs())]).resultant(pb) for t in points]
-    R = flint.fmpq_poly.interpolate(points, values) if hasattr(flint.fmpq_poly, "interpolate") else _interpolate(points, values)
+    R = interpolate(points, values)
     roots = [r for r, _ in real_roots(R) if r > 0]
     for _ in range(2000):
         lo, hi = a.lower / b.upper, a.upper / b.lower
@@ -82,36 +83,13 @@ def _quotient(a, b):
     raise ArithmeticError("could not isolate the quotient of two algebraic numbers")
 
 
-def _interpolate(points, values) -> flint.fmpq_poly:
-    """Lagrange interpolation over Q."""
-    x = flint.fmpq_poly([0, 1])
-    total = flint.fmpq_poly([0])
-    for i, (xi, yi) in enumerate(zip(points, values)):
-        term = flint.fmpq_poly([yi])
-        for j, xj in enumerate(points):
-            if j != i:
-                term = term * (x - xj) / (xi - xj)
-        total += term
-    return total
-
-
 def first_singular_steplength(A: flint.fmpq_mat, method: Method):
     """The first h > 0 at which h_r(hA) is singular (erratum E2'), or None:
     the least positive root of D(h) = det h_r(hA), a polynomial of degree <= n deg h_r."""
     if method.is_polynomial:
         return None
-    n = A.nrows()
-    points = list(range(n * (len(method.denominator) - 1) + 1))
-    values = []
-    for t in points:
-        M = A * t
-        out = flint.fmpq_mat(n, n)
-        for c in reversed(method.denominator):
-            out = out * M
-            for i in range(n):
-                out[i, i] += flint.fmpq(c.numerator, c.denominator)
-        values.append(out.det())
-    D = _interpolate(points, values)
+    points = list(range(A.nrows() * (len(method.denominator) - 1) + 1))
+    D = interpolate(points, [matrix_polynomial(method.denominator, A * t).det() for t in points])
     positive = [z for z, _ in real_roots(D) if z > 0] if D.degree() > 0 else []
     return positive[0] if positive else None
 
