@@ -14,6 +14,7 @@ from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
 
 MAX_REFINEMENTS = 20000
+STURM_BUDGET = 10**11  # degree^4 * bits^2 of a certificate's polynomial: about seconds of Sturm work
 
 
 class Real:
@@ -40,7 +41,7 @@ class Real:
             poly = polys.trim([rational(c, what) for c in data["poly"]])
             require(isinstance(data["interval"], list) and len(data["interval"]) == 2, f"{what}: interval needs two ends")
             lo, hi = (rational(x, what) for x in data["interval"])
-            return cls.algebraic(poly, lo, hi, what)
+            return cls.claimed(poly, lo, hi, what)
         return cls(q=rational(data, what))
 
     @classmethod
@@ -56,6 +57,27 @@ class Real:
         require(evaluate(p, lo) != 0 and evaluate(p, hi) != 0, f"{what}: an end of the interval is a root")
         require(polys.count_roots(p, lo, hi) == 1, f"{what}: the interval does not isolate exactly one root")
         return cls._made(p, lo, hi)
+
+    @classmethod
+    def claimed(cls, poly, lo, hi, what="number"):
+        """A certificate's algebraic number, proved well defined cheaply first.
+
+        Descartes' rule on (lo, hi) counting exactly one sign variation proves
+        exactly one root there, and a simple one, in O(d^2) integer operations;
+        only when it is inconclusive do Sturm sequences run, and then only
+        within a budget on degree and coefficient size (a certificate must not
+        be able to make the kernel work for hours: narrow the interval instead)."""
+        require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
+        require(lo < hi, f"{what}: empty isolating interval")
+        ints = polys.integer_coefficients(poly)
+        require(polys.sign_at(ints, lo) != 0 and polys.sign_at(ints, hi) != 0, f"{what}: an end of the interval is a root")
+        if polys.descartes_variations(ints, lo, hi) == 1:
+            return cls._made(ints, lo, hi)
+        bits = max(abs(c).bit_length() for c in ints)
+        require((len(ints) - 1) ** 4 * bits ** 2 <= STURM_BUDGET,
+                f"{what}: the interval does not isolate the root by Descartes' rule, and the polynomial is too "
+                "large for Sturm sequences within the kernel's budget: give a narrower interval")
+        return cls.algebraic(poly, lo, hi, what)
 
     @classmethod
     def _made(cls, p, lo, hi):
