@@ -174,7 +174,7 @@ def _explain(args) -> int:
         print(f"exactinv: {args.certificate}: the kernel REJECTED this certificate; it is not explained "
               "(a rejected argument proves nothing)", file=sys.stderr)
         return 1
-    print(explain(cert))
+    print(explain(cert, verified=True))
     return 0
 
 
