@@ -124,7 +124,7 @@ def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance:
         return Verdict(INVALID, "threshold", c, tau, _gap(c, tau),
                        {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value},
                        f"claimed {claimed} exceeds the exact largest threshold {tau}"
-                       f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point {list(map(str, w.x))} "
+                       f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point [{', '.join(map(str, w.x))}] "
                        f"leaves P through facet {w.facet}")
     gap = _gap(c, tau)
     if _within(c, tau, tol):
@@ -145,6 +145,13 @@ def _invalid_step(system, polyhedron, method, claimed) -> Fraction:
         nxt = V.intervals[1].lo
         nxt = nxt.lower if isinstance(nxt, RealAlgebraic) else nxt
         top = min(top, nxt)
+    short = _simplest_between(lo, top)  # a short rational counterexample where one exists
+    if short is not None and short not in V:
+        try:
+            if not discrete_invariance(system, polyhedron, method, short).holds:
+                return short
+        except InvalidInput:
+            pass
     for k in range(1, 200):
         dt = lo + (top - lo) / 2**k
         if dt <= 0 or dt in V:
@@ -155,6 +162,26 @@ def _invalid_step(system, polyhedron, method, claimed) -> Fraction:
         except InvalidInput:  # r(dt A) singular at this dt
             continue
     raise InvalidInput("no invalid rational step found below the claim")
+
+
+def _simplest_between(a: Fraction, b: Fraction) -> Fraction | None:
+    """The rational with the smallest denominator in the open interval (a, b), 0 <= a < b
+    (Stern-Brocot descent by continued fractions); None if a >= b.
+
+    >>> _simplest_between(Fraction(14142, 10000), Fraction(2))
+    Fraction(3, 2)
+    """
+    if not a < b:
+        return None
+    fl = a.numerator // a.denominator
+    if fl + 1 < b:
+        return Fraction(fl + 1)
+    if fl == a:  # a is an integer and b <= a + 1: fl + 1/q with the least q > 1/(b - fl)
+        r = 1 / (b - fl)
+        return fl + Fraction(1, r.numerator // r.denominator + 1)
+    # fl < a < b <= fl + 1: recurse on the reciprocals of the fractional parts
+    x = _simplest_between(1 / (b - fl), 1 / (a - fl))
+    return None if x is None or x == 0 else fl + 1 / x
 
 
 def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
