@@ -18,7 +18,7 @@ from typing import Any
 import flint
 
 from ..errors import InvalidInput
-from .polys import count_real_roots, no_root_between, poly_latex, sign_at
+from .polys import count_real_roots, no_root_between, poly_latex, poly_text, sign_at
 from .scalars import Infinity, frac_latex, to_rational
 
 __all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "significant_digits", "exact_cmp", "upper_bound", "sign_at"]
@@ -242,7 +242,7 @@ class RealAlgebraic:
         return self.certified_digits(17)
 
     def __repr__(self) -> str:
-        return f"RealAlgebraic({_poly_text(self.poly)}, ({self._lower}, {self._upper}))"
+        return f"RealAlgebraic({self}: the root of {poly_text(self.poly)} in ({self._lower}, {self._upper}))"
 
     def to_sympy(self):
         """A sympy ``CRootOf`` equal to this number."""
@@ -368,6 +368,3 @@ def _gcd(a: int, b: int) -> int:
         a, b = b, a % b
     return a
 
-
-def _poly_text(p: flint.fmpz_poly) -> str:
-    return str(p).replace("^", "**")
