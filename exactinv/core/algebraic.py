@@ -18,10 +18,10 @@ from typing import Any
 import flint
 
 from ..errors import InvalidInput
-from .polys import count_real_roots, no_root_between, poly_latex, sign_at
+from .polys import count_real_roots, no_root_between, poly_latex, poly_text, sign_at
 from .scalars import Infinity, frac_latex, to_rational
 
-__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "exact_cmp", "upper_bound", "sign_at"]
+__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "significant_digits", "exact_cmp", "upper_bound", "sign_at"]
 
 
 @total_ordering
@@ -210,25 +210,39 @@ class RealAlgebraic:
         c = self._copy().refine(64)
         return float((c._lower + c._upper) / 2)
 
-    def certified_digits(self, digits: int = 15) -> str:
-        """A decimal string whose every printed digit is certified: the value
-        lies in [shown, shown + 10**-k) (for negative values, mirrored),
-        followed by an ellipsis."""
-        c = self._copy().refine(int(digits * 3.33) + 8)  # keep this number's tidy enclosure
-        neg = c._upper <= 0
-        lo, hi = (-c._upper, -c._lower) if neg else (c._lower, c._upper)
-        for k in range(digits, -1, -1):
-            a, b = int(lo * 10**k), int(hi * 10**k)  # floor for positive values
-            if a == b:
-                text = f"{a // 10**k}" + (f".{a % 10**k:0{k}d}" if k else "")
-                return ("-" if neg else "") + text + "..."
-        return f"({float(lo)} .. {float(hi)})"
+    def refine_relative(self, bits: int = 53) -> "RealAlgebraic":
+        """Shrink the isolating interval until it excludes 0 and its width is at
+        most 2**-bits times the smaller |end| (relative width); returns self."""
+        while self._lower <= 0 <= self._upper:
+            self._bisect()
+        scale = 2**bits
+        while (self._upper - self._lower) * scale > min(abs(self._lower), abs(self._upper)):
+            self._bisect()
+        return self
+
+    def certified_digits(self, digits: int = 17) -> str:
+        """The value to ``digits`` significant digits, every one certified: the
+        value lies in [shown, shown + one unit in the last digit) (for negative
+        values, mirrored).  Fixed notation for 1e-4 <= |value| < 1e16, else
+        scientific, e.g. ``2.5127452049785885e-7``.
+
+        >>> RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).certified_digits(5)
+        '1.4142'
+        """
+        c = self._copy().refine_relative(int(digits * 3.33) + 8)  # keep this number's own enclosure
+        for _ in range(64):
+            text = significant_digits(c._lower, c._upper, digits)
+            if text is not None:
+                return text
+            for _ in range(32):
+                c._bisect()
+        return f"({float(c._lower)} .. {float(c._upper)})"
 
     def __str__(self) -> str:
-        return self.certified_digits(15)
+        return self.certified_digits(17)
 
     def __repr__(self) -> str:
-        return f"RealAlgebraic({_poly_text(self.poly)}, ({self._lower}, {self._upper}))"
+        return f"RealAlgebraic({self}: the root of {poly_text(self.poly)} in ({self._lower}, {self._upper}))"
 
     def to_sympy(self):
         """A sympy ``CRootOf`` equal to this number."""
@@ -298,6 +312,53 @@ class ExactKey:
         return exact_lt(self.v, other.v)
 
 
+def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> str | None:
+    """The common leading ``digits`` significant digits of every number in
+    [lo, hi] (truncated towards zero; lo and hi of one sign), or None if the
+    enclosure is too wide to certify them.  ``lo == hi`` gives the digits of
+    that rational (exact only if nothing was cut off).
+
+    >>> significant_digits(Fraction(251274520497858851, 10**24), Fraction(251274520497858852, 10**24))
+    '2.5127452049785885e-7'
+    >>> significant_digits(Fraction(1749685831459810, 10**15), Fraction(1749685831459811, 10**15), 10)
+    '1.749685831'
+    """
+    if lo == 0 and hi == 0:
+        return "0"
+    if lo < 0 < hi or lo == 0 or hi == 0:
+        return None
+    neg = hi < 0
+    a, b = (-hi, -lo) if neg else (lo, hi)
+    e = _decade(a)
+    if _decade(b) != e:
+        return None
+    unit = Fraction(10) ** (e - digits + 1)
+    ma, mb = _floor(a / unit), _floor(b / unit)
+    if ma != mb:
+        return None
+    mant = str(ma)  # exactly `digits` digits
+    if -4 <= e < 16:
+        if e >= digits - 1:
+            text = mant + "0" * (e - digits + 1)
+        elif e >= 0:
+            text = mant[:e + 1] + "." + mant[e + 1:]
+        else:
+            text = "0." + "0" * (-e - 1) + mant
+    else:
+        text = mant[0] + ("." + mant[1:] if digits > 1 else "") + f"e{e}"
+    return ("-" if neg else "") + text
+
+
+def _decade(q: Fraction) -> int:
+    """e with 10**e <= q < 10**(e+1), for q > 0."""
+    e = len(str(q.numerator)) - len(str(q.denominator))
+    while Fraction(10) ** e > q:
+        e -= 1
+    while Fraction(10) ** (e + 1) <= q:
+        e += 1
+    return e
+
+
 def _floor(q: Fraction) -> int:
     return q.numerator // q.denominator
 
@@ -307,6 +368,3 @@ def _gcd(a: int, b: int) -> int:
         a, b = b, a % b
     return a
 
-
-def _poly_text(p: flint.fmpz_poly) -> str:
-    return str(p).replace("^", "**")

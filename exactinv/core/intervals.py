@@ -12,6 +12,7 @@ from fractions import Fraction
 from functools import cmp_to_key
 from typing import Any, Iterator
 
+from .latex import latex_decimal
 from .algebraic import Real, RealAlgebraic, exact_cmp, exact_eq, exact_lt
 from .scalars import INF, Infinity, to_rational
 
@@ -48,7 +49,7 @@ def _latex(v: Real) -> str:
     if isinstance(v, Infinity):
         return r"\infty"
     if isinstance(v, RealAlgebraic):
-        return v.certified_digits(8).replace("...", r"\ldots")
+        return latex_decimal(v, 8)
     if v.denominator == 1:
         return str(v.numerator)
     return rf"\tfrac{{{v.numerator}}}{{{v.denominator}}}"

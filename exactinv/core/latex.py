@@ -16,7 +16,18 @@ from .algebraic import RealAlgebraic
 from .polys import poly_latex
 from .scalars import Infinity
 
-__all__ = ["latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]
+__all__ = ["latex_decimal", "latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]
+
+
+def latex_decimal(v: RealAlgebraic, digits: int = 10) -> str:
+    """The certified decimal of an algebraic number in LaTeX, ``digits`` after the
+    point of the mantissa, marked as truncated: ``1.4142135623\\ldots`` or
+    ``2.5127452049\\ldots \\times 10^{-7}``."""
+    text = v.certified_digits(digits + 1)
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        return rf"{mantissa}\ldots \times 10^{{{exponent}}}"
+    return text + r"\ldots"
 
 
 def latex_real(v: Any, digits: int = 10) -> str:
@@ -25,7 +36,7 @@ def latex_real(v: Any, digits: int = 10) -> str:
     if isinstance(v, Infinity):
         return r"\infty" if v.sign > 0 else r"-\infty"
     if isinstance(v, RealAlgebraic):
-        decimal = v.certified_digits(digits).replace("...", "\\ldots")
+        decimal = latex_decimal(v, digits)
         return rf"{decimal}\ (\text{{root of }} {poly_latex(v.poly)})"
     v = Fraction(v)
     if v.denominator == 1:

@@ -28,6 +28,7 @@ __all__ = [
     "integer_part",
     "shift",
     "sign_at",
+    "poly_text",
     "sign_variations",
     "no_root_between",
     "no_positive_root_below",
@@ -154,6 +155,36 @@ def interpolate(points: Iterable[Any], values: Iterable[Any]) -> flint.fmpq_poly
                 term = term * (x - fmpq_of(Fraction(xj))) / fmpq_of(Fraction(xi) - Fraction(xj))
         total += term
     return total
+
+
+def poly_text(coeffs: Any, var: str = "x") -> str:
+    """Plain text of a polynomial (an fmpz/fmpq poly or rational coefficients
+    from the constant term up), highest degree first.
+
+    >>> poly_text([-12, 12, -6, 0, 1])
+    'x^4 - 6x^2 + 12x - 12'
+    >>> poly_text(["1", "-1", "1/2", "-1/6"], "t")
+    '-t^3/6 + t^2/2 - t + 1'
+    """
+    if hasattr(coeffs, "coeffs"):
+        coeffs = coeffs.coeffs()
+    cs = [to_rational(c, "coefficient") if not isinstance(c, (flint.fmpz, flint.fmpq)) else Fraction(int(c.p), int(c.q))
+          if isinstance(c, flint.fmpq) else Fraction(int(c)) for c in coeffs]
+    terms = []
+    for k in range(len(cs) - 1, -1, -1):
+        c = cs[k]
+        if c == 0:
+            continue
+        mag = abs(c)
+        mono = "" if k == 0 else (var if k == 1 else f"{var}^{k}")
+        if k == 0:
+            body = str(mag)
+        else:
+            body = ("" if mag.numerator == 1 else str(mag.numerator)) + mono + \
+                ("" if mag.denominator == 1 else f"/{mag.denominator}")
+        terms.append((" - " if c < 0 else " + ") + body)
+    text = "".join(terms) or " + 0"
+    return ("-" + text[3:]) if text.startswith(" - ") else text[3:]
 
 
 def poly_latex(p: Any) -> str:

@@ -11,22 +11,39 @@ from .scalars import Infinity
 __all__ = ["LatexMixin", "ExactValueMixin"]
 
 
+RELATIVE_BITS = 53
+"""``lower``/``upper`` of a result enclose its value with relative width <= 2**-RELATIVE_BITS."""
+
+
 class ExactValueMixin(LatexMixin):
-    """For results with an exact ``value``: rational ``lower``/``upper`` bounds
-    (``lower`` is itself a safe value) and ``refine(bits)``."""
+    """For results with an exact ``value``: rational ``lower``/``upper`` bounds,
+    tight by default (relative width <= 2**-53, refined lazily on access) with
+    ``lower`` itself a safe value (below the value when the value is not
+    ``attained``), and ``refine(bits)``."""
 
     value: Real
 
     @property
     def lower(self) -> Fraction | Infinity:
-        return self.value.lower if isinstance(self.value, RealAlgebraic) else self.value
+        """A rational at most the value, itself valid: the value if it is rational and
+        attained, else a rational below it within relative 2**-53."""
+        v = self.value
+        if isinstance(v, RealAlgebraic):
+            return v.refine_relative(RELATIVE_BITS).lower
+        if isinstance(v, Fraction) and v > 0 and not getattr(self, "attained", True):
+            return v - v / 2**RELATIVE_BITS
+        return v
 
     @property
     def upper(self) -> Fraction | Infinity:
-        return self.value.upper if isinstance(self.value, RealAlgebraic) else self.value
+        """A rational at least the value (the value itself when it is rational)."""
+        v = self.value
+        if isinstance(v, RealAlgebraic):
+            return v.refine_relative(RELATIVE_BITS).upper
+        return v
 
     def refine(self, bits: int = 53):
-        """Shrink the enclosure [lower, upper] to width <= 2**-bits; returns self."""
+        """Shrink the enclosure of an algebraic value to absolute width <= 2**-bits; returns self."""
         if isinstance(self.value, RealAlgebraic):
             self.value.refine(bits)
         return self

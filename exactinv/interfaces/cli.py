@@ -5,30 +5,59 @@ the kernel, the oracle and the explainer return.
     exactinv check CERT.json
     exactinv explain CERT.json
     exactinv oracle RESULTS.csv [--tolerance 1e-9]
+    exactinv --version
 
-Exit codes: 0 success (for ``check``: every claim verified; for ``oracle``:
-no result invalid), 1 a certificate was rejected, an oracle verdict was
-``invalid`` or an internal verification failed, 2 bad input (the message
-names the argument).
+Exit codes: 0 success; 1 a certificate was rejected, an oracle verdict was
+``invalid``, a question was undecided or an internal verification failed;
+2 bad input (the one-line message names the file, key, row or argument).
+No traceback reaches the user: an unexpected exception is reported in one
+line as an internal error (exit 1).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from typing import Sequence
 
 import exactinv_check
+from exactinv_check.kernel import BadInput, load as _load_certificate
 
 from ..core.encode import dumps
-from ..errors import ExactinvException, VerificationFailed
+from ..model.methods import PRESETS
+from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
 from .explain import explain
 from .oracle import judge_batch
 from .pipeline import certify, stages
-from .problem import load_problem, parse_method
+from .problem import load_problem, method_from_text
 
 __all__ = ["main"]
+
+EXIT_CODES = """\
+exit codes:
+  0  success (certify/check: the kernel verified the certificate; oracle: no claim invalid)
+  1  a certificate was rejected, an oracle claim was invalid, a question was
+     undecided, or an internal error (a bug: please report it)
+  2  bad input: a missing or malformed file, key, row or argument (the
+     one-line message names it)
+"""
+
+FORMAT_BRIEF = """\
+problem file (JSON; full format: docs/problem-format.md, schema: docs/problem.schema.json):
+  {"system":     {"A": [["-1", "1"], ["-1", "-1"]]}            or {"A0": .., "B": .., "F": ..} (A = A0 + B F)
+   "polyhedron": {"G": [[1, 0], [-1, 0], [0, 1], [0, -1]], "b": [1, 1, 1, 1]}
+                                             or {"vertices": [..], "rays": [..], "lines": [..]}
+   "method":     {"taylor": 4}                                 optional, one of:
+       {"taylor": p}  {"polynomial": [s0, s1, ..]}  {"rational": {"num": [..], "den": [..]}}
+       {"theta": "1/2"}  {"pade": [k, l]}  {"butcher": {"A": [[..]], "b": [..], "c": [..]}}
+       {"ssprk_s1": s}  {"preset": NAME} or just "NAME"
+   "name": "..", "description": ".."}                          optional
+  numbers are integers or strings: "3/4", "-2", "0.1" (exactly 1/10); JSON floats are refused.
+  Unknown keys are refused.  --method takes the same JSON or a preset name, e.g. --method rk4.
+presets: {presets}
+"""
 
 
 class _Progress:
@@ -49,9 +78,30 @@ class _Progress:
             print("\r" + " " * (self.total + 45) + "\r", end="", file=sys.stderr, flush=True)
 
 
+def _check_output(path: str) -> None:
+    """Refuse an -o path that cannot be written, before any computation."""
+    if os.path.isdir(path):
+        raise InvalidInput(f"-o {path}: is a directory; give a file name such as {os.path.join(path, 'cert.json')}")
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        raise InvalidInput(f"-o {path}: the directory {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+        raise InvalidInput(f"-o {path}: not writable")
+
+
+def _input_file(path: str, what: str) -> None:
+    if os.path.isdir(path):
+        raise InvalidInput(f"{path}: is a directory, not a {what}")
+    if not os.path.exists(path):
+        raise InvalidInput(f"{path}: no such file")
+
+
 def _certify(args) -> int:
+    if args.output:
+        _check_output(args.output)
+    _input_file(args.problem, "problem file")
     problem = load_problem(args.problem)
-    method = parse_method(json.loads(args.method)) if args.method else None
+    method = method_from_text(args.method) if args.method else None
     progress = _Progress(stages(method or problem.method, not args.no_check))
     try:
         report = certify(problem, method, check=not args.no_check, progress=progress.step)
@@ -64,53 +114,111 @@ def _certify(args) -> int:
             print(f"exactinv: the kernel rejected the certificate; {args.output} was NOT written", file=sys.stderr)
         return 1
     if args.output:
-        with open(args.output, "w") as fh:
-            fh.write(dumps(report.certificate))
+        try:
+            with open(args.output, "w", encoding="utf-8") as fh:
+                fh.write(dumps(report.certificate))
+        except OSError as exc:
+            raise InvalidInput(f"-o {args.output}: cannot write ({exc.strerror or exc})") from None
         print(f"certificate written to {args.output}")
     return 0
 
 
+def _load_cert(path: str) -> dict:
+    """The certificate in ``path``, or InvalidInput naming the file and what it is instead."""
+    _input_file(path, "certificate")
+    try:
+        cert = _load_certificate(path)
+    except BadInput as exc:
+        raise InvalidInput(f"{path}: {str(exc).replace(repr(path), 'the file')}") from None
+    if cert.get("format") != exactinv_check.kernel.FORMAT:
+        if {"system", "polyhedron"} & set(cert):
+            raise InvalidInput(f"{path}: this is a problem file, not a certificate (run `exactinv certify {path} -o CERT.json`)")
+        raise InvalidInput(f"{path}: not an exactinv certificate (the \"format\" key is missing or wrong)")
+    return cert
+
+
 def _check(args) -> int:
-    report = exactinv_check.check(args.certificate)
+    cert = _load_cert(args.certificate)
+    report = exactinv_check.check(cert)
     print(report, file=sys.stderr if report.bad_input else sys.stdout)
     return 2 if report.bad_input else (0 if report.ok else 1)
 
 
 def _oracle(args) -> int:
+    _input_file(args.results, "results file")
     rows = judge_batch(args.results, args.tolerance)
     print(f"{'#':>3}  {'problem':<28}{'quantity':<11}{'method':<16}{'claimed':<22}verdict")
-    for k, r in enumerate(rows, 1):
-        print(f"{k:>3}  {r.name:<28}{r.quantity:<11}{r.method:<16}{r.claimed:<22}{r.verdict.status.upper()}")
-        if r.verdict.status != "tight":
+    for r in rows:
+        print(f"{r.row:>3}  {r.name[:27]:<28}{r.quantity[:10]:<11}{r.method[:15]:<16}{r.claimed[:21]:<22}{r.status.upper()}")
+        if r.verdict is None:
+            print(f"     {r.error}")
+        elif r.verdict.status != "tight":
             print(f"     {r.verdict.message}")
-    invalid = sum(r.verdict.status == "invalid" for r in rows)
-    print(f"{len(rows)} results judged: {invalid} invalid")
-    return 1 if invalid else 0
+    invalid = sum(r.status == "invalid" for r in rows)
+    errors = sum(r.verdict is None for r in rows)
+    print(f"{len(rows)} result{'' if len(rows) == 1 else 's'} judged: {invalid} invalid"
+          + (f", {errors} could not be judged (bad input)" if errors else ""))
+    for r in rows:
+        if r.verdict is None:
+            print(f"exactinv: {args.results}: {r.error}", file=sys.stderr)
+    return 1 if invalid else (2 if errors else 0)
 
 
 def _explain(args) -> int:
-    with open(args.certificate) as fh:
-        cert = json.load(fh)
-    print(explain(cert))
+    cert = _load_cert(args.certificate)
+    report = exactinv_check.check(cert)
+    if report.bad_input:
+        raise InvalidInput(f"{args.certificate}: {report.verdicts[0][2]}")
+    if not report.ok:
+        print(report, file=sys.stderr)
+        print(f"exactinv: {args.certificate}: the kernel REJECTED this certificate; it is not explained "
+              "(a rejected argument proves nothing)", file=sys.stderr)
+        return 1
+    print(explain(cert, verified=True))
     return 0
 
 
+def _version() -> str:
+    # the package's own __version__ (the top package is always imported before this module;
+    # reading it here keeps the import graph pointing down)
+    return f"exactinv {sys.modules[__name__.split('.')[0]].__version__}"
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="exactinv", description="Exact steplength thresholds with certificates.")
-    sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("certify", help="compute and certify everything that applies to a problem file")
+    fmt = argparse.RawDescriptionHelpFormatter
+    parser = argparse.ArgumentParser(prog="exactinv", description="Exact steplength thresholds with certificates.",
+                                     epilog=EXIT_CODES, formatter_class=fmt)
+    parser.add_argument("--version", action="version", version=_version())
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{certify,check,explain,oracle}")
+    p = sub.add_parser("certify", help="compute and certify everything that applies to a problem file",
+                       description="Compute gamma*, the forward-Euler step, the paper's threshold, the exact valid "
+                                   "steplengths and the largest threshold of a problem, and certify them.",
+                       epilog=FORMAT_BRIEF.replace("{presets}", ", ".join(sorted(PRESETS))) + "\n" + EXIT_CODES,
+                       formatter_class=fmt)
     p.add_argument("problem", help="problem JSON file")
-    p.add_argument("--method", help='method as JSON, e.g. \'{"taylor": 4}\' (overrides the file)')
+    p.add_argument("--method", help='method as JSON, e.g. \'{"taylor": 4}\', or a preset name such as rk4 '
+                                    '(overrides the file)')
     p.add_argument("-o", "--output", help="write the certificate to this JSON file (only if the kernel verifies it)")
     p.add_argument("--no-check", action="store_true", help="skip the built-in run of the trusted kernel")
     p.set_defaults(run=_certify)
-    c = sub.add_parser("check", help="re-verify a certificate with the trusted kernel (exactinv_check)")
+    c = sub.add_parser("check", help="re-verify a certificate with the trusted kernel (exactinv_check)",
+                       epilog=EXIT_CODES, formatter_class=fmt)
     c.add_argument("certificate", help="certificate JSON file")
     c.set_defaults(run=_check)
-    e = sub.add_parser("explain", help="print the argument of a certificate in words")
+    e = sub.add_parser("explain", help="check a certificate, then print its argument in words",
+                       description="Run the trusted kernel on a certificate and, if it verifies, explain every "
+                                   "claim in words.  A rejected certificate is not explained (exit 1).",
+                       epilog=EXIT_CODES, formatter_class=fmt)
     e.add_argument("certificate", help="certificate JSON file")
     e.set_defaults(run=_explain)
-    o = sub.add_parser("oracle", help="judge float results (CSV: problem,quantity,method,claimed; or .jsonl)")
+    o = sub.add_parser("oracle", help="judge float results (CSV: problem,quantity,method,claimed; or .jsonl)",
+                       description="Judge claimed float results against the exact values.  Each row is judged on "
+                                   "its own; a row that cannot be judged is reported with its row number.",
+                       epilog="columns: problem (a problem file, relative to the results file), quantity "
+                              "(threshold, gamma or radius; default threshold), method (JSON or a preset name; "
+                              "default: the problem's), claimed (a float such as 1.5, 1e-3 or inf).\n"
+                              "exit: 1 if a claim is invalid, else 2 if a row could not be judged, else 0.\n\n"
+                              + EXIT_CODES, formatter_class=fmt)
     o.add_argument("results", help="CSV or JSON-lines file of float results")
     o.add_argument("--tolerance", default="1e-9", help="relative tolerance for 'tight' (default 1e-9)")
     o.set_defaults(run=_oracle)
@@ -118,16 +226,28 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code."""
+    """Run the command line; returns the exit code (0, 1 or 2; see the module docstring)."""
     args = _parser().parse_args(argv)
     try:
         return args.run(args)
     except VerificationFailed as exc:
         print(f"exactinv: internal verification failed: {exc}", file=sys.stderr)
         return 1
-    except (ExactinvException, json.JSONDecodeError) as exc:
+    except Undecided as exc:
+        print(f"exactinv: undecided: {exc}", file=sys.stderr)
+        return 1
+    except ExactinvException as exc:
         print(f"exactinv: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("exactinv: interrupted", file=sys.stderr)
+        return 130
+    except RecursionError:
+        print("exactinv: input nested too deeply", file=sys.stderr)
+        return 2
+    except Exception as exc:  # never a traceback: a one-line report of an engine bug
+        print(f"exactinv: internal error (a bug; please report it): {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -30,11 +30,11 @@ from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
-from ..errors import ExactinvError, InvalidInput
+from ..errors import ExactinvException, InvalidInput
 from ..model.methods import Method, forward_euler
 from ..paper.invariance import discrete_invariance, optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
-from .problem import load_problem, parse_method
+from .problem import did_you_mean, load_problem, method_from_text, parse_method
 
 __all__ = ["Status", "Verdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold",
            "judge_batch"]
@@ -124,7 +124,7 @@ def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance:
         return Verdict(INVALID, "threshold", c, tau, _gap(c, tau),
                        {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value},
                        f"claimed {claimed} exceeds the exact largest threshold {tau}"
-                       f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point {list(map(str, w.x))} "
+                       f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point [{', '.join(map(str, w.x))}] "
                        f"leaves P through facet {w.facet}")
     gap = _gap(c, tau)
     if _within(c, tau, tol):
@@ -145,6 +145,13 @@ def _invalid_step(system, polyhedron, method, claimed) -> Fraction:
         nxt = V.intervals[1].lo
         nxt = nxt.lower if isinstance(nxt, RealAlgebraic) else nxt
         top = min(top, nxt)
+    short = _simplest_between(lo, top)  # a short rational counterexample where one exists
+    if short is not None and short not in V:
+        try:
+            if not discrete_invariance(system, polyhedron, method, short).holds:
+                return short
+        except InvalidInput:
+            pass
     for k in range(1, 200):
         dt = lo + (top - lo) / 2**k
         if dt <= 0 or dt in V:
@@ -155,6 +162,26 @@ def _invalid_step(system, polyhedron, method, claimed) -> Fraction:
         except InvalidInput:  # r(dt A) singular at this dt
             continue
     raise InvalidInput("no invalid rational step found below the claim")
+
+
+def _simplest_between(a: Fraction, b: Fraction) -> Fraction | None:
+    """The rational with the smallest denominator in the open interval (a, b), 0 <= a < b
+    (Stern-Brocot descent by continued fractions); None if a >= b.
+
+    >>> _simplest_between(Fraction(14142, 10000), Fraction(2))
+    Fraction(3, 2)
+    """
+    if not a < b:
+        return None
+    fl = a.numerator // a.denominator
+    if fl + 1 < b:
+        return Fraction(fl + 1)
+    if fl == a:  # a is an integer and b <= a + 1: fl + 1/q with the least q > 1/(b - fl)
+        r = 1 / (b - fl)
+        return fl + Fraction(1, r.numerator // r.denominator + 1)
+    # fl < a < b <= fl + 1: recurse on the reciprocals of the fractional parts
+    x = _simplest_between(1 / (b - fl), 1 / (a - fl))
+    return None if x is None or x == 0 else fl + 1 / x
 
 
 def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
@@ -217,34 +244,117 @@ def assert_threshold(system, polyhedron, method: Method, claimed: Any, tolerance
 
 @dataclass(frozen=True)
 class BatchRow:
-    """One judged row of a batch file: where it came from and its :class:`Verdict`."""
+    """One row of a batch file: where it came from and its :class:`Verdict`, or,
+    for a row that could not be judged (bad input), ``verdict`` None and the
+    ``error`` naming the row and what is wrong."""
 
     name: str
     quantity: str
     method: str
     claimed: str
-    verdict: Verdict
+    verdict: Verdict | None
+    error: str | None = None
+    row: int = 0
+
+    @property
+    def status(self) -> str:
+        """The verdict's status, or ``"error"``."""
+        return self.verdict.status if self.verdict is not None else "error"
 
 
 def judge_batch(path: str, tolerance: Any = "1e-9") -> list[BatchRow]:
     """Judge a batch of float results: CSV (problem,quantity,method,claimed) or
-    JSON lines; problem paths are relative to the batch file."""
+    JSON lines; problem paths are relative to the batch file.  Every row is
+    judged on its own: a row that cannot be judged (bad problem, method,
+    quantity or claim) is returned with its ``error`` and the batch goes on.
+    A batch file that cannot be read raises :class:`InvalidInput`."""
+    tol = to_rational(tolerance, "--tolerance")
+    if tol < 0:
+        raise InvalidInput(f"--tolerance: must be >= 0, got {tolerance}")
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        raise InvalidInput(f"{path}: is a directory, not a results file")
     base = os.path.dirname(os.path.abspath(path))
-    with open(path) as fh:
-        if path.endswith(".jsonl"):
-            rows = [json.loads(line) for line in fh if line.strip()]
-        else:
-            rows = list(csv.DictReader(fh))
-    return [_judge_row(k, row, base, tolerance) for k, row in enumerate(rows, 1)]
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            if path.endswith(".jsonl"):
+                rows = [_json_row(line) for line in fh if line.strip()]
+            else:
+                reader = csv.DictReader(fh)
+                rows = list(reader)
+                if not reader.fieldnames:
+                    raise InvalidInput(f"{path}: empty CSV file (expected the header problem,quantity,method,claimed)")
+                missing = [c for c in ("problem", "claimed") if c not in reader.fieldnames]
+                if missing:
+                    raise InvalidInput(f"{path}: the CSV header lacks the column(s) {', '.join(missing)} "
+                                       f"(expected problem,quantity,method,claimed; got {','.join(map(str, reader.fieldnames))})")
+    except OSError as exc:
+        raise InvalidInput(f"{path}: cannot read the results file ({exc.strerror or exc})") from None
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise InvalidInput(f"{path}: not a CSV or JSON-lines text file ({exc})") from None
+    return [_safe_row(k, row, base, tol) for k, row in enumerate(rows, 1)]
+
+
+def _json_row(line: str) -> Any:
+    try:
+        return json.loads(line)
+    except json.JSONDecodeError as exc:
+        return InvalidInput(f"not valid JSON ({exc})")
+
+
+def _safe_row(k: int, row: Any, base: str, tolerance: Fraction) -> BatchRow:
+    get = row.get if isinstance(row, dict) else (lambda key, default=None: default)
+    name = get("problem")
+    name = os.path.basename(str(name)) if isinstance(name, str) else ("-" if name is None else "(inline)")
+    method = get("method")
+    shown = [name, str(get("quantity") or "threshold"), str(method) if method else "-", str(get("claimed", ""))]
+    try:
+        if isinstance(row, InvalidInput):
+            raise row
+        if not isinstance(row, dict):
+            raise InvalidInput(f"expected an object with problem, quantity, method, claimed; got {type(row).__name__}")
+        return _judge_row(k, row, base, tolerance)
+    except ExactinvException as exc:
+        msg = str(exc)
+        return BatchRow(*shown, verdict=None, error=f"row {k}: {msg}" if not msg.startswith(f"row {k}") else msg, row=k)
+
+
+def _claim_of(text: Any) -> Any:
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return text
+    if not isinstance(text, str) or not text.strip():
+        raise InvalidInput(f"claimed: missing or not a number ({text!r})")
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    try:
+        return to_rational(text.strip(), "claimed")
+    except InvalidInput:
+        raise InvalidInput(f"claimed: cannot read {text!r} as a number (write e.g. 0.5, 1e-3, 1/3 or inf)") from None
 
 
 def _judge_row(k: int, row: dict, base: str, tolerance: Any) -> BatchRow:
-    source = row["problem"]
+    extra = set(row) - {"problem", "quantity", "method", "claimed"} - {None}
+    if extra:
+        key = sorted(extra)[0]
+        raise InvalidInput(f"row {k}: unknown column {key!r}"
+                           f"{did_you_mean(key, ('problem', 'quantity', 'method', 'claimed'))}")
+    if None in row:
+        raise InvalidInput(f"row {k}: more fields than the header has columns")
+    source = row.get("problem")
+    if not source:
+        raise InvalidInput(f"row {k}: problem: missing")
     prob = load_problem(source if isinstance(source, dict) else os.path.join(base, source))
     spec = row.get("method") or None
-    method = parse_method(json.loads(spec) if isinstance(spec, str) else spec) if spec else prob.method
-    claimed = float(row["claimed"])
-    quantity = row.get("quantity", "threshold")
+    if isinstance(spec, str):
+        method = method_from_text(spec, "method")
+    else:
+        method = parse_method(spec) if spec else prob.method
+    quantity = row.get("quantity") or "threshold"
+    claimed = _claim_of(row.get("claimed"))
+    if quantity in ("threshold", "radius") and method is None:
+        raise InvalidInput(f"row {k}: method: a {quantity} needs a method (in the row or in the problem file)")
     if quantity == "threshold":
         v = judge_threshold(prob.system, prob.polyhedron, method, claimed, tolerance)
     elif quantity == "gamma":
@@ -252,6 +362,7 @@ def _judge_row(k: int, row: dict, base: str, tolerance: Any) -> BatchRow:
     elif quantity == "radius":
         v = judge_radius(method, claimed, tolerance)
     else:
-        raise ExactinvError(f"row {k}: unknown quantity {quantity!r} (threshold, gamma, radius)")
+        raise InvalidInput(f"row {k}: quantity: unknown {quantity!r}{did_you_mean(quantity, ('threshold', 'gamma', 'radius'))} "
+                           "(threshold, gamma, radius)")
     name = prob.name if isinstance(source, dict) else os.path.basename(str(source))
-    return BatchRow(name, quantity, method.name if method else "-", str(row["claimed"]), v)
+    return BatchRow(name, quantity, method.name if method else "-", str(row["claimed"]), v, row=k)

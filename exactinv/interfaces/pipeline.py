@@ -15,12 +15,14 @@ The command line, the notebooks and a batch runner all call :func:`certify`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any, Callable
 
 import exactinv_check
 
 from ..beyond.largest import largest_threshold, valid_steplengths
-from ..core.algebraic import RealAlgebraic
+from ..core.algebraic import RealAlgebraic, significant_digits
+from ..core.polys import poly_text
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import forward_euler_threshold
@@ -62,11 +64,38 @@ def stages(method: Method | None, check: bool) -> int:
 
 
 def exact_text(v: Any) -> str:
-    """An exact value for a report line (an algebraic number with its polynomial and enclosure)."""
+    """An exact value for a report line: a rational as it is (with its leading
+    significant digits when it is long), an algebraic number by its certified
+    significant digits, its polynomial and an isolating interval.
+
+    >>> exact_text(RealAlgebraic.from_isolating_interval([-12, 12, -6, 0, 1], 1, 2))
+    '1.7496858314598103  (the root of x^4 - 6x^2 + 12x - 12 in [1.749685831459, 1.74968583146])'
+    >>> exact_text(Fraction(1, 3 * 10**20))
+    '1/300000000000000000000  (= 3.3333333333333333e-21...)'
+    """
     if isinstance(v, RealAlgebraic):
         v.tidy()
-        return f"{v}  (root of {v.poly} in ({v.lower}, {v.upper}))"
+        return f"{v}  (the root of {poly_text(v.poly)} in [{_decimal(v.lower)}, {_decimal(v.upper)}])"
+    if isinstance(v, Fraction) and len(str(v)) > 12 and v.denominator != 1:
+        digits = significant_digits(v, v, 17)
+        exact = Fraction(digits) == v
+        return f"{v}  (= {digits}{'' if exact else '...'})"
     return str(v)
+
+
+def _decimal(q: Fraction) -> str:
+    """q as an exact decimal when its denominator divides a power of ten, else as a fraction."""
+    d, twos, fives = q.denominator, 0, 0
+    while d % 2 == 0:
+        d, twos = d // 2, twos + 1
+    while d % 5 == 0:
+        d, fives = d // 5, fives + 1
+    k = max(twos, fives)
+    if d != 1 or k == 0:
+        return str(q)
+    digits = str(abs(q.numerator * 10**k // q.denominator)).rjust(k + 1, "0")
+    text = (digits[:-k] + "." + digits[-k:]).rstrip("0").rstrip(".")
+    return ("-" if q < 0 else "") + text
 
 
 def certify(problem: Problem, method: Method | None = None, check: bool = True,
@@ -88,7 +117,7 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         lines.append("gamma*: oo (no steplength threshold exists)")
     else:
         lines.append("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
-        lines.append(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {gamma.paths}]")
+        lines.append(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {_routes(gamma.paths)}]")
         step("forward Euler (vertex ratio tests)")
         results += _forward_euler(S, P, lines)
         if method is not None:
@@ -107,6 +136,13 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         lines.append(f"independent check: skipped (--no-check); run `exactinv check` on the certificate "
                      f"({len(cert['claims'])} claims)")
     return Report(problem, method, tuple(results), cert, report, tuple(lines))
+
+
+def _routes(paths: Any) -> str:
+    """{'float-rounded': 4} -> 'float-rounded x4'."""
+    if isinstance(paths, dict):
+        return ", ".join(f"{k} x{v}" for k, v in paths.items())
+    return str(paths)
 
 
 def _forward_euler(S, P, lines: list[str]) -> list[Any]:

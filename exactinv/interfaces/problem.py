@@ -1,26 +1,36 @@
-"""Problem files: the JSON format read by ``exactinv certify``.
+"""Problem files: the JSON format read by ``exactinv certify`` (docs/problem-format.md,
+docs/problem.schema.json).
 
     {"system": {"A": [["-1", "1"], ["-1", "-1"]]},          # or {"A0", "B", "F"}
      "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}
      "method": {"taylor": 4}}                               # optional
 
 Rationals are strings ("3/4"; "0.1" means exactly 1/10) or integers; JSON
-floats are refused like Python floats.  Errors name the JSON path.
+floats are refused like Python floats.  Unknown keys are refused at every
+level, with a "did you mean" hint.  Errors name the file and the JSON path.
 """
 
 from __future__ import annotations
 
+import difflib
 import json
 import os
+import re
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Iterable
 
-from ..model import methods as _methods
 from ..errors import InvalidInput
-from ..model.methods import Method
+from ..model import methods as _methods
 from ..model import LinearSystem, Polyhedron
+from ..model.methods import Method
 
-__all__ = ["Problem", "load_problem", "parse_method"]
+__all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
+
+TOP_KEYS = ("system", "polyhedron", "method", "name", "description")
+"""The keys a problem file may hold (system and polyhedron are required)."""
+
+METHOD_KINDS = ("taylor", "polynomial", "rational", "theta", "pade", "butcher", "preset", "ssprk_s1")
+"""The keys of a method object ({"taylor": 4}, ...); a bare string is a preset name."""
 
 
 @dataclass(frozen=True)
@@ -31,78 +41,243 @@ class Problem:
     name: str = "problem"
 
 
-def parse_method(spec: Any) -> Method:
-    """A method from its JSON form, e.g. {"taylor": 4} or {"preset": "backward_euler"}."""
-    if isinstance(spec, str):
-        return _methods.preset(spec)
-    if not isinstance(spec, dict) or len(spec) != 1:
-        raise InvalidInput(f"method: expected one key such as {{\"taylor\": 4}}, got {spec!r}")
-    (kind, arg), = spec.items()
-    if kind == "taylor":
-        return _methods.taylor(arg)
-    if kind == "polynomial":
-        return _methods.polynomial(arg)
-    if kind == "rational":
-        if not isinstance(arg, dict) or set(arg) != {"num", "den"}:
-            raise InvalidInput('method.rational: expected {"num": [...], "den": [...]}')
-        return _methods.rational(arg["num"], arg["den"])
-    if kind == "theta":
-        return _methods.theta(arg)
-    if kind == "pade":
-        if not isinstance(arg, list) or len(arg) != 2:
-            raise InvalidInput("method.pade: expected [k, l]")
-        return _methods.pade(*arg)
-    if kind == "butcher":
-        if not isinstance(arg, dict) or set(arg) != {"A", "b"}:
-            raise InvalidInput('method.butcher: expected {"A": [[...]], "b": [...]}')
-        return _methods.from_butcher(arg["A"], arg["b"])
-    if kind == "preset":
-        return _methods.preset(arg)
-    if kind == "ssprk_s1":
-        return _methods.ssprk_s1(arg)
-    raise InvalidInput(f"method: unknown kind {kind!r} (taylor, polynomial, rational, theta, pade, butcher, preset)")
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """'; did you mean "x"?' for the closest choice, or '' (difflib)."""
+    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
+    return f'; did you mean "{close[0]}"?' if close else ""
 
 
-def _section(data: dict, key: str) -> dict:
-    value = data.get(key)
+def check_keys(obj: dict, allowed: Iterable[str], path: str) -> None:
+    """Refuse a key of ``obj`` outside ``allowed``, naming its JSON path and the closest allowed key."""
+    allowed = list(allowed)
+    for key in obj:
+        if key not in allowed:
+            raise InvalidInput(f"{path + '.' if path else ''}{key}: unknown key{did_you_mean(key, allowed)} "
+                               f"(allowed: {', '.join(allowed)})")
+
+
+_LEAD = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?=[\[:])")
+
+
+class _At:
+    """Prefix the message of an InvalidInput raised inside the block with a JSON path:
+    an argument name that is one of ``keys`` becomes ``path.key``; any other leading
+    argument name (the value itself, e.g. ``p`` of taylor) is replaced by ``path``."""
+
+    def __init__(self, path: str, keys: Iterable[str] = ()):
+        self.path, self.keys = path, set(keys)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        if isinstance(exc, InvalidInput):
+            msg = str(exc)
+            lead = _LEAD.match(msg)
+            if lead and lead.group(1) in self.keys:
+                msg = f"{self.path}.{msg}"
+            elif lead:
+                msg = self.path + msg[lead.end():]
+            else:
+                msg = f"{self.path}: {msg}"
+            raise type(exc)(msg) from None
+        return False
+
+
+def _object(value: Any, path: str, what: str) -> dict:
     if not isinstance(value, dict):
-        raise InvalidInput(f"problem: missing or malformed section {key!r}")
+        raise InvalidInput(f"{path}: expected {what}, got {_kind(value)}")
     return value
 
 
-def load_problem(source: Any) -> Problem:
-    """Read a problem from a dict, a JSON string or a path to a JSON file."""
-    name = "problem"
-    if isinstance(source, (str, os.PathLike)) and not str(source).lstrip().startswith("{"):
-        name = os.path.splitext(os.path.basename(str(source)))[0]
+def _kind(value: Any) -> str:
+    return {dict: "a JSON object", list: "a JSON list", str: "a string", bool: "a boolean", int: "an integer",
+            type(None): "null"}.get(type(value), type(value).__name__)
+
+
+def parse_method(spec: Any, path: str = "method") -> Method:
+    """A method from its JSON form, e.g. {"taylor": 4}, {"preset": "rk4"} or the preset name "rk4"."""
+    if isinstance(spec, str):
+        return _preset(spec, path)
+    if not isinstance(spec, dict) or len(spec) != 1:
+        got = f"keys {sorted(spec)}" if isinstance(spec, dict) else _kind(spec)
+        raise InvalidInput(f"{path}: expected one key such as {{\"taylor\": 4}} or a preset name, got {got}")
+    (kind, arg), = spec.items()
+    where = f"{path}.{kind}"
+    if kind not in METHOD_KINDS:
+        raise InvalidInput(f"{where}: unknown kind of method{did_you_mean(kind, METHOD_KINDS)} "
+                           f"(known: {', '.join(METHOD_KINDS)})")
+    if kind == "preset":
+        if not isinstance(arg, str):
+            raise InvalidInput(f"{where}: expected a preset name (a string), got {_kind(arg)}")
+        return _preset(arg, where)
+    with _At(where):
+        if kind == "taylor":
+            return _methods.taylor(arg)
+        if kind == "polynomial":
+            return _methods.polynomial(arg)
+        if kind == "theta":
+            return _methods.theta(arg)
+        if kind == "ssprk_s1":
+            return _methods.ssprk_s1(arg)
+    with _At(where, ("k", "l")):
+        if kind == "pade":
+            if not isinstance(arg, list) or len(arg) != 2:
+                raise InvalidInput("expected [k, l] (numerator and denominator degrees)")
+            return _methods.pade(*arg)
+    if kind == "rational":
+        _object(arg, where, '{"num": [...], "den": [...]}')
+        check_keys(arg, ("num", "den"), where)
+        _require(arg, ("num", "den"), where)
+        with _At(where, ("num", "den")):
+            return _methods.rational(arg["num"], arg["den"])
+    _object(arg, where, '{"A": [[...]], "b": [...]} (and optionally "c": [...])')
+    check_keys(arg, ("A", "b", "c"), where)
+    _require(arg, ("A", "b"), where)
+    with _At(where, ("A", "b", "c")):
+        return _methods.from_butcher(arg["A"], arg["b"], c=arg.get("c"))
+
+
+def _preset(name: str, where: str) -> Method:
+    if name not in _methods.PRESETS:
+        raise InvalidInput(f"{where}: unknown preset {name!r}{did_you_mean(name, _methods.PRESETS)} "
+                           f"(known: {', '.join(sorted(_methods.PRESETS))})")
+    return _methods.preset(name)
+
+
+def method_from_text(text: str, where: str = "--method") -> Method:
+    """A method from command-line text: JSON (``{"taylor": 4}``) or a preset name (``rk4``)."""
+    text = text.strip()
+    if text[:1] in "{[\"":
         try:
-            with open(source) as fh:
-                source = json.load(fh, parse_float=_refuse_float)
-        except OSError as exc:
-            raise InvalidInput(f"problem: cannot read {source}: {exc.strerror}") from None
+            spec = json.loads(text, parse_float=_refuse_float(where), parse_constant=_refuse_constant(where))
         except json.JSONDecodeError as exc:
-            raise InvalidInput(f"problem: {name} is not valid JSON ({exc})") from None
-    elif isinstance(source, str):
-        source = json.loads(source, parse_float=_refuse_float)
-    if not isinstance(source, dict):
-        raise InvalidInput("problem: expected a JSON object")
-    sys_data = _section(source, "system")
+            raise InvalidInput(f"{where}: not valid JSON ({exc}); give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
+        return parse_method(spec, where)
+    return _preset(text, where)
+
+
+def _require(obj: dict, keys: Iterable[str], path: str) -> None:
+    for key in keys:
+        if key not in obj:
+            raise InvalidInput(f"{path}: missing key {key!r}")
+
+
+def _section(data: dict, key: str) -> dict:
+    if key not in data:
+        raise InvalidInput(f"{key}: missing section (a problem file needs \"system\" and \"polyhedron\")")
+    return _object(data[key], key, "a JSON object")
+
+
+def _system(data: dict) -> LinearSystem:
+    sys_data = _section(data, "system")
+    check_keys(sys_data, ("A", "A0", "B", "F"), "system")
     if "A" in sys_data:
-        system = LinearSystem(sys_data["A"])
-    elif {"A0", "B", "F"} <= set(sys_data):
-        system = LinearSystem.closed_loop(sys_data["A0"], sys_data["B"], sys_data["F"])
-    else:
-        raise InvalidInput('problem.system: give "A", or "A0", "B" and "F"')
-    poly = _section(source, "polyhedron")
-    if "G" in poly:
-        polyhedron = Polyhedron(poly["G"], poly.get("b", ()))
-    elif "vertices" in poly:
-        polyhedron = Polyhedron.from_vertices(poly["vertices"], poly.get("rays", ()), poly.get("lines", ()))
-    else:
-        raise InvalidInput('problem.polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines")')
-    method = parse_method(source["method"]) if source.get("method") is not None else None
+        if set(sys_data) != {"A"}:
+            raise InvalidInput('system: give "A", or "A0", "B" and "F" -- not both')
+        with _At("system", ("A", "A0", "B", "F")):
+            return LinearSystem(sys_data["A"])
+    if {"A0", "B", "F"} <= set(sys_data):
+        with _At("system", ("A", "A0", "B", "F")):
+            return LinearSystem.closed_loop(sys_data["A0"], sys_data["B"], sys_data["F"])
+    missing = sorted({"A0", "B", "F"} - set(sys_data))
+    raise InvalidInput(f'system: give "A", or "A0", "B" and "F" (missing {", ".join(missing)})')
+
+
+def _polyhedron(data: dict) -> Polyhedron:
+    poly = _section(data, "polyhedron")
+    check_keys(poly, ("G", "b", "vertices", "rays", "lines"), "polyhedron")
+    h_keys, v_keys = {"G", "b"} & set(poly), {"vertices", "rays", "lines"} & set(poly)
+    if h_keys and v_keys:
+        raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines") -- not both')
+    if h_keys:
+        _require(poly, ("G", "b"), "polyhedron")
+        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+            return Polyhedron(poly["G"], poly["b"])
+    if "vertices" in poly:
+        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+            return Polyhedron.from_vertices(poly["vertices"], poly.get("rays", ()), poly.get("lines", ()))
+    raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines")')
+
+
+def problem_from_dict(data: Any, name: str = "problem") -> Problem:
+    """A :class:`Problem` from the parsed JSON of a problem file (every key checked)."""
+    if not isinstance(data, dict):
+        raise InvalidInput(f"expected a JSON object with \"system\" and \"polyhedron\", got {_kind(data)}")
+    if {"format", "claims"} & set(data):
+        raise InvalidInput("this is a certificate, not a problem file (use `exactinv check` or `exactinv explain`)")
+    check_keys(data, TOP_KEYS, "")
+    if "name" in data:
+        if not isinstance(data["name"], str):
+            raise InvalidInput(f"name: expected a string, got {_kind(data['name'])}")
+        name = data["name"]
+    if "description" in data and not isinstance(data["description"], str):
+        raise InvalidInput(f"description: expected a string, got {_kind(data['description'])}")
+    system = _system(data)
+    polyhedron = _polyhedron(data)
+    if system.n != polyhedron.n:
+        raise InvalidInput(f"polyhedron: the system has dimension {system.n} but the polyhedron lives in dimension {polyhedron.n}")
+    method = parse_method(data["method"]) if data.get("method") is not None else None
     return Problem(system, polyhedron, method, name)
 
 
-def _refuse_float(text: str):
-    raise InvalidInput(f"problem: the JSON number {text} is a float; write it as a string (\"{text}\") to mean it exactly")
+def load_problem(source: Any) -> Problem:
+    """Read a problem from a dict, a JSON string or a path to a JSON file.
+    Errors from a file are prefixed with its path."""
+    if isinstance(source, dict):
+        return problem_from_dict(source)
+    if isinstance(source, str) and source.lstrip().startswith("{"):
+        return problem_from_dict(_parse(source, "problem"))
+    if not isinstance(source, (str, os.PathLike)):
+        raise InvalidInput(f"problem: expected a dict, JSON text or a path, got {type(source).__name__}")
+    path = str(source)
+    name = os.path.splitext(os.path.basename(path))[0]
+    if os.path.isdir(path):
+        raise InvalidInput(f"{path}: is a directory, not a problem file")
+    try:
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+    except OSError as exc:
+        raise InvalidInput(f"{path}: cannot read the problem file ({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise InvalidInput(f"{path}: not a text file (a problem file is UTF-8 JSON)") from None
+    try:
+        return problem_from_dict(_parse(text, path), name)
+    except InvalidInput as exc:
+        if str(exc).startswith(path):
+            raise
+        raise type(exc)(f"{path}: {exc}") from None
+
+
+def _parse(text: str, where: str) -> Any:
+    try:
+        return json.loads(text, parse_float=_refuse_float(), parse_constant=_refuse_constant(),
+                          object_pairs_hook=_no_duplicates)
+    except json.JSONDecodeError as exc:
+        raise InvalidInput(f"{where}: not valid JSON ({exc})") from None
+    except RecursionError:
+        raise InvalidInput(f"{where}: nested too deeply") from None
+
+
+def _no_duplicates(pairs):
+    keys = [k for k, _ in pairs]
+    dup = sorted({k for k in keys if keys.count(k) > 1})
+    if dup:
+        raise InvalidInput(f"duplicate key {dup[0]!r} in one JSON object (ambiguous)")
+    return dict(pairs)
+
+
+def _refuse_float(where: str = ""):
+    prefix = f"{where}: " if where else ""
+
+    def refuse(text: str):
+        raise InvalidInput(f"{prefix}the JSON number {text} is a float; write it as a string (\"{text}\") to mean it exactly")
+    return refuse
+
+
+def _refuse_constant(where: str = ""):
+    prefix = f"{where}: " if where else ""
+
+    def refuse(text: str):
+        raise InvalidInput(f"{prefix}{text} is not a number exactinv accepts")
+    return refuse

@@ -224,13 +224,20 @@ def pade(k: int, l: int) -> Method:
     return _make(f"pade({k},{l})", num, den)
 
 
-def from_butcher(A: Any, b: Any, name: str = "butcher") -> Method:
+def from_butcher(A: Any, b: Any, name: str = "butcher", c: Any = None) -> Method:
     """The stability function R(z) = det(I - zA + z e b^T)/det(I - zA) of a
     rational Butcher tableau, by exact interpolation of both determinants
-    at s + 1 rational points (both have degree <= s)."""
+    at s + 1 rational points (both have degree <= s).  The nodes ``c`` do not
+    enter R; if given they are checked: c = A 1 exactly (the row-sum condition)."""
     Am = to_matrix(A, "A", square=True)
     s = len(Am)
     bv = to_vector(b, "b", length=s)
+    if c is not None:
+        cv = to_vector(c, "c", length=s)
+        for i, (ci, row) in enumerate(zip(cv, Am)):
+            if ci != sum(row):
+                raise InvalidInput(f"c[{i}]: the nodes must be the row sums of A (c = A 1), "
+                                   f"but c[{i}] = {ci} and row {i} of A sums to {sum(row)}")
     Aq = fmpq_matrix(Am)
     ebT = flint.fmpq_mat(s, s, [fmpq_of(bv[j]) for i in range(s) for j in range(s)])
     I = flint.fmpq_mat(s, s, [int(i == j) for i in range(s) for j in range(s)])
