@@ -60,3 +60,42 @@ def test_plots_return_figures():
         plt.close(fig)
     with pytest.raises(ValueError):
         display.plot_images(S, ei.Polyhedron([[-1, 0], [0, -1]], [0, 0]), M.taylor(2), [1])
+
+
+def test_plot_f_i_marks_every_tau_in_distinct_colours():
+    plt = pytest.importorskip("matplotlib.pyplot")
+    from matplotlib.colors import to_rgba
+
+    t = ei.steplength_threshold(S, P, M.taylor(4))
+    fig = display.plot_f_i(t)
+    ax = fig.axes[0]
+    curves = [line for line in ax.lines if str(line.get_label()).startswith("$f_")]
+    assert len(curves) == len(t.table)
+    colours = [to_rgba(line.get_color()) for line in curves]
+    tau_line = next(line for line in ax.lines if str(line.get_label()).startswith(r"$\tau ="))
+    assert len(set(colours)) == len(colours) and to_rgba(tau_line.get_color()) not in colours
+    texts = {a.get_text() for a in ax.texts}
+    assert {r"$\tau_{1}$", r"$\tau_{3}$", r"$\tau = 1$"} <= texts  # tau_1 = 1.596..., tau_3 = 1 = tau
+    # the curves are divided by their lowest term: every one starts at +-1 and the axis stays readable
+    assert all(abs(abs(line.get_ydata()[0]) - 1) < 0.01 for line in curves)
+    assert ax.get_xlim()[1] > 1.6 and ax.get_ylim() == (-1.6, 1.6)
+    plt.close(fig)
+
+
+def test_plot_valid_set_for_every_answer():
+    """x' = x leaves [-1, 1]: no paper threshold, but backward Euler's valid set is [0, 0] U [2, oo)."""
+    plt = pytest.importorskip("matplotlib.pyplot")
+    S1, P1 = ei.LinearSystem([[1]]), ei.Polyhedron.box([-1], [1])
+    assert repr(ei.valid_steplengths(S1, P1, M.backward_euler()).intervals) == "[0, 0] U [2, oo)"
+    fig = display.plot_valid_set(S1, P1, M.backward_euler())
+    ax = fig.axes[0]
+    assert "∪ [2, ∞)" in ax.get_title() and any("not invariant" in a.get_text() for a in ax.texts)
+    assert ax.get_xlim()[1] > 2
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("dt", [0.5, float("nan"), "x"])
+def test_plot_images_refuses_inexact_steps(dt):
+    pytest.importorskip("matplotlib.pyplot")
+    with pytest.raises(ei.InvalidInput, match=r"dts\[1\]"):
+        display.plot_images(S, P, M.taylor(2), ["1/2", dt])

@@ -115,7 +115,7 @@ class LargestThreshold(ExactValueMixin):
         return make_certificate(self.system, self.polyhedron, self.method, [self])
 
     def to_latex(self) -> str:
-        return rf"\tau_{{\max}} = {latex_real(self.value)}\ \text{{({'attained' if self.attained else 'not attained'})}}"
+        return rf"\tau_{{\max}} = {latex_real(self.value)}\ (\text{{{'attained' if self.attained else 'not attained'}}})"
 
     def __repr__(self) -> str:
         return f"LargestThreshold(value={self.value}, attained={self.attained}, method={self.method.name})"

@@ -16,7 +16,7 @@ from .algebraic import RealAlgebraic
 from .polys import poly_latex
 from .scalars import Infinity
 
-__all__ = ["latex_decimal", "latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]
+__all__ = ["latex_decimal", "latex_text", "latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]
 
 
 def latex_decimal(v: RealAlgebraic, digits: int = 10) -> str:
@@ -28,6 +28,34 @@ def latex_decimal(v: RealAlgebraic, digits: int = 10) -> str:
         mantissa, exponent = text.split("e")
         return rf"{mantissa}\ldots \times 10^{{{exponent}}}"
     return text + r"\ldots"
+
+# LaTeX's special characters, as math-mode symbols that LaTeX and MathJax both know
+_MATH_SYMBOLS = {
+    "\\": r"\backslash ", "{": r"\{", "}": r"\}", "_": r"\_", "^": r"\hat{}", "#": r"\#",
+    "$": r"\$", "%": r"\%", "&": r"\&", "~": r"\sim ", "<": "<", ">": ">",
+}
+
+
+def latex_text(s: str) -> str:
+    """Plain text (a method name, a theorem, a reason) as math-mode LaTeX: runs of
+    ordinary characters in ``\\text{...}``, LaTeX's special characters as
+    symbols between them, so that pdflatex and MathJax both typeset it.
+
+    >>> latex_text("backward_euler")
+    '\\\\text{backward}\\\\_\\\\text{euler}'
+    """
+    out, run = [], []
+    for ch in str(s):
+        if ch in _MATH_SYMBOLS:
+            if run:
+                out.append(r"\text{" + "".join(run) + "}")
+                run = []
+            out.append(_MATH_SYMBOLS[ch])
+        else:
+            run.append(ch)
+    if run:
+        out.append(r"\text{" + "".join(run) + "}")
+    return "".join(out)
 
 
 def latex_real(v: Any, digits: int = 10) -> str:

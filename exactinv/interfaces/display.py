@@ -17,8 +17,8 @@ import numpy as np
 from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.latex import latex_matrix, latex_real
-from ..core.scalars import Infinity
-from ..errors import InvalidInput
+from ..core.scalars import Infinity, to_rational
+from ..errors import InvalidInput, NotInvariant, Undecided
 from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
 from ..paper.threshold import steplength_threshold
 
@@ -54,6 +54,25 @@ def _f(v) -> float:
     return float(v)
 
 
+def _finite(v) -> bool:
+    return not isinstance(v, Infinity)
+
+
+def _short(v, digits: int = 5) -> str:
+    """A short label for an exact value on a plot (mathtext, no LaTeX packages):
+    a small fraction as is, an algebraic number by its certified digits."""
+    if isinstance(v, Infinity):
+        return r"\infty" if v.sign > 0 else r"-\infty"
+    if isinstance(v, RealAlgebraic):
+        return v.certified_digits(digits).replace("...", r"\ldots")
+    v = Fraction(v)
+    if v.denominator == 1:
+        return str(v.numerator)
+    if v.denominator < 1000 and abs(v.numerator) < 1000:
+        return rf"{v.numerator}/{v.denominator}"
+    return f"{float(v):.{digits}g}" + r"\ldots"
+
+
 def _polyval(coeffs, x):
     acc = 0.0
     for c in reversed(coeffs):
@@ -61,24 +80,53 @@ def _polyval(coeffs, x):
     return acc
 
 
+# f_i curves and tau_i marks take the qualitative tab10 colours; tau is black
+_TAU_COLOR = "black"
+
+
 def plot_f_i(threshold, upto: float | None = None):
-    """The f_i(dt) of a polynomial-method threshold with tau_i and tau marked."""
+    """The f_i(dt) of a polynomial-method threshold, each divided by its lowest
+    term |c_i| dt^i (which keeps its sign on dt > 0 and starts every curve at
+    +-1), so that the sign changes are visible whatever the sizes of the f_i.
+    Each tau_i (first sign change of f_i) is marked and labelled in the colour of
+    its f_i; tau = min tau_i is the black line."""
     plt = _plt()
-    finite = [r.tau for r in threshold.table if not isinstance(r.tau, Infinity)]
-    top = upto or (2.0 * max([_f(t) for t in finite] + [_f(threshold.value) if not isinstance(threshold.value, Infinity) else 1.0]))
-    xs = np.linspace(0, top, 400)
-    fig, ax = plt.subplots(figsize=(6, 3.6))
-    for r in threshold.table:
-        scale = max(abs(float(c)) for c in r.f) or 1.0
-        ax.plot(xs, [_polyval(r.f, x) / scale for x in xs], label=rf"$f_{r.i}$ (scaled)")
-        if not isinstance(r.tau, Infinity) and r.tau != 0:
-            ax.axvline(_f(r.tau), ls=":", lw=0.8, color="gray")
-    if not isinstance(threshold.value, Infinity):
-        ax.axvline(_f(threshold.value), color="crimson", lw=1.5, label=rf"$\tau = {latex_real(threshold.value, 6)}$")
-    ax.axhline(0, color="black", lw=0.6)
+    marks = [_f(r.tau) for r in threshold.table if _finite(r.tau) and r.tau != 0]
+    if _finite(threshold.value) and threshold.value != 0:
+        marks.append(_f(threshold.value))
+    top = float(upto) if upto else 1.25 * max(marks + [1.0])
+    xs = np.linspace(0.0, top, 600)[1:]
+    colors = plt.get_cmap("tab10").colors
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    for k, r in enumerate(threshold.table):
+        color = colors[k % len(colors)]
+        low = next((j for j, c in enumerate(r.f) if c != 0), None)
+        if low is None:
+            continue  # f_i = 0: no condition
+        lead = abs(float(r.f[low]))
+        ys = np.array([_polyval(r.f[low:], x) / lead for x in xs])
+        tau_text = _short(r.tau)
+        ax.plot(xs, ys, color=color, lw=1.4, label=rf"$f_{{{r.i}}}$,  $\tau_{{{r.i}}} = {tau_text}$")
+        if _finite(r.tau) and r.tau != 0 and _f(r.tau) <= top:
+            t = _f(r.tau)
+            ax.axvline(t, color=color, ls=":", lw=1.0)
+            ax.plot([t], [0], "o", color=color, ms=5, zorder=5)
+            ax.annotate(rf"$\tau_{{{r.i}}}$", (t, 0), xytext=(3, -12), textcoords="offset points", color=color,
+                        fontsize=9)
+    if _finite(threshold.value):
+        v = _f(threshold.value)
+        ax.axvline(v, color=_TAU_COLOR, ls="--", lw=1.6,
+                   label=rf"$\tau = {_short(threshold.value)}$" + ("" if threshold.attained else " (not attained)"))
+        ax.annotate(rf"$\tau = {_short(threshold.value)}$", (v, 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(3, -12), textcoords="offset points", fontsize=9, color=_TAU_COLOR)
+    ax.axhline(0, color="gray", lw=0.6)
+    ax.set_xlim(0, top)
+    ax.set_ylim(-1.6, 1.6)
     ax.set_xlabel(r"$\Delta t$")
-    ax.set_title(rf"$f_i(\Delta t)$ for {threshold.method.name}, $\gamma^* = {latex_real(threshold.gamma.value)}$")
-    ax.legend(fontsize=7, loc="best")
+    ax.set_ylabel(r"$f_i(\Delta t)\,/\,(|c_i|\,\Delta t^{\,i})$")
+    ax.set_title(rf"sign changes of the $f_i$ for {threshold.method.name}, $\gamma^* = {_short(threshold.gamma.value)}$",
+                 fontsize=10)
+    ax.legend(fontsize=7, loc="lower left", framealpha=0.9)
     fig.tight_layout()
     return fig
 
@@ -101,7 +149,7 @@ def plot_coefficients(method, count: int = 6, upto: float | None = None):
             scale = max(finite.max() if finite.size else 1.0, 1e-300)
             ax.plot(xs, np.clip(vals / scale, -1.05, 1.05), label=rf"$c_{j}(\kappa)$ (scaled)")
     if not isinstance(rho.value, Infinity):
-        ax.axvline(_f(rho.value), color="crimson", lw=1.5, label=rf"$\rho = {latex_real(rho.value, 6)}$")
+        ax.axvline(_f(rho.value), color="black", ls="--", lw=1.5, label=rf"$\rho = {_short(rho.value)}$")
     ax.axhline(0, color="black", lw=0.6)
     ax.set_xlabel(r"$\kappa$")
     ax.set_title(f"absolute monotonicity of {method.name}")
@@ -112,36 +160,51 @@ def plot_coefficients(method, count: int = 6, upto: float | None = None):
 
 def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     """The exact valid steplengths on a number line, with the paper's, the
-    corrected and the exact largest threshold."""
+    corrected and the exact largest threshold.  Works for every answer of
+    :func:`valid_steplengths`: where P is not invariant for x' = Ax there is no
+    paper threshold (the plot says so) and the valid set may still hold steps."""
     plt = _plt()
     V = valid_steplengths(system, polyhedron, method)
-    t = steplength_threshold(system, polyhedron, method)
     L = largest_threshold(system, polyhedron, method)
-    ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if not isinstance(x, Infinity)]
-    ends += [_f(v) for v in (t.paper, t.value) if not isinstance(v, Infinity)]
-    top = upto or 1.25 * max(ends + [1.0])
+    try:
+        t = steplength_threshold(system, polyhedron, method)
+        paper, corrected, why_not = t.paper, t.value, None
+    except (NotInvariant, Undecided) as exc:
+        paper = corrected = None
+        why_not = "P is not invariant for x' = Ax" if isinstance(exc, NotInvariant) else "undecided"
+    marks = [(paper, "paper", "gray", 0.45), (corrected, "corrected", "royalblue", 0.25),
+             (L.value, "largest", "crimson", -0.35)]
+    ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if _finite(x)]
+    ends += [_f(v) for v, *_ in marks if v is not None and _finite(v)]
+    top = float(upto) if upto else 1.25 * max(ends + [1.0])
     fig, ax = plt.subplots(figsize=(7, 1.9))
     for iv in V:
-        lo, hi = _f(iv.lo), min(_f(iv.hi) if not isinstance(iv.hi, Infinity) else top, top)
+        if _f(iv.lo) > top:
+            continue
+        lo, hi = _f(iv.lo), min(_f(iv.hi) if _finite(iv.hi) else top, top)
         ax.plot([lo, hi], [0, 0], color="seagreen", lw=6, solid_capstyle="butt")
-        ax.plot([lo], [0], "o", color="seagreen", mfc="seagreen" if iv.lo_closed else "white")
-        if not isinstance(iv.hi, Infinity):
-            ax.plot([hi], [0], "o", color="seagreen", mfc="seagreen" if iv.hi_closed else "white")
-    for value, label, color, y in ((t.paper, "paper", "gray", 0.45), (t.value, "corrected", "royalblue", 0.25),
-                                   (L.value, "largest", "crimson", -0.35)):
-        if not isinstance(value, Infinity):
+        ax.plot([lo], [0], "o", color="seagreen", mfc="seagreen" if iv.lo_closed else "white", zorder=5)
+        if not _finite(iv.hi):
+            ax.plot([top], [0], ">", color="seagreen", ms=10, clip_on=False, zorder=5)  # goes on to infinity
+        elif _f(iv.hi) <= top:
+            ax.plot([hi], [0], "o", color="seagreen", mfc="seagreen" if iv.hi_closed else "white", zorder=5)
+    for value, label, color, y in marks:
+        if value is not None and _finite(value):
             ax.axvline(_f(value), color=color, ls="--", lw=1)
-            ax.text(_f(value), y, f" {label} {latex_real(value, 5) if not isinstance(value, RealAlgebraic) else value.certified_digits(5)}",
-                    color=color, fontsize=7)
-    infinite = [label for value, label in ((t.paper, "paper"), (t.value, "corrected"), (L.value, "largest"))
-                if isinstance(value, Infinity)]
+            ax.text(_f(value), y, f" {label} ${_short(value)}$", color=color, fontsize=7)
+    infinite = [label for value, label, *_ in marks if value is not None and not _finite(value)]
+    notes = []
     if infinite:
-        ax.text(top, 0.5, " = ".join(infinite) + r" $=\infty$ ", ha="right", fontsize=7, color="gray")
+        notes.append(" = ".join(infinite) + r" $=\infty$")
+    if why_not:
+        notes.append(f"no paper threshold: {why_not}")
+    if notes:
+        ax.text(top, 0.5, "; ".join(notes) + " ", ha="right", fontsize=7, color="gray")
     ax.set_xlim(0, top)
     ax.set_ylim(-0.6, 0.7)
     ax.set_yticks([])
     ax.set_xlabel(r"$\Delta t$")
-    ax.set_title(f"valid steplengths of {method.name} (green)", fontsize=9)
+    ax.set_title(f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ "), fontsize=9)
     fig.tight_layout()
     return fig
 
@@ -157,17 +220,18 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
         cy = sum(p[1] for p in points) / len(points)
         return sorted(points, key=lambda p: math.atan2(p[1] - cy, p[0] - cx))
 
+    steps = [to_rational(dt, f"dts[{k}]") for k, dt in enumerate(dts)]  # exact steps only: no floats
     V = [(float(v[0]), float(v[1])) for v in polyhedron.vertices]
     fig, ax = plt.subplots(figsize=(4.6, 4.6))
     poly = ordered(V)
     ax.fill(*zip(*poly), color="lightgray", alpha=0.7, label="P")
     cmap = plt.get_cmap("viridis")
-    for k, dt in enumerate(dts):
-        Ad = method.matrix(system, Fraction(dt) if not isinstance(dt, str) else Fraction(dt))
+    for k, dt in enumerate(steps):
+        Ad = method.matrix(system, dt)
         images = [(sum(Ad[0][j] * v[j] for j in range(2)), sum(Ad[1][j] * v[j] for j in range(2))) for v in polyhedron.vertices]
         pts = ordered([(float(x), float(y)) for x, y in images])
-        color = cmap(k / max(len(dts) - 1, 1))
-        ax.plot(*zip(*(pts + pts[:1])), color=color, lw=1.2, label=rf"$A_d({dt})P$")
+        color = cmap(0.85 * k / max(len(steps) - 1, 1))  # the palest end of viridis is hard to see
+        ax.plot(*zip(*(pts + pts[:1])), color=color, lw=1.2, label=rf"$A_d({_short(dt)})\,P$")
         outside = [(float(x), float(y)) for x, y in images if not polyhedron.contains([x, y])]
         if outside:
             ax.plot(*zip(*outside), "o", color="crimson", ms=5)

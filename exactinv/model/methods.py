@@ -18,6 +18,7 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.latex import latex_text
 from ..core.polys import interpolate
 from ..core.scalars import Matrix, Vector, fmpq_matrix, fmpq_of, fraction_of, matrix_of, to_matrix, to_rational, to_vector
 from ..errors import InvalidInput
@@ -112,10 +113,14 @@ class Method:
         h = sum(sympy.Rational(c.numerator, c.denominator) * z**k for k, c in enumerate(self.denominator))
         return g / h
 
-    def _repr_latex_(self) -> str:
+    def to_latex(self) -> str:
+        """LaTeX: r(z) = g(z)/h(z) and the method's name."""
         import sympy
 
-        return f"$r(z) = {sympy.latex(self.to_sympy())} \\quad \\text{{({self.name})}}$"
+        return rf"r(z) = {sympy.latex(self.to_sympy())} \quad ({latex_text(self.name)})"
+
+    def _repr_latex_(self) -> str:
+        return "$" + self.to_latex() + "$"
 
     def __repr__(self) -> str:
         return f"Method({self.name}: r(z) = {self.to_sympy()})"

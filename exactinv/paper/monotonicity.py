@@ -43,7 +43,7 @@ import flint
 
 from ..core.algebraic import ExactKey, Real, RealAlgebraic
 from ..core.encode import encode_real, envelope
-from ..core.latex import latex_real
+from ..core.latex import latex_real, latex_text
 from ..core.polys import count_real_roots, integer_part, sign_at
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until, real_roots
@@ -92,7 +92,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         return envelope({"method": method_record(self.method)}, [self])
 
     def to_latex(self) -> str:
-        return rf"\rho = {latex_real(self.value)}\ \text{{({self.reason})}}"
+        return rf"\rho = {latex_real(self.value)}\ ({latex_text(self.reason)})"
 
     def claims(self) -> list[dict]:
         claim = {"type": "absolute_monotonicity_radius", "value": encode_real(self.value), "reason": self.reason,

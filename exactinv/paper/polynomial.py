@@ -25,7 +25,7 @@ from typing import Any
 
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
-from ..core.latex import dt_poly_latex, latex_real
+from ..core.latex import dt_poly_latex, latex_real, latex_text
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
@@ -117,11 +117,14 @@ class SteplengthThreshold(ExactValueMixin):
         return make_certificate(self.gamma.system, self.gamma.polyhedron, self.method, [self])
 
     def to_latex(self) -> str:
-        text = rf"\tau = {latex_real(self.value)}\ \text{{({self.theorem}{'' if self.attained else ', not attained'})}}"
-        if self.table:
-            rows = r" \\ ".join(rf"{r.i} & {dt_poly_latex(r.f)} & {latex_real(r.tau)}" for r in self.table)
-            text += rf"\\ \begin{{array}}{{c|l|l}} i & f_i(\Delta t) & \tau_i \\ \hline {rows} \end{{array}}"
-        return text
+        note = latex_text(self.theorem + ("" if self.attained else ", not attained"))
+        text = rf"\tau = {latex_real(self.value)}\ ({note})"
+        if not self.table:
+            return text
+        # one array holds the line and the f_i table: a bare \\ breaks inline math in LaTeX
+        rows = r" \\ ".join(rf"{r.i} & {dt_poly_latex(r.f)} & {latex_real(r.tau)}" for r in self.table)
+        table = rf"\begin{{array}}{{c|l|l}} i & f_i(\Delta t) & \tau_i \\ \hline {rows} \end{{array}}"
+        return rf"\begin{{array}}{{l}} {text} \\ {table} \end{{array}}"
 
     def f_symbolic(self):
         """The f_i as sympy expressions in dt and gamma (the paper's eq. (20))."""
