@@ -245,42 +245,31 @@ class ExactLPSolver:
         """The hint's basis, or one guessed from its float point (backends
         without bases, e.g. interior-point solvers through cvxpy).
 
-        A vertex is N linearly independent active constraints: the equality
-        rows, then inequality rows and bounds x_i >= 0 in order of increasing
-        slack at the float point (ties: larger float dual first), each kept if
-        it is independent of those already kept (float Gram-Schmidt).  A guess
-        only: whatever it gives is solved and verified exactly."""
+        Columns at their bound (x_i ~ 0, nonnegative) are nonbasic; tight rows
+        are picked greedily -- equality rows, then inequality rows by increasing
+        slack (ties: larger dual first) -- while independent on the other
+        columns; of those columns, as many as tight rows are kept basic (free
+        columns first, then larger |x_i|), again greedily independent.  Float
+        Gram-Schmidt on vectors of length <= min(R, N)-ish; a guess only:
+        whatever it gives is solved and verified exactly."""
         if hint.basis is not None:
             return hint.basis
         x, y = hint.x, hint.y
         scale = max(1.0, float(np.abs(x).max()) if len(x) else 1.0)
         slack = (_floats(bq.entries()) * self._row_scale - self._A_float @ x) / scale
-        candidates = [(-np.inf, 0.0, r) for r in range(self.R) if self.equality[r]]
-        candidates += [(abs(slack[r]), -abs(y[r]), r) for r in range(self.R) if not self.equality[r]]
-        candidates += [(abs(x[i]) / scale, 0.0, self.R + i) for i in range(self.N) if nonneg[i]]
-        candidates.sort()
-        Q = np.zeros((0, self.N))
-        rows: list[int] = []
-        at_bound: set[int] = set()
-        for _, _, k in candidates:
-            if len(rows) + len(at_bound) == self.N:
-                break
-            a = self._A_float[k] if k < self.R else np.eye(1, self.N, k - self.R)[0]
-            norm = float(np.linalg.norm(a))
-            if norm == 0:
-                continue
-            r = a - Q.T @ (Q @ a)
-            r = r - Q.T @ (Q @ r)  # re-orthogonalise once
-            rnorm = float(np.linalg.norm(r))
-            if rnorm <= 1e-9 * norm:
-                continue
-            Q = np.vstack([Q, r / rnorm])
-            if k < self.R:
-                rows.append(k)
-            else:
-                at_bound.add(k - self.R)
-        basic = tuple(i for i in range(self.N) if i not in at_bound)
-        return basic, tuple(sorted(rows))
+        tol = 1e-7
+        off_bound = [i for i in range(self.N) if not nonneg[i] or abs(x[i]) > tol * scale]
+        off_bound.sort(key=lambda i: (nonneg[i], -abs(x[i])))
+        order = [r for r in range(self.R) if self.equality[r]]
+        order += sorted((r for r in range(self.R) if not self.equality[r] and slack[r] <= tol),
+                        key=lambda r: (slack[r], -abs(y[r])))
+        tight = _independent([self._A_float[r, off_bound] for r in order], len(off_bound))
+        rows = [order[k] for k in tight]
+        if not rows:
+            return (), ()
+        sub = self._A_float[np.ix_(rows, off_bound)]
+        basic = [off_bound[k] for k in _independent(list(sub.T), len(rows))]
+        return tuple(sorted(basic)), tuple(sorted(rows))
 
     # -------------------------------------------------------- map back to Q
     def _reconstructions(self, cq, bq, nonneg, hint: Hint):
@@ -522,6 +511,28 @@ def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
     for i, value in zip(idx.tolist(), v.tolist()):
         out[i, 0] = _snap(value)
     return out, not len(idx)
+
+
+def _independent(vectors: list[np.ndarray], limit: int) -> list[int]:
+    """Indices of a greedy linearly independent subset (in order, at most
+    ``limit``), by float Gram-Schmidt with one re-orthogonalisation."""
+    chosen: list[int] = []
+    Q: list[np.ndarray] = []
+    for k, a in enumerate(vectors):
+        if len(chosen) >= limit:
+            break
+        norm = float(np.linalg.norm(a))
+        if norm == 0:
+            continue
+        r = a.astype(float)
+        for _ in range(2):
+            for q in Q:
+                r = r - (q @ r) * q
+        rnorm = float(np.linalg.norm(r))
+        if rnorm > 1e-9 * norm:
+            Q.append(r / rnorm)
+            chosen.append(k)
+    return chosen
 
 
 def _column(v) -> flint.fmpq_mat:
