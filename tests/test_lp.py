@@ -61,7 +61,7 @@ def test_unbounded_has_ray():
 
 
 def test_basis_solve_when_rounding_fails(monkeypatch):
-    monkeypatch.setattr(lp, "_snapped", lambda v: (flint.fmpq_mat(len(v), 1, [flint.fmpq(round(x * 10**9) + 1, 10**9) for x in v]), True))
+    monkeypatch.setattr(lp, "_snapped", lambda v, tol=1e-9: (flint.fmpq_mat(len(v), 1, [flint.fmpq(round(x * 10**9) + 1, 10**9) for x in v]), True))
     res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
     assert res.path == "float-basis"
 

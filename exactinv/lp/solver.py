@@ -179,8 +179,8 @@ class ExactLPSolver:
                 xs.append(None)
                 ys.append(None)
                 continue
-            x, x_clean = _snapped(hint.x)
-            y, y_clean = _snapped(hint.y)
+            x, x_clean = _snapped(hint.x, _snap_tolerance(hint))
+            y, y_clean = _snapped(hint.y, _snap_tolerance(hint))
             if not (x_clean and y_clean):  # large denominators: rounding is unlikely to verify
                 pair = self._basis_solution(C_cols[k], B_cols[k], self._basis_of(hint, B_cols[k], signs[k]))
                 if pair is not None:
@@ -274,8 +274,8 @@ class ExactLPSolver:
     # -------------------------------------------------------- map back to Q
     def _reconstructions(self, cq, bq, nonneg, hint: Hint):
         """Candidate exact (x, y) pairs, cheapest first."""
-        x, x_clean = _snapped(hint.x)
-        y, y_clean = _snapped(hint.y)
+        x, x_clean = _snapped(hint.x, _snap_tolerance(hint))
+        y, y_clean = _snapped(hint.y, _snap_tolerance(hint))
         yield "float-rounded", x, y
         basis = self._basis_of(hint, bq, nonneg)
         pair = self._basis_solution(cq, bq, basis)
@@ -480,20 +480,27 @@ def solve_lp(
 _SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 24)
 
 
-def _snap(v: float) -> flint.fmpq:
+def _snap_tolerance(hint: Hint) -> float:
+    """How close a float must be to a small-denominator fraction to be snapped:
+    1e-9 for simplex hints (a basis: vertex values to machine accuracy), 1e-7
+    for hints without one (interior-point solvers stop at ~1e-8)."""
+    return 1e-9 if hint.basis is not None else 1e-7
+
+
+def _snap(v: float, tol: float = 1e-9) -> flint.fmpq:
     """A simple fraction near the float hint v (only a hint: it is verified)."""
     for d in _SMALL_DENOMINATORS:
         scaled = v * d
         nearest = round(scaled)
-        if abs(scaled - nearest) <= 1e-9 * max(1.0, abs(scaled)):
+        if abs(scaled - nearest) <= tol * max(1.0, abs(scaled)):
             return flint.fmpq(int(nearest), d)
     q = Fraction(v).limit_denominator(_ROUNDING_DENOMINATOR)
     return flint.fmpq(q.numerator, q.denominator)
 
 
-def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
+def _snapped(values: np.ndarray, tol: float = 1e-9) -> tuple[flint.fmpq_mat, bool]:
     """The float hint as a column of simple fractions (exact zeros stay zero),
-    and whether every entry was within 1e-9 of a fraction with a small
+    and whether every entry was within ``tol`` (relative) of a fraction with a small
     denominator.  Only a hint: whatever it produces is verified."""
     out = flint.fmpq_mat(len(values), 1)
     idx = np.flatnonzero(values)
@@ -503,13 +510,13 @@ def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
             break
         scaled = v * d
         near = np.round(scaled)
-        ok = np.abs(scaled - near) <= 1e-9 * np.maximum(1.0, np.abs(scaled))
+        ok = np.abs(scaled - near) <= tol * np.maximum(1.0, np.abs(scaled))
         for i, num in zip(idx[ok].tolist(), near[ok].tolist()):
             if num:
                 out[i, 0] = flint.fmpq(int(num), d)
         idx, v = idx[~ok], v[~ok]
     for i, value in zip(idx.tolist(), v.tolist()):
-        out[i, 0] = _snap(value)
+        out[i, 0] = _snap(value, tol)
     return out, not len(idx)
 
 
@@ -517,20 +524,22 @@ def _independent(vectors: list[np.ndarray], limit: int) -> list[int]:
     """Indices of a greedy linearly independent subset (in order, at most
     ``limit``), by float Gram-Schmidt with one re-orthogonalisation."""
     chosen: list[int] = []
-    Q: list[np.ndarray] = []
+    if not vectors or limit <= 0:
+        return chosen
+    Q = np.zeros((min(limit, len(vectors[0])), len(vectors[0])))
     for k, a in enumerate(vectors):
-        if len(chosen) >= limit:
+        if len(chosen) >= min(limit, len(Q)):
             break
         norm = float(np.linalg.norm(a))
         if norm == 0:
             continue
-        r = a.astype(float)
-        for _ in range(2):
-            for q in Q:
-                r = r - (q @ r) * q
+        q = Q[:len(chosen)]
+        r = np.asarray(a, dtype=float)
+        r = r - q.T @ (q @ r)
+        r = r - q.T @ (q @ r)
         rnorm = float(np.linalg.norm(r))
         if rnorm > 1e-9 * norm:
-            Q.append(r / rnorm)
+            Q[len(chosen)] = r / rnorm
             chosen.append(k)
     return chosen
 
