@@ -6,6 +6,7 @@ kernel accepts."""
 
 from __future__ import annotations
 
+import importlib.util
 import random
 from fractions import Fraction
 
@@ -20,12 +21,12 @@ from exactinv.check import check
 from exactinv.lp import ExactLPSolver, hint
 from exactinv.lp import solver as lp
 
-pytest.importorskip("cvxpy")
+needs_cvxpy = pytest.mark.skipif(importlib.util.find_spec("cvxpy") is None, reason="cvxpy (optional) is not installed")
 
 BACKENDS = [
     pytest.param(("highs", {}), id="highs"),
-    pytest.param(("cvxpy", {"solver": "HIGHS"}), id="cvxpy-highs"),
-    pytest.param(("cvxpy", {"solver": "CLARABEL"}), id="cvxpy-clarabel"),
+    pytest.param(("cvxpy", {"solver": "HIGHS"}), id="cvxpy-highs", marks=needs_cvxpy),
+    pytest.param(("cvxpy", {"solver": "CLARABEL"}), id="cvxpy-clarabel", marks=needs_cvxpy),
 ]
 
 
@@ -145,6 +146,7 @@ def test_a_lying_hint_still_ends_in_the_exact_answer(name, S, P, seed):
 small = st.integers(-4, 4)
 
 
+@needs_cvxpy
 @settings(max_examples=40, deadline=None)
 @given(st.integers(1, 4).flatmap(lambda n: st.tuples(
     st.lists(st.lists(small, min_size=n, max_size=n), min_size=1, max_size=5),
@@ -164,6 +166,7 @@ def test_random_lps_match_exact_ppl_with_other_backends(data, draw, backend):
         assert res.value == sum(ci * xi for ci, xi in zip(c, res.x)) == sum(bi * yi for bi, yi in zip(b, res.y))
 
 
+@needs_cvxpy
 def test_selection_global_context_and_per_solver():
     assert isinstance(ei.lp.get_hint_backend(), hint.HighsHint)
     with ei.lp.hint_backend("cvxpy", solver="CLARABEL") as chosen:
@@ -182,6 +185,7 @@ def test_selection_global_context_and_per_solver():
         ei.lp.set_hint_backend("gurobi-direct")
 
 
+@needs_cvxpy
 def test_a_cvxpy_hint_reaches_an_exact_vertex_without_a_basis():
     """An interior-point hint (no basis) on a degenerate LP: the engine guesses an
     active set from the float point and the exact answer follows from it, not from PPL."""
