@@ -323,7 +323,10 @@ def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", toler
     value some feasible point attains or beats: >= the minimum, <= the
     maximum): ``valid``/``tight``, or ``invalid`` with the dual bound.
     """
-    import cvxpy as cp  # optional dependency: only this judge needs it
+    try:
+        import cvxpy as cp  # optional dependency: only this judge needs it
+    except ImportError:
+        raise ImportError("judge_lp judges cvxpy problems and needs cvxpy, an optional dependency: pip install cvxpy") from None
 
     if not isinstance(problem, cp.Problem):
         raise InvalidInput(f"judge_lp: expected a cvxpy.Problem, got {type(problem).__name__}")

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import importlib.util
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import StrEnum
@@ -182,6 +183,8 @@ class CvxpyHint(HintBackend):
     name = "cvxpy"
 
     def __init__(self, solver: str | None = None, **solver_options: Any):
+        if importlib.util.find_spec("cvxpy") is None:
+            raise ImportError("the cvxpy hint backend needs cvxpy, an optional dependency: pip install cvxpy")
         self.solver = solver
         self.solver_options = solver_options
 
