@@ -202,3 +202,27 @@ def test_the_verdict_is_frozen():
     v = judge_lp(problem)
     with pytest.raises(AttributeError):
         v.status = "valid"
+
+
+def test_the_float_gamma_lp_of_a_tight_box_is_exactly_infeasible():
+    """A = -3/10 on the diagonal, 1/10 off it: the box is invariant with gamma* = 3/10,
+    but in the floats the user's LP holds, 3 * fl(0.1) > fl(0.3): the float system
+    does not keep the box invariant, its gamma LP is infeasible -- HiGHS says
+    optimal within its tolerances, the judge proves infeasibility (Farkas).  The
+    stated rounding limit_denominator=100 recovers the rational LP."""
+    A = [[Fraction(-3, 10) if i == j else Fraction(1, 10) for j in range(4)] for i in range(4)]
+    S, P = ei.LinearSystem(A), ei.Polyhedron.box([-1] * 4, [1] * 4)
+    problem = _gamma_lp(S, P)
+    assert problem.status == cp.OPTIMAL
+    v = judge_lp(problem)
+    assert v.status == "invalid" and v.counterexample["kind"] == "infeasible"
+    y, data = v.counterexample["farkas"], v.data
+    assert sum(bi * yi for bi, yi in zip(data["b"], y)) < 0  # the Farkas certificate, re-checked
+    assert all(yi >= 0 for yi, eq in zip(y, data["equality"]) if not eq)
+    ATy = [Fraction(0)] * len(data["c"])
+    for row, yr in zip(data["A"], y):
+        for i, a in row.items():
+            ATy[i] += a * yr
+    assert all(v == 0 for v in ATy)  # every column is free
+    w = judge_lp(problem, limit_denominator=100)
+    assert w.status == "tight" and w.exact == ei.optimal_gamma(S, P).value == Fraction(3, 10)
