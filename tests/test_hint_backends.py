@@ -101,7 +101,7 @@ def test_discrete_invariance_is_the_same_with_every_backend(name, S, P, backend)
 
 class _Liar(hint.HintBackend):
     """A backend whose every answer is wrong: random points and duals, a random
-    basis, or a false status."""
+    basis, a false status, or a malformed answer."""
 
     name = "liar"
 
@@ -114,7 +114,9 @@ class _Liar(hint.HintBackend):
         class Model(hint.HintModel):
             def solve(self, cost, rhs, nonneg):
                 R, N = A.shape
-                kind = liar.rng.integers(0, 5)
+                kind = liar.rng.integers(0, 6)
+                if kind == 5:  # malformed: NaN, infinities, wrong lengths
+                    return hint.Hint(hint.LPStatus.OPTIMAL, np.full(N, np.nan), np.full(R + 1, np.inf))
                 if kind == 0:
                     return hint.Hint(hint.LPStatus.INFEASIBLE)
                 if kind == 1:

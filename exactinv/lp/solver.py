@@ -235,8 +235,9 @@ class ExactLPSolver:
             self._hint_model = self.hint_backend.model(self._A_float, self.equality)
         hint = self._hint_model.solve(cost, rhs * self._row_scale, nonneg)
         if hint.status == OPTIMAL:
-            if hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R:
-                return Hint(UNKNOWN)
+            if (hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R
+                    or not (np.all(np.isfinite(hint.x)) and np.all(np.isfinite(hint.y)))):
+                return Hint(UNKNOWN)  # a malformed hint is no hint
             return Hint(OPTIMAL, np.asarray(hint.x, dtype=float), np.asarray(hint.y, dtype=float) * self._row_scale,
                         hint.basis)
         return hint
