@@ -115,7 +115,9 @@ class _Liar(hint.HintBackend):
             def solve(self, cost, rhs, nonneg):
                 R, N = A.shape
                 kind = liar.rng.integers(0, 6)
-                if kind == 5:  # malformed: NaN, infinities, wrong lengths
+                if kind == 5:  # malformed: NaN, infinities, wrong lengths, out-of-range basis
+                    if liar.rng.integers(0, 2):
+                        return hint.Hint(hint.LPStatus.OPTIMAL, np.zeros(N), np.zeros(R), ((N + 3, -1), (R, R)))
                     return hint.Hint(hint.LPStatus.OPTIMAL, np.full(N, np.nan), np.full(R + 1, np.inf))
                 if kind == 0:
                     return hint.Hint(hint.LPStatus.INFEASIBLE)

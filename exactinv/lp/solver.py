@@ -238,8 +238,13 @@ class ExactLPSolver:
             if (hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R
                     or not (np.all(np.isfinite(hint.x)) and np.all(np.isfinite(hint.y)))):
                 return Hint(UNKNOWN)  # a malformed hint is no hint
+            basis = hint.basis
+            if basis is not None and not (
+                    len(basis) == 2 and all(0 <= i < self.N for i in basis[0]) and all(0 <= r < self.R for r in basis[1])
+                    and len(set(basis[0])) == len(basis[0]) and len(set(basis[1])) == len(basis[1])):
+                basis = None  # a malformed basis: guess one from the point instead
             return Hint(OPTIMAL, np.asarray(hint.x, dtype=float), np.asarray(hint.y, dtype=float) * self._row_scale,
-                        hint.basis)
+                        basis)
         return hint
 
     def _basis_of(self, hint: Hint, bq, nonneg) -> tuple[tuple[int, ...], tuple[int, ...]]:
