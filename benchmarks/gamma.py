@@ -4,6 +4,10 @@ On the same instances, in one run:
 
 * exactinv   -- ``optimal_gamma``: m row LPs in HiGHS (warm-started), exact
                 reconstruction and verification in Q (the certified answer);
+* cvxpy hint -- the same certified pipeline with the cvxpy hint backend
+                (``exactinv.lp.hint_backend("cvxpy", solver=...)``: each row LP
+                a parametrised cvxpy problem, solver ``--hint-solver``, default
+                cvxpy's own choice); same exact value, checked;
 * cvxpy      -- the whole LP  min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}
                 as one cvxpy problem solved by HiGHS in floating point (no guarantee);
 * pplpy      -- the m row LPs solved by PPL's exact simplex (MIP_Problem), row by row.
@@ -12,7 +16,7 @@ Instances: boxes [-1,1]^n (m = 2n) with row-diagonally-dominant A, and random
 polytopes {x : Gx <= 1} inside [-1,1]^n with up to 500 facets and
 A = -I/2 + R, R small enough that P is invariant.
 
-Run:  python benchmarks/gamma.py [--quick]
+Run:  python benchmarks/gamma.py [--quick] [--hint-solver CLARABEL]
 """
 
 from __future__ import annotations
@@ -56,6 +60,13 @@ def time_exact(S, P):
     return time.perf_counter() - t, g
 
 
+def time_exact_cvxpy_hint(S, P, solver):
+    t = time.perf_counter()
+    with ei.lp.hint_backend("cvxpy", solver=solver):
+        g = ei.optimal_gamma(S, P)
+    return time.perf_counter() - t, g
+
+
 def time_cvxpy(S, P):
     G = np.array([[float(v) for v in r] for r in P.G])
     A = np.array([[float(v) for v in r] for r in S.A])
@@ -94,6 +105,8 @@ def time_ppl(S, P):
 def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
+    parser.add_argument("--hint-solver", default=None, help="the cvxpy solver of the cvxpy hint backend (default: cvxpy's choice)")
+    parser.add_argument("--no-ppl", action="store_true", help="skip the pplpy column")
     args = parser.parse_args(argv)
     rng = random.Random(20261122)
     instances = []
@@ -103,17 +116,28 @@ def main(argv=None):
     poly_sizes = [(5, 50)] if args.quick else [(5, 50), (8, 100), (10, 250), (10, 500)]
     for n, m in poly_sizes:
         instances.append((f"polytope n={n}", *polytope_instance(n, m, rng)))
-    header = f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'exact/cvxpy':>13}{'pplpy s':>11}{'pplpy/exact':>13}  gamma*  routes"
+    probe = cp.Variable()
+    probe_lp = cp.Problem(cp.Minimize(probe), [probe >= 0])
+    probe_lp.solve(solver=args.hint_solver)
+    print(f"cvxpy hint backend: solver {probe_lp.solver_stats.solver_name}")
+    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'hint=cvxpy s':>14}{'hint/exact':>12}{'cvxpy s':>10}"
+              f"{'exact/cvxpy':>13}{'pplpy s':>11}{'pplpy/exact':>13}  gamma*  routes (highs | cvxpy hint)")
     print(header)
     print("-" * len(header))
     for name, S, P in instances:
         te, g = time_exact(S, P)
+        th, gh = time_exact_cvxpy_hint(S, P, args.hint_solver)
+        assert gh.value == g.value, (gh.value, g.value)
         tc, vc = time_cvxpy(S, P)
-        tp, extrapolated, vp = time_ppl(S, P)
+        if args.no_ppl:
+            tp, extrapolated, vp = float("nan"), False, None
+        else:
+            tp, extrapolated, vp = time_ppl(S, P)
         assert vp is None or extrapolated or vp == g.value, (vp, g.value)
         assert abs(vc - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (vc, g.value)
         mark = "~" if extrapolated else " "
-        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{te / tc:>13.2f}{mark}{tp:>10.2f}{tp / te:>13.1f}  {g.value}  {g.paths}")
+        print(f"{name:<18}{P.m:>5}{te:>10.3f}{th:>14.3f}{th / te:>12.1f}{tc:>10.3f}{te / tc:>13.2f}{mark}{tp:>10.2f}"
+              f"{tp / te:>13.1f}  {g.value}  {g.paths} | {gh.paths}")
         sys.stdout.flush()
     print("~ = pplpy stopped after its time budget; time extrapolated from the rows it solved")
 

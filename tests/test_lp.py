@@ -61,7 +61,7 @@ def test_unbounded_has_ray():
 
 
 def test_basis_solve_when_rounding_fails(monkeypatch):
-    monkeypatch.setattr(lp, "_snapped", lambda v: (flint.fmpq_mat(len(v), 1, [flint.fmpq(round(x * 10**9) + 1, 10**9) for x in v]), True))
+    monkeypatch.setattr(lp, "_snapped", lambda v, tol=1e-9: (flint.fmpq_mat(len(v), 1, [flint.fmpq(round(x * 10**9) + 1, 10**9) for x in v]), True))
     res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
     assert res.path == "float-basis"
 
@@ -75,7 +75,7 @@ def test_exact_fallback_when_float_hint_is_useless(monkeypatch):
 
 
 def test_exact_fallback_when_float_solver_gives_up(monkeypatch):
-    monkeypatch.setattr(ExactLPSolver, "_float_solve", lambda self, *a: ("unknown", None, None, None))
+    monkeypatch.setattr(ExactLPSolver, "_float_solve", lambda self, *a: lp.Hint(lp.UNKNOWN))
     for status, data in [
         ("optimal", ([[1, 2]], [False], [4], [1, 1], [True, True])),
         ("infeasible", ([[1], [-1]], [False, False], [0, -1], [1], [False])),
@@ -115,11 +115,7 @@ def test_exact_pivots_repair_a_wrong_basis(monkeypatch):
     A = [[1, 1], [1, -1], [-1, 0], [0, -1]]
     solver = lp.ExactLPSolver(flint.fmpq_mat(A), [False] * 4)
     c, b = [1, 2], [4, 1, 0, 0]
-    status, xf, yf, highs = solver._float_solve(lp._column(c), lp._column(b), (False, False))
-    basis = highs.getBasis()
-    B = lp.highspy.HighsBasisStatus
-    basis.row_status = [B.kBasic, B.kUpper, B.kBasic, B.kUpper]  # the vertex (1, 0): tight rows 1 and 3
-    basis.col_status = [B.kBasic, B.kBasic]
+    basis = ((0, 1), (1, 3))  # basic columns 0, 1; the vertex (1, 0): tight rows 1 and 3
     x, y = solver._exact_pivots(lp._column(c), lp._column(b), (False, False), basis)
     assert [v for v in x.entries()] == [0, 4]  # the optimum, reached by pivoting
     assert solver._verify_optimal(lp._column(c), lp._column(b), (False, False), x, y)

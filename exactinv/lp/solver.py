@@ -9,8 +9,9 @@ Every linear program exactinv solves has the form ::
 with rational data.  :class:`ExactLPSolver` answers it exactly, following
 cvxpy's *transform, solve, map back*:
 
-1. **float solve** -- HiGHS' dual simplex on the float image of the data gives
-   a basic solution, its duals and its basis (an untrusted hint);
+1. **float solve** -- a hint backend (:mod:`exactinv.lp.hint`: HiGHS' dual
+   simplex by default, or any solver through cvxpy) on the float image of the
+   data gives a solution, its duals and, with HiGHS, its basis (an untrusted hint);
 2. **reconstruction** -- the hint is mapped back to Q: first by rounding the
    float values to nearby simple fractions (``path="float-rounded"``), and if
    that does not verify by solving the optimal basis' linear systems exactly
@@ -31,30 +32,20 @@ Infeasible and unbounded programs get certificates too: a Farkas vector
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import StrEnum
 from fractions import Fraction
 from functools import cached_property
 from math import lcm
 from typing import Sequence
 
 import flint
-import highspy
 import numpy as np
 import ppl
 
 from ..errors import VerificationFailed
 from ..core.scalars import INF, Infinity, fraction_of
+from .hint import Hint, HintBackend, LPStatus, resolve_hint_backend
 
 __all__ = ["LPStatus", "LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
-
-class LPStatus(StrEnum):
-    """The outcome of an LP (equal to its old string: ``LPStatus.OPTIMAL == "optimal"``)."""
-
-    OPTIMAL = "optimal"
-    INFEASIBLE = "infeasible"
-    UNBOUNDED = "unbounded"
-    UNKNOWN = "unknown"  # a float hint that gave up (never a returned result)
-
 
 OPTIMAL, INFEASIBLE, UNBOUNDED, UNKNOWN = LPStatus.OPTIMAL, LPStatus.INFEASIBLE, LPStatus.UNBOUNDED, LPStatus.UNKNOWN
 _ROUNDING_DENOMINATOR = 1 << 24
@@ -99,15 +90,19 @@ class ExactLPSolver:
     is how the m row LPs of gamma* are solved.
 
     ``A`` is an ``fmpq_mat`` with R rows and N columns; ``equality[r]`` tells
-    whether row r is an equation (else it reads ``<=``).
+    whether row r is an equation (else it reads ``<=``).  ``hint`` chooses the
+    float-hint backend (a name, ``"highs"`` or ``"cvxpy"``, or a
+    :class:`~exactinv.lp.hint.HintBackend`); by default the one in effect
+    (:func:`~exactinv.lp.hint.set_hint_backend`, :func:`~exactinv.lp.hint.hint_backend`).
     """
 
-    def __init__(self, A: flint.fmpq_mat, equality: Sequence[bool]):
+    def __init__(self, A: flint.fmpq_mat, equality: Sequence[bool], hint: str | HintBackend | None = None):
         self.A = A
         self.AT = A.transpose()
         self.equality = tuple(bool(e) for e in equality)
         self.R, self.N = A.nrows(), A.ncols()
-        self._highs: highspy.Highs | None = None
+        self.hint_backend = resolve_hint_backend(hint)
+        self._hint_model = None
         floats = _floats(A.entries())
         self._A_float = None
         if floats is not None:
@@ -134,19 +129,22 @@ class ExactLPSolver:
 
     # ------------------------------------------------------------------ API
     def solve(self, c: Sequence[Fraction] | flint.fmpq_mat, b: Sequence[Fraction] | flint.fmpq_mat,
-              nonnegative: Sequence[bool]) -> LPResult:
+              nonnegative: Sequence[bool], *, _bounded: bool = False) -> LPResult:
         """Maximize c.x over {A x (=|<=) b, x_i >= 0 where nonnegative[i]}; verified.
-        ``c`` and ``b`` are sequences of rationals or fmpq column matrices."""
+        ``c`` and ``b`` are sequences of rationals or fmpq column matrices.
+        (``_bounded``: the LP is known to have an optimum -- the auxiliary LPs
+        of the failure certificates -- so a hint saying otherwise is a lie and
+        the exact route is taken at once, instead of recursing on it.)"""
         cq = _column(c)
         bq = _column(b)
         nonneg = tuple(bool(v) for v in nonnegative)
-        status, x_float, y_float, highs = self._float_solve(cq, bq, nonneg)
-        if status == OPTIMAL:
-            for path, x, y in self._reconstructions(cq, bq, nonneg, x_float, y_float, highs):
+        hint = self._float_solve(cq, bq, nonneg)
+        if hint.status == OPTIMAL:
+            for path, x, y in self._reconstructions(cq, bq, nonneg, hint):
                 if x is not None and y is not None and self._verify_optimal(cq, bq, nonneg, x, y):
                     return _optimal(cq, x, y, path)
-        else:
-            certificate = self._certified_failure(status, cq, bq, nonneg)
+        elif not _bounded:
+            certificate = self._certified_failure(hint.status, cq, bq, nonneg)
             if certificate is not None:
                 return certificate
         return self._exact_solve(cq, bq, nonneg)
@@ -175,16 +173,16 @@ class ExactLPSolver:
         paths = ["float-rounded"] * K
         xs, ys = [], []
         for k in range(K):
-            status, x_float, y_float, highs = self._float_solve(C_cols[k], B_cols[k], signs[k])
-            if status != OPTIMAL:
+            hint = self._float_solve(C_cols[k], B_cols[k], signs[k])
+            if hint.status != OPTIMAL:
                 results[k] = self.solve(C_cols[k], B_cols[k], signs[k])
                 xs.append(None)
                 ys.append(None)
                 continue
-            x, x_clean = _snapped(x_float)
-            y, y_clean = _snapped(y_float)
+            x, x_clean = _snapped(hint.x, _snap_tolerance(hint))
+            y, y_clean = _snapped(hint.y, _snap_tolerance(hint))
             if not (x_clean and y_clean):  # large denominators: rounding is unlikely to verify
-                pair = self._basis_solution(C_cols[k], B_cols[k], highs.getBasis())
+                pair = self._basis_solution(C_cols[k], B_cols[k], self._basis_of(hint, B_cols[k], signs[k]))
                 if pair is not None:
                     x, y = pair
                     paths[k] = "float-basis"
@@ -228,58 +226,64 @@ class ExactLPSolver:
         return results
 
     # ----------------------------------------------------------- float hint
-    def _float_solve(self, c, b, nonneg):
+    def _float_solve(self, c, b, nonneg) -> Hint:
+        """The backend's float answer (duals scaled back to the exact rows)."""
         cost, rhs = _floats(c.entries()), _floats(b.entries())
         if self._A_float is None or cost is None or rhs is None:
-            return UNKNOWN, None, None, None  # beyond double range: exact route only
-        cost = -cost  # HiGHS minimizes
-        rhs = rhs * self._row_scale
-        h = self._highs
-        lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
-        upper = np.full(self.N, highspy.kHighsInf)
-        row_lower = np.where(np.array(self.equality, dtype=bool), rhs, -highspy.kHighsInf)
-        if h is None:
-            h = highspy.Highs()
-            h.setOptionValue("output_flag", False)
-            h.setOptionValue("presolve", "off")
-            lp = highspy.HighsLp()
-            lp.num_col_, lp.num_row_ = self.N, self.R
-            lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, lower, upper
-            lp.row_lower_, lp.row_upper_ = row_lower, rhs
-            cols = self._A_float.T
-            nz = [np.nonzero(cols[i])[0] for i in range(self.N)]
-            lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-            lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum([len(z) for z in nz])]).astype(np.int32)
-            lp.a_matrix_.index_ = np.concatenate(nz).astype(np.int32) if nz else np.zeros(0, np.int32)
-            lp.a_matrix_.value_ = np.concatenate([cols[i][z] for i, z in enumerate(nz)]) if nz else np.zeros(0)
-            h.passModel(lp)
-            self._highs = h
-        else:
-            idx = np.arange(self.N, dtype=np.int32)
-            h.changeColsCost(self.N, idx, cost)
-            h.changeColsBounds(self.N, idx, lower, upper)
-            ridx = np.arange(self.R, dtype=np.int32)
-            h.changeRowsBounds(self.R, ridx, row_lower, rhs)
-        h.run()
-        status = h.getModelStatus()
-        S = highspy.HighsModelStatus
-        if status == S.kOptimal:
-            sol = h.getSolution()
-            return OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual) * self._row_scale, h
-        if status == S.kInfeasible:
-            return INFEASIBLE, None, None, None
-        if status == S.kUnbounded:
-            return UNBOUNDED, None, None, None
-        self._highs = None  # a model in an odd state is rebuilt next time
-        return UNKNOWN, None, None, None
+            return Hint(UNKNOWN)  # beyond double range: exact route only
+        if self._hint_model is None:
+            self._hint_model = self.hint_backend.model(self._A_float, self.equality)
+        hint = self._hint_model.solve(cost, rhs * self._row_scale, nonneg)
+        if hint.status == OPTIMAL:
+            if (hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R
+                    or not (np.all(np.isfinite(hint.x)) and np.all(np.isfinite(hint.y)))):
+                return Hint(UNKNOWN)  # a malformed hint is no hint
+            basis = hint.basis
+            if basis is not None and not (
+                    len(basis) == 2 and all(0 <= i < self.N for i in basis[0]) and all(0 <= r < self.R for r in basis[1])
+                    and len(set(basis[0])) == len(basis[0]) and len(set(basis[1])) == len(basis[1])):
+                basis = None  # a malformed basis: guess one from the point instead
+            return Hint(OPTIMAL, np.asarray(hint.x, dtype=float), np.asarray(hint.y, dtype=float) * self._row_scale,
+                        basis)
+        return hint
+
+    def _basis_of(self, hint: Hint, bq, nonneg) -> tuple[tuple[int, ...], tuple[int, ...]]:
+        """The hint's basis, or one guessed from its float point (backends
+        without bases, e.g. interior-point solvers through cvxpy).
+
+        Columns at their bound (x_i ~ 0, nonnegative) are nonbasic; tight rows
+        are picked greedily -- equality rows, then inequality rows by increasing
+        slack (ties: larger dual first) -- while independent on the other
+        columns; of those columns, as many as tight rows are kept basic (free
+        columns first, then larger |x_i|), again greedily independent.  Float
+        Gram-Schmidt on vectors of length <= min(R, N)-ish; a guess only:
+        whatever it gives is solved and verified exactly."""
+        if hint.basis is not None:
+            return hint.basis
+        x, y = hint.x, hint.y
+        scale = max(1.0, float(np.abs(x).max()) if len(x) else 1.0)
+        slack = (_floats(bq.entries()) * self._row_scale - self._A_float @ x) / scale
+        tol = 1e-7
+        off_bound = [i for i in range(self.N) if not nonneg[i] or abs(x[i]) > tol * scale]
+        off_bound.sort(key=lambda i: (nonneg[i], -abs(x[i])))
+        order = [r for r in range(self.R) if self.equality[r]]
+        order += sorted((r for r in range(self.R) if not self.equality[r] and slack[r] <= tol),
+                        key=lambda r: (slack[r], -abs(y[r])))
+        tight = _independent([self._A_float[r, off_bound] for r in order], len(off_bound))
+        rows = [order[k] for k in tight]
+        if not rows:
+            return (), ()
+        sub = self._A_float[np.ix_(rows, off_bound)]
+        basic = [off_bound[k] for k in _independent(list(sub.T), len(rows))]
+        return tuple(sorted(basic)), tuple(sorted(rows))
 
     # -------------------------------------------------------- map back to Q
-    def _reconstructions(self, cq, bq, nonneg, x_float, y_float, highs):
+    def _reconstructions(self, cq, bq, nonneg, hint: Hint):
         """Candidate exact (x, y) pairs, cheapest first."""
-        x, x_clean = _snapped(x_float)
-        y, y_clean = _snapped(y_float)
+        x, x_clean = _snapped(hint.x, _snap_tolerance(hint))
+        y, y_clean = _snapped(hint.y, _snap_tolerance(hint))
         yield "float-rounded", x, y
-        basis = highs.getBasis()
+        basis = self._basis_of(hint, bq, nonneg)
         pair = self._basis_solution(cq, bq, basis)
         if pair is not None:
             yield ("float-basis", *pair)
@@ -296,7 +300,7 @@ class ExactLPSolver:
         constraint a with mu_a < 0, move along d with A_W d = -e_a (c.d = -mu_a > 0)
         to the first constraint that becomes tight, and repeat.  Returns (x, y) or
         None (infeasible start, unboundedness, or too many steps)."""
-        basic_cols, tight_rows = _basis_sets(basis, self.R)
+        basic_cols, tight_rows = basis
         N, R = self.N, self.R
         basic = set(basic_cols)
         W = list(tight_rows) + [R + i for i in range(N) if nonneg[i] and i not in basic]
@@ -355,7 +359,7 @@ class ExactLPSolver:
 
     def _basis_solution(self, cq, bq, basis) -> tuple[flint.fmpq_mat, flint.fmpq_mat] | None:
         """The exact vertex and dual of a float basis: B x_B = b_tight, B^T y = c_B."""
-        basic_cols, tight_rows = _basis_sets(basis, self.R)
+        basic_cols, tight_rows = basis
         if len(basic_cols) != len(tight_rows):
             return None
         A = self.A.entries()
@@ -425,8 +429,9 @@ class ExactLPSolver:
         """Farkas vector from the auxiliary LP  max -b.y  s.t. y dual-feasible
         for c = 0 and -b.y <= 1 (its optimum is 1 exactly when Ax<=b is empty)."""
         rows = [[-self.A[r, i] for r in range(self.R)] for i in range(self.N)] + [[-bq[r, 0] for r in range(self.R)]]
-        aux = ExactLPSolver(flint.fmpq_mat(rows), [not nonneg[i] for i in range(self.N)] + [False])
-        res = aux.solve([-fraction_of(bq[r, 0]) for r in range(self.R)], [0] * self.N + [1], [not e for e in self.equality])
+        aux = ExactLPSolver(flint.fmpq_mat(rows), [not nonneg[i] for i in range(self.N)] + [False], self.hint_backend)
+        res = aux.solve([-fraction_of(bq[r, 0]) for r in range(self.R)], [0] * self.N + [1], [not e for e in self.equality],
+                        _bounded=True)
         if res.status != OPTIMAL:
             return None
         if not self._verify_farkas(bq, nonneg, res.x_q):
@@ -436,12 +441,12 @@ class ExactLPSolver:
     def _unbounded(self, cq, bq, nonneg) -> LPResult | None:
         """A feasible point (max 0 over the same set) and a ray (max c.d over the
         recession cone cut by c.d <= 1)."""
-        point = self.solve(flint.fmpq_mat(self.N, 1), bq, nonneg)
+        point = self.solve(flint.fmpq_mat(self.N, 1), bq, nonneg, _bounded=True)
         if point.status != OPTIMAL:
             return None
         rows = [[self.A[r, i] for i in range(self.N)] for r in range(self.R)] + [[cq[i, 0] for i in range(self.N)]]
-        cone = ExactLPSolver(flint.fmpq_mat(rows), list(self.equality) + [False])
-        ray = cone.solve(cq, [0] * self.R + [1], nonneg)
+        cone = ExactLPSolver(flint.fmpq_mat(rows), list(self.equality) + [False], self.hint_backend)
+        ray = cone.solve(cq, [0] * self.R + [1], nonneg, _bounded=True)
         if ray.status != OPTIMAL or not self._verify_ray(cq, nonneg, ray.x_q):
             return None
         return LPResult(UNBOUNDED, INF, point.x_q, None, ray.x_q, ray.path)
@@ -471,29 +476,37 @@ def solve_lp(
     b: Sequence[Fraction],
     c: Sequence[Fraction],
     nonnegative: Sequence[bool],
+    hint: str | HintBackend | None = None,
 ) -> LPResult:
-    """Solve one LP exactly (see :class:`ExactLPSolver`)."""
-    return ExactLPSolver(A, equality).solve(c, b, nonnegative)
+    """Solve one LP exactly (see :class:`ExactLPSolver`; ``hint``: the float-hint backend)."""
+    return ExactLPSolver(A, equality, hint).solve(c, b, nonnegative)
 
 
 # ------------------------------------------------------------------ helpers
 _SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 24)
 
 
-def _snap(v: float) -> flint.fmpq:
+def _snap_tolerance(hint: Hint) -> float:
+    """How close a float must be to a small-denominator fraction to be snapped:
+    1e-9 for simplex hints (a basis: vertex values to machine accuracy), 1e-7
+    for hints without one (interior-point solvers stop at ~1e-8)."""
+    return 1e-9 if hint.basis is not None else 1e-7
+
+
+def _snap(v: float, tol: float = 1e-9) -> flint.fmpq:
     """A simple fraction near the float hint v (only a hint: it is verified)."""
     for d in _SMALL_DENOMINATORS:
         scaled = v * d
         nearest = round(scaled)
-        if abs(scaled - nearest) <= 1e-9 * max(1.0, abs(scaled)):
+        if abs(scaled - nearest) <= tol * max(1.0, abs(scaled)):
             return flint.fmpq(int(nearest), d)
     q = Fraction(v).limit_denominator(_ROUNDING_DENOMINATOR)
     return flint.fmpq(q.numerator, q.denominator)
 
 
-def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
+def _snapped(values: np.ndarray, tol: float = 1e-9) -> tuple[flint.fmpq_mat, bool]:
     """The float hint as a column of simple fractions (exact zeros stay zero),
-    and whether every entry was within 1e-9 of a fraction with a small
+    and whether every entry was within ``tol`` (relative) of a fraction with a small
     denominator.  Only a hint: whatever it produces is verified."""
     out = flint.fmpq_mat(len(values), 1)
     idx = np.flatnonzero(values)
@@ -503,14 +516,38 @@ def _snapped(values: np.ndarray) -> tuple[flint.fmpq_mat, bool]:
             break
         scaled = v * d
         near = np.round(scaled)
-        ok = np.abs(scaled - near) <= 1e-9 * np.maximum(1.0, np.abs(scaled))
+        ok = np.abs(scaled - near) <= tol * np.maximum(1.0, np.abs(scaled))
         for i, num in zip(idx[ok].tolist(), near[ok].tolist()):
             if num:
                 out[i, 0] = flint.fmpq(int(num), d)
         idx, v = idx[~ok], v[~ok]
     for i, value in zip(idx.tolist(), v.tolist()):
-        out[i, 0] = _snap(value)
+        out[i, 0] = _snap(value, tol)
     return out, not len(idx)
+
+
+def _independent(vectors: list[np.ndarray], limit: int) -> list[int]:
+    """Indices of a greedy linearly independent subset (in order, at most
+    ``limit``), by float Gram-Schmidt with one re-orthogonalisation."""
+    chosen: list[int] = []
+    if not vectors or limit <= 0:
+        return chosen
+    Q = np.zeros((min(limit, len(vectors[0])), len(vectors[0])))
+    for k, a in enumerate(vectors):
+        if len(chosen) >= min(limit, len(Q)):
+            break
+        norm = float(np.linalg.norm(a))
+        if norm == 0:
+            continue
+        q = Q[:len(chosen)]
+        r = np.asarray(a, dtype=float)
+        r = r - q.T @ (q @ r)
+        r = r - q.T @ (q @ r)
+        rnorm = float(np.linalg.norm(r))
+        if rnorm > 1e-9 * norm:
+            Q[len(chosen)] = r / rnorm
+            chosen.append(k)
+    return chosen
 
 
 def _column(v) -> flint.fmpq_mat:
@@ -531,13 +568,6 @@ def _floats(values) -> np.ndarray | None:
         return np.array([float(v) for v in values], dtype=float)
     except OverflowError:
         return None
-
-
-def _basis_sets(basis: highspy.HighsBasis, R: int) -> tuple[list[int], list[int]]:
-    """(basic columns, tight rows = rows whose slack is nonbasic) of a HiGHS basis."""
-    basic = highspy.HighsBasisStatus.kBasic
-    basic_cols = [i for i, st in enumerate(basis.col_status) if st == basic]
-    return basic_cols, [r for r, st in enumerate(basis.row_status) if st != basic]
 
 
 def _columns_of(M: flint.fmpq_mat) -> list[flint.fmpq_mat]:

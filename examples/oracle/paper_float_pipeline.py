@@ -6,7 +6,9 @@ tau = min_i tau_i.  Writes paper_float_results.csv next to this file; then
 
     exactinv oracle examples/oracle/paper_float_results.csv
 
-judges every row against the exact largest thresholds.  Because of erratum E3
+judges every row against the exact largest thresholds (the float gamma* LP
+itself is judged here too, by ``exactinv.oracle.judge_lp``: its exact optimum
+with a certificate, and whether cvxpy's value is tight).  Because of erratum E3
 (t* = alpha*/alpha_q + 1 <= 0 when alpha_q < 0) the float pipeline returns
 tau = inf for Taylor methods of order >= 2, and the oracle catches it with an
 exact counterexample.
@@ -27,6 +29,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", ".."))
 
+from exactinv.interfaces.oracle import judge_lp  # noqa: E402
 from exactinv.paper.bisection import paper_bisection_float  # noqa: E402
 from exactinv.interfaces.problem import load_problem  # noqa: E402
 
@@ -40,7 +43,9 @@ def float_gamma(S, P) -> float:
     b = np.array([float(v) for v in P.b])
     m = len(b)
     H, gamma = cp.Variable((m, m)), cp.Variable()
-    cp.Problem(cp.Minimize(gamma), [H + gamma * np.eye(m) >= 0, H @ G == G @ A, H @ b <= 0]).solve(solver=cp.HIGHS)
+    problem = cp.Problem(cp.Minimize(gamma), [H + gamma * np.eye(m) >= 0, H @ G == G @ A, H @ b <= 0])
+    problem.solve(solver=cp.HIGHS)
+    print(f"  the float gamma* LP: {judge_lp(problem)}")
     return float(gamma.value)
 
 
