@@ -248,60 +248,87 @@ def prove_generators(G, b, vertices, rays, lines):
     G is a list of m rows of n rationals (Fraction or int), b a list of m; the
     generators are lists of length-n vectors.  Returns a :class:`Generators`
     record, or raises :class:`CheckFailure` naming the fact that failed.
+
+    The steps: shapes; (G | b) as integers; the lines span the lineality space
+    L; the rays lie in rec(P); an edge walk from a listed vertex reaches only
+    listed vertices and rays (so the lists are complete: the graph of P/L is
+    connected and every extreme ray is an unbounded edge); every listed point
+    lies in P.
     """
-    _list(G, "G")
-    _list(b, "b")
-    _list(vertices, "vertices")
-    _list(rays, "rays")
-    _list(lines, "lines")
+    n = _check_shapes(G, b, vertices, rays, lines)
+    P = _IntegerPolyhedron(G, b, n)
+    _prove_lines(P, lines)
+    ray_index = _index_rays(P, rays)
+    walk = _EdgeWalk(P, G, b, vertices, ray_index)
+    seen, rays_hit = walk.run()
+    for i in range(len(vertices)):  # every other listed point is in P too
+        if i not in walk.in_P:
+            walk.slacks_in_P(i)
+    return Generators(
+        vertices=tuple(tuple(v) for v in vertices),
+        rays=tuple(tuple(d) for d in rays),
+        lines=tuple(tuple(l) for l in lines),
+        dimension=n,
+        lineality=n - P.rank,
+        minimal_faces=len(seen),
+        extreme_rays=len(rays_hit),
+        extra_vertices=len(vertices) - len(seen),
+        extra_rays=len(rays) - len(rays_hit),
+    )
+
+
+def _check_shapes(G, b, vertices, rays, lines):
+    """Lists of the right lengths, at least one point; returns n."""
+    for value, name in ((G, "G"), (b, "b"), (vertices, "vertices"), (rays, "rays"), (lines, "lines")):
+        _list(value, name)
     require(len(b) == len(G), f"b has {len(b)} entries but G has {len(G)} rows")
     require(len(vertices) > 0, "no vertex: a generator system needs at least one point")
-    if G:
-        _list(G[0], "G row 0")
-        n = len(G[0])
-    else:
-        _list(vertices[0], "vertex 0")
-        n = len(vertices[0])
+    first = G[0] if G else vertices[0]
+    _list(first, "G row 0" if G else "vertex 0")
+    n = len(first)
     require(n >= 1, "the dimension n must be at least 1")
     require(n <= MAX_DIMENSION, f"dimension {n} exceeds {MAX_DIMENSION}")
     for j, g in enumerate(G):
         _vector(g, n, f"G row {j}")
     _vector(b, len(G), "b")
-    for i, v in enumerate(vertices):
-        _vector(v, n, f"vertex {i}")
-    for i, v in enumerate(rays):
-        _vector(v, n, f"ray {i}")
-    for i, v in enumerate(lines):
-        _vector(v, n, f"line {i}")
+    for vectors, name in ((vertices, "vertex"), (rays, "ray"), (lines, "line")):
+        for i, v in enumerate(vectors):
+            _vector(v, n, f"{name} {i}")
+    return n
 
-    # each row of (G | b) scaled once to coprime integers (a positive factor)
-    rows, rhs = [], []
-    for g, beta in zip(G, b):
-        ints, _ = _scaled(list(g) + [beta])
-        ints = _primitive(ints) or ints
-        rows.append(ints[:n])
-        rhs.append(ints[n])
-    m = len(rows)
-    columns = [[row[i] for row in rows] for i in range(n)]
 
-    def times(x):
+class _IntegerPolyhedron:
+    """(G | b) with each row scaled once to coprime integers (a positive factor),
+    its rank r and a row basis B; G_B x determines x modulo L = {x : Gx = 0}."""
+
+    def __init__(self, G, b, n):
+        self.rows, self.rhs = [], []
+        for g, beta in zip(G, b):
+            ints, _ = _scaled(list(g) + [beta])
+            ints = _primitive(ints) or ints
+            self.rows.append(ints[:n])
+            self.rhs.append(ints[n])
+        self.n, self.m = n, len(self.rows)
+        self.columns = [[row[i] for row in self.rows] for i in range(n)]
+        self.rank, _, self.row_basis, _, _ = _reduce(self.rows, n)
+
+    def times(self, x):
         """G x for an integer vector x (column by column, skipping zeros)."""
         acc = None
-        for xi, col in zip(x, columns):
+        for xi, col in zip(x, self.columns):
             if xi:
                 acc = [xi * c for c in col] if acc is None else [a + xi * c for a, c in zip(acc, col)]
-        return [0] * m if acc is None else acc
+        return [0] * self.m if acc is None else acc
 
-    def slacks(p, q):
+    def slacks(self, p, q):
         """q (b - G p/q) = b q - G p, row by row."""
-        acc = [beta * q for beta in rhs]
-        for pi, col in zip(p, columns):
+        acc = [beta * q for beta in self.rhs]
+        for pi, col in zip(p, self.columns):
             if pi:
                 acc = [a - pi * c for a, c in zip(acc, col)]
         return acc
 
-    r, _, row_basis, _, _ = _reduce(rows, n)
-
+    @staticmethod
     def point_key(num, den):
         """Canonical form of the minimal face (x + L) from (G_B x) = num / den."""
         g = gcd(*num, den)
@@ -309,154 +336,141 @@ def prove_generators(G, b, vertices, rays, lines):
             return (*num, den)
         return (*[x // g for x in num], den // g)
 
-    # lines: nonzero, in L, spanning L
+
+def _prove_lines(P, lines):
+    """Every line is nonzero and in L, and together they span L."""
     line_ints = []
     for i, l in enumerate(lines):
         li, _ = _scaled(l)
         require(any(li), f"line {i} is the zero vector")
-        gl = times(li)
-        j = next((j for j, x in enumerate(gl) if x), None)
+        j = next((j for j, x in enumerate(P.times(li)) if x), None)
         require(j is None, f"line {i} is not in the lineality space: row {j} of G l is nonzero")
         line_ints.append(li)
-    require(
-        _rank(line_ints, n) == n - r,
-        f"the lines span a space of dimension {_rank(line_ints, n)}, but the lineality space "
-        f"{{x : Gx = 0}} has dimension {n - r}",
-    )
+    rank = _rank(line_ints, P.n)
+    require(rank == P.n - P.rank, f"the lines span a space of dimension {rank}, but the lineality space "
+            f"{{x : Gx = 0}} has dimension {P.n - P.rank}")
 
-    # rays: nonzero, in rec P; indexed modulo L up to a positive factor
+
+def _index_rays(P, rays):
+    """Every ray is nonzero and in rec(P); indexed modulo L up to a positive factor."""
     ray_index = {}
     for i, d in enumerate(rays):
         di, _ = _scaled(d)
         require(any(di), f"ray {i} is the zero vector")
-        gd = times(di)
+        gd = P.times(di)
         j = next((j for j, x in enumerate(gd) if x > 0), None)
         require(j is None, f"ray {i} is not in the recession cone: row {j} of G r is positive")
-        key = _primitive([gd[j] for j in row_basis])
+        key = _primitive([gd[j] for j in P.row_basis])
         if key is not None:  # a ray inside L is harmless and represents nothing
             ray_index.setdefault(tuple(key), i)
+    return ray_index
 
-    # points: indexed by their minimal face modulo L (membership is proved below)
-    scaled_points = [_scaled(v) for v in vertices]
-    keys = []
-    point_index = {}
-    for i, (p, q) in enumerate(scaled_points):
-        keys.append(point_key([sum(map(mul, rows[j], p)) for j in row_basis], q))
-        point_index.setdefault(keys[i], i)
 
-    in_P = set()
+class _EdgeWalk:
+    """The walk over the vertex-edge graph of P/L from the first listed vertex."""
 
-    def slacks_in_P(i):
+    def __init__(self, P, G, b, vertices, ray_index):
+        self.P, self.G, self.b, self.vertices, self.ray_index = P, G, b, vertices, ray_index
+        self.points = [_scaled(v) for v in vertices]
+        self.keys = [P.point_key([sum(map(mul, P.rows[j], p)) for j in P.row_basis], q) for p, q in self.points]
+        self.point_index = {}
+        for i, key in enumerate(self.keys):  # points indexed by their minimal face modulo L
+            self.point_index.setdefault(key, i)
+        self.in_P = set()
+
+    def slacks_in_P(self, i):
         """The slacks b q - G p of listed point i = p/q, all proved >= 0."""
-        p, q = scaled_points[i]
-        s = slacks(p, q)
+        p, q = self.points[i]
+        s = self.P.slacks(p, q)
         if s and min(s) < 0:
             j = next(j for j, x in enumerate(s) if x < 0)
-            v = vertices[i]
-            excess = sum(x * y for x, y in zip(G[j], v)) - b[j]
+            v = self.vertices[i]
+            excess = sum(x * y for x, y in zip(self.G[j], v)) - self.b[j]
             raise CheckFailure(f"vertex {i} = {_text(v)} is not in P: row {j} has g.v - b = {excess} > 0")
-        in_P.add(i)
+        self.in_P.add(i)
         return s
 
-    def edges_at(i):
+    def edges_at(self, i):
         """(slacks, active rows, integer edge directions) at listed point i, or
         None if the point is not a vertex (its active rows have rank < r)."""
-        s = slacks_in_P(i)
+        P = self.P
+        s = self.slacks_in_P(i)
         active = [j for j, x in enumerate(s) if x == 0]
-        A = [rows[j] for j in active]
-        if len(active) < r:
+        A = [P.rows[j] for j in active]
+        if len(active) < P.rank:
             return None
-        if len(active) == r:  # the active rows are a basis, or v is no vertex
-            found = _basis_rays(A, n)
+        if len(active) == P.rank:  # the active rows are a basis, or v is no vertex
+            found = _basis_rays(A, P.n)
             if found is None:
                 return None
             cols, ys = found
-        else:  # degenerate: |A| > r active rows
-            rank, cols, basis, _, _ = _reduce(A, n)
-            if rank != r:
+        else:  # degenerate: more than r active rows
+            rank, cols, basis, _, _ = _reduce(A, P.n)
+            if rank != P.rank:
                 return None
-            ys = _cone_rays([[row[c] for c in cols] for row in A], basis, r)
+            ys = _cone_rays([[row[c] for c in cols] for row in A], basis, P.rank)
         directions = []
         for y in ys:
-            d = [0] * n
+            d = [0] * P.n
             for c, yc in zip(cols, y):
                 d[c] = yc
             directions.append(d)
         return s, active, directions
 
-    # the walk
-    start = found = None
-    for i in point_index.values():
-        found = edges_at(i)
-        if found is not None:
-            start = i
-            break
-    require(
-        start is not None,
-        f"no listed point is a vertex of P (none has active rows of rank {r} = rank G)",
-    )
-    seen = {keys[start]}
-    queue = deque([start])
-    rays_hit = set()
-    while queue:
-        i = queue.popleft()
-        if i != start:
-            found = edges_at(i)
-        if found is None:  # cannot happen: every edge of a vertex ends at a vertex
-            raise CheckFailure(f"internal: listed point {i} reached by the walk is not a vertex")
-        s, active, directions = found
-        p, q = scaled_points[i]
-        base = [rhs[j] * q - s[j] for j in row_basis]  # G_B p
+    def run(self):
+        """(minimal faces reached, ray keys hit); CheckFailure if an edge leaves the lists."""
+        start = found = None
+        for i in self.point_index.values():
+            found = self.edges_at(i)
+            if found is not None:
+                start = i
+                break
+        require(start is not None,
+                f"no listed point is a vertex of P (none has active rows of rank {self.P.rank} = rank G)")
+        seen, rays_hit = {self.keys[start]}, set()
+        queue = deque([(start, found)])
+        while queue:
+            i, found = queue.popleft()
+            if found is None:  # cannot happen: every edge of a vertex ends at a vertex
+                raise CheckFailure(f"internal: listed point {i} reached by the walk is not a vertex")
+            for key, kind in self._ends(i, *found):
+                if kind == "ray":
+                    rays_hit.add(key)
+                elif key not in seen:
+                    seen.add(key)
+                    j = self.point_index[key]
+                    queue.append((j, self.edges_at(j)))
+        return seen, rays_hit
+
+    def _ends(self, i, s, active, directions):
+        """For each edge at vertex i: ("ray", key) of a listed ray, or ("vertex", key)
+        of the listed vertex where it ends."""
+        P = self.P
+        p, q = self.points[i]
+        base = [P.rhs[j] * q - s[j] for j in P.row_basis]  # G_B p
         for d in directions:
-            gd = times(d)
-            require(
-                all(gd[j] <= 0 for j in active) and any(gd[j] for j in active),
-                "internal: an edge direction leaves the tangent cone",
-            )
-            # ratio test: t* = min over g_j d > 0 of s_j / (q g_j d)
-            best_s, best_g = None, None
-            for sj, gj in [(sj, gj) for sj, gj in zip(s, gd) if gj > 0]:
-                if best_g is None or sj * best_g < best_s * gj:
+            gd = P.times(d)
+            require(all(gd[j] <= 0 for j in active) and any(gd[j] for j in active),
+                    "internal: an edge direction leaves the tangent cone")
+            best_s, best_g = None, None  # ratio test: t* = min over g_j d > 0 of s_j / (q g_j d)
+            for sj, gj in zip(s, gd):
+                if gj > 0 and (best_g is None or sj * best_g < best_s * gj):
                     best_s, best_g = sj, gj
-            gd_basis = [gd[j] for j in row_basis]
+            gd_basis = [gd[j] for j in P.row_basis]
             if best_g is None:
                 key = tuple(_primitive(gd_basis))
-                require(
-                    key in ray_index,
-                    f"incomplete generators: P has an unbounded edge from vertex {i} = "
-                    f"{_text(vertices[i])} in direction {_text(d)}, and no listed ray is that "
-                    f"direction (modulo the lines)",
-                )
-                rays_hit.add(key)
+                require(key in self.ray_index,
+                        f"incomplete generators: P has an unbounded edge from vertex {i} = "
+                        f"{_text(self.vertices[i])} in direction {_text(d)}, and no listed ray is that "
+                        f"direction (modulo the lines)")
+                yield key, "ray"
                 continue
-            # the other end: v + t* d = (p best_g + best_s d) / (q best_g)
-            den = q * best_g
-            key = point_key([best_g * x + best_s * y for x, y in zip(base, gd_basis)], den)
-            if key in seen:
-                continue
-            if key not in point_index:
+            den = q * best_g  # the other end: v + t* d = (p best_g + best_s d) / (q best_g)
+            key = P.point_key([best_g * x + best_s * y for x, y in zip(base, gd_basis)], den)
+            if key not in self.point_index:
                 w = [Fraction(best_g * pk + best_s * dk, den) for pk, dk in zip(p, d)]
                 raise CheckFailure(
-                    f"incomplete generators: the edge from vertex {i} = {_text(vertices[i])} "
+                    f"incomplete generators: the edge from vertex {i} = {_text(self.vertices[i])} "
                     f"in direction {_text(d)} ends at the vertex {_text(w)} of P, which is not "
-                    f"listed (modulo the lines)"
-                )
-            seen.add(key)
-            queue.append(point_index[key])
-
-    # every other listed point is in P too
-    for i in range(len(vertices)):
-        if i not in in_P:
-            slacks_in_P(i)
-
-    return Generators(
-        vertices=tuple(tuple(v) for v in vertices),
-        rays=tuple(tuple(d) for d in rays),
-        lines=tuple(tuple(l) for l in lines),
-        dimension=n,
-        lineality=n - r,
-        minimal_faces=len(seen),
-        extreme_rays=len(rays_hit),
-        extra_vertices=len(vertices) - len(seen),
-        extra_rays=len(rays) - len(rays_hit),
-    )
+                    f"listed (modulo the lines)")
+            yield key, "vertex"
