@@ -4,8 +4,9 @@ A symbolic-exact verifier for Horvath, Song and Terlaky, "Steplength
 thresholds for invariance preserving of discretization methods of dynamical
 systems on a polyhedron".  Every reported number is a Fraction, an exact
 real algebraic number with a certified rational enclosure, or infinity, and
-comes with a certificate that the standard-library checker
-(:mod:`exactinv.check`) re-verifies.
+comes with a certificate that the trusted kernel -- the separate,
+standard-library-only package :mod:`exactinv_check` -- re-verifies
+(``exactinv.check`` is ``exactinv_check.check``).
 
 The package is layered; imports point one way only (tests/test_layering.py):
 errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces.
@@ -20,7 +21,7 @@ Fraction(1, 1)
 """
 
 from .beyond.largest import LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
-from .check import check
+from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
 from .core.roots import first_sign_change, nonnegative_until, real_roots

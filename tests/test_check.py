@@ -11,7 +11,7 @@ import pytest
 
 import exactinv as ei
 from exactinv.certificates import certificate
-from exactinv.check import check
+from exactinv_check import check
 
 EXAMPLES = sorted(Path(__file__).parent.parent.joinpath("examples").glob("*.json"))
 
@@ -141,7 +141,7 @@ def test_tampering_is_rejected(name):
 
 
 def test_checker_main_exit_codes(tmp_path, capsys):
-    from exactinv.check import main
+    from exactinv_check import main
 
     good = tmp_path / "good.json"
     good.write_text(json.dumps(_box_taylor3()))

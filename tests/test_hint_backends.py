@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.check import check
+from exactinv_check import check
 from exactinv.lp import ExactLPSolver, hint
 from exactinv.lp import solver as lp
 

@@ -8,7 +8,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.check import check
+from exactinv_check import check
 from exactinv.core.scalars import fmpq_matrix
 
 
