@@ -212,7 +212,7 @@ class RealAlgebraic:
 
     def refine_relative(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval until it excludes 0 and its width is at
-        most 2**-bits times the smaller |end| (relative width); returns self."""
+        most 2**-bits times the smaller ``abs(end)`` (relative width); returns self."""
         while self._lower <= 0 <= self._upper:
             self._bisect()
         scale = 2**bits
@@ -223,7 +223,7 @@ class RealAlgebraic:
     def certified_digits(self, digits: int = 17) -> str:
         """The value to ``digits`` significant digits, every one certified: the
         value lies in [shown, shown + one unit in the last digit) (for negative
-        values, mirrored).  Fixed notation for 1e-4 <= |value| < 1e16, else
+        values, mirrored).  Fixed notation for ``1e-4 <= abs(value) < 1e16``, else
         scientific, e.g. ``2.5127452049785885e-7``.
 
         >>> RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).certified_digits(5)

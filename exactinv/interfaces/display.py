@@ -86,7 +86,7 @@ _TAU_COLOR = "black"
 
 def plot_f_i(threshold, upto: float | None = None):
     """The f_i(dt) of a polynomial-method threshold, each divided by its lowest
-    term |c_i| dt^i (which keeps its sign on dt > 0 and starts every curve at
+    term ``abs(c_i) * dt**i`` (which keeps its sign on dt > 0 and starts every curve at
     +-1), so that the sign changes are visible whatever the sizes of the f_i.
     Each tau_i (first sign change of f_i) is marked and labelled in the colour of
     its f_i; tau = min tau_i is the black line."""
