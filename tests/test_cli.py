@@ -19,6 +19,9 @@ def test_certify_and_check(tmp_path, capsys):
     assert "exact largest threshold: 1.7496858314" in text
     assert main(["check", str(out)]) == 0
     assert "certificate VERIFIED" in capsys.readouterr().out
+    from test_certificate_schema import assert_valid
+
+    assert_valid(json.loads(out.read_text()), what="the certificate exactinv certify wrote")
     cert = json.loads(out.read_text())
     cert["claims"][0]["value"] = "2"
     out.write_text(json.dumps(cert))
