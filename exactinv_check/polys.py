@@ -387,6 +387,8 @@ def quotient_polynomial(p, q):
     p, q = strip_zero_roots(p), strip_zero_roots(q)
     dp, dq = len(p) - 1, len(q) - 1
     require(dp * dq <= MAX_DEGREE, "the quotient of two algebraic numbers has too large a degree for this kernel")
-    points = [Fraction(k) for k in range(dp * dq + 1)]
+    # T = 0 would drop the degree of p(T y) and, with it, the resultant's formal
+    # degree: interpolate at T = 1 .. dp dq + 1 only
+    points = [Fraction(k) for k in range(1, dp * dq + 2)]
     values = [resultant([c * t ** k for k, c in enumerate(p)], q) for t in points]
     return interpolate(points, values)

@@ -1,5 +1,6 @@
 from fractions import Fraction
 
+import flint
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -120,4 +121,14 @@ def test_erratum_e2_prime_strip_trapezoid_not_attained():
     assert t.value == Fraction(4, 3) and t.attained is False
     L = ei.largest_threshold(S, P, ei.methods.trapezoid())
     assert L.value == Fraction(4, 3) and L.attained is False
+    assert ei.check(t.certificate).ok
+
+
+def test_the_e2_bound_with_two_irrational_ingredients_is_exact():
+    """z_p = (5 - sqrt 5)/2 and alpha(H) both irrational: their quotient is the root
+    of x^2 + 15x - 45 (red team, round 2: interpolating the resultant at t = 0
+    gave a wrong polynomial, in the kernel and in the engine)."""
+    S, P = ei.LinearSystem([[0, "1/3"], ["1/3", "1/3"]]), ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
+    t = ei.steplength_threshold(S, P, M.rational([1], [1, -1, "1/5"]))
+    assert t.attained is False and t.value.poly == flint.fmpz_poly([-45, 15, 1])
     assert ei.check(t.certificate).ok

@@ -69,7 +69,7 @@ def _quotient(a, b):
     a, b = a._copy(), b._copy()
     pa, pb = a.poly, b.poly
     da, db = pa.degree(), pb.degree()
-    points = list(range(da * db + 1))
+    points = list(range(1, da * db + 2))  # not t = 0: there p_a(t y) drops degree and the resultant changes form
     values = [flint.fmpz_poly([c * t**k for k, c in enumerate(pa.coeffs())]).resultant(pb) for t in points]
     R = interpolate(points, values)
     roots = [r for r, _ in real_roots(R) if r > 0]
