@@ -50,7 +50,7 @@ def polynomial_threshold(problem, claim, context):
     rows = claim["f"]
     p = len(sigmas) - 1
     require(isinstance(rows, list) and len(rows) == p + 1, f"one f_i row per i = 0..{p} is needed")
-    best, binding = None, None
+    best = None
     for i, row in enumerate(rows):
         require(isinstance(row, dict) and set(row) == {"i", "coefficients", "tau"}, f"row {i}: keys i, coefficients, tau")
         require(integer(row["i"], "f row index") == i, f"the f rows must be i = 0..{p} in order")
@@ -59,7 +59,7 @@ def polynomial_threshold(problem, claim, context):
         tau_i, _ = first_end([Fraction(1)], [f] if f else [], [])
         require(Real.parse(row["tau"], f"tau_{i}").compare(tau_i) == 0, f"tau_{i} is wrong (it is {tau_i})")
         if best is None or tau_i.compare(best) < 0:
-            best, binding = tau_i, i
+            best = tau_i
     require(value.compare(best) == 0, f"tau is not min_i tau_i = {best}")
     if claim.get("binding") is not None:
         j = integer(claim["binding"], "binding", 0, p + 1)

@@ -8,7 +8,7 @@ float.  Root isolation bisects until each interval holds one root.
 from fractions import Fraction
 from math import gcd as _igcd
 
-from .rationals import CheckFailure, require
+from .rationals import require
 
 MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 MAX_BISECTIONS = 4000

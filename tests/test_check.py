@@ -1,9 +1,7 @@
 """The independent checker: round trips, tampering, and its import list."""
 
-import ast
 import copy
 import json
-import sys
 from fractions import Fraction
 from pathlib import Path
 

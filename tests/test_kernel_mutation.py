@@ -14,7 +14,6 @@ from fractions import Fraction
 
 import exactinv as ei
 from certificate_corpus import corpus
-from exactinv.interfaces.problem import parse_method
 from exactinv_check import check
 
 PER_CERTIFICATE = 160  # mutants sampled per certificate (deterministic)

@@ -6,36 +6,9 @@ accepted, and no input may make ``check`` raise or run (practically) forever.
 These tests fail until the kernel is fixed.
 """
 
-import json
 import random
-import subprocess
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _cert(claims, method=None, A=None, G=None, b=None, version=2):
-    problem = {}
-    if method is not None:
-        num, den = method
-        problem["method"] = {"name": "redteam2", "numerator": list(num), "denominator": list(den)}
-    if A is not None:
-        problem.update(A=A, G=G, b=b)
-    return {"format": "exactinv-certificate", "version": version, "problem": problem, "claims": claims}
-
-
-def _check_in_subprocess(cert, seconds):
-    """check(cert) in a child process that is killed after `seconds`; returns its verdict."""
-    code = ("import json, sys; from exactinv_check import check; "
-            "r = check(json.load(sys.stdin)); print('OK' if r.ok else 'REJECTED')")
-    try:
-        proc = subprocess.run([sys.executable, "-c", code], input=json.dumps(cert), capture_output=True,
-                              text=True, timeout=seconds, cwd=ROOT)
-    except subprocess.TimeoutExpired:
-        raise AssertionError(f"the kernel did not finish within {seconds} s") from None
-    assert proc.returncode == 0, proc.stderr[-2000:]
-    return proc.stdout.strip()
+from test_kernel_redteam import _cert, _check_in_subprocess  # shared with round 1
 
 
 # --------------------------------------------------------------------------

@@ -14,7 +14,7 @@ import os
 import re
 import shutil
 import subprocess
-from fractions import Fraction
+
 
 import pytest
 

@@ -13,7 +13,7 @@ from fractions import Fraction
 from typing import Any, Iterable
 
 from .algebraic import RealAlgebraic
-from .scalars import INF, Infinity
+from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
 __all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "envelope", "dumps"]
 

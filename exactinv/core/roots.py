@@ -23,7 +23,7 @@ No floating-point bisection happens anywhere.
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any, Iterable
+from typing import Any
 
 import flint
 
@@ -39,7 +39,7 @@ from .polys import (
     sign_right_of,
     sign_variations,
 )
-from .scalars import INF, Infinity, dyadic_of, to_rational
+from .scalars import INF, dyadic_of, to_rational
 
 __all__ = [
     "as_polynomial",

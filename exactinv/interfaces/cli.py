@@ -17,7 +17,6 @@ line as an internal error (exit 1).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from typing import Sequence

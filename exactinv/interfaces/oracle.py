@@ -38,8 +38,8 @@ from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
-from ..errors import ExactinvError, ExactinvException, InvalidInput
-from ..lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from ..errors import ExactinvException, InvalidInput
+from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, LPResult
 from ..model.methods import Method, forward_euler
 from ..paper.invariance import discrete_invariance, optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius

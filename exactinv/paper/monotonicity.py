@@ -47,7 +47,7 @@ from ..core.latex import latex_real, latex_text
 from ..core.polys import count_real_roots, integer_part, sign_at
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until, real_roots
-from ..core.scalars import INF, Infinity, dyadic_of, fmpq_of, fraction_of
+from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
 from ..errors import Undecided
 from ..model.methods import Method
 from ..model.record import method_record
