@@ -24,6 +24,8 @@ __all__ = ["check", "CheckReport", "CheckFailure", "FORMAT", "VERSIONS", "main"]
 
 
 def main(argv=None):
+    """The command line (``python3 -m exactinv_check``); imported on call so that
+    ``-m exactinv_check`` does not find its ``__main__`` already imported."""
     from .__main__ import main as _main
 
     return _main(argv)

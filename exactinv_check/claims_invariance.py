@@ -11,6 +11,7 @@
 
 from fractions import Fraction
 
+from .conditions import method_matrices
 from .rationals import dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
 
@@ -51,8 +52,6 @@ def _discrete_matrix(problem, claim):
     """A_d: r(dt A) recomputed when the claim names dt, else the matrix the claim states."""
     if "dt" in claim:
         require(problem.method is not None, "a claim with dt needs the problem's method")
-        from .conditions import method_matrices
-
         dt = rational(claim["dt"], "dt")
         require(dt >= 0, "dt must be >= 0")
         D, N = method_matrices(problem.A, problem.method.numerator, problem.method.denominator)

@@ -22,6 +22,7 @@ from fractions import Fraction
 from math import comb
 
 from . import polys
+from .claims_thresholds import smallest_positive_root
 from .rationals import integer, require, vector
 from .reals import Real
 from .tail import prove_tail
@@ -153,8 +154,6 @@ def absolute_monotonicity_radius(problem, claim, context):
         end, _ = first_end([Fraction(1)], [d[j]] if d[j] else [], [])
         require(end.compare(rho) == 0, f"c_{j} does not end the interval at rho")
     if claim.get("pole") is not None:
-        from .claims_thresholds import smallest_positive_root
-
         pole = smallest_positive_root(den)
         require(pole is not None and Real.parse(claim["pole"], "pole").compare(pole) == 0,
                 f"the recorded pole is not the smallest positive pole {pole}")

@@ -15,6 +15,7 @@ from fractions import Fraction
 from math import comb
 
 from . import polys
+from .claims_invariance import check_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
@@ -87,8 +88,6 @@ def rational_threshold(problem, claim, context):
     H = context.get("H")
     require((claim.get("H") is None) == (claim.get("gamma_H") is None), "H and gamma_H come together")
     if claim.get("H") is not None:  # another certificate H with its own gamma_H >= gamma*
-        from .claims_invariance import check_H
-
         H = matrix(claim["H"], "H", problem.m, problem.m)
         check_H(problem, H)
         gamma_H = rational(claim["gamma_H"], "gamma_H")

@@ -224,26 +224,6 @@ def squarefree(p):
     return _exact_quotient(a, g) if len(g) > 1 else a
 
 
-def odd_part(p):
-    """The product of the squarefree factors of odd multiplicity (Yun), monic."""
-    p = _bounded(trim(p))
-    if len(p) <= 1:
-        return [Fraction(1)]
-    a = gcd(p, derivative(p))
-    b = divmod_(p, a)[0]
-    d = sub(divmod_(derivative(p), a)[0], derivative(b))
-    odd, k = [Fraction(1)], 1
-    while len(b) > 1:
-        require(k <= MAX_DEGREE, "squarefree decomposition does not terminate")
-        factor = gcd(b, d)
-        if k % 2 == 1:
-            odd = mul(odd, factor)
-        b = divmod_(b, factor)[0]
-        d = sub(divmod_(d, factor)[0], derivative(b))
-        k += 1
-    return monic(odd)
-
-
 def strip_zero_roots(p):
     p = trim(p)
     while p and p[0] == 0:
@@ -262,17 +242,6 @@ def sign_right_of(p, x):
     return 0
 
 
-def sign_left_of(p, x):
-    """The sign of p on (x - eps, x) for small eps > 0."""
-    q, flips = trim(p), 1
-    while q:
-        s = sign(evaluate(q, x))
-        if s:
-            return s * flips
-        q, flips = derivative(q), -flips
-    return 0
-
-
 class Sturm:
     """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
 
@@ -283,7 +252,6 @@ class Sturm:
         while len(seq) > 1 and seq[-1]:
             seq.append([-c for c in _pseudo_remainder(seq[-2], seq[-1])])
         self.ints = [s for s in seq if s]
-        self.seq = self.ints
 
     def _variations_at(self, x):
         if x is None:  # +oo
