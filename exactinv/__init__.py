@@ -18,9 +18,17 @@ errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces.
 Fraction(1, 1)
 >>> ei.steplength_threshold(S, P, ei.methods.taylor(4)).value
 Fraction(1, 1)
+>>> ei.largest_threshold(S, ei.Ellipsoid([[1, 0], [0, 1]]), ei.methods.forward_euler()).value
+Fraction(1, 1)
 """
 
-from .beyond.largest import LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
+from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
+from .beyond.ellipsoid_thresholds import (
+    EllipsoidForwardEulerThreshold,
+    EllipsoidLargestThreshold,
+    EllipsoidValidSteplengths,
+)
+from .beyond.largest import LargestThreshold, ValidSteplengths
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
@@ -29,15 +37,20 @@ from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed
 from .interfaces import display, oracle
 from .interfaces.compare import ThresholdComparison, compare_thresholds
-from .model import LinearSystem, Method, Polyhedron, methods
-from .paper.forward_euler import ForwardEulerThreshold, forward_euler_threshold
+from .interfaces.dispatch import (
+    continuous_invariance,
+    discrete_invariance,
+    forward_euler_threshold,
+    largest_threshold,
+    valid_steplengths,
+)
+from .model import Ellipsoid, LinearSystem, Method, Polyhedron, methods
+from .paper.forward_euler import ForwardEulerThreshold
 from .paper.invariance import (
     ContinuousInvariance,
     DiscreteInvariance,
     FacetWitness,
     OptimalGamma,
-    continuous_invariance,
-    discrete_invariance,
     optimal_gamma,
 )
 from .paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
@@ -53,6 +66,11 @@ __all__ = [
     "Infinity",
     "ContinuousInvariance",
     "DiscreteInvariance",
+    "Ellipsoid",
+    "EllipsoidForwardEulerThreshold",
+    "EllipsoidInvariance",
+    "EllipsoidLargestThreshold",
+    "EllipsoidValidSteplengths",
     "EmptyPolyhedron",
     "ExactinvError",
     "FacetWitness",
@@ -70,6 +88,7 @@ __all__ = [
     "NotInvariant",
     "OptimalGamma",
     "Polyhedron",
+    "QuadraticWitness",
     "RealAlgebraic",
     "SteplengthThreshold",
     "Undecided",

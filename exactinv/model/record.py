@@ -1,4 +1,4 @@
-"""The problem record of a certificate (A, G, b and the method's r = g/h) and
+"""The problem record of a certificate (A, G, b and the method's r = g/h; Q for an ellipsoid) and
 the certificate of results computed on a problem (the one envelope)."""
 
 from __future__ import annotations
@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any, Iterable
 
 from ..core.encode import envelope, mat, vec
+from .ellipsoid import Ellipsoid
 from .methods import Method
 from .polyhedron import Polyhedron
 from .system import LinearSystem
@@ -19,8 +20,11 @@ def method_record(method: Method) -> dict:
 
 
 def problem_record(system: LinearSystem, polyhedron: Polyhedron, method: Method | None = None) -> dict:
-    """A, G, b and (optionally) the method, as exact strings."""
-    record = {"A": mat(system.A), "G": mat(polyhedron.G), "b": vec(polyhedron.b)}
+    """A, G, b (or Q for an ellipsoid) and (optionally) the method, as exact strings."""
+    if isinstance(polyhedron, Ellipsoid):
+        record = {"A": mat(system.A), "Q": mat(polyhedron.Q)}
+    else:
+        record = {"A": mat(system.A), "G": mat(polyhedron.G), "b": vec(polyhedron.b)}
     if method is not None:
         record["method"] = method_record(method)
     return record
