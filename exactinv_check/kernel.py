@@ -12,7 +12,7 @@ import json
 import os
 from fractions import Fraction
 
-from . import claims_invariance, claims_radius, claims_sets, claims_thresholds, polys
+from . import claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
 from .rationals import CheckFailure, matrix, require, vector
 
 FORMAT = "exactinv-certificate"
@@ -36,6 +36,11 @@ CLAIMS = {
     "valid_steplengths": (claims_sets.valid_steplengths, {"intervals", "vertices", "rays", "lines"}, {"determinant"}),
     "forward_euler_threshold": (claims_thresholds.forward_euler_threshold, {"value", "vertices", "rays", "lines"},
                                 {"attained"}),
+    "ellipsoid_continuous_invariance": (claims_ellipsoid.continuous_invariance, {"holds"}, {"witness"}),
+    "ellipsoid_discrete_invariance": (claims_ellipsoid.discrete_invariance, {"holds"}, {"Ad", "dt", "witness"}),
+    "ellipsoid_valid_steplengths": (claims_ellipsoid.valid_steplengths, {"intervals"}, {"determinant"}),
+    "ellipsoid_largest_threshold": (claims_ellipsoid.largest_threshold, {"value", "attained"}, {"determinant", "binding"}),
+    "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
 }
 _BOOLEAN_KEYS = {"holds", "attained"}
 
@@ -71,12 +76,25 @@ class Method:
 
 
 class Problem:
-    """A, G, b (each shape-checked) and the method; radius certificates have only the method."""
+    """A, G, b (each shape-checked) and the method; or A, Q (an ellipsoid, Q proved
+    symmetric positive definite) and the method; radius certificates have only the method."""
 
     def __init__(self, record):
-        require(isinstance(record, dict) and set(record) <= {"A", "G", "b", "method"}, "problem has the keys A, G, b, method")
+        require(isinstance(record, dict) and set(record) <= {"A", "G", "b", "Q", "method"},
+                "problem has the keys A, G, b (or Q), method")
         self.method = Method(record["method"]) if record.get("method") is not None else None
-        if {"A", "G", "b"} & set(record):
+        self.Q = None
+        if "Q" in record:
+            require(set(record) <= {"A", "Q", "method"} and "A" in record, "an ellipsoid problem has the keys A, Q, method")
+            self.A = matrix(record["A"], "A")
+            self.n = len(self.A)
+            require(self.n >= 1 and all(len(r) == self.n for r in self.A), "A is not a nonempty square matrix")
+            self.Q = matrix(record["Q"], "Q", self.n, self.n)
+            require(ellipsoids.is_symmetric(self.Q), "Q is not symmetric")
+            require(ellipsoids.psd(self.Q)[1], "Q is not positive definite: {x : x^T Q x <= 1} is no ellipsoid")
+            self.G = self.b = None
+            self.m = 0
+        elif {"A", "G", "b"} & set(record):
             require({"A", "G", "b"} <= set(record), "problem needs all of A, G, b")
             self.A = matrix(record["A"], "A")
             self.n = len(self.A)
@@ -182,8 +200,10 @@ def check(certificate, progress=None):
         try:
             require(kind in CLAIMS, f"unknown claim type {kind!r}")
             _check_keys(claim, kind)
-            if kind != "absolute_monotonicity_radius":
-                require(problem.A is not None, f"a {kind} claim needs A, G and b in the problem")
+            if kind.startswith("ellipsoid_"):
+                require(problem.Q is not None, f"a {kind} claim needs A and Q in the problem")
+            elif kind != "absolute_monotonicity_radius":
+                require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
             verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
         except _ERRORS as exc:
             verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))

@@ -1,0 +1,113 @@
+"""Claims about an ellipsoid E = {x : x^T Q x <= 1} (the problem's Q, proved
+symmetric positive definite when the problem is read).
+
+* ellipsoid_continuous_invariance: E is invariant for x' = Ax iff
+  -(A^T Q + Q A) >= 0 (recomputed by elimination); otherwise a rational v with
+  v^T (A^T Q + Q A) v > 0: the boundary point v / ||v||_Q leaves E.
+* ellipsoid_discrete_invariance: A_d E in E iff Q - A_d^T Q A_d >= 0;
+  otherwise v with v^T (A_d^T Q A_d - Q) v > 0.
+* ellipsoid_valid_steplengths / ellipsoid_largest_threshold /
+  ellipsoid_forward_euler_threshold: the conditions c_k >= 0 and det h(hA)
+  (:mod:`exactinv_check.ellipsoids`) are rebuilt and the valid set or its first
+  interval recomputed by the same rules as for a polyhedron
+  (:mod:`exactinv_check.validset`); the claim must equal it, end by end and flag by flag.
+"""
+
+from fractions import Fraction
+
+from . import polys
+from .claims_invariance import _discrete_matrix
+from .ellipsoids import condition_polynomials, psd, quadratic_form
+from .rationals import boolean, integer, matmul, rational, require, transpose, vector
+from .reals import Real
+from .validset import first_end, valid_set
+
+
+def _witness(problem, claim, M, what):
+    w = claim["witness"]
+    require(isinstance(w, dict) and set(w) <= {"v", "value"} and "v" in w, "a witness has the keys v (and value)")
+    v = vector(w["v"], "witness v", problem.n)
+    value = quadratic_form(M, v)
+    if "value" in w:
+        require(rational(w["value"], "witness value") == value, "the witness's recorded value is wrong")
+    require(value > 0, f"the witness does not show {what}")
+    return value
+
+
+def continuous_invariance(problem, claim, context):
+    A, Q = problem.A, problem.Q
+    L = [[a + b for a, b in zip(r, s)] for r, s in zip(matmul(transpose(A), Q), matmul(Q, A))]
+    if boolean(claim["holds"], "holds"):
+        require("witness" not in claim, "a claim that holds carries no witness")
+        require(psd([[-x for x in r] for r in L])[0], "A^T Q + Q A is not negative semidefinite")
+        return "E is invariant for x' = Ax: -(A^T Q + Q A) >= 0 (exact elimination)"
+    value = _witness(problem, claim, L, "v^T (A^T Q + Q A) v > 0")
+    return f"E is NOT invariant: v^T (A^T Q + Q A) v = {value} > 0, so v/||v||_Q leaves E"
+
+
+def discrete_invariance(problem, claim, context):
+    Ad, what = _discrete_matrix(problem, claim)
+    Q = problem.Q
+    M = [[a - b for a, b in zip(r, s)] for r, s in zip(matmul(matmul(transpose(Ad), Q), Ad), Q)]  # A_d^T Q A_d - Q
+    if boolean(claim["holds"], "holds"):
+        require("witness" not in claim, "a claim that holds carries no witness")
+        require(psd([[-x for x in r] for r in M])[0], "Q - A_d^T Q A_d is not positive semidefinite")
+        return f"A_d E is a subset of E for {what} (Q - A_d^T Q A_d >= 0)"
+    value = _witness(problem, claim, M, "v^T (A_d^T Q A_d - Q) v > 0")
+    return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {value} > 0"
+
+
+def _conditions(problem, claim, context, numerator=None, denominator=None):
+    """(D, conditions), rebuilt once per certificate and method (kept in the context)."""
+    if numerator is None:
+        require(problem.method is not None, "a method is needed")
+        numerator, denominator = problem.method.numerator, problem.method.denominator
+    key = ("ellipsoid conditions", tuple(numerator), tuple(denominator))
+    if key not in context:
+        context[key] = condition_polynomials(problem.A, problem.Q, numerator, denominator)
+    D, full = context[key]
+    conditions = [c for c in full if c]
+    if claim.get("determinant") is not None:
+        claimed = polys.trim(vector(claim["determinant"], "determinant"))
+        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+    return D, conditions, full
+
+
+def valid_steplengths(problem, claim, context):
+    D, conditions, _ = _conditions(problem, claim, context)
+    truth = valid_set(D, conditions, [])
+    claimed = claim["intervals"]
+    require(isinstance(claimed, list), "intervals is a list")
+    require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")
+    for k, (iv, true) in enumerate(zip(claimed, truth)):
+        require(isinstance(iv, dict) and set(iv) == {"lo", "hi", "lo_closed", "hi_closed"},
+                f"interval {k}: keys lo, hi, lo_closed, hi_closed")
+        require(Real.parse(iv["lo"], "lo").compare(true.lo) == 0, f"interval {k} starts at {true.lo}")
+        require(Real.parse(iv["hi"], "hi").compare(true.hi) == 0, f"interval {k} ends at {true.hi}")
+        require(boolean(iv["lo_closed"], "lo_closed") == true.lo_closed, f"interval {k}: wrong lo_closed")
+        require(boolean(iv["hi_closed"], "hi_closed") == true.hi_closed, f"interval {k}: wrong hi_closed")
+    return (f"the valid set {truth} on E recomputed from {len(conditions)} coefficient conditions of "
+            f"H^T Q H - G^T Q G and det h(hA)")
+
+
+def largest_threshold(problem, claim, context):
+    D, conditions, full = _conditions(problem, claim, context)
+    tau, attained = first_end(D, conditions, [])
+    value = Real.parse(claim["value"], "tau")
+    require(value.compare(tau) == 0, f"the largest threshold on E is {tau}, not {value}")
+    require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
+    binding = claim.get("binding")
+    if binding is not None:
+        k = integer(binding, "binding", 1, problem.n + 1)
+        require(full[k - 1], f"condition {k} vanishes identically")
+        end, _ = first_end([Fraction(1)], [full[k - 1]], [])
+        require(end.compare(tau) == 0, f"condition {k} does not end the first interval")
+    return f"largest threshold on E {value} ({'attained' if attained else 'not attained'}), recomputed"
+
+
+def forward_euler_threshold(problem, claim, context):
+    D, conditions, _ = _conditions(problem, {}, context, [Fraction(1), Fraction(1)], [Fraction(1)])
+    tau, _ = first_end(D, conditions, [])
+    value = Real.parse(claim["value"], "tau")
+    require(value.compare(tau) == 0, f"the largest forward-Euler step on E is {tau}, not {value}")
+    return f"largest forward-Euler step on E {value}, recomputed (r(z) = 1 + z)"
