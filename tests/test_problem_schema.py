@@ -42,7 +42,8 @@ def test_the_doc_has_examples_of_every_form():
     kinds = {next(iter(d["method"])) if isinstance(d.get("method"), dict) else d.get("method") for d in DOC_EXAMPLES}
     assert set(METHOD_KINDS) <= kinds | {None} | set(PRESETS), set(METHOD_KINDS) - kinds
     assert any("A0" in d["system"] for d in DOC_EXAMPLES)
-    assert any("vertices" in d["polyhedron"] for d in DOC_EXAMPLES)
+    assert any("vertices" in d.get("polyhedron", {}) for d in DOC_EXAMPLES)
+    assert any("ellipsoid" in d for d in DOC_EXAMPLES)
 
 
 @pytest.mark.parametrize("k", range(len(DOC_EXAMPLES)))
@@ -78,6 +79,8 @@ BAD = {
     "butcher key": {**BOX, "method": {"butcher": {"A": [[0]], "b": [1], "cc": [0]}}},
     "not a number": {**BOX, "polyhedron": {"G": [[1, 0]], "b": ["one"]}},
     "no system": {"polyhedron": BOX["polyhedron"]},
+    "polyhedron and ellipsoid": {**BOX, "ellipsoid": {"Q": [[1, 0], [0, 1]]}},
+    "ellipsoid without Q": {"system": BOX["system"], "ellipsoid": {"q": [[1, 0], [0, 1]]}},
 }
 
 

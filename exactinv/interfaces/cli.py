@@ -130,7 +130,7 @@ def _load_cert(path: str) -> dict:
     except BadInput as exc:
         raise InvalidInput(f"{path}: {str(exc).replace(repr(path), 'the file')}") from None
     if cert.get("format") != exactinv_check.kernel.FORMAT:
-        if {"system", "polyhedron"} & set(cert):
+        if {"system", "polyhedron", "ellipsoid"} & set(cert):
             raise InvalidInput(f"{path}: this is a problem file, not a certificate (run `exactinv certify {path} -o CERT.json`)")
         raise InvalidInput(f"{path}: not an exactinv certificate (the \"format\" key is missing or wrong)")
     return cert

@@ -117,7 +117,35 @@ def _invariance(c: dict, kind: str) -> str:
                f"its image violates facet {w['facet']} (g.A_d x = {w['value']} exceeds b)."))
 
 
+def _ellipsoid_claim(kind: str, c: dict) -> str:
+    if kind in ("ellipsoid_continuous_invariance", "ellipsoid_discrete_invariance"):
+        continuous = kind == "ellipsoid_continuous_invariance"
+        M = "-(A^T Q + Q A)" if continuous else "Q - A_d^T Q A_d"
+        flow = "the flow x' = A x" if continuous else (
+            "the map x -> A_d x" + (f" with A_d = {_matrix(c['Ad'])}" if c.get("Ad") else "")
+            + (f" (dt = {c['dt']})" if c.get("dt") else ""))
+        if c["holds"]:
+            return (f"E is invariant under {flow}: {M} is positive semidefinite (an exact L D L^T with D >= 0), "
+                    f"so x^T Q x never increases.")
+        w = c["witness"]
+        return (f"E is not invariant under {flow}: the direction v = {_vec(w['v'])} has v^T ({M}) v < 0, so the "
+                f"boundary point v/||v||_Q " + ("leaves E at once." if continuous else "is mapped outside E."))
+    if kind == "ellipsoid_forward_euler_threshold":
+        return (f"The largest forward-Euler step on E is {_real(c['value'])}: the largest h with "
+                f"-(A^T Q + Q A) - h A^T Q A >= 0, a generalised eigenvalue.")
+    how = ("M(h) = H^T Q H - G^T Q G (G = g(hA), H = h(hA), congruent to Q - A_d^T Q A_d) is positive "
+           "semidefinite iff every sum of its k x k principal minors is >= 0: n polynomial conditions in h")
+    if kind == "ellipsoid_largest_threshold":
+        return (f"The exact largest threshold on E is {_real(c['value'])} "
+                f"({'attained' if c['attained'] else 'not attained'}).  {how}, all of which hold on [0, tau]"
+                + (f"; condition {c['binding']} changes sign at tau." if c.get("binding") else "."))
+    ivs = " U ".join(_interval(iv) for iv in c["intervals"]) or "the empty set"
+    return f"The set of valid steplengths {{h >= 0 : A_d(h) E is inside E}} is exactly {ivs}.  {how}."
+
+
 def _claim(kind: str, c: dict) -> str:
+    if kind.startswith("ellipsoid_"):
+        return _ellipsoid_claim(kind, c)
     if kind == "gamma_star":
         return _gamma_star(c)
     if kind in ("continuous_invariance", "discrete_invariance"):
@@ -168,7 +196,9 @@ def explain(cert: dict, verified: bool = False) -> str:
     ``verified=True`` only after the kernel (``exactinv_check.check``) accepted it."""
     p = cert["problem"]
     lines = []
-    if "A" in p:
+    if "Q" in p:
+        lines.append(f"Problem: x' = A x with A = {_matrix(p['A'])}, E = {{x : x^T Q x <= 1}} with Q = {_matrix(p['Q'])}.")
+    elif "A" in p:
         lines.append(f"Problem: x' = A x with A = {_matrix(p['A'])}, P = {{x : G x <= b}} with G = {_matrix(p['G'])}, "
                      f"b = {_vec(p['b'])}.")
     if p.get("method"):

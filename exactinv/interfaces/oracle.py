@@ -34,15 +34,15 @@ from typing import Any
 import flint
 import numpy as np
 
-from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import ExactinvException, InvalidInput
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, LPResult
 from ..model.methods import Method, forward_euler
-from ..paper.invariance import discrete_invariance, optimal_gamma
+from ..paper.invariance import optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
+from .dispatch import discrete_invariance, largest_threshold, valid_steplengths
 from .problem import did_you_mean, load_problem, method_from_text, parse_method
 
 __all__ = ["Status", "Verdict", "LPVerdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius",
@@ -130,6 +130,11 @@ def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance:
         dt = _invalid_step(system, polyhedron, method, c)
         result = discrete_invariance(system, polyhedron, method, dt)
         w = result.witness
+        if not hasattr(w, "facet"):  # an ellipsoid: a direction v whose boundary point is mapped outside E
+            return Verdict(INVALID, "threshold", c, tau, _gap(c, tau), {"dt": dt, "v": w.v, "value": w.value},
+                           f"claimed {claimed} exceeds the exact largest threshold {tau}"
+                           f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the boundary point along "
+                           f"v = [{', '.join(map(str, w.v))}] is mapped outside E")
         return Verdict(INVALID, "threshold", c, tau, _gap(c, tau),
                        {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value},
                        f"claimed {claimed} exceeds the exact largest threshold {tau}"

@@ -28,6 +28,7 @@ from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import forward_euler_threshold
 from ..paper.invariance import optimal_gamma
 from ..paper.threshold import steplength_threshold
+from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
 __all__ = ["Report", "certify", "VERTEX_LIMIT"]
@@ -59,7 +60,7 @@ class Report:
 
 
 def stages(method: Method | None, check: bool) -> int:
-    """How many progress steps :func:`certify` reports."""
+    """How many progress steps :func:`certify` reports (the same on an ellipsoid)."""
     return (5 if method is not None else 3) - (not check)
 
 
@@ -106,6 +107,9 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     method = method if method is not None else problem.method
     step = progress or (lambda what: None)
     S, P = problem.system, problem.polyhedron
+    if problem.is_ellipsoid:
+        lines = [f"problem {problem.name}: n = {S.n}, ellipsoid x^T Q x <= 1" + (f", method {method.name}" if method else "")]
+        return _finish(problem, method, ellipsoid_results(S, P, method, lines, step), lines, check, step)
     lines = [f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else "")]
     step("gamma* (verified row LPs)")
     gamma = optimal_gamma(S, P)
@@ -126,7 +130,13 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     if method is not None and P.n <= VERTEX_LIMIT:
         step("exact valid steplengths")
         results += _largest(S, P, method, lines)
-    cert = make_certificate(S, P, method, results)
+    return _finish(problem, method, results, lines, check, step)
+
+
+def _finish(problem: Problem, method: Method | None, results: list[Any], lines: list[str], check: bool,
+            step: Callable[[str], None]) -> Report:
+    """The certificate of ``results`` and, if ``check``, the trusted kernel's verdict on it."""
+    cert = make_certificate(problem.system, problem.polyhedron, method, results)
     report = None
     if check:
         step("independent check (the trusted kernel)")

@@ -5,6 +5,9 @@ docs/problem.schema.json).
      "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}
      "method": {"taylor": 4}}                               # optional
 
+or, instead of "polyhedron", an ellipsoid {x : x^T Q x <= 1}:
+    "ellipsoid": {"Q": [["2", "0"], ["0", "1"]]}
+
 Rationals are strings ("3/4"; "0.1" means exactly 1/10) or integers; JSON
 floats are refused like Python floats.  Unknown keys are refused at every
 level, with a "did you mean" hint.  Errors name the file and the JSON path.
@@ -21,13 +24,13 @@ from typing import Any, Iterable
 
 from ..errors import InvalidInput
 from ..model import methods as _methods
-from ..model import LinearSystem, Polyhedron
+from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
 
 __all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
 
-TOP_KEYS = ("system", "polyhedron", "method", "name", "description")
-"""The keys a problem file may hold (system and polyhedron are required)."""
+TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description")
+"""The keys a problem file may hold (system and one of polyhedron, ellipsoid are required)."""
 
 METHOD_KINDS = ("taylor", "polynomial", "rational", "theta", "pade", "butcher", "preset", "ssprk_s1")
 """The keys of a method object ({"taylor": 4}, ...); a bare string is a preset name."""
@@ -35,10 +38,16 @@ METHOD_KINDS = ("taylor", "polynomial", "rational", "theta", "pade", "butcher", 
 
 @dataclass(frozen=True)
 class Problem:
+    """A problem: ``polyhedron`` holds the invariant set, a Polyhedron or an Ellipsoid."""
+
     system: LinearSystem
-    polyhedron: Polyhedron
+    polyhedron: Polyhedron | Ellipsoid
     method: Method | None = None
     name: str = "problem"
+
+    @property
+    def is_ellipsoid(self) -> bool:
+        return isinstance(self.polyhedron, Ellipsoid)
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
@@ -165,7 +174,7 @@ def _require(obj: dict, keys: Iterable[str], path: str) -> None:
 
 def _section(data: dict, key: str) -> dict:
     if key not in data:
-        raise InvalidInput(f"{key}: missing section (a problem file needs \"system\" and \"polyhedron\")")
+        raise InvalidInput(f"{key}: missing section (a problem file needs \"system\" and \"polyhedron\" or \"ellipsoid\")")
     return _object(data[key], key, "a JSON object")
 
 
@@ -200,6 +209,22 @@ def _polyhedron(data: dict) -> Polyhedron:
     raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines")')
 
 
+def _ellipsoid(data: dict) -> Ellipsoid:
+    ell = _object(data["ellipsoid"], "ellipsoid", "a JSON object")
+    check_keys(ell, ("Q",), "ellipsoid")
+    _require(ell, ("Q",), "ellipsoid")
+    with _At("ellipsoid", ("Q",)):
+        return Ellipsoid(ell["Q"])
+
+
+def _invariant_set(data: dict) -> Polyhedron | Ellipsoid:
+    if "ellipsoid" in data:
+        if "polyhedron" in data:
+            raise InvalidInput('ellipsoid: give "polyhedron" or "ellipsoid" -- not both')
+        return _ellipsoid(data)
+    return _polyhedron(data)
+
+
 def problem_from_dict(data: Any, name: str = "problem") -> Problem:
     """A :class:`Problem` from the parsed JSON of a problem file (every key checked)."""
     if not isinstance(data, dict):
@@ -214,9 +239,10 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
     if "description" in data and not isinstance(data["description"], str):
         raise InvalidInput(f"description: expected a string, got {_kind(data['description'])}")
     system = _system(data)
-    polyhedron = _polyhedron(data)
+    polyhedron = _invariant_set(data)
     if system.n != polyhedron.n:
-        raise InvalidInput(f"polyhedron: the system has dimension {system.n} but the polyhedron lives in dimension {polyhedron.n}")
+        what = "ellipsoid" if isinstance(polyhedron, Ellipsoid) else "polyhedron"
+        raise InvalidInput(f"{what}: the system has dimension {system.n} but the {what} lives in dimension {polyhedron.n}")
     method = parse_method(data["method"]) if data.get("method") is not None else None
     return Problem(system, polyhedron, method, name)
 
