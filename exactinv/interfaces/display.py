@@ -14,11 +14,14 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
+from ..beyond.ellipsoid_thresholds import ellipsoid_largest_threshold, ellipsoid_valid_steplengths
 from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.latex import latex_matrix, latex_real
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
+from ..model import Ellipsoid
 from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
 from ..paper.threshold import steplength_threshold
 
@@ -164,14 +167,20 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     :func:`valid_steplengths`: where P is not invariant for x' = Ax there is no
     paper threshold (the plot says so) and the valid set may still hold steps."""
     plt = _plt()
-    V = valid_steplengths(system, polyhedron, method)
-    L = largest_threshold(system, polyhedron, method)
-    try:
-        t = steplength_threshold(system, polyhedron, method)
-        paper, corrected, why_not = t.paper, t.value, None
-    except (NotInvariant, Undecided) as exc:
+    if isinstance(polyhedron, Ellipsoid):  # the paper is about polyhedra: no paper threshold on E
+        V = ellipsoid_valid_steplengths(system, polyhedron, method)
+        L = ellipsoid_largest_threshold(system, polyhedron, method)
         paper = corrected = None
-        why_not = "P is not invariant for x' = Ax" if isinstance(exc, NotInvariant) else "undecided"
+        why_not = "the paper's theorems are about polyhedra"
+    else:
+        V = valid_steplengths(system, polyhedron, method)
+        L = largest_threshold(system, polyhedron, method)
+        try:
+            t = steplength_threshold(system, polyhedron, method)
+            paper, corrected, why_not = t.paper, t.value, None
+        except (NotInvariant, Undecided) as exc:
+            paper = corrected = None
+            why_not = "P is not invariant for x' = Ax" if isinstance(exc, NotInvariant) else "undecided"
     marks = [(paper, "paper", "gray", 0.45), (corrected, "corrected", "royalblue", 0.25),
              (L.value, "largest", "crimson", -0.35)]
     ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if _finite(x)]
@@ -210,8 +219,11 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
 
 
 def plot_images(system, polyhedron, method, dts: Sequence[Any]):
-    """A 2-D polytope P and its images A_d(dt) P; vertices mapped outside P in red."""
+    """A 2-D polytope P (or ellipse E) and its images A_d(dt) P; vertices mapped outside P
+    (for E: the exact witness directions of the steps that fail) in red."""
     plt = _plt()
+    if isinstance(polyhedron, Ellipsoid):
+        return _plot_ellipse_images(plt, system, polyhedron, method, dts)
     if polyhedron.n != 2 or not polyhedron.is_bounded:
         raise InvalidInput("polyhedron: plot_images draws bounded polygons in the plane")
 
@@ -238,5 +250,35 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     ax.set_aspect("equal")
     ax.legend(fontsize=7)
     ax.set_title(f"images of P under {method.name}; red: outside P", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def _plot_ellipse_images(plt, system, E: Ellipsoid, method, dts: Sequence[Any]):
+    """The ellipse E and its images A_d(dt) E (floats for drawing only); for each step
+    where the exact decision fails, the boundary point v/||v||_Q of its witness and its image."""
+    if E.n != 2:
+        raise InvalidInput("ellipsoid: plot_images draws ellipses in the plane")
+    steps = [to_rational(dt, f"dts[{k}]") for k, dt in enumerate(dts)]
+    Q = np.array([[float(v) for v in row] for row in E.Q])
+    C = np.linalg.inv(np.linalg.cholesky(Q)).T  # x = C u with |u| = 1 is the boundary of E
+    u = np.array([np.cos(np.linspace(0, 2 * np.pi, 200)), np.sin(np.linspace(0, 2 * np.pi, 200))])
+    boundary = C @ u
+    fig, ax = plt.subplots(figsize=(4.6, 4.6))
+    ax.fill(*boundary, color="lightgray", alpha=0.7, label="E")
+    cmap = plt.get_cmap("viridis")
+    for k, dt in enumerate(steps):
+        Ad = np.array([[float(v) for v in row] for row in method.matrix(system, dt)])
+        color = cmap(0.85 * k / max(len(steps) - 1, 1))
+        ax.plot(*(Ad @ boundary), color=color, lw=1.2, label=rf"$A_d({_short(dt)})\,E$")
+        decision = ellipsoid_discrete_invariance(system, E, method, dt)
+        if not decision.holds:
+            w = decision.witness
+            x = np.array([float(c) for c in w.v]) / math.sqrt(float(w.norm))
+            ax.plot(*x, "o", color="crimson", ms=5)
+            ax.plot(*(Ad @ x), "x", color="crimson", ms=6)
+    ax.set_aspect("equal")
+    ax.legend(fontsize=7)
+    ax.set_title(f"images of E under {method.name}; red: a witness and its image", fontsize=9)
     fig.tight_layout()
     return fig
