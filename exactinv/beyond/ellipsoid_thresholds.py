@@ -23,13 +23,14 @@ from fractions import Fraction
 
 import flint
 
-from ..core.algebraic import Real, exact_lt
+from ..core.algebraic import Real, exact_eq, upper_bound
 from ..core.encode import encode_real, vec
 from ..core.intervals import complement_of_open
 from ..core.latex import latex_real
 from ..core.psd import psd_decision
 from ..core.results import ExactValueMixin
-from ..core.roots import negative_segments, nonnegative_until, positive_roots, real_roots
+from ..core.polys import no_positive_root_below, positive_right_of_zero
+from ..core.roots import negative_segments, positive_roots, real_roots
 from ..core.scalars import INF, Infinity, fraction_of, matrix_of
 from ..errors import VerificationFailed
 from ..model import Ellipsoid, LinearSystem, Method
@@ -130,17 +131,40 @@ def ellipsoid_valid_steplengths(system: LinearSystem, ellipsoid: Ellipsoid, meth
     EllipsoidValidSteplengths([0, 2/5], method=forward_euler)
     """
     S, E, m, qs, D = _problem(system, ellipsoid, method)
-    bad = [seg for q in qs if not q.is_zero() for seg in negative_segments(q)]
-    singular = [r for r, _ in positive_roots(D)]
-    union = complement_of_open(bad, singular)
+    union, singular, _ = _valid_set(qs, D)
     return EllipsoidValidSteplengths(union, m, tuple(singular), len(qs), len(qs), S, E,
                                      tuple(fraction_of(c) for c in D.coeffs()),
                                      tuple(tuple(fraction_of(c) for c in q.coeffs()) for q in qs))
 
 
+def _valid_set(qs: list[flint.fmpq_poly], D: flint.fmpq_poly):
+    """(the valid set, the poles, owner): ``owner`` maps each bad segment's left end to its k.
+
+    Pruning, exact: the valid set lies in that of q_1 alone; if that is bounded by T,
+    a q_k >= 0 right of 0 with no root in (0, T] (Descartes) cannot change it."""
+    singular = [r for r, _ in positive_roots(D)]
+    bad: list[tuple[Real, Real]] = []
+    owner: list[tuple[Real, int]] = []
+    T: Real = INF
+    for k, q in enumerate(qs, start=1):
+        if q.is_zero() or all(c >= 0 for c in q.coeffs()):
+            continue  # q_k >= 0 on [0, oo)
+        if (not isinstance(T, Infinity) and positive_right_of_zero(q)
+                and no_positive_root_below(q, upper_bound(T))):
+            continue
+        segments = negative_segments(q)
+        bad += segments
+        owner += [(a, k) for a, _ in segments]
+        if k == 1:
+            first = complement_of_open(bad, singular).intervals
+            T = first[-1].hi if first else Fraction(0)
+    return complement_of_open(bad, singular), singular, owner
+
+
 def ellipsoid_largest_threshold(system: LinearSystem, ellipsoid: Ellipsoid, method: Method) -> EllipsoidLargestThreshold:
-    """The exact largest threshold sup{T : A_d(h) E subset of E for all h in [0, T)}:
-    min_k of the first sign change of q_k (0 if some q_k < 0 right of 0), and the first pole.
+    """The exact largest threshold sup{T : A_d(h) E subset of E for all h in [0, T)}: the end
+    of the first interval of the valid set (the first sign change of some q_k, 0 if some q_k < 0
+    right of 0, or the first pole of r(hA), then not attained).
 
     >>> from exactinv.model import methods
     >>> E = Ellipsoid([[1, 0], [0, 1]])
@@ -148,20 +172,13 @@ def ellipsoid_largest_threshold(system: LinearSystem, ellipsoid: Ellipsoid, meth
     Fraction(2, 1)
     """
     S, E, m, qs, D = _problem(system, ellipsoid, method)
-    best: Real = INF
-    binding = None
-    for k, q in enumerate(qs, start=1):
-        if q.is_zero():
-            continue
-        end = nonnegative_until(q)
-        if exact_lt(end, best):
-            best, binding = end, k
-    poles = positive_roots(D)
-    singular = poles[0][0] if poles else None
-    attained = True
-    if singular is not None and not exact_lt(best, singular):
-        best, binding, attained = singular, None, False
-    return EllipsoidLargestThreshold(best, attained, m, None, singular, S, E, (),
+    union, singular, owner = _valid_set(qs, D)
+    first = union.intervals[0]
+    best, attained = first.hi, first.hi_closed or isinstance(first.hi, Infinity)
+    binding = next((k for a, k in owner if not isinstance(best, Infinity) and exact_eq(a, best)), None)
+    if not attained:
+        binding = None
+    return EllipsoidLargestThreshold(best, attained, m, None, singular[0] if singular else None, S, E, (),
                                      tuple(fraction_of(c) for c in D.coeffs()), binding)
 
 
