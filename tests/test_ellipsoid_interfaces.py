@@ -58,3 +58,18 @@ def test_the_oracle_judges_float_thresholds_on_an_ellipsoid():
     Av = [sum(a * x for a, x in zip(row, v)) for row in image]
     assert sum(x * x for x in Av) > sum(x * x for x in v)  # the unit disc: ||A_d v|| > ||v||
     assert ei.oracle.judge_threshold(S, E, ei.methods.forward_euler(), Fraction(2, 5)).status == "tight"
+
+
+def test_plots_and_latex_on_an_ellipsoid():
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    S, E, m = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[2, 1], [1, 3]]), ei.methods.taylor(2)
+    fig = ei.display.plot_images(S, E, m, ["1/4", 1])
+    ax = fig.axes[0]
+    assert "images of E" in ax.get_title()
+    assert any(line.get_color() == "crimson" for line in ax.lines)  # h = 1 fails: its witness is drawn
+    fig = ei.display.plot_valid_set(S, E, m)
+    assert "valid steplengths of taylor(2)" in fig.axes[0].get_title()
+    assert r"x^T" in E._repr_latex_() and "invariant" in ei.continuous_invariance(S, E)._repr_latex_()
+    with pytest.raises(ei.ExactinvError, match="ellipsoid: plot_images"):
+        ei.display.plot_images(ei.LinearSystem([[-1]]), ei.Ellipsoid([[1]]), m, [1])
