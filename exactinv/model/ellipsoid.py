@@ -68,7 +68,10 @@ class Ellipsoid(LatexMixin):
         :class:`~exactinv.InvalidInput` if the SDP is infeasible (A is not
         Hurwitz) and :class:`~exactinv.Undecided` if no rounding proves it.
 
-        >>> E = Ellipsoid.from_lyapunov([[-1, 2], [0, -1]])   # doctest: +SKIP
+        >>> E = Ellipsoid.from_lyapunov([[-1, 2], [0, -1]])
+        >>> L = lyapunov_matrix([[-1, 2], [0, -1]], E.Q)
+        >>> psd_decision(E.Q).definite, psd_decision([[-v for v in row] for row in L]).definite
+        (True, True)
         """
         import cvxpy as cp  # optional extra
 
