@@ -73,3 +73,11 @@ def test_plots_and_latex_on_an_ellipsoid():
     assert r"x^T" in E._repr_latex_() and "invariant" in ei.continuous_invariance(S, E)._repr_latex_()
     with pytest.raises(ei.ExactinvError, match="ellipsoid: plot_images"):
         ei.display.plot_images(ei.LinearSystem([[-1]]), ei.Ellipsoid([[1]]), m, [1])
+
+
+@pytest.mark.parametrize("call", [lambda S, E: ei.optimal_gamma(S, E),
+                                  lambda S, E: ei.steplength_threshold(S, E, ei.methods.taylor(2)),
+                                  lambda S, E: ei.compare_thresholds(S, E, ei.methods.taylor(2))])
+def test_the_paper_s_polyhedral_results_refuse_an_ellipsoid_and_say_what_works(call):
+    with pytest.raises(ei.ExactinvError, match="got an Ellipsoid.*largest_threshold"):
+        call(ei.LinearSystem([[-1]]), ei.Ellipsoid([[1]]))

@@ -13,20 +13,28 @@ from __future__ import annotations
 from typing import Any
 
 from ..beyond import largest as polyhedral
-from ..beyond.ellipsoid_invariance import ellipsoid_continuous_invariance, ellipsoid_discrete_invariance
+from ..beyond.ellipsoid_invariance import (
+    EllipsoidInvariance,
+    ellipsoid_continuous_invariance,
+    ellipsoid_discrete_invariance,
+)
 from ..beyond.ellipsoid_thresholds import (
+    EllipsoidForwardEulerThreshold,
     ellipsoid_forward_euler_threshold,
     ellipsoid_largest_threshold,
     ellipsoid_valid_steplengths,
 )
+from ..beyond.largest import LargestThreshold, ValidSteplengths
 from ..model import Ellipsoid
 from ..paper import forward_euler as paper_fe, invariance as paper_inv
+from ..paper.forward_euler import ForwardEulerThreshold
+from ..paper.invariance import ContinuousInvariance, DiscreteInvariance
 
 __all__ = ["continuous_invariance", "discrete_invariance", "forward_euler_threshold", "valid_steplengths",
            "largest_threshold"]
 
 
-def continuous_invariance(system: Any, invariant_set: Any):
+def continuous_invariance(system: Any, invariant_set: Any) -> ContinuousInvariance | EllipsoidInvariance:
     """Is the set (a Polyhedron or an Ellipsoid) invariant for x' = Ax?  Exact, with a certificate.
 
     >>> from exactinv import LinearSystem, Ellipsoid
@@ -38,7 +46,8 @@ def continuous_invariance(system: Any, invariant_set: Any):
     return paper_inv.continuous_invariance(system, invariant_set)
 
 
-def discrete_invariance(Ad: Any, invariant_set: Any, method: Any = None, dt: Any = None, *, allow_float: bool = False):
+def discrete_invariance(Ad: Any, invariant_set: Any, method: Any = None, dt: Any = None, *,
+                        allow_float: bool = False) -> DiscreteInvariance | EllipsoidInvariance:
     """Is the set mapped into itself by x+ = A_d x (A_d a matrix, or r(dt A) from a system, a method and dt)?
 
     >>> from exactinv import Ellipsoid
@@ -50,7 +59,7 @@ def discrete_invariance(Ad: Any, invariant_set: Any, method: Any = None, dt: Any
     return paper_inv.discrete_invariance(Ad, invariant_set, method, dt, allow_float=allow_float)
 
 
-def forward_euler_threshold(system: Any, invariant_set: Any):
+def forward_euler_threshold(system: Any, invariant_set: Any) -> ForwardEulerThreshold | EllipsoidForwardEulerThreshold:
     """The largest forward-Euler step, exact and cross-checked two ways.
 
     >>> from exactinv import LinearSystem, Ellipsoid
@@ -62,7 +71,7 @@ def forward_euler_threshold(system: Any, invariant_set: Any):
     return paper_fe.forward_euler_threshold(system, invariant_set)
 
 
-def valid_steplengths(system: Any, invariant_set: Any, method: Any):
+def valid_steplengths(system: Any, invariant_set: Any, method: Any) -> ValidSteplengths:
     """The exact set of valid steplengths h >= 0, a union of intervals with exact ends.
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
@@ -74,7 +83,7 @@ def valid_steplengths(system: Any, invariant_set: Any, method: Any):
     return polyhedral.valid_steplengths(system, invariant_set, method)
 
 
-def largest_threshold(system: Any, invariant_set: Any, method: Any):
+def largest_threshold(system: Any, invariant_set: Any, method: Any) -> LargestThreshold:
     """The exact largest threshold: the end of the first interval of the valid set.
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import EmptyPolyhedron, InvalidInput
+from .ellipsoid import Ellipsoid
 from .methods import Method
 from .polyhedron import Polyhedron
 from .system import LinearSystem
@@ -14,8 +15,15 @@ from .system import LinearSystem
 __all__ = ["check_polyhedron", "check_pair", "check_method", "check_problem"]
 
 
+_FOR_ELLIPSOIDS = ("; gamma* and the paper's thresholds are about polyhedra -- on an Ellipsoid use "
+                   "continuous_invariance, discrete_invariance, forward_euler_threshold, valid_steplengths "
+                   "or largest_threshold")
+
+
 def check_polyhedron(P: Any) -> Polyhedron:
     """P itself, if it is a nonempty :class:`Polyhedron`."""
+    if isinstance(P, Ellipsoid):
+        raise InvalidInput(f"polyhedron: got an Ellipsoid{_FOR_ELLIPSOIDS}")
     if not isinstance(P, Polyhedron):
         raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
     if P.is_empty:
@@ -34,6 +42,8 @@ def check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
     """(S, P), if S is a :class:`LinearSystem` and P a nonempty polyhedron of its dimension."""
     if not isinstance(S, LinearSystem):
         raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
+    if isinstance(P, Ellipsoid):
+        raise InvalidInput(f"polyhedron: got an Ellipsoid{_FOR_ELLIPSOIDS}")
     if not isinstance(P, Polyhedron):
         raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
     if S.n != P.n:
