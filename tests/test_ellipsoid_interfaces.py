@@ -77,7 +77,7 @@ def test_plots_and_latex_on_an_ellipsoid():
 
 @pytest.mark.parametrize("call", [lambda S, E: ei.optimal_gamma(S, E),
                                   lambda S, E: ei.steplength_threshold(S, E, ei.methods.taylor(2)),
-                                  lambda S, E: ei.compare_thresholds(S, E, ei.methods.taylor(2))])
+                                  lambda S, E: ei.compare_thresholds(S, E, [ei.methods.taylor(2)])])
 def test_the_paper_s_polyhedral_results_refuse_an_ellipsoid_and_say_what_works(call):
     with pytest.raises(ei.ExactinvError, match="got an Ellipsoid.*largest_threshold"):
         call(ei.LinearSystem([[-1]]), ei.Ellipsoid([[1]]))
