@@ -22,10 +22,12 @@ def _rotation(a, b):
 
 
 def _sign_changes_at(p, tau):
-    """p (low to high) is >= 0 on [0, lower(tau)] sampled, and < 0 just after tau's upper end."""
+    """tau is a root of p (low to high) -- p changes sign across its enclosure, or vanishes
+    at a rational tau -- p >= 0 at samples of [0, tau] and p < 0 just after tau."""
     ev = lambda x: sum(c * x**k for k, c in enumerate(p))  # noqa: E731
     lo, hi = (tau, tau) if isinstance(tau, Fraction) else (tau.lower, tau.upper)
-    return ev(hi + Fraction(1, 10**6)) < 0 and all(ev(lo * k / 16) >= 0 for k in range(17))
+    root = ev(tau) == 0 if isinstance(tau, Fraction) else ev(lo) * ev(hi) < 0
+    return root and ev(hi + Fraction(1, 10**6)) < 0 and all(ev(lo * k / 16) >= 0 for k in range(17))
 
 
 # ------------------------------------------------------------- closed forms
@@ -51,6 +53,7 @@ def test_taylor2_on_the_unit_disc_by_hand(a, b):
     hand = [2 * a, -2 * a * a, a * rho2, -rho2 * rho2 / 4]
     t = ei.largest_threshold(_rotation(a, b), DISC, ei.methods.taylor(2))
     assert t.attained and _sign_changes_at(hand, t.value)
+    assert ei.first_sign_change(hand) == t.value  # the first sign change of the hand-made cubic
     assert ei.check(t.certificate).ok
 
 

@@ -4,8 +4,11 @@ forged witnesses, claims on the wrong kind of problem)."""
 
 import copy
 import json
+from fractions import Fraction
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.certificates import certificate
@@ -155,3 +158,33 @@ def test_a_wrong_determinant_is_rejected():
     cert = _cert(S, E, m, [ei.valid_steplengths(S, E, m)])
     _claim(cert, "ellipsoid_valid_steplengths")["determinant"] = ["1", "2"]
     _rejected(cert, "det h")
+
+
+@st.composite
+def _problems(draw):
+    n = draw(st.integers(1, 2))
+    entry = st.builds(Fraction, st.integers(-4, 4), st.integers(1, 3))
+    A = [[draw(entry) for _ in range(n)] for _ in range(n)]
+    B = [[draw(entry) for _ in range(n)] for _ in range(n)]
+    Q = [[sum(B[k][i] * B[k][j] for k in range(n)) + (i == j) for j in range(n)] for i in range(n)]
+    method = draw(st.sampled_from([ei.methods.taylor(1), ei.methods.taylor(2), ei.methods.theta("1/4"),
+                                   ei.methods.pade(1, 1), GAP_METHOD]))
+    return ei.LinearSystem(A), ei.Ellipsoid(Q), method
+
+
+@given(_problems())
+@settings(max_examples=15)
+def test_every_end_is_checked_exactly(case):
+    """A genuine certificate verifies; moving any finite end to a nearby rational is rejected."""
+    S, E, m = case
+    V = ei.valid_steplengths(S, E, m)
+    cert = _cert(S, E, m, [V])
+    for k, iv in enumerate(V):
+        for key in ("lo", "hi"):
+            end = getattr(iv, key)
+            if end == ei.INF or (key == "lo" and end == 0):
+                continue
+            moved = (end.upper if key == "hi" else end.lower) if not isinstance(end, Fraction) else end + Fraction(1, 1000)
+            forged = copy.deepcopy(cert)
+            forged["claims"][0]["intervals"][k][key] = str(moved)
+            _rejected(forged)
