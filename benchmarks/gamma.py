@@ -31,7 +31,7 @@ import cvxpy as cp
 import numpy as np
 
 import exactinv as ei
-from exactinv.lp.solver import _ppl_maximize
+from exactinv.lp.exact import ppl_maximize
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 
@@ -92,7 +92,7 @@ def time_ppl(S, P):
     for j in range(m):
         rhs = flint.fmpq_mat(n + 1, 1, [GA[j, i] for i in range(n)] + [0])
         c = flint.fmpq_mat(m, 1, [int(k == j) for k in range(m)])
-        status, x = _ppl_maximize(constraint, [True] * n + [False], rhs, c, [k != j for k in range(m)])
+        status, x = ppl_maximize(constraint, [True] * n + [False], rhs, c, [k != j for k in range(m)])
         value = -Fraction(int(x[j, 0].p), int(x[j, 0].q)) if status == "optimal" else None
         best = value if best is None or (value is not None and value > best) else best
         done += 1

@@ -4,8 +4,34 @@ import flint
 from hypothesis import given
 from hypothesis import strategies as st
 
-from exactinv.lp import solver as lp
+import numpy as np
+
+from exactinv.core.scalars import INF
 from exactinv.lp import ExactLPSolver, solve_lp
+from exactinv.lp.exact import ppl_maximize
+from exactinv.lp.hint import UNKNOWN_HINT, Hint, HighsHint, HintBackend, HintModel, LPStatus
+from exactinv.lp.reconstruct import basis_solution, exact_pivots
+from exactinv.lp.verify import LPData, verify_optimal
+
+
+class _Scripted(HintBackend):
+    """A hint backend that answers every LP with ``answer(highs_hint)``."""
+
+    def __init__(self, answer):
+        self.answer = answer
+
+    def model(self, A, equality):
+        inner, answer = HighsHint().model(A, equality), self.answer
+
+        class _Model(HintModel):
+            def solve(self, cost, rhs, nonneg):
+                return answer(inner.solve(cost, rhs, nonneg))
+
+        return _Model()
+
+
+def _col(values):
+    return flint.fmpq_mat(len(values), 1, [flint.fmpq(v.numerator, v.denominator) for v in map(Fraction, values)])
 
 
 def _verify(A, eq, b, c, nonneg, res):
@@ -38,8 +64,8 @@ def _verify(A, eq, b, c, nonneg, res):
             assert ad == 0 if eq[r] else ad <= 0
 
 
-def _solve(A, eq, b, c, nonneg):
-    res = solve_lp(flint.fmpq_mat(A), eq, b, c, nonneg)
+def _solve(A, eq, b, c, nonneg, hint=None):
+    res = solve_lp(flint.fmpq_mat(A), eq, b, c, nonneg, hint)
     _verify(A, eq, b, c, nonneg, res)
     return res
 
@@ -57,32 +83,52 @@ def test_infeasible_has_farkas():
 
 def test_unbounded_has_ray():
     res = _solve([[1, -1], [-1, 0]], [False, False], [1, 0], [1, 1], [False, False])
-    assert res.status == "unbounded" and res.value == lp.INF
+    assert res.status == "unbounded" and res.value == INF
 
 
-def test_basis_solve_when_rounding_fails(monkeypatch):
-    monkeypatch.setattr(lp, "_snapped", lambda v, tol=1e-9: (flint.fmpq_mat(len(v), 1, [flint.fmpq(round(x * 10**9) + 1, 10**9) for x in v]), True))
-    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
+def test_basis_solve_when_rounding_fails():
+    # the hint's floats pushed 3e-7 off the vertex: rounding cannot verify, the basis solve does
+    off = _Scripted(lambda h: Hint(h.status, h.x + 3e-7, h.y + 3e-7, h.basis))
+    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True], hint=off)
     assert res.path == "float-basis"
 
 
-def test_exact_fallback_when_float_hint_is_useless(monkeypatch):
-    monkeypatch.setattr(ExactLPSolver, "_reconstructions", lambda self, *a: iter(()))
-    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True])
+def test_basis_solution_is_the_exact_vertex():
+    data = LPData(flint.fmpq_mat([[7, 3], [2, 9]]), (False, False))
+    b, c = _col([Fraction(1, 3), Fraction(2, 7)]), _col([1, 1])
+    x, y = basis_solution(data, c, b, ((0, 1), (0, 1)))
+    # 7x1 + 3x2 = 1/3, 2x1 + 9x2 = 2/7  =>  x = (1/57 * (3 - 6/7), ...) checked by substitution
+    assert 7 * x[0, 0] + 3 * x[1, 0] == flint.fmpq(1, 3) and 2 * x[0, 0] + 9 * x[1, 0] == flint.fmpq(2, 7)
+    assert y.entries() == [flint.fmpq(7, 57), flint.fmpq(4, 57)]
+    assert verify_optimal(data, c, b, (True, True), x, y)
+    assert basis_solution(data, c, b, ((0, 1), (0,))) is None  # not square: no vertex
+
+
+def test_exact_fallback_when_float_hint_is_useless():
+    # an "optimal" hint at a wrong point with a basis that is not a vertex: nothing to reconstruct
+    useless = _Scripted(lambda h: Hint(LPStatus.OPTIMAL, np.zeros(2), np.zeros(2), ((0, 1), (0,))))
+    res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True], hint=useless)
     assert res.path == "exact-ppl"
     # dual: 7y1 + 2y2 = 1, 3y1 + 9y2 = 1  =>  y = (7/57, 4/57)
     assert res.value == Fraction(1, 3) * Fraction(7, 57) + Fraction(2, 7) * Fraction(4, 57)
 
 
-def test_exact_fallback_when_float_solver_gives_up(monkeypatch):
-    monkeypatch.setattr(ExactLPSolver, "_float_solve", lambda self, *a: lp.Hint(lp.UNKNOWN))
+def test_exact_fallback_when_float_solver_gives_up():
+    gives_up = _Scripted(lambda h: UNKNOWN_HINT)
     for status, data in [
         ("optimal", ([[1, 2]], [False], [4], [1, 1], [True, True])),
         ("infeasible", ([[1], [-1]], [False, False], [0, -1], [1], [False])),
         ("unbounded", ([[1, -1]], [False], [0], [1, 1], [True, True])),
     ]:
-        res = _solve(*data)
+        res = _solve(*data, hint=gives_up)
         assert res.status == status
+
+
+def test_lying_hints_cannot_change_the_answer():
+    """A backend that calls every LP infeasible (or unbounded) still yields the verified answer."""
+    for lie in (LPStatus.INFEASIBLE, LPStatus.UNBOUNDED):
+        res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True], hint=_Scripted(lambda h: Hint(lie)))
+        assert res.status == "optimal" and res.value == Fraction(1, 2)
 
 
 small = st.integers(-4, 4)
@@ -98,7 +144,7 @@ def test_random_lps_match_exact_ppl(data, draw):
     b = draw.draw(st.lists(small, min_size=len(A), max_size=len(A)))
     eq = draw.draw(st.lists(st.booleans(), min_size=len(A), max_size=len(A)))
     res = _solve(A, eq, b, c, nonneg)
-    status, x = lp._ppl_maximize(flint.fmpq_mat(A), eq, flint.fmpq_mat(len(b), 1, b), flint.fmpq_mat(len(c), 1, c), nonneg)
+    status, x = ppl_maximize(flint.fmpq_mat(A), eq, flint.fmpq_mat(len(b), 1, b), flint.fmpq_mat(len(c), 1, c), nonneg)
     assert res.status == status
     if status == "optimal":
         assert res.value == sum(ci * Fraction(int(xi.p), int(xi.q)) for ci, xi in zip(c, x.entries()))
@@ -110,15 +156,15 @@ def test_coefficients_beyond_double_range_take_the_exact_route():
     assert res.status == "optimal" and res.value == 8 * big and res.path == "exact-ppl"
 
 
-def test_exact_pivots_repair_a_wrong_basis(monkeypatch):
+def test_exact_pivots_repair_a_wrong_basis():
     """A float basis that is feasible but not optimal is repaired by exact simplex steps."""
     A = [[1, 1], [1, -1], [-1, 0], [0, -1]]
-    solver = lp.ExactLPSolver(flint.fmpq_mat(A), [False] * 4)
-    c, b = [1, 2], [4, 1, 0, 0]
+    data = LPData(flint.fmpq_mat(A), (False,) * 4)
+    c, b = _col([1, 2]), _col([4, 1, 0, 0])
     basis = ((0, 1), (1, 3))  # basic columns 0, 1; the vertex (1, 0): tight rows 1 and 3
-    x, y = solver._exact_pivots(lp._column(c), lp._column(b), (False, False), basis)
+    x, y = exact_pivots(data, c, b, (False, False), basis)
     assert [v for v in x.entries()] == [0, 4]  # the optimum, reached by pivoting
-    assert solver._verify_optimal(lp._column(c), lp._column(b), (False, False), x, y)
+    assert verify_optimal(data, c, b, (False, False), x, y)
 
 
 def test_badly_scaled_rows_still_get_a_float_hint():

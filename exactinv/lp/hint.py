@@ -123,51 +123,56 @@ class _HighsModel(HintModel):
 
     def solve(self, cost, rhs, nonneg):
         cost = -cost  # HiGHS minimizes
-        lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
-        upper = np.full(self.N, highspy.kHighsInf)
+        lower = np.where(np.asarray(nonneg, dtype=bool), 0.0, -highspy.kHighsInf) if self.N else np.zeros(0)
         row_lower = np.where(self.equality, rhs, -highspy.kHighsInf)
-        h = self._highs
-        if h is None:
-            h = highspy.Highs()
-            h.setOptionValue("output_flag", False)
-            h.setOptionValue("presolve", "off")
-            lp = highspy.HighsLp()
-            lp.num_col_, lp.num_row_ = self.N, self.R
-            lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, lower, upper
-            lp.row_lower_, lp.row_upper_ = row_lower, rhs
-            cols = self.A.T
-            nz = [np.nonzero(cols[i])[0] for i in range(self.N)]
-            lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-            lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum([len(z) for z in nz])]).astype(np.int32)
-            lp.a_matrix_.index_ = np.concatenate(nz).astype(np.int32) if nz else np.zeros(0, np.int32)
-            lp.a_matrix_.value_ = np.concatenate([cols[i][z] for i, z in enumerate(nz)]) if nz else np.zeros(0)
-            h.passModel(lp)
-            self._highs = h
+        if self._highs is None:
+            self._highs = self._build(cost, lower, row_lower, rhs)
         else:
-            idx = np.arange(self.N, dtype=np.int32)
-            h.changeColsCost(self.N, idx, cost)
-            h.changeColsBounds(self.N, idx, lower, upper)
-            ridx = np.arange(self.R, dtype=np.int32)
-            h.changeRowsBounds(self.R, ridx, row_lower, rhs)
+            self._update(cost, lower, row_lower, rhs)
+        h = self._highs
         h.run()
         status = h.getModelStatus()
         S = highspy.HighsModelStatus
         if status == S.kOptimal:
             sol = h.getSolution()
-            return Hint(LPStatus.OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), _highs_basis(h.getBasis()))
-        if status == S.kInfeasible:
-            return Hint(LPStatus.INFEASIBLE)
-        if status == S.kUnbounded:
-            return Hint(LPStatus.UNBOUNDED)
+            return Hint(LPStatus.OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), self._basis())
+        if status in (S.kInfeasible, S.kUnbounded):
+            return Hint(LPStatus.INFEASIBLE if status == S.kInfeasible else LPStatus.UNBOUNDED)
         self._highs = None  # a model in an odd state is rebuilt next time
         return UNKNOWN_HINT
 
+    def _build(self, cost, lower, row_lower, rhs) -> highspy.Highs:
+        h = highspy.Highs()
+        h.setOptionValue("output_flag", False)
+        h.setOptionValue("presolve", "off")
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = self.N, self.R
+        lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, lower, np.full(self.N, highspy.kHighsInf)
+        lp.row_lower_, lp.row_upper_ = row_lower, rhs
+        cols = self.A.T
+        nz = [np.nonzero(cols[i])[0] for i in range(self.N)]
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum([len(z) for z in nz])]).astype(np.int32)
+        lp.a_matrix_.index_ = np.concatenate(nz).astype(np.int32) if nz else np.zeros(0, np.int32)
+        lp.a_matrix_.value_ = np.concatenate([cols[i][z] for i, z in enumerate(nz)]) if nz else np.zeros(0)
+        h.passModel(lp)
+        return h
 
-def _highs_basis(basis: highspy.HighsBasis) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    """(basic columns, tight rows = rows whose slack is nonbasic) of a HiGHS basis."""
-    basic = highspy.HighsBasisStatus.kBasic
-    return (tuple(i for i, st in enumerate(basis.col_status) if st == basic),
-            tuple(r for r, st in enumerate(basis.row_status) if st != basic))
+    def _update(self, cost, lower, row_lower, rhs) -> None:
+        h, idx, ridx = self._highs, np.arange(self.N, dtype=np.int32), np.arange(self.R, dtype=np.int32)
+        h.changeColsCost(self.N, idx, cost)
+        h.changeColsBounds(self.N, idx, lower, np.full(self.N, highspy.kHighsInf))
+        h.changeRowsBounds(self.R, ridx, row_lower, rhs)
+
+    def _basis(self) -> tuple[tuple[int, ...], tuple[int, ...]] | None:
+        """(basic columns, tight rows = rows whose slack is nonbasic).  (Not
+        ``getBasicVariables``: highspy 1.15 crashes on it for LPs solved without pivots.)"""
+        basis = self._highs.getBasis()
+        if not basis.valid:
+            return None
+        basic = highspy.HighsBasisStatus.kBasic
+        return (tuple(i for i, st in enumerate(basis.col_status) if st == basic),
+                tuple(r for r, st in enumerate(basis.row_status) if st != basic))
 
 
 # ----------------------------------------------------------------- cvxpy

@@ -1,0 +1,83 @@
+"""Step 1 of the exact LP engine: the float image of an exact LP family.
+
+The exact data are mapped to doubles once, rows scaled for the float model
+only, and handed to a hint backend (:mod:`exactinv.lp.hint`); what comes back
+is sanitised (a malformed hint or basis is dropped) and scaled back.  Nothing
+here is trusted: every hint is reconstructed and verified in Q afterwards.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import flint
+import numpy as np
+
+from .hint import UNKNOWN_HINT, Hint, HintBackend, HintModel, LPStatus
+
+__all__ = ["FloatLP"]
+
+
+class FloatLP:
+    """Step 1 of the exact LP engine: the float image of an exact LP family.
+
+    The float model of the exact R x N matrix ``A`` is built once (rows
+    scaled to max-norm 1 for the float model only: PPL-made rows can carry
+    10^15-sized integers) and re-solved with new data; the hint's duals are
+    scaled back to the exact rows, and a malformed hint or basis is dropped.
+    Data beyond double range give an UNKNOWN hint (the exact route only).
+
+    >>> from exactinv.lp.hint import HighsHint
+    >>> lp = FloatLP(flint.fmpq_mat([[10**12, 0], [0, 1]]), (False, False), HighsHint())
+    >>> hint = lp.solve(flint.fmpq_mat([[1], [1]]), flint.fmpq_mat([[10**12], [2]]), (False, False))
+    >>> hint.status, hint.x.tolist(), hint.y.tolist()
+    (<LPStatus.OPTIMAL: 'optimal'>, [1.0, 2.0], [1e-12, 1.0])
+    """
+
+    def __init__(self, A: flint.fmpq_mat, equality: Sequence[bool], backend: HintBackend):
+        self.R, self.N = A.nrows(), A.ncols()
+        self.equality, self.backend = tuple(equality), backend
+        self._model: HintModel | None = None
+        self.A: np.ndarray | None = None
+        floats = _floats(A.entries())
+        if floats is not None:
+            A_float = floats.reshape(self.R, self.N)
+            norms = np.abs(A_float).max(axis=1) if self.N else np.ones(self.R)
+            self.row_scale = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
+            self.A = A_float * self.row_scale[:, None]
+
+    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Sequence[bool]) -> Hint:
+        """The backend's float answer for max c.x s.t. A x (= | <=) b, x_i >= 0 (nonneg)."""
+        cost, rhs = _floats(c.entries()), _floats(b.entries())
+        if self.A is None or cost is None or rhs is None:
+            return UNKNOWN_HINT
+        if self._model is None:
+            self._model = self.backend.model(self.A, self.equality)
+        hint = self._model.solve(cost, rhs * self.row_scale, nonneg)
+        if hint.status != LPStatus.OPTIMAL:
+            return hint
+        if (hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R
+                or not (np.all(np.isfinite(hint.x)) and np.all(np.isfinite(hint.y)))):
+            return UNKNOWN_HINT  # a malformed hint is no hint
+        basis = hint.basis if self._well_formed(hint.basis) else None  # else guessed from the point
+        return Hint(LPStatus.OPTIMAL, np.asarray(hint.x, dtype=float), np.asarray(hint.y, dtype=float) * self.row_scale,
+                    basis)
+
+    def rhs(self, b: flint.fmpq_mat) -> np.ndarray:
+        """The float image of the right-hand side b, scaled like the model's rows."""
+        return _floats(b.entries()) * self.row_scale
+
+    def _well_formed(self, basis: tuple[tuple[int, ...], tuple[int, ...]] | None) -> bool:
+        if basis is None or len(basis) != 2:
+            return False
+        cols, rows = basis
+        return (all(0 <= i < self.N for i in cols) and all(0 <= r < self.R for r in rows)
+                and len(set(cols)) == len(cols) and len(set(rows)) == len(rows))
+
+
+def _floats(values: Sequence[Any]) -> np.ndarray | None:
+    """The float images of exact values, or None if one overflows a double."""
+    try:
+        return np.array([float(v) for v in values], dtype=float)
+    except OverflowError:
+        return None
