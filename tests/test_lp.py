@@ -65,7 +65,8 @@ def _verify(A, eq, b, c, nonneg, res):
 
 
 def _solve(A, eq, b, c, nonneg, hint=None):
-    res = solve_lp(flint.fmpq_mat(A), eq, b, c, nonneg, hint)
+    exact = [[flint.fmpq(Fraction(v).numerator, Fraction(v).denominator) for v in row] for row in A]
+    res = solve_lp(flint.fmpq_mat(exact), eq, b, c, nonneg, hint)
     _verify(A, eq, b, c, nonneg, res)
     return res
 
@@ -171,3 +172,93 @@ def test_badly_scaled_rows_still_get_a_float_hint():
     big = 10**15
     res = _solve([[big, big], [1, -1], [-3 * big, 0]], [False] * 3, [4 * big, 1, 0], [1, 2], [False, False])
     assert res.status == "optimal" and res.path != "exact-ppl"
+
+
+# ------------------------------------------------------------- issue 13, item 5
+# Rows scaled by 10^k (|k| <= 30) describe the same polyhedron; the engine must end
+# in the verified answer (never a RecursionError), equal to pplpy's on the unscaled rows.
+from math import gcd  # noqa: E402
+
+import ppl  # noqa: E402
+import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
+
+import exactinv as ei  # noqa: E402
+
+
+def _ppl_max(G, b, c, nonneg=None, eq=None):
+    """pplpy's exact max of c.x over {G x (= | <=) b, x_i >= 0 (nonneg)}: ('optimal', value) or the status."""
+    n = len(c)
+    cs = ppl.Constraint_System()
+    for r, (row, rhs) in enumerate(zip(G, b)):
+        d = 1
+        for v in list(row) + [rhs]:
+            d = d * Fraction(v).denominator // gcd(d, Fraction(v).denominator)
+        expr = ppl.Linear_Expression([int(Fraction(v) * d) for v in row], -int(Fraction(rhs) * d))
+        cs.insert(expr == 0 if eq and eq[r] else expr <= 0)
+    for i in range(n):
+        if nonneg and nonneg[i]:
+            cs.insert(ppl.Variable(i) >= 0)
+    d = 1
+    for v in c:
+        d = d * Fraction(v).denominator // gcd(d, Fraction(v).denominator)
+    mip = ppl.MIP_Problem(n, cs, ppl.Linear_Expression([int(Fraction(v) * d) for v in c], 0), "maximization")
+    status = mip.solve()["status"]
+    if status != "optimized":
+        return "infeasible" if status == "unfeasible" else "unbounded", None
+    value = mip.optimal_value()
+    return "optimal", Fraction(int(value.numerator), int(value.denominator)) / d
+
+
+def _reference_gamma(G, b, A):
+    """gamma* by pplpy, row by row: max_j -max{h_j : h^T G = g_j^T A, h^T b <= 0, h_k >= 0 (k != j)}."""
+    m, n = len(G), len(A)
+    GA = [[sum(Fraction(G[j][k]) * A[k][i] for k in range(n)) for i in range(n)] for j in range(m)]
+    rows = [[G[k][i] for k in range(m)] for i in range(n)] + [list(b)]
+    best = None
+    for j in range(m):
+        status, value = _ppl_max(rows, GA[j] + [0], [int(k == j) for k in range(m)],
+                                 [k != j for k in range(m)], [True] * n + [False])
+        gamma = ei.INF if status == "infeasible" else -ei.INF if status == "unbounded" else -value
+        best = gamma if best is None or gamma > best else best
+    return best
+
+
+_scaled_rows = st.integers(1, 3).flatmap(lambda n: st.tuples(
+    st.lists(st.tuples(st.lists(st.integers(-3, 3), min_size=n, max_size=n),
+                       st.fractions(-3, 3, max_denominator=3), st.integers(-30, 30)), min_size=1, max_size=5),
+    st.lists(st.lists(st.integers(-2, 2), min_size=n, max_size=n), min_size=n, max_size=n),
+    st.lists(st.integers(-2, 2), min_size=n, max_size=n),
+))
+
+
+def test_badly_scaled_empty_interval_is_verified_empty():
+    """The reproduction of issue 13: P = {3x <= -2/3, -2e30 x <= 0, 1e10 x <= 2e10} is empty
+    (x <= -2/9 and x >= 0); a RecursionError before the engine's auxiliary LPs were bounded."""
+    G, b = [[3], [-2 * 10**30], [10**10]], [Fraction(-2, 3), 0, 2 * 10**10]
+    res = _solve(G, [False] * 3, b, [1], [False])
+    assert res.status == "infeasible"
+    with pytest.raises(ei.EmptyPolyhedron):
+        ei.optimal_gamma(ei.LinearSystem([[-1]]), ei.Polyhedron(G, b))
+
+
+@settings(max_examples=60, deadline=None)
+@given(_scaled_rows)
+def test_rows_scaled_by_powers_of_ten_match_pplpy(data):
+    rows, A, c = data
+    G = [[v * Fraction(10) ** k for v in row] for row, _, k in rows]
+    b = [rhs * Fraction(10) ** k for _, rhs, k in rows]
+    G0, b0 = [row for row, _, _ in rows], [rhs for _, rhs, _ in rows]
+    n = len(c)
+    res = _solve(G, [False] * len(G), b, c, [False] * n)
+    status, value = _ppl_max(G0, b0, c)
+    assert res.status == status
+    if status == "optimal":
+        assert res.value == value
+    if not all(any(row) for row in G0):
+        return  # Polyhedron rejects a zero row (InvalidInput); the LP above covered it
+    if status == "infeasible":
+        with pytest.raises(ei.EmptyPolyhedron):
+            ei.optimal_gamma(ei.LinearSystem(A), ei.Polyhedron(G, b))
+    else:
+        assert ei.optimal_gamma(ei.LinearSystem(A), ei.Polyhedron(G, b)).value == _reference_gamma(G0, b0, A)

@@ -173,10 +173,11 @@ class ExactLPSolver:
         return results
 
     # ------------------------------------------------------------ the chain
-    def _solve(self, cq: flint.fmpq_mat, bq: flint.fmpq_mat, nonneg: tuple[bool, ...], bounded: bool) -> LPResult:
-        """The chain for one LP.  ``bounded``: an auxiliary LP, optimal by
-        construction, so a hint saying otherwise is a lie and the exact route
-        is taken at once (no failure certificate is ever built for it)."""
+    def _solve(self, cq: flint.fmpq_mat, bq: flint.fmpq_mat, nonneg: tuple[bool, ...], bounded: bool) -> LPResult | None:
+        """The chain for one LP.  ``bounded``: an auxiliary LP of a failure
+        certificate, bounded by construction, so a hint saying otherwise is a
+        lie and the exact route is taken at once; no failure certificate is
+        ever built for it (None if it has no optimum after all)."""
         hint = self.float_lp.solve(cq, bq, nonneg)
         if hint.status == OPTIMAL:
             for path, x, y in self._reconstructions(cq, bq, nonneg, hint):
@@ -235,7 +236,7 @@ class ExactLPSolver:
         rows = [[-self.A[r, i] for r in range(self.R)] for i in range(self.N)] + [[-bq[r, 0] for r in range(self.R)]]
         aux = ExactLPSolver(flint.fmpq_mat(rows), [not nonneg[i] for i in range(self.N)] + [False], self.hint_backend)
         res = aux._solve(-bq, _column([0] * self.N + [1]), tuple(not e for e in self.equality), bounded=True)
-        if res.status != OPTIMAL or not verify_farkas(self.data, bq, nonneg, res.x_q):
+        if res is None or not verify_farkas(self.data, bq, nonneg, res.x_q):
             return None
         return LPResult(INFEASIBLE, None, None, res.x_q, None, res.path)
 
@@ -243,22 +244,24 @@ class ExactLPSolver:
         """A feasible point (max 0 over the same set) and a ray (max c.d over the
         recession cone cut by c.d <= 1)."""
         point = self._solve(flint.fmpq_mat(self.N, 1), bq, nonneg, bounded=True)
-        if point.status != OPTIMAL:
+        if point is None:
             return None
         rows = [[self.A[r, i] for i in range(self.N)] for r in range(self.R)] + [[cq[i, 0] for i in range(self.N)]]
         cone = ExactLPSolver(flint.fmpq_mat(rows), list(self.equality) + [False], self.hint_backend)
         ray = cone._solve(cq, _column([0] * self.R + [1]), nonneg, bounded=True)
-        if ray.status != OPTIMAL or not verify_ray(self.data, cq, nonneg, ray.x_q):
+        if ray is None or not verify_ray(self.data, cq, nonneg, ray.x_q):
             return None
         return LPResult(UNBOUNDED, INF, point.x_q, None, ray.x_q, ray.path)
 
-    def _exact_solve(self, cq, bq, nonneg, bounded: bool) -> LPResult:
+    def _exact_solve(self, cq, bq, nonneg, bounded: bool) -> LPResult | None:
         status, x = ppl_maximize(self.A, self.equality, bq, cq, nonneg)
         if status == OPTIMAL:
             dstatus, y = ppl_dual(self.A, self.equality, bq, cq, nonneg)
             if dstatus == OPTIMAL and verify_optimal(self.data, cq, bq, nonneg, x, y):
                 return _optimal(cq, x, y, LPPath.PPL)
-        elif not bounded:
+        elif bounded:
+            return None  # an auxiliary LP without optimum: the hint that asked for it lied
+        else:
             certificate = self._certified_failure(status, cq, bq, nonneg)
             if certificate is not None:
                 return certificate
