@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 import numpy as np
 
 from exactinv.core.scalars import INF
-from exactinv.lp import ExactLPSolver, solve_lp
+from exactinv.lp import solve_lp
 from exactinv.lp.exact import ppl_maximize
 from exactinv.lp.hint import UNKNOWN_HINT, Hint, HighsHint, HintBackend, HintModel, LPStatus
 from exactinv.lp.reconstruct import basis_solution, exact_pivots
