@@ -89,7 +89,7 @@ def test_unbounded_has_ray():
 
 def test_basis_solve_when_rounding_fails():
     # the hint's floats pushed 3e-7 off the vertex: rounding cannot verify, the basis solve does
-    off = _Scripted(lambda h: Hint(h.status, h.x + 3e-7, h.y + 3e-7, h.basis))
+    off = _Scripted(lambda h: Hint(h.status, h.x + 3e-7, h.y + 3e-7, h.fetch_basis()))
     res = _solve([[7, 3], [2, 9]], [False, False], [Fraction(1, 3), Fraction(2, 7)], [1, 1], [True, True], hint=off)
     assert res.path == "float-basis"
 

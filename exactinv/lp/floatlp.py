@@ -8,14 +8,15 @@ here is trusted: every hint is reconstructed and verified in Q afterwards.
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from functools import partial
+from typing import Any, Callable, Sequence
 
 import flint
 import numpy as np
 
-from .hint import UNKNOWN_HINT, Hint, HintBackend, HintModel, LPStatus
+from .hint import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
 
-__all__ = ["FloatLP"]
+__all__ = ["FloatLP", "floats_of"]
 
 
 class FloatLP:
@@ -39,7 +40,7 @@ class FloatLP:
         self.equality, self.backend = tuple(equality), backend
         self._model: HintModel | None = None
         self.A: np.ndarray | None = None
-        floats = _floats(A.entries())
+        floats = floats_of(A.entries())
         if floats is not None:
             A_float = floats.reshape(self.R, self.N)
             norms = np.abs(A_float).max(axis=1) if self.N else np.ones(self.R)
@@ -48,7 +49,10 @@ class FloatLP:
 
     def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Sequence[bool]) -> Hint:
         """The backend's float answer for max c.x s.t. A x (= | <=) b, x_i >= 0 (nonneg)."""
-        cost, rhs = _floats(c.entries()), _floats(b.entries())
+        return self.solve_floats(floats_of(c.entries()), floats_of(b.entries()), nonneg)
+
+    def solve_floats(self, cost: np.ndarray | None, rhs: np.ndarray | None, nonneg: Sequence[bool]) -> Hint:
+        """:meth:`solve` from the float images of c and b (None: beyond double range)."""
         if self.A is None or cost is None or rhs is None:
             return UNKNOWN_HINT
         if self._model is None:
@@ -59,15 +63,21 @@ class FloatLP:
         if (hint.x is None or hint.y is None or len(hint.x) != self.N or len(hint.y) != self.R
                 or not (np.all(np.isfinite(hint.x)) and np.all(np.isfinite(hint.y)))):
             return UNKNOWN_HINT  # a malformed hint is no hint
-        basis = hint.basis if self._well_formed(hint.basis) else None  # else guessed from the point
-        return Hint(LPStatus.OPTIMAL, np.asarray(hint.x, dtype=float), np.asarray(hint.y, dtype=float) * self.row_scale,
-                    basis)
+        y = np.asarray(hint.y, dtype=float) * self.row_scale
+        # a malformed basis is dropped: the engine guesses one from the point instead
+        basis = hint.basis if self._well_formed(hint.basis) else None
+        basis_of = None if hint.basis_of is None else partial(self._checked, hint.basis_of)
+        return Hint(LPStatus.OPTIMAL, np.asarray(hint.x, dtype=float), y, basis, basis_of)
 
     def rhs(self, b: flint.fmpq_mat) -> np.ndarray:
         """The float image of the right-hand side b, scaled like the model's rows."""
-        return _floats(b.entries()) * self.row_scale
+        return floats_of(b.entries()) * self.row_scale
 
-    def _well_formed(self, basis: tuple[tuple[int, ...], tuple[int, ...]] | None) -> bool:
+    def _checked(self, fetch: Callable[[], Basis | None]) -> Basis | None:
+        basis = fetch()
+        return basis if self._well_formed(basis) else None
+
+    def _well_formed(self, basis: Basis | None) -> bool:
         if basis is None or len(basis) != 2:
             return False
         cols, rows = basis
@@ -75,8 +85,12 @@ class FloatLP:
                 and len(set(cols)) == len(cols) and len(set(rows)) == len(rows))
 
 
-def _floats(values: Sequence[Any]) -> np.ndarray | None:
-    """The float images of exact values, or None if one overflows a double."""
+def floats_of(values: Sequence[Any]) -> np.ndarray | None:
+    """The float images of exact values, or None if one overflows a double.
+
+    >>> floats_of([flint.fmpq(1, 4), 3]).tolist(), floats_of([flint.fmpz(10) ** 400])
+    ([0.25, 3.0], None)
+    """
     try:
         return np.array([float(v) for v in values], dtype=float)
     except OverflowError:

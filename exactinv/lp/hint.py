@@ -37,15 +37,16 @@ import contextlib
 import contextvars
 import importlib.util
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any, Iterator, Sequence
+from typing import Any, Callable, Iterator, Sequence
 
 import highspy
 import numpy as np
 
 __all__ = [
     "LPStatus",
+    "Basis",
     "Hint",
     "HintBackend",
     "HintModel",
@@ -67,17 +68,39 @@ class LPStatus(StrEnum):
     UNKNOWN = "unknown"  # a float hint that gave up (never a returned result)
 
 
+Basis = tuple[tuple[int, ...], tuple[int, ...]]  # (basic columns, tight rows)
+
+
 @dataclass(frozen=True)
 class Hint:
     """An untrusted float answer: ``status``; for OPTIMAL a primal ``x`` and a
     dual ``y`` (one entry per row, >= 0 on inequality rows, A^T y = cost on
     free columns) and, where the backend knows it, ``basis`` =
-    (basic columns, tight rows)."""
+    (basic columns, tight rows) -- or ``basis_of``, a function that fetches it
+    on demand (valid until the backend's model solves again).
+
+    >>> Hint(LPStatus.INFEASIBLE).has_basis
+    False
+    >>> Hint(LPStatus.OPTIMAL, basis_of=lambda: ((0,), (1,))).fetch_basis()
+    ((0,), (1,))
+    """
 
     status: LPStatus
     x: np.ndarray | None = None
     y: np.ndarray | None = None
-    basis: tuple[tuple[int, ...], tuple[int, ...]] | None = None
+    basis: Basis | None = None
+    basis_of: Callable[[], Basis | None] | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def has_basis(self) -> bool:
+        """Whether the hint comes from a simplex basis (given or fetchable)."""
+        return self.basis is not None or self.basis_of is not None
+
+    def fetch_basis(self) -> Basis | None:
+        """The basis: given, or fetched now from the backend."""
+        if self.basis is not None or self.basis_of is None:
+            return self.basis
+        return self.basis_of()
 
 
 UNKNOWN_HINT = Hint(LPStatus.UNKNOWN)
@@ -135,7 +158,7 @@ class _HighsModel(HintModel):
         S = highspy.HighsModelStatus
         if status == S.kOptimal:
             sol = h.getSolution()
-            return Hint(LPStatus.OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), self._basis())
+            return Hint(LPStatus.OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), basis_of=self._basis)
         if status in (S.kInfeasible, S.kUnbounded):
             return Hint(LPStatus.INFEASIBLE if status == S.kInfeasible else LPStatus.UNBOUNDED)
         self._highs = None  # a model in an odd state is rebuilt next time
@@ -164,9 +187,12 @@ class _HighsModel(HintModel):
         h.changeColsBounds(self.N, idx, lower, np.full(self.N, highspy.kHighsInf))
         h.changeRowsBounds(self.R, ridx, row_lower, rhs)
 
-    def _basis(self) -> tuple[tuple[int, ...], tuple[int, ...]] | None:
-        """(basic columns, tight rows = rows whose slack is nonbasic).  (Not
-        ``getBasicVariables``: highspy 1.15 crashes on it for LPs solved without pivots.)"""
+    def _basis(self) -> Basis | None:
+        """(basic columns, tight rows = rows whose slack is nonbasic), fetched
+        only when rounding does not verify (a Python loop over all statuses).
+        (Not ``getBasicVariables``: highspy 1.15 crashes on it for LPs solved without pivots.)"""
+        if self._highs is None:
+            return None
         basis = self._highs.getBasis()
         if not basis.valid:
             return None

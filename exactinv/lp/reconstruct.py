@@ -20,13 +20,14 @@ from typing import Sequence
 import flint
 import numpy as np
 
+from .hint import Basis
 from .verify import LPData
 
-__all__ = ["Basis", "snap", "snapped", "snap_tolerance", "guess_basis", "basis_solution", "exact_pivots"]
+__all__ = ["Basis", "COMMON_DENOMINATOR", "snap", "snapped", "snapped_numerators", "snap_tolerance", "guess_basis", "basis_solution", "exact_pivots"]
 
-Basis = tuple[tuple[int, ...], tuple[int, ...]]  # (basic columns, tight rows)
 ROUNDING_DENOMINATOR = 1 << 24
 _SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 24)
+COMMON_DENOMINATOR = 5040  # lcm of the small denominators: each p/d is (p * 5040/d) / 5040
 
 
 def snap_tolerance(has_basis: bool) -> float:
@@ -81,6 +82,27 @@ def snapped(values: np.ndarray, tol: float = 1e-9) -> tuple[list[flint.fmpq], bo
     for i, value in zip(idx.tolist(), v.tolist()):
         out[i] = snap(value, tol)
     return out, not len(idx)
+
+
+def snapped_numerators(values: np.ndarray, tol: float = 1e-9) -> list[int] | None:
+    """The floats as integer numerators over ``COMMON_DENOMINATOR`` = 5040 (a
+    multiple of every small denominator: 1..10, 12, 16, 24, ...), so that one
+    FLINT matrix holds a whole batch with no Python object per entry; None if
+    an entry is not within ``tol`` (relative) of such a fraction.  One
+    vectorised pass; exact: every numerator is an integer-valued double < 2^53.
+
+    >>> snapped_numerators(np.array([0.25, 0.0, 2 / 3, -7.0]))
+    [1260, 0, 3360, -35280]
+    >>> snapped_numerators(np.array([1e-3])) is None
+    True
+    """
+    scaled = values * COMMON_DENOMINATOR
+    near = np.round(scaled)
+    if not np.all(np.abs(scaled - near) <= tol * np.maximum(1.0, np.abs(scaled))):
+        return None
+    if len(near) and np.abs(near).max() >= 2.0 ** 53:
+        return None
+    return near.astype(np.int64).tolist()
 
 
 def guess_basis(A: np.ndarray, equality: Sequence[bool], rhs: np.ndarray, x: np.ndarray, y: np.ndarray,

@@ -39,17 +39,19 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
 from functools import cached_property
-from typing import Sequence
+from typing import NamedTuple, Sequence
 
 import flint
+import numpy as np
 
 from ..core.scalars import INF, Infinity, fraction_of
 from ..errors import VerificationFailed
 from .exact import ppl_dual, ppl_maximize
-from .floatlp import FloatLP
+from .floatlp import FloatLP, floats_of
 from .hint import Hint, HintBackend, LPStatus, resolve_hint_backend
-from .reconstruct import basis_solution, exact_pivots, guess_basis, snap_tolerance, snapped
-from .verify import LPData, dot, optimal_mask, verify_farkas, verify_optimal, verify_ray
+from .reconstruct import (COMMON_DENOMINATOR, basis_solution, exact_pivots, guess_basis, snap_tolerance, snapped,
+                          snapped_numerators)
+from .verify import LPData, dot, optimal_values, verify_farkas, verify_optimal, verify_ray
 
 __all__ = ["LPStatus", "LPPath", "LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
 
@@ -156,18 +158,16 @@ class ExactLPSolver:
         >>> [r.value for r in solver.solve_many(flint.fmpq_mat([[1, -1]]), flint.fmpq_mat([[2, 3], [0, 0]]), [[False]] * 2)]
         [Fraction(2, 1), Fraction(0, 1)]
         """
-        C_cols, B_cols = _columns_of(costs), _columns_of(rhss)
-        signs = [tuple(bool(v) for v in nn) for nn in nonnegatives]
-        proposals = [self._batch_proposal(c, b, s) for c, b, s in zip(C_cols, B_cols, signs)]
-        zero_N, zero_R = [flint.fmpq(0)] * self.N, [flint.fmpq(0)] * self.R
-        X = _from_columns(self.N, [p[1] if p else zero_N for p in proposals])
-        Y = _from_columns(self.R, [p[2] if p else zero_R for p in proposals])
-        verified = optimal_mask(self.data, costs, rhss, signs, X, Y)
+        C_cols, B_cols = _LazyColumns(costs), _LazyColumns(rhss)
+        C_float, B_float = C_cols.floats(), B_cols.floats()
+        signs = [tuple(map(bool, nn)) for nn in nonnegatives]
+        proposals = [self._batch_proposal(C_cols, B_cols, k, C_float[k], B_float[k], signs[k]) for k in range(len(signs))]
+        X, Y = _proposal_matrix(proposals, "x", self.N), _proposal_matrix(proposals, "y", self.R)
+        values = optimal_values(self.data, costs, rhss, signs, X, Y)
         results = []
-        for k, (p, ok) in enumerate(zip(proposals, verified)):
-            if p is not None and ok:
-                x, y = flint.fmpq_mat(self.N, 1, p[1]), flint.fmpq_mat(self.R, 1, p[2])
-                results.append(_optimal(C_cols[k], x, y, p[0]))
+        for k, (x, y, value) in enumerate(zip(_columns_of(X), _columns_of(Y), values)):
+            if value is not None:
+                results.append(LPResult(OPTIMAL, fraction_of(value), x, y, None, proposals[k].path))
             else:
                 results.append(self._solve(C_cols[k], B_cols[k], signs[k], bounded=False))
         return results
@@ -189,23 +189,28 @@ class ExactLPSolver:
                 return certificate
         return self._exact_solve(cq, bq, nonneg, bounded)
 
-    def _batch_proposal(self, cq, bq, nonneg) -> tuple[LPPath, list, list] | None:
-        """One LP's cheapest reconstruction for a batch: rounded, or the basis
-        solve when rounding leaves large denominators; None without a hint."""
-        hint = self.float_lp.solve(cq, bq, nonneg)
+    def _batch_proposal(self, C_cols: _LazyColumns, B_cols: _LazyColumns, k: int, cost: np.ndarray | None,
+                        rhs: np.ndarray | None, nonneg: tuple[bool, ...]) -> _Proposal | None:
+        """LP k's cheapest reconstruction for a batch: rounded (integer
+        numerators over COMMON_DENOMINATOR), or the basis solve when rounding
+        leaves large denominators (fmpq entries); None without a hint."""
+        hint = self.float_lp.solve_floats(cost, rhs, nonneg)
         if hint.status != OPTIMAL:
             return None
-        tol = snap_tolerance(hint.basis is not None)
-        (x, x_clean), (y, y_clean) = snapped(hint.x, tol), snapped(hint.y, tol)
-        if not (x_clean and y_clean):  # large denominators: rounding is unlikely to verify
-            pair = basis_solution(self.data, cq, bq, self._basis(hint, bq, nonneg))
-            if pair is not None:
-                return LPPath.BASIS, pair[0].entries(), pair[1].entries()
-        return LPPath.ROUNDED, x, y
+        tol = snap_tolerance(hint.has_basis)
+        x, y = snapped_numerators(hint.x, tol), snapped_numerators(hint.y, tol)
+        if x is not None and y is not None:
+            return _Proposal(LPPath.ROUNDED, x, y, True)
+        cq, bq = C_cols[k], B_cols[k]
+        pair = basis_solution(self.data, cq, bq, self._basis(hint, bq, nonneg))
+        if pair is not None:
+            return _Proposal(LPPath.BASIS, pair[0].entries(), pair[1].entries(), False)
+        (xq, _), (yq, _) = snapped(hint.x, tol), snapped(hint.y, tol)
+        return _Proposal(LPPath.ROUNDED, xq, yq, False)
 
     def _reconstructions(self, cq, bq, nonneg, hint: Hint):
         """Candidate exact (x, y) pairs, cheapest first."""
-        tol = snap_tolerance(hint.basis is not None)
+        tol = snap_tolerance(hint.has_basis)
         (x, _), (y, _) = snapped(hint.x, tol), snapped(hint.y, tol)
         yield LPPath.ROUNDED, flint.fmpq_mat(self.N, 1, x), flint.fmpq_mat(self.R, 1, y)
         basis = self._basis(hint, bq, nonneg)
@@ -217,8 +222,9 @@ class ExactLPSolver:
             yield (LPPath.PIVOTS, *pair)
 
     def _basis(self, hint: Hint, bq, nonneg):
-        if hint.basis is not None:
-            return hint.basis
+        basis = hint.fetch_basis()
+        if basis is not None:
+            return basis
         return guess_basis(self.float_lp.A, self.equality, self.float_lp.rhs(bq), hint.x, hint.y, nonneg)
 
     # ------------------------------------- certificates of the other outcomes
@@ -300,8 +306,45 @@ def _columns_of(M: flint.fmpq_mat) -> list[flint.fmpq_mat]:
     return [flint.fmpq_mat(rows, 1, T[k * rows:(k + 1) * rows]) for k in range(K)]
 
 
-def _from_columns(rows: int, columns: list[list[flint.fmpq]]) -> flint.fmpq_mat:
-    return flint.fmpq_mat(len(columns), rows, [v for col in columns for v in col]).transpose()
+class _LazyColumns:
+    """The columns of an fmpq matrix as fmpq column matrices, built on demand."""
+
+    def __init__(self, M: flint.fmpq_mat):
+        self.rows, self.K = M.nrows(), M.ncols()
+        self.T = M.transpose().entries()
+
+    def __getitem__(self, k: int) -> flint.fmpq_mat:
+        return flint.fmpq_mat(self.rows, 1, self.T[k * self.rows:(k + 1) * self.rows])
+
+    def floats(self) -> list[np.ndarray | None]:
+        """Each column's float image (None for a column beyond double range)."""
+        values = floats_of(self.T)
+        if values is not None:
+            return list(values.reshape(self.K, self.rows))
+        return [floats_of(self.T[k * self.rows:(k + 1) * self.rows]) for k in range(self.K)]
+
+
+class _Proposal(NamedTuple):
+    """A batch member's reconstruction: x and y as integer numerators over
+    COMMON_DENOMINATOR (``over_common``) or as fmpq entries."""
+
+    path: LPPath
+    x: list
+    y: list
+    over_common: bool
+
+
+def _proposal_matrix(proposals: list[_Proposal | None], part: str, rows: int) -> flint.fmpq_mat:
+    """The ``rows`` x K matrix whose column k is ``getattr(proposal k, part)`` (0 for no proposal):
+    one integer matrix for the common-denominator columns, plus the fmpq columns if any."""
+    common = [p is not None and p.over_common for p in proposals]
+    zeros = [0] * rows
+    flat = [v for p, c in zip(proposals, common) for v in (getattr(p, part) if c else zeros)]
+    M = flint.fmpq_mat(flint.fmpz_mat(len(proposals), rows, flat)) * flint.fmpq(1, COMMON_DENOMINATOR)
+    if not all(c or p is None for p, c in zip(proposals, common)):
+        rest = [v for p, c in zip(proposals, common) for v in (zeros if c or p is None else getattr(p, part))]
+        M += flint.fmpq_mat(len(proposals), rows, rest)
+    return M.transpose()
 
 
 def _fractions(M: flint.fmpq_mat) -> tuple[Fraction, ...]:

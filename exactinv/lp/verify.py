@@ -24,13 +24,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import chain
 from operator import mul
 from typing import Sequence
 
 import flint
+import numpy as np
 
-__all__ = ["LPData", "optimal_mask", "verify_optimal", "verify_farkas", "verify_ray", "dot"]
+__all__ = ["LPData", "optimal_mask", "optimal_values", "primal_mask", "dual_mask", "verify_optimal", "verify_farkas", "verify_ray", "dot"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,13 +66,29 @@ class LPData:
     def le_rows(self) -> tuple[int, ...]:
         return tuple(r for r, e in enumerate(self.equality) if not e)
 
+    def eq_part(self, M: flint.fmpq_mat) -> flint.fmpq_mat:
+        """The equality rows of an R-row matrix M."""
+        return M if len(self.eq_rows) == self.R else self._select_eq * M
+
+    def le_part(self, M: flint.fmpq_mat) -> flint.fmpq_mat:
+        """The inequality rows of an R-row matrix M."""
+        return M if len(self.le_rows) == self.R else self._select_le * M
+
+    @cached_property
+    def _select_eq(self) -> flint.fmpq_mat:
+        return _selection(self.eq_rows, self.R)
+
+    @cached_property
+    def _select_le(self) -> flint.fmpq_mat:
+        return _selection(self.le_rows, self.R)
+
     @cached_property
     def _A_eq(self) -> flint.fmpq_mat:
-        return _select_rows(self.A, self.eq_rows)
+        return self.eq_part(self.A)
 
     @cached_property
     def _A_le(self) -> flint.fmpq_mat:
-        return _select_rows(self.A, self.le_rows)
+        return self.le_part(self.A)
 
 
 def dot(u: flint.fmpq_mat, v: flint.fmpq_mat) -> flint.fmpq:
@@ -97,11 +113,25 @@ def optimal_mask(data: LPData, C: flint.fmpq_mat, B: flint.fmpq_mat, signs: Sequ
     >>> optimal_mask(data, col((1,), (1,)), col((1,), (1,)), [(True, True)], col((1, 4), (1, 5)), col((1, 4), (1, 4)))
     [False]
     """
-    ok = [p and d for p, d in zip(primal_mask(data, B, signs, X), dual_mask(data, C, signs, Y))]
-    K = len(ok)
-    for k, cx, by in zip(range(K), _column_dots(C, X), _column_dots(B, Y)):
-        ok[k] = ok[k] and cx == by
-    return ok
+    return [v is not None for v in optimal_values(data, C, B, signs, X, Y)]
+
+
+def optimal_values(data: LPData, C: flint.fmpq_mat, B: flint.fmpq_mat, signs: Sequence[Sequence[bool]],
+                   X: flint.fmpq_mat, Y: flint.fmpq_mat) -> list[flint.fmpq | None]:
+    """As :func:`optimal_mask`, with the proved optimum c.x = b.y of each LP (None: not proved).
+
+    >>> data = LPData(flint.fmpq_mat([[1], [-1]]), (False, False))
+    >>> optimal_values(data, flint.fmpq_mat([[1, 1]]), flint.fmpq_mat([[2, 2], [0, 0]]), [(False,)] * 2,
+    ...                flint.fmpq_mat([[2, 1]]), flint.fmpq_mat([[1, 1], [0, 0]]))
+    [2, None]
+    """
+    free = _free_indices(signs)
+    X_cols, Y_cols = _IntColumns(X), _IntColumns(Y)
+    ok = [p and d for p, d in zip(_primal_ok(data, B, free, X, X_cols), _dual_ok(data, C, free, Y, Y_cols))]
+    values = []
+    for k, cx, by in zip(range(len(ok)), _IntColumns(C).dots(X_cols), _IntColumns(B).dots(Y_cols)):
+        values.append(cx if ok[k] and cx == by else None)
+    return values
 
 
 def primal_mask(data: LPData, B: flint.fmpq_mat, signs: Sequence[Sequence[bool]], X: flint.fmpq_mat) -> list[bool]:
@@ -112,14 +142,7 @@ def primal_mask(data: LPData, B: flint.fmpq_mat, signs: Sequence[Sequence[bool]]
     >>> primal_mask(data, flint.fmpq_mat([[2, 2]]), [(True, True), (True, True)], flint.fmpq_mat([[1, 3], [1, -1]]))
     [True, False]
     """
-    ok = _signs_ok(X, [[not s for s in sk] for sk in signs])
-    if data.eq_rows:
-        slack = _select_rows(B, data.eq_rows) - data._A_eq * X
-        ok = [o and not any(col) for o, col in zip(ok, _columns(slack))]
-    if data.le_rows:
-        slack = _select_rows(B, data.le_rows) - data._A_le * X
-        ok = [o and min(col) >= 0 for o, col in zip(ok, _columns(slack))]
-    return ok
+    return _primal_ok(data, B, _free_indices(signs), X, _IntColumns(X))
 
 
 def dual_mask(data: LPData, C: flint.fmpq_mat, signs: Sequence[Sequence[bool]], Y: flint.fmpq_mat) -> list[bool]:
@@ -132,12 +155,7 @@ def dual_mask(data: LPData, C: flint.fmpq_mat, signs: Sequence[Sequence[bool]], 
     >>> dual_mask(data, flint.fmpq_mat([[0]]), [(False,)], flint.fmpq_mat([[2], [1]]))
     [False]
     """
-    K = Y.ncols()
-    ok = _signs_ok(Y, [data.equality] * K)
-    reduced = data.AT * Y - C
-    for k, col in enumerate(_columns(reduced)):
-        ok[k] = ok[k] and (not col or min(col) >= 0) and not any(col[i] for i, s in enumerate(signs[k]) if not s)
-    return ok
+    return _dual_ok(data, C, _free_indices(signs), Y, _IntColumns(Y))
 
 
 def verify_optimal(data: LPData, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Sequence[bool],
@@ -177,29 +195,79 @@ def verify_ray(data: LPData, c: flint.fmpq_mat, nonneg: Sequence[bool], d: flint
 
 
 # ------------------------------------------------------------------ helpers
-def _select_rows(M: flint.fmpq_mat, rows: Sequence[int]) -> flint.fmpq_mat:
-    K = M.ncols()
-    if len(rows) == M.nrows():
-        return M
-    E = M.entries()
-    return flint.fmpq_mat(len(rows), K, list(chain.from_iterable(E[r * K:(r + 1) * K] for r in rows)))
+class _IntColumns:
+    """The columns of an fmpq matrix M as integer numerators over one common
+    denominator d > 0 (so every sign and zero test is on fmpz values, ten times
+    faster than on fmpq ones, and exact: M_ik = cols[k][i] / d)."""
+
+    def __init__(self, M: flint.fmpq_mat):
+        R, K = M.nrows(), M.ncols()
+        numerators, self.d = M.transpose().numer_denom()
+        T = numerators.entries()
+        self.cols = [T[k * R:(k + 1) * R] for k in range(K)]
+
+    def nonnegative(self, rows: Sequence[int] | None = None) -> list[bool]:
+        """Per column: entries >= 0 (all entries, or those in ``rows``)."""
+        zero = flint.fmpz(0)
+        if rows is None:
+            return [not col or min(col) >= zero for col in self.cols]
+        if len(rows) and rows[-1] - rows[0] == len(rows) - 1:  # consecutive rows: one slice
+            return [min(col[rows[0]:rows[-1] + 1]) >= zero for col in self.cols]
+        return [all(col[i] >= zero for i in rows) for col in self.cols]
+
+    def dots(self, other: _IntColumns) -> list[flint.fmpq]:
+        """Per column k: the inner product of column k here and in ``other``."""
+        zero, d = flint.fmpz(0), self.d * other.d
+        return [flint.fmpq(sum(map(mul, u, v), zero), d) for u, v in zip(self.cols, other.cols)]
 
 
-def _columns(M: flint.fmpq_mat) -> list[list[flint.fmpq]]:
-    """The columns of M as lists (one transpose, then C-level slices)."""
-    R, K = M.nrows(), M.ncols()
-    T = M.transpose().entries()
-    return [T[k * R:(k + 1) * R] for k in range(K)]
-
-
-def _signs_ok(M: flint.fmpq_mat, free: Sequence[Sequence[bool]]) -> list[bool]:
-    """Column k of M is >= 0 wherever ``free[k][i]`` is false."""
-    ok = []
-    for k, col in enumerate(_columns(M)):
-        ok.append(not col or min(col) >= 0 or all(free[k][i] for i, v in enumerate(col) if v < 0))
+def _primal_ok(data: LPData, B: flint.fmpq_mat, free: list[list[int]], X: flint.fmpq_mat,
+               X_cols: _IntColumns) -> list[bool]:
+    ok = [_nonnegative_except(col, f) for col, f in zip(X_cols.cols, free)]
+    if data.eq_rows:
+        slack = data.eq_part(B) - data._A_eq * X
+        if slack != flint.fmpq_mat(slack.nrows(), slack.ncols()):  # all zero: decided in C
+            ok = [o and not any(col) for o, col in zip(ok, _IntColumns(slack).cols)]
+    if data.le_rows:
+        slack = data.le_part(B) - data._A_le * X
+        ok = [o and n for o, n in zip(ok, _IntColumns(slack).nonnegative())]
     return ok
 
 
-def _column_dots(U: flint.fmpq_mat, V: flint.fmpq_mat) -> list[flint.fmpq]:
-    zero = flint.fmpq(0)
-    return [sum(map(mul, u, v), zero) for u, v in zip(_columns(U), _columns(V))]
+def _dual_ok(data: LPData, C: flint.fmpq_mat, free: list[list[int]], Y: flint.fmpq_mat,
+             Y_cols: _IntColumns) -> list[bool]:
+    ok = Y_cols.nonnegative(data.le_rows)
+    reduced = _IntColumns(data.AT * Y - C)
+    for k, (col, nonneg) in enumerate(zip(reduced.cols, reduced.nonnegative())):
+        ok[k] = ok[k] and nonneg and not any(col[i] for i in free[k])
+    return ok
+
+
+def _nonnegative_except(col: list[flint.fmpz], free: list[int]) -> bool:
+    """col >= 0 except at the indices ``free``."""
+    zero = flint.fmpz(0)
+    if free:
+        col = list(col)
+        for i in free:
+            col[i] = zero
+    return not col or min(col) >= zero
+
+
+def _selection(rows: Sequence[int], R: int) -> flint.fmpq_mat:
+    """The 0/1 matrix S with S M = the rows ``rows`` of M (a product in C, no Python objects per entry)."""
+    S = flint.fmpq_mat(len(rows), R)
+    for t, r in enumerate(rows):
+        S[t, r] = 1
+    return S
+
+
+def _free_indices(signs: Sequence[Sequence[bool]]) -> list[list[int]]:
+    """For each sign pattern, the indices of its free (False) entries."""
+    if not signs or not len(signs[0]):
+        return [[] for _ in signs]
+    mask = ~np.array(signs, dtype=bool)
+    rows, cols = np.nonzero(mask)
+    out: list[list[int]] = [[] for _ in signs]
+    for k, i in zip(rows.tolist(), cols.tolist()):
+        out[k].append(i)
+    return out
