@@ -16,6 +16,7 @@ import flint
 import numpy as np
 
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
+from ..core.tags import CounterexampleKind
 from ..errors import InvalidInput
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, LPResult
 from .oracle_judges import INVALID, TIGHT, VALID, Verdict, _exact_claim, _gap
@@ -115,11 +116,11 @@ def _checked_claim(cp: Any, problem: Any, claimed: Any, claim: str, limit_denomi
 def _failure_verdict(res: LPResult, data: dict, claimed: Any, maximize: bool, common: dict) -> LPVerdict:
     """The exact LP is infeasible (Farkas certificate) or unbounded (a point beating the claim and a ray)."""
     if res.status == INFEASIBLE:
-        return LPVerdict(INVALID, exact=None, counterexample={"kind": "infeasible", "farkas": res.y}, y=res.y,
+        return LPVerdict(INVALID, exact=None, counterexample={"kind": CounterexampleKind.INFEASIBLE, "farkas": res.y}, y=res.y,
                          message=f"claimed {claimed}, but the exact LP is infeasible (Farkas certificate y)", **common)
     exact = INF if maximize else -INF
     point = _beyond(res, data, common["claimed"], -1 if maximize else 1)
-    return LPVerdict(INVALID, exact=exact, counterexample={"kind": "unbounded", "x": _by_variable(point, data),
+    return LPVerdict(INVALID, exact=exact, counterexample={"kind": CounterexampleKind.UNBOUNDED, "x": _by_variable(point, data),
                                                             "ray": _by_variable(res.ray, data)},
                      message=f"claimed {claimed}, but the exact LP is unbounded "
                              f"({'maximum' if maximize else 'minimum'} {exact})", **common)
@@ -139,9 +140,9 @@ def _optimum_verdict(res: LPResult, data: dict, claimed: Any, maximize: bool, cl
     if better:
         if claim == "bound":
             return LPVerdict(VALID, message=f"claimed {claimed} is attained or beaten; the exact {name} is {exact}", **common)
-        return LPVerdict(INVALID, counterexample={"kind": "better_point", "x": x, "value": exact},
+        return LPVerdict(INVALID, counterexample={"kind": CounterexampleKind.BETTER_POINT, "x": x, "value": exact},
                          message=f"claimed {name} {claimed}, but the exact feasible point x reaches {exact}", **common)
-    return LPVerdict(INVALID, counterexample={"kind": "dual_bound", "y": res.y, "bound": exact},
+    return LPVerdict(INVALID, counterexample={"kind": CounterexampleKind.DUAL_BOUND, "y": res.y, "bound": exact},
                      message=f"claimed {name} {claimed} is unattainable: the exact dual y proves "
                              f"every feasible point has value {'<=' if maximize else '>='} {exact}", **common)
 

@@ -24,7 +24,8 @@ import flint
 import numpy as np
 
 from ..errors import InvalidInput
-from ..core.scalars import INF, fmpq_of, to_rational, to_vector
+from ..core.scalars import INF, Infinity, fmpq_of, to_rational, to_vector
+from ..core.tags import BisectionStep
 
 __all__ = ["PaperBisectionResult", "paper_bisection", "paper_bisection_float", "paper_bound"]
 
@@ -34,10 +35,10 @@ class PaperBisectionResult:
     """tau as the paper's algorithm returns it, the step that terminated, the
     final bracket [t_l, t_r] and the number of Sturm evaluations."""
 
-    tau: Any
-    terminated_by: str
-    t_l: Any
-    t_r: Any
+    tau: Fraction | float | Infinity
+    terminated_by: BisectionStep
+    t_l: Fraction | float
+    t_r: Fraction | float
     sturm_counts: int
 
 
@@ -126,19 +127,19 @@ def _steps(a, *, f, count, t_star, eps, half, mid, one, counts) -> PaperBisectio
     # Step 2 [Termination 1].
     n_r = count(t_r)
     if n_r == 0:
-        return PaperBisectionResult(INF, "step 2", t_l, t_r, counts())
+        return PaperBisectionResult(INF, BisectionStep.STEP_2, t_l, t_r, counts())
     # Step 3 [Termination 2].
     if n_r == 1 and f(t_r) == 0:
-        return PaperBisectionResult(t_star, "step 3", t_l, t_r, counts())
+        return PaperBisectionResult(t_star, BisectionStep.STEP_3, t_l, t_r, counts())
     # Step 4 [Bisection].
     while abs(t_l - t_r) >= eps:
         t_m = mid(t_l, t_r)
         n_m = count(t_m)
         if n_m == 1 and f(t_m) == 0:
-            return PaperBisectionResult(t_m, "step 4 (termination 3)", t_l, t_r, counts())
+            return PaperBisectionResult(t_m, BisectionStep.STEP_4, t_l, t_r, counts())
         if n_m >= 1:
             t_r = t_m
         else:
             t_l = t_m
     # Step 5 [Termination 4].
-    return PaperBisectionResult(t_l, "step 5", t_l, t_r, counts())
+    return PaperBisectionResult(t_l, BisectionStep.STEP_5, t_l, t_r, counts())

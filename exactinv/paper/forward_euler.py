@@ -12,6 +12,7 @@ from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.tags import ClaimType
 from ..errors import VerificationFailed
 from ..model import LinearSystem, Polyhedron
 from ..model.methods import forward_euler
@@ -39,7 +40,7 @@ class ForwardEulerThreshold(ExactValueMixin):
     def claims(self) -> list[dict]:
         """gamma*'s claim and the vertex ratio tests' value."""
         return self.gamma.claims() + [{
-            "type": "forward_euler_threshold",
+            "type": ClaimType.FORWARD_EULER_THRESHOLD,
             "value": encode_real(self.value),
             **generator_record(self.gamma.polyhedron),
         }]

@@ -21,7 +21,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 from math import comb
-from typing import Any
+
+import flint
 
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
@@ -29,9 +30,11 @@ from ..core.latex import dt_poly_latex, latex_real, latex_text
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
+from ..core.tags import ClaimType
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from .invariance import OptimalGamma
+from .monotonicity import AbsoluteMonotonicityRadius
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "polynomial_threshold"]
 
@@ -69,11 +72,11 @@ class SteplengthThreshold(ExactValueMixin):
     table: tuple[FiRow, ...] = field(default=(), repr=False)
     binding: int | None = None
     notes: tuple[str, ...] = field(default=(), repr=False)
-    radius: Any = field(default=None, repr=False)
-    pole: Any = field(default=None, repr=False)
-    spectral_abscissa: Any = field(default=None, repr=False)
-    paper_value: Any = field(default=None, repr=False)
-    certificate_H: Any = field(default=None, repr=False)
+    radius: AbsoluteMonotonicityRadius | None = field(default=None, repr=False)
+    pole: Real | None = field(default=None, repr=False)
+    spectral_abscissa: Real | None = field(default=None, repr=False)
+    paper_value: Real | None = field(default=None, repr=False)
+    certificate_H: tuple[flint.fmpq_mat, Real] | None = field(default=None, repr=False)
 
     @property
     def paper(self) -> Real:
@@ -90,13 +93,13 @@ class SteplengthThreshold(ExactValueMixin):
     def _own_claims(self) -> list[dict]:
         if self.method.is_polynomial:
             return [{
-                "type": "polynomial_threshold",
+                "type": ClaimType.POLYNOMIAL_THRESHOLD,
                 "value": encode_real(self.value),
                 "binding": self.binding,
                 "f": [{"i": r.i, "coefficients": [str(c) for c in r.f], "tau": encode_real(r.tau)} for r in self.table],
             }]
         claim = {
-            "type": "rational_threshold",
+            "type": ClaimType.RATIONAL_THRESHOLD,
             "value": encode_real(self.value),
             "attained": self.attained,
             "rho": encode_real(self.radius.value),
