@@ -146,20 +146,29 @@ def first_sign_change(f: Any, start: Any = 0) -> Real:
     shifted = integer_part(shift(fq, start))
     if sign_variations(shifted.coeffs()) == 0:  # Descartes: no root beyond start
         return INF
-    _, parts = shifted.factor_squarefree()
-    odd = flint.fmpz_poly([1])
-    for p, mult in parts:
-        if mult % 2:
-            odd *= p
-    while odd.degree() > 0 and odd(0) == 0:  # a root at start itself is not "beyond" it
-        odd = flint.fmpz_poly([int(c) for c in odd.coeffs()[1:]])
-    found = _first_positive_root_interval(odd)
+    found = _first_positive_root_interval(_odd_part_beyond_0(shifted))
     if found is None:
         return INF
     if isinstance(found, Fraction):
         return start + found
-    a, b = found
-    lo, hi = start + a, start + b
+    return _owning_factor_root(fq, start + found[0], start + found[1])
+
+
+def _odd_part_beyond_0(f: flint.fmpz_poly) -> flint.fmpz_poly:
+    """The product of f's squarefree factors of odd multiplicity, without the
+    factor x (a root at 0, i.e. at start, is not beyond it)."""
+    _, parts = f.factor_squarefree()
+    odd = flint.fmpz_poly([1])
+    for p, mult in parts:
+        if mult % 2:
+            odd *= p
+    while odd.degree() > 0 and odd(0) == 0:
+        odd = flint.fmpz_poly([int(c) for c in odd.coeffs()[1:]])
+    return odd
+
+
+def _owning_factor_root(fq: flint.fmpq_poly, lo: Fraction, hi: Fraction) -> Real:
+    """The root in (lo, hi) of the odd-multiplicity irreducible factor of fq that changes sign there."""
     _, factors = integer_part(fq).factor()
     for p, mult in factors:
         if mult % 2 == 0:

@@ -135,7 +135,13 @@ def nearest_rational(x: float, max_denominator: int = 10**6) -> Fraction:
 
 
 def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -> Fraction:
-    """Parse one exact scalar; ``name`` is used in error messages."""
+    """Parse one exact scalar; ``name`` is used in error messages.
+
+    >>> to_rational("3/4"), to_rational(2), to_rational(flint.fmpq(-1, 3))
+    (Fraction(3, 4), Fraction(2, 1), Fraction(-1, 3))
+    >>> to_rational(0.1, allow_float=True) == Fraction(0.1)   # the float's exact value, on request
+    True
+    """
     if isinstance(value, Fraction):
         return value
     if isinstance(value, bool):
@@ -143,43 +149,47 @@ def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -
     if isinstance(value, int):
         return Fraction(value)
     if isinstance(value, str):
-        text = value.strip()
-        if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
-            raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
-        try:
-            return Fraction(text)
-        except (ValueError, ZeroDivisionError):
-            raise InvalidInput(
-                f"{name}: cannot read {value!r} as a rational number (write e.g. '3/4', '-2' or '0.1')"
-            ) from None
+        return _rational_from_text(value, name)
     if isinstance(value, Decimal):
         if not value.is_finite():
             raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
         return Fraction(value)
-    if isinstance(value, flint.fmpq):
+    if isinstance(value, flint.fmpq) or getattr(value, "is_Rational", False):  # flint, sympy Integer / Rational
         return Fraction(int(value.p), int(value.q))
-    if isinstance(value, flint.fmpz):
-        return Fraction(int(value))
-    if getattr(value, "is_Rational", False):  # sympy Integer / Rational
-        return Fraction(int(value.p), int(value.q))
-    if isinstance(value, _abc.Integral):  # numpy integers, gmpy2 mpz
+    if isinstance(value, (flint.fmpz, _abc.Integral)):  # numpy integers, gmpy2 mpz
         return Fraction(int(value))
     if isinstance(value, float) or isinstance(value, _abc.Real) and not isinstance(value, _abc.Rational):
-        as_float = float(value)
-        if not math.isfinite(as_float):
-            raise InvalidInput(f"{name}: {value!r} is not a finite number")
-        if allow_float:
-            return exact_from_float(as_float)
-        raise InvalidInput(
-            f"{name}: got the float {value!r}; floats are not exact. Pass a string "
-            f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
-            f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
-        )
+        return _rational_from_float(value, name, allow_float)
     if isinstance(value, _abc.Rational):  # e.g. gmpy2 mpq
         return Fraction(int(value.numerator), int(value.denominator))
     if getattr(value, "is_number", False) and getattr(value, "is_Rational", None) is False:
         raise InvalidInput(f"{name}: {value} is not a rational number")
     raise InvalidInput(f"{name}: cannot read {value!r} (type {type(value).__name__}) as a rational number")
+
+
+def _rational_from_text(value: str, name: str) -> Fraction:
+    text = value.strip()
+    if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
+    try:
+        return Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        raise InvalidInput(
+            f"{name}: cannot read {value!r} as a rational number (write e.g. '3/4', '-2' or '0.1')"
+        ) from None
+
+
+def _rational_from_float(value: Any, name: str, allow_float: bool) -> Fraction:
+    as_float = float(value)
+    if not math.isfinite(as_float):
+        raise InvalidInput(f"{name}: {value!r} is not a finite number")
+    if allow_float:
+        return exact_from_float(as_float)
+    raise InvalidInput(
+        f"{name}: got the float {value!r}; floats are not exact. Pass a string "
+        f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
+        f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
+    )
 
 
 def _suggest(x: float) -> str:

@@ -24,6 +24,8 @@ class ClaimType(StrEnum):
     """The ``"type"`` of a claim in a certificate (docs/certificate-format.md)."""
 
     GAMMA_STAR = "gamma_star"
+    CONTINUOUS_INVARIANCE = "continuous_invariance"
+    DISCRETE_INVARIANCE = "discrete_invariance"
     POLYNOMIAL_THRESHOLD = "polynomial_threshold"
     RATIONAL_THRESHOLD = "rational_threshold"
     FORWARD_EULER_THRESHOLD = "forward_euler_threshold"
