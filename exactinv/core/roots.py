@@ -187,7 +187,13 @@ def _owning_factor_root(fq: flint.fmpq_poly, lo: Fraction, hi: Fraction) -> Real
 def nonnegative_until(f: Any, start: Any = 0) -> Real:
     """sup{T >= start : f >= 0 on [start, T]} when f >= 0 just right of start
     (f(start) itself is not inspected); ``start`` when f < 0 just right of it.
-    This is the paper's tau_i for f_i, with tangent roots stepped over."""
+    This is the paper's tau_i for f_i, with tangent roots stepped over.
+
+    >>> nonnegative_until([2, -3, 1])   # (1 - t)(2 - t) >= 0 until t = 1
+    Fraction(1, 1)
+    >>> nonnegative_until([1, 0, 1])
+    INF
+    """
     start = to_rational(start, "start")
     if sign_right_of(f, start) < 0:
         return start
@@ -195,7 +201,11 @@ def nonnegative_until(f: Any, start: Any = 0) -> Real:
 
 
 def positive_roots(p: flint.fmpq_poly) -> list[tuple[FiniteReal, int]]:
-    """The distinct positive roots of p with multiplicities, sorted (none for a constant)."""
+    """The distinct positive roots of p with multiplicities, sorted (none for a constant).
+
+    >>> positive_roots(flint.fmpq_poly([4, -4, 1]) * flint.fmpq_poly([-3, 1]))   # (t - 2)^2 (t - 3)
+    [(Fraction(2, 1), 2), (Fraction(3, 1), 1)]
+    """
     if p.degree() < 1:
         return []
     return [(r, m) for r, m in real_roots(p) if r > 0]
@@ -203,7 +213,11 @@ def positive_roots(p: flint.fmpq_poly) -> list[tuple[FiniteReal, int]]:
 
 def negative_segments(p: flint.fmpq_poly) -> list[tuple[Real, Real]]:
     """The open intervals (a, b) in (0, oo) where the polynomial is negative:
-    its sign right of 0, flipped at every root of odd multiplicity."""
+    its sign right of 0, flipped at every root of odd multiplicity.
+
+    >>> negative_segments(flint.fmpq_poly([6, -5, 1]))   # (t - 2)(t - 3) < 0 on (2, 3)
+    [(Fraction(2, 1), Fraction(3, 1))]
+    """
     sign = sign_right_of(p, 0)
     out = []
     left: Real = Fraction(0)

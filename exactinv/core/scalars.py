@@ -120,7 +120,13 @@ def _is_comparable(other: object) -> bool:
 
 
 def exact_from_float(x: float) -> Fraction:
-    """The exact rational value of a finite binary float (0.1 -> 3602879701896397/36028797018963968)."""
+    """The exact rational value of a finite binary float (0.1 -> 3602879701896397/36028797018963968).
+
+    >>> exact_from_float(0.1)
+    Fraction(3602879701896397, 36028797018963968)
+    >>> exact_from_float(0.5)
+    Fraction(1, 2)
+    """
     if not isinstance(x, (float, int)) or isinstance(x, bool):
         x = float(x)
     if not math.isfinite(x):
@@ -130,7 +136,11 @@ def exact_from_float(x: float) -> Fraction:
 
 def nearest_rational(x: float, max_denominator: int = 10**6) -> Fraction:
     """The rational with denominator <= ``max_denominator`` closest to the float ``x``
-    (0.1 -> 1/10).  A deliberate, explicit rounding step."""
+    (0.1 -> 1/10).  A deliberate, explicit rounding step.
+
+    >>> nearest_rational(0.1), nearest_rational(3.14159265, 100)
+    (Fraction(1, 10), Fraction(311, 99))
+    """
     return exact_from_float(x).limit_denominator(max_denominator)
 
 
@@ -209,7 +219,11 @@ def _rows(value: Any, name: str) -> list:
 def to_vector(
     value: Any, name: str = "vector", *, length: int | None = None, allow_float: bool = False
 ) -> Vector:
-    """Parse a vector of exact scalars, optionally checking its length."""
+    """Parse a vector of exact scalars, optionally checking its length.
+
+    >>> to_vector(['1/3', 2], 'b', length=2)
+    (Fraction(1, 3), Fraction(2, 1))
+    """
     if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
         value = [value[i, j] for i in range(value.nrows()) for j in range(value.ncols())]
     items = _rows(value, name)
@@ -234,7 +248,11 @@ def to_matrix(
     allow_float: bool = False,
 ) -> Matrix:
     """Parse a matrix given as a sequence of rows; checks raggedness, emptiness
-    and (optionally) the shape and squareness, naming the offending position."""
+    and (optionally) the shape and squareness, naming the offending position.
+
+    >>> to_matrix([[1, '1/2'], [0, 3]], 'A', square=True)
+    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(0, 1), Fraction(3, 1)))
+    """
     rows = _rows(value, name)
     if not rows:
         raise InvalidInput(f"{name}: the matrix is empty")
@@ -263,10 +281,20 @@ def to_matrix(
 
 # ---------------------------------------------------------------- flint bridge
 def fmpq_of(x: Fraction) -> flint.fmpq:
+    """A Fraction as a FLINT rational.
+
+    >>> fmpq_of(Fraction(-2, 6))
+    -1/3
+    """
     return flint.fmpq(x.numerator, x.denominator)
 
 
 def fraction_of(x: flint.fmpq | flint.fmpz | int) -> Fraction:
+    """A FLINT rational or integer (or an int) as a Fraction.
+
+    >>> fraction_of(flint.fmpq(6, 4)), fraction_of(flint.fmpz(7))
+    (Fraction(3, 2), Fraction(7, 1))
+    """
     if isinstance(x, (flint.fmpz, int)):
         return Fraction(int(x))
     return _coprime(int(x.p), int(x.q))
@@ -281,38 +309,69 @@ def _coprime(p: int, q: int) -> Fraction:
 
 
 def fmpq_matrix(rows: Sequence[Sequence[Fraction]]) -> flint.fmpq_mat:
+    """The fmpq matrix of exact rows.
+
+    >>> fmpq_matrix([[Fraction(1, 2), 0], [0, 1]]).det()
+    1/2
+    """
     m = len(rows)
     n = len(rows[0]) if m else 0
     return flint.fmpq_mat(m, n, [fmpq_of(x) for row in rows for x in row])
 
 
 def fmpq_column(entries: Sequence[Fraction]) -> flint.fmpq_mat:
+    """The column fmpq matrix of exact entries.
+
+    >>> fmpq_column([Fraction(1, 2), Fraction(-3)]).entries()
+    [1/2, -3]
+    """
     return flint.fmpq_mat(len(entries), 1, [fmpq_of(x) for x in entries])
 
 
 def matrix_of(M: flint.fmpq_mat) -> Matrix:
+    """The rows of an fmpq matrix, as Fractions.
+
+    >>> matrix_of(flint.fmpq_mat([[1, 2], [3, 4]]) / 2)
+    ((Fraction(1, 2), Fraction(1, 1)), (Fraction(3, 2), Fraction(2, 1)))
+    """
     return tuple(tuple(fraction_of(M[i, j]) for j in range(M.ncols())) for i in range(M.nrows()))
 
 
 def vector_of(M: flint.fmpq_mat) -> Vector:
-    """The entries of a column (or row) matrix, as Fractions."""
+    """The entries of a column (or row) matrix, as Fractions.
+
+    >>> vector_of(flint.fmpq_mat(2, 1, [flint.fmpq(1, 3), 2]))
+    (Fraction(1, 3), Fraction(2, 1))
+    """
     return tuple(fraction_of(x) for x in M.entries())
 
 
 def format_rational(x: Fraction | Infinity) -> str:
-    """The exact string form used in JSON and on the command line ("-3/4")."""
+    """The exact string form used in JSON and on the command line ("-3/4").
+
+    >>> format_rational(Fraction(-3, 4)), format_rational(Fraction(2)), format_rational(INF)
+    ('-3/4', '2', 'oo')
+    """
     return str(x)
 
 
 def dyadic_of(a: flint.arb) -> Fraction:
-    """The midpoint of an Arb ball as an exact dyadic Fraction."""
+    """The midpoint of an Arb ball as an exact dyadic Fraction.
+
+    >>> dyadic_of(flint.arb(3) / 4)
+    Fraction(3, 4)
+    """
     man, exp = a.mid().man_exp()
     man, exp = int(man), int(exp)
     return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
 
 
 def frac_latex(q: Fraction) -> str:
-    """A Fraction as a compact LaTeX ``\\tfrac``."""
+    """A Fraction as a compact LaTeX ``\\tfrac``.
+
+    >>> print(frac_latex(Fraction(-3, 4)), frac_latex(Fraction(5)))
+    -\\tfrac{3}{4} 5
+    """
     if q.denominator == 1:
         return str(q.numerator)
     sign = "-" if q < 0 else ""
@@ -320,10 +379,18 @@ def frac_latex(q: Fraction) -> str:
 
 
 def vector_text(v: Sequence[Fraction]) -> str:
-    """A vector of exact values as "[a, b, ...]"."""
+    """A vector of exact values as "[a, b, ...]".
+
+    >>> vector_text([Fraction(1, 3), Fraction(-2)])
+    '[1/3, -2]'
+    """
     return "[" + ", ".join(str(x) for x in v) + "]"
 
 
 def matrix_text(M: Sequence[Sequence[Fraction]]) -> str:
-    """A matrix of exact values as "[[a, b], ...]"."""
+    """A matrix of exact values as "[[a, b], ...]".
+
+    >>> matrix_text([[Fraction(1, 2), Fraction(0)], [Fraction(-1), Fraction(3)]])
+    '[[1/2, 0], [-1, 3]]'
+    """
     return "[" + ", ".join(vector_text(r) for r in M) + "]"
