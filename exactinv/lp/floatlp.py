@@ -48,11 +48,26 @@ class FloatLP:
             self.A = A_float * self.row_scale[:, None]
 
     def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Sequence[bool]) -> Hint:
-        """The backend's float answer for max c.x s.t. A x (= | <=) b, x_i >= 0 (nonneg)."""
+        """The backend's float answer for max c.x s.t. A x (= | <=) b, x_i >= 0 (nonneg).
+
+        >>> from exactinv.lp.hint import HighsHint
+        >>> lp = FloatLP(flint.fmpq_mat([[1, 1]]), (False,), HighsHint())
+        >>> hint = lp.solve(flint.fmpq_mat([[1], [0]]), flint.fmpq_mat([[3]]), (True, True))
+        >>> hint.status, hint.x.tolist(), hint.y.tolist()   # max x1 s.t. x1 + x2 <= 3, x >= 0
+        (<LPStatus.OPTIMAL: 'optimal'>, [3.0, 0.0], [1.0])
+        """
         return self.solve_floats(floats_of(c.entries()), floats_of(b.entries()), nonneg)
 
     def solve_floats(self, cost: np.ndarray | None, rhs: np.ndarray | None, nonneg: Sequence[bool]) -> Hint:
-        """:meth:`solve` from the float images of c and b (None: beyond double range)."""
+        """:meth:`solve` from the float images of c and b (None: beyond double range).
+
+        >>> from exactinv.lp.hint import HighsHint
+        >>> lp = FloatLP(flint.fmpq_mat([[1, 1]]), (False,), HighsHint())
+        >>> lp.solve_floats(np.array([1.0, 0.0]), np.array([3.0]), (True, True)).x.tolist()
+        [3.0, 0.0]
+        >>> lp.solve_floats(None, np.array([3.0]), (True, True)).status   # beyond double range
+        <LPStatus.UNKNOWN: 'unknown'>
+        """
         if self.A is None or cost is None or rhs is None:
             return UNKNOWN_HINT
         if self._model is None:
@@ -70,7 +85,13 @@ class FloatLP:
         return Hint(LPStatus.OPTIMAL, np.asarray(hint.x, dtype=float), y, basis, basis_of)
 
     def rhs(self, b: flint.fmpq_mat) -> np.ndarray:
-        """The float image of the right-hand side b, scaled like the model's rows."""
+        """The float image of the right-hand side b, scaled like the model's rows.
+
+        >>> from exactinv.lp.hint import HighsHint
+        >>> lp = FloatLP(flint.fmpq_mat([[4, 0], [0, 1]]), (False, False), HighsHint())
+        >>> lp.rhs(flint.fmpq_mat([[2], [3]])).tolist()   # row 0 scaled by 1/4
+        [0.5, 3.0]
+        """
         return floats_of(b.entries()) * self.row_scale
 
     def _checked(self, fetch: Callable[[], Basis | None]) -> Basis | None:

@@ -97,7 +97,11 @@ class Hint:
         return self.basis is not None or self.basis_of is not None
 
     def fetch_basis(self) -> Basis | None:
-        """The basis: given, or fetched now from the backend."""
+        """The basis: given, or fetched now from the backend.
+
+        >>> Hint(LPStatus.OPTIMAL, basis=((1,), (0,))).fetch_basis()
+        ((1,), (0,))
+        """
         if self.basis is not None or self.basis_of is None:
             return self.basis
         return self.basis_of()
@@ -111,7 +115,12 @@ class HintModel(ABC):
 
     @abstractmethod
     def solve(self, cost: np.ndarray, rhs: np.ndarray, nonneg: Sequence[bool]) -> Hint:
-        """Maximize cost.x subject to the model's rows with right-hand side ``rhs``."""
+        """Maximize cost.x subject to the model's rows with right-hand side ``rhs``.
+
+        >>> model = HighsHint().model(np.array([[1.0], [-1.0]]), [False, False])
+        >>> model.solve(np.array([1.0]), np.array([0.0, -1.0]), [False]).status   # x <= 0 and x >= 1
+        <LPStatus.INFEASIBLE: 'infeasible'>
+        """
 
 
 class HintBackend(ABC):
@@ -121,7 +130,12 @@ class HintBackend(ABC):
 
     @abstractmethod
     def model(self, A: np.ndarray, equality: Sequence[bool]) -> HintModel:
-        """A model for the R x N float matrix ``A`` (rows already scaled by the engine)."""
+        """A model for the R x N float matrix ``A`` (rows already scaled by the engine).
+
+        >>> model = HighsHint().model(np.array([[1.0, 1.0]]), [False])
+        >>> model.solve(np.array([1.0, 2.0]), np.array([4.0]), [True, True]).x.tolist()
+        [0.0, 4.0]
+        """
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
@@ -134,6 +148,12 @@ class HighsHint(HintBackend):
     name = "highs"
 
     def model(self, A, equality):
+        """A HiGHS model of the float matrix ``A`` (built on its first solve, then warm-started).
+
+        >>> hint = HighsHint().model(np.array([[2.0, 1.0]]), [True]).solve(np.array([1.0, 1.0]), np.array([2.0]), [True, True])
+        >>> hint.status, hint.x.tolist(), hint.fetch_basis()   # max x1 + x2 on 2 x1 + x2 = 2: the vertex (0, 2)
+        (<LPStatus.OPTIMAL: 'optimal'>, [0.0, 2.0], ((1,), (0,)))
+        """
         return _HighsModel(A, equality)
 
 
@@ -220,6 +240,12 @@ class CvxpyHint(HintBackend):
         self.solver_options = solver_options
 
     def model(self, A, equality):
+        """The LP as a parametrised cvxpy problem (compiled once, re-solved with new data).
+
+        >>> hint = CvxpyHint('CLARABEL').model(np.array([[1.0, 1.0]]), [False]).solve(np.array([1.0, 0.0]), np.array([3.0]), [True, True])
+        >>> hint.status, [round(float(v), 6) for v in hint.x], hint.basis   # an interior-point solver: no basis
+        (<LPStatus.OPTIMAL: 'optimal'>, [3.0, 0.0], None)
+        """
         return _CvxpyModel(A, equality, self.solver, self.solver_options)
 
     def __repr__(self) -> str:
@@ -291,7 +317,11 @@ _current: contextvars.ContextVar[HintBackend | None] = contextvars.ContextVar("e
 
 def resolve_hint_backend(backend: str | HintBackend | None = None, **options: Any) -> HintBackend:
     """A backend from a name (``"highs"``, ``"cvxpy"``) and options, an
-    instance, or None (the current one: :func:`hint_backend` block, else the global)."""
+    instance, or None (the current one: :func:`hint_backend` block, else the global).
+
+    >>> resolve_hint_backend('highs'), resolve_hint_backend('cvxpy', solver='SCS')
+    (HighsHint(), CvxpyHint(solver='SCS'))
+    """
     if backend is None:
         if options:
             raise TypeError("hint backend options need a backend name")
@@ -308,21 +338,42 @@ def resolve_hint_backend(backend: str | HintBackend | None = None, **options: An
 
 def set_hint_backend(backend: str | HintBackend = "highs", **options: Any) -> HintBackend:
     """Set the global float-hint backend (``"highs"``, the default, or
-    ``"cvxpy"`` with e.g. ``solver="CLARABEL"``); returns the previous one."""
+    ``"cvxpy"`` with e.g. ``solver="CLARABEL"``); returns the previous one.
+
+    >>> previous = set_hint_backend('cvxpy', solver='CLARABEL')
+    >>> previous, get_hint_backend()
+    (HighsHint(), CvxpyHint(solver='CLARABEL'))
+    >>> set_hint_backend(previous)   # restore the default
+    CvxpyHint(solver='CLARABEL')
+    """
     global _default
     previous, _default = _default, resolve_hint_backend(backend, **options)
     return previous
 
 
 def get_hint_backend() -> HintBackend:
-    """The backend in effect here (a :func:`hint_backend` block, else the global one)."""
+    """The backend in effect here (a :func:`hint_backend` block, else the global one).
+
+    >>> get_hint_backend()
+    HighsHint()
+    >>> with hint_backend('cvxpy', solver='CLARABEL'):
+    ...     print(get_hint_backend())
+    CvxpyHint(solver='CLARABEL')
+    """
     return resolve_hint_backend()
 
 
 @contextlib.contextmanager
 def hint_backend(backend: str | HintBackend, **options: Any) -> Iterator[HintBackend]:
     """Use ``backend`` for the float hints of every LP solved inside the block
-    (thread- and task-local: a :mod:`contextvars` variable)."""
+    (thread- and task-local: a :mod:`contextvars` variable).
+
+    >>> with hint_backend('cvxpy', solver='CLARABEL') as chosen:
+    ...     print(chosen, get_hint_backend() is chosen)
+    CvxpyHint(solver='CLARABEL') True
+    >>> get_hint_backend()
+    HighsHint()
+    """
     chosen = resolve_hint_backend(backend, **options)
     token = _current.set(chosen)
     try:

@@ -67,11 +67,21 @@ class LPData:
         return tuple(r for r, e in enumerate(self.equality) if not e)
 
     def eq_part(self, M: flint.fmpq_mat) -> flint.fmpq_mat:
-        """The equality rows of an R-row matrix M."""
+        """The equality rows of an R-row matrix M.
+
+        >>> data = LPData(flint.fmpq_mat([[1, 2], [3, 4]]), (False, True))
+        >>> data.eq_part(flint.fmpq_mat([[5], [6]])).entries()
+        [6]
+        """
         return M if len(self.eq_rows) == self.R else self._select_eq * M
 
     def le_part(self, M: flint.fmpq_mat) -> flint.fmpq_mat:
-        """The inequality rows of an R-row matrix M."""
+        """The inequality rows of an R-row matrix M.
+
+        >>> data = LPData(flint.fmpq_mat([[1, 2], [3, 4]]), (False, True))
+        >>> data.le_part(data.A).entries()
+        [1, 2]
+        """
         return M if len(self.le_rows) == self.R else self._select_le * M
 
     @cached_property
