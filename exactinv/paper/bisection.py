@@ -55,7 +55,13 @@ def _normalised(alphas: Sequence[Any]) -> tuple[Fraction, ...]:
 
 def paper_bound(alphas: Sequence[Any], repaired: bool = False) -> Fraction:
     """t* of the bound lemma: alpha*/alpha_q + 1 (as printed), or Cauchy's
-    1 + alpha*/|alpha_q| (``repaired``), with alpha* = max(1, |alpha_1|, ..., |alpha_{q-1}|)."""
+    1 + alpha*/|alpha_q| (``repaired``), with alpha* = max(1, |alpha_1|, ..., |alpha_{q-1}|).
+
+    >>> paper_bound([1, -3, 2])   # alpha* = max(1, |-3|) = 3: t* = 3/2 + 1
+    Fraction(5, 2)
+    >>> paper_bound([1, -3, -2], repaired=True)   # Cauchy: 1 + 3/|-2|
+    Fraction(5, 2)
+    """
     a = _normalised(alphas)
     alpha_star = max([Fraction(1)] + [abs(x) for x in a[1:-1]])
     alpha_q = a[-1]
@@ -63,7 +69,12 @@ def paper_bound(alphas: Sequence[Any], repaired: bool = False) -> Fraction:
 
 
 def paper_bisection(alphas: Sequence[Any], epsilon: Any = Fraction(1, 2**30), repaired: bool = False) -> PaperBisectionResult:
-    """Steps 0-5 of the paper in exact arithmetic.  ``alphas`` = [1, alpha_1, ..., alpha_q]."""
+    """Steps 0-5 of the paper in exact arithmetic.  ``alphas`` = [1, alpha_1, ..., alpha_q].
+
+    >>> res = paper_bisection([1, -3, 2])   # 1 - 3t + 2t^2 = (1 - t)(1 - 2t): first root 1/2
+    >>> res.tau < Fraction(1, 2) <= res.tau + Fraction(1, 2**30), res.terminated_by   # Step 5 returns t_l
+    (True, <BisectionStep.STEP_5: 'step 5'>)
+    """
     a = _normalised(alphas)
     eps = to_rational(epsilon, "epsilon")
     f = flint.fmpq_poly([fmpq_of(x) for x in a])
@@ -86,7 +97,12 @@ def paper_bisection(alphas: Sequence[Any], epsilon: Any = Fraction(1, 2**30), re
 
 def paper_bisection_float(alphas: Sequence[Any], epsilon: float = 2.0**-30, repaired: bool = False) -> PaperBisectionResult:
     """Steps 0-5 of the paper in double precision (numpy polynomial division
-    for the Sturm sequence); what a float implementation of the paper gives."""
+    for the Sturm sequence); what a float implementation of the paper gives.
+
+    >>> res = paper_bisection_float([1, -3, 2])
+    >>> abs(res.tau - 0.5) < 1e-8, res.terminated_by
+    (True, <BisectionStep.STEP_5: 'step 5'>)
+    """
     a = [float(x) for x in _normalised(alphas)]
     f = np.polynomial.Polynomial(a)
     seq = [f, f.deriv()]
