@@ -187,7 +187,15 @@ _EXPLAIN = {
 
 def explain(cert: dict, verified: bool = False) -> str:
     """Explain every claim of a certificate.  This does not verify: pass
-    ``verified=True`` only after the kernel (``exactinv_check.check``) accepted it."""
+    ``verified=True`` only after the kernel (``exactinv_check.check``) accepted it.
+
+    >>> import exactinv as ei
+    >>> from exactinv.model.record import certificate
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> text = explain(certificate(S, P, None, [ei.forward_euler_threshold(S, P)]))
+    >>> 'The largest forward-Euler step is 2' in text   # (1 - dt) x stays in [-1, 1] iff dt <= 2
+    True
+    """
     p = cert["problem"]
     lines = []
     if "A" in p:

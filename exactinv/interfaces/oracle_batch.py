@@ -46,7 +46,15 @@ def judge_batch(path: str, tolerance: Any = "1e-9") -> list[BatchRow]:
     JSON lines; problem paths are relative to the batch file.  Every row is
     judged on its own: a row that cannot be judged (bad problem, method,
     quantity or claim) is returned with its ``error`` and the batch goes on.
-    A batch file that cannot be read raises :class:`InvalidInput`."""
+    A batch file that cannot be read raises :class:`InvalidInput`.
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (d / 'p.json').write_text(json.dumps({'system': {'A': [['-1']]}, 'polyhedron': {'G': [[1], [-1]], 'b': [1, 1]}}))
+    >>> _ = (d / 'rows.csv').write_text('problem,quantity,method,claimed\\np.json,gamma,,0.5\\np.json,threshold,forward_euler,2\\nnope.json,gamma,,1\\n')
+    >>> [row.status for row in judge_batch(d / 'rows.csv')]   # x' = -x on [-1, 1]: gamma* = 1/2, forward Euler (1 - dt) x: dt <= 2; no file nope.json
+    [<Status.TIGHT: 'tight'>, <Status.TIGHT: 'tight'>, 'error']
+    """
     tol = to_rational(tolerance, "--tolerance")
     if tol < 0:
         raise InvalidInput(f"--tolerance: must be >= 0, got {tolerance}")

@@ -89,7 +89,15 @@ def _within(claimed, exact, tolerance: Fraction) -> bool:
 
 def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed steplength threshold: is every dt in [0, claimed] valid?
-    Compared with the exact largest threshold (attained or not)."""
+    Compared with the exact largest threshold (attained or not).
+
+    >>> import exactinv as ei; S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    >>> judge_threshold(S, P, ei.methods.taylor(1), 1.0).status   # the largest forward-Euler step is 1
+    <Status.TIGHT: 'tight'>
+    >>> v = judge_threshold(S, P, ei.methods.taylor(1), 1.25)
+    >>> v.status, v.counterexample['dt'] <= Fraction(5, 4)
+    (<Status.INVALID: 'invalid'>, True)
+    """
     tol = to_rational(tolerance, "tolerance")
     c = _exact_claim(claimed)
     L = largest_threshold(system, polyhedron, method)
@@ -172,7 +180,12 @@ def _simplest_between(a: Fraction, b: Fraction) -> Fraction | None:
 
 def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed gamma*.  A claim below gamma* is invalid (its forward-Euler step
-    1/claimed is too large: counterexample given); above it, it is safe but conservative."""
+    1/claimed is too large: counterexample given); above it, it is safe but conservative.
+
+    >>> import exactinv as ei; S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    >>> [judge_gamma(S, P, c).status for c in (1.0, 1.5, 0.75)]   # gamma* = 1
+    [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
+    """
     tol = to_rational(tolerance, "tolerance")
     c = _exact_claim(claimed)
     g = optimal_gamma(system, polyhedron).value
@@ -191,7 +204,11 @@ def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Ve
 
 
 def judge_root(f: Any, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
-    """Judge a claimed first sign change of the polynomial f (coefficients, constant first)."""
+    """Judge a claimed first sign change of the polynomial f (coefficients, constant first).
+
+    >>> [judge_root([2, -3, 1], c).status for c in (1.0, 0.5, 1.5)]   # (1 - t)(2 - t): first sign change at 1
+    [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
+    """
     tol = to_rational(tolerance, "tolerance")
     c = _exact_claim(claimed)
     r = first_sign_change(f)
@@ -205,7 +222,12 @@ def judge_root(f: Any, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
 
 
 def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
-    """Judge a claimed radius of absolute monotonicity."""
+    """Judge a claimed radius of absolute monotonicity.
+
+    >>> from exactinv.model import methods
+    >>> [judge_radius(methods.taylor(1), c).status for c in (1.0, 0.5, 2.0)]   # 1 + z: rho = 1
+    [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
+    """
     tol = to_rational(tolerance, "tolerance")
     c = _exact_claim(claimed)
     rho = absolute_monotonicity_radius(method).value
@@ -221,7 +243,17 @@ def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdi
 
 def assert_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
     """pytest helper: fail (AssertionError with the counterexample) unless the claim is valid
-    (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold)."""
+    (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold).
+
+    >>> import exactinv as ei; S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    >>> assert_threshold(S, P, ei.methods.taylor(1), 0.5).status
+    <Status.VALID: 'valid'>
+    >>> try:
+    ...     assert_threshold(S, P, ei.methods.taylor(1), 1.5)
+    ... except AssertionError as exc:
+    ...     print(str(exc).split(':')[0])
+    INVALID
+    """
     v = judge_threshold(system, polyhedron, method, claimed, tolerance)
     if v.status == INVALID or (require_tight and v.status != TIGHT):
         raise AssertionError(str(v))

@@ -78,6 +78,15 @@ def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", toler
     ``"dual_bound"``).  With ``claim="bound"`` it is judged as a primal bound (a
     value some feasible point attains or beats: >= the minimum, <= the
     maximum): ``valid``/``tight``, or ``invalid`` with the dual bound.
+
+    >>> import cvxpy as cp
+    >>> x = cp.Variable(2, nonneg=True, name='x')
+    >>> lp = cp.Problem(cp.Maximize(x[0] + x[1]), [3 * x[0] + x[1] <= 1, x[0] + 3 * x[1] <= 1])
+    >>> v = judge_lp(lp, 0.5)   # the maximum is 1/2, at x = (1/4, 1/4)
+    >>> v.status, v.exact, v.x
+    (<Status.TIGHT: 'tight'>, Fraction(1, 2), {'x': (Fraction(1, 4), Fraction(1, 4))})
+    >>> judge_lp(lp, 0.6).counterexample['kind']   # 0.6 is unattainable: a dual bound proves it
+    <CounterexampleKind.DUAL_BOUND: 'dual_bound'>
     """
     try:
         import cvxpy as cp  # optional dependency: only this judge needs it
