@@ -165,9 +165,10 @@ class ExactLPSolver:
         X, Y = _proposal_matrix(proposals, "x", self.N), _proposal_matrix(proposals, "y", self.R)
         values = optimal_values(self.data, costs, rhss, signs, X, Y)
         results = []
-        for k, (x, y, value) in enumerate(zip(_columns_of(X), _columns_of(Y), values)):
+        for k, (proposal, value) in enumerate(zip(proposals, values)):
             if value is not None:
-                results.append(LPResult(OPTIMAL, fraction_of(value), x, y, None, proposals[k].path))
+                x, y = _proposal_column(proposal.x, proposal), _proposal_column(proposal.y, proposal)
+                results.append(LPResult(OPTIMAL, fraction_of(value), x, y, None, proposal.path))
             else:
                 results.append(self._solve(C_cols[k], B_cols[k], signs[k], bounded=False))
         return results
@@ -300,16 +301,7 @@ def _column(v: Sequence[Fraction] | flint.fmpq_mat) -> flint.fmpq_mat:
     return flint.fmpq_mat(len(entries), 1, entries)
 
 
-def _columns_of(M: flint.fmpq_mat) -> list[flint.fmpq_mat]:
-    rows, K = M.nrows(), M.ncols()
-    T = M.transpose().entries()
-    return [flint.fmpq_mat(rows, 1, T[k * rows:(k + 1) * rows]) for k in range(K)]
-
-
-class _LazyColumns:
-    """The columns of an fmpq matrix as fmpq column matrices, built on demand."""
-
-    def __init__(self, M: flint.fmpq_mat):
+def __init__(self, M: flint.fmpq_mat):
         self.rows, self.K = M.nrows(), M.ncols()
         self.T = M.transpose().entries()
 
@@ -345,6 +337,13 @@ def _proposal_matrix(proposals: list[_Proposal | None], part: str, rows: int) ->
         rest = [v for p, c in zip(proposals, common) for v in (zeros if c or p is None else getattr(p, part))]
         M += flint.fmpq_mat(len(proposals), rows, rest)
     return M.transpose()
+
+
+def _proposal_column(entries: list, proposal: _Proposal) -> flint.fmpq_mat:
+    """One part of a proposal as an fmpq column (from its integers in C, without fmpq objects)."""
+    if proposal.over_common:
+        return flint.fmpq_mat(flint.fmpz_mat(len(entries), 1, entries)) * flint.fmpq(1, COMMON_DENOMINATOR)
+    return flint.fmpq_mat(len(entries), 1, entries)
 
 
 def _fractions(M: flint.fmpq_mat) -> tuple[Fraction, ...]:
