@@ -301,7 +301,10 @@ def _column(v: Sequence[Fraction] | flint.fmpq_mat) -> flint.fmpq_mat:
     return flint.fmpq_mat(len(entries), 1, entries)
 
 
-def __init__(self, M: flint.fmpq_mat):
+class _LazyColumns:
+    """The columns of an fmpq matrix as fmpq column matrices, built on demand."""
+
+    def __init__(self, M: flint.fmpq_mat):
         self.rows, self.K = M.nrows(), M.ncols()
         self.T = M.transpose().entries()
 
