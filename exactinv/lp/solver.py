@@ -1,36 +1,28 @@
 """The exact LP engine: float solve -> exact reconstruction -> verification in Q.
 
-Every linear program exactinv solves has the form ::
+Every LP has the form  max c.x  s.t.  a_r.x = b_r (equality rows), a_r.x <= b_r
+(the others), x_i >= 0 (nonnegative columns; the others free), with rational
+data.  :class:`ExactLPSolver` answers it as a chain of steps, each a module
+testable alone (cvxpy's *transform, solve, map back*):
 
-    maximize  c.x   subject to   a_r.x  = b_r   (r an equality row)
-                                 a_r.x <= b_r   (r an inequality row)
-                                 x_i >= 0       (i a nonnegative column; the others are free)
+1. **float solve** (:mod:`~exactinv.lp.floatlp`, :mod:`~exactinv.lp.hint`):
+   HiGHS' dual simplex by default, or any solver through cvxpy, on the float
+   image of the data: a point, its duals and, with HiGHS, its basis (a hint);
+2. **reconstruction** (:mod:`~exactinv.lp.reconstruct`): rounded to simple
+   fractions (``path="float-rounded"``), else the basis solved exactly
+   (``"float-basis"``), else repaired by exact pivots (``"float-basis+pivots"``);
+3. **verification** (:mod:`~exactinv.lp.verify`): primal and dual feasibility
+   and equal objectives in exact arithmetic -- by LP duality a proof of optimality;
+4. **exact fallback** (:mod:`~exactinv.lp.exact`): PPL's exact simplex on the
+   LP and its dual (``path="exact-ppl"``), verified the same way.
 
-with rational data.  :class:`ExactLPSolver` answers it exactly as a chain of
-steps, each a module testable alone (cvxpy's *transform, solve, map back*):
-
-1. **float solve** (:mod:`~exactinv.lp.floatlp`, :mod:`~exactinv.lp.hint`) --
-   a hint backend (HiGHS' dual simplex by default, or any solver through
-   cvxpy) on the float image of the data gives a solution, its duals and,
-   with HiGHS, its basis (an untrusted hint);
-2. **reconstruction** (:mod:`~exactinv.lp.reconstruct`) -- the hint is mapped
-   back to Q: rounded to simple fractions (``path="float-rounded"``), else its
-   basis solved exactly (``"float-basis"``), else repaired by exact simplex
-   pivots (``"float-basis+pivots"``);
-3. **verification** (:mod:`~exactinv.lp.verify`) -- primal feasibility, dual
-   feasibility and equal objectives, in exact arithmetic: by LP duality
-   these prove optimality, so nothing else is trusted;
-4. **exact fallback** (:mod:`~exactinv.lp.exact`) -- PPL's exact simplex on
-   the LP and its dual (``path="exact-ppl"``), verified the same way.
-
-Infeasible and unbounded programs get certificates too: a Farkas vector
-(``y`` with y_r >= 0 on inequality rows, A^T y >= 0 on nonnegative columns,
-= 0 on free ones, and b.y < 0), resp. a feasible point and a ray, each the
-optimum of an *auxiliary* LP that is bounded by construction.  Auxiliary LPs
-never build failure certificates of their own, so the engine recurses at most
-one level, whatever the scaling of the rows.  A :class:`LPResult` is returned
-only after its certificate has been verified; otherwise
-:class:`~exactinv.errors.VerificationFailed` is raised.
+Infeasible and unbounded LPs get certificates too: a Farkas vector y (y_r >= 0
+on inequality rows, A^T y >= 0 on nonnegative columns, = 0 on free ones, b.y <
+0), resp. a feasible point and a ray, each the optimum of an *auxiliary* LP
+that is bounded by construction.  Auxiliary LPs never build failure
+certificates of their own, so the engine recurses at most one level, whatever
+the scaling of the rows.  An :class:`LPResult` is returned only after its
+certificate has been verified; otherwise :class:`~exactinv.errors.VerificationFailed`.
 """
 
 from __future__ import annotations
