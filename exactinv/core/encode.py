@@ -12,7 +12,7 @@ import json
 from fractions import Fraction
 from typing import Any, Iterable
 
-from .algebraic import RealAlgebraic
+from .algebraic import Real, RealAlgebraic
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
 __all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "envelope", "dumps"]
@@ -20,7 +20,7 @@ __all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "envelope", "dumps"
 FORMAT = "exactinv-certificate"
 VERSION = 2  # v2 = v1 + optional data (e.g. dt on discrete claims); the kernel checks both
 
-def encode_real(v: Any) -> Any:
+def encode_real(v: Real) -> str | dict:
     """Fraction -> "p/q"; INF -> "oo"; RealAlgebraic -> {"poly", "interval"}.
 
     >>> encode_real(Fraction(-3, 4)), encode_real(INF)

@@ -14,10 +14,11 @@ from fractions import Fraction
 from typing import Any
 
 from ..beyond.largest import largest_threshold, valid_steplengths
-from ..core.algebraic import RealAlgebraic
+from ..core.algebraic import Real, RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput
+from ..model import LinearSystem, Polyhedron
 from ..model.methods import Method, forward_euler
 from ..paper.invariance import discrete_invariance, optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
@@ -43,7 +44,7 @@ class Verdict:
     status: Status
     quantity: str
     claimed: Fraction | Infinity
-    exact: Any
+    exact: Real | None
     relative_gap: Fraction | None = None
     counterexample: dict | None = None
     message: str = ""
@@ -87,7 +88,7 @@ def _within(claimed, exact, tolerance: Fraction) -> bool:
     return abs(exact - claimed) <= tolerance * abs(exact)
 
 
-def judge_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed steplength threshold: is every dt in [0, claimed] valid?
     Compared with the exact largest threshold (attained or not).
 
@@ -178,7 +179,7 @@ def _simplest_between(a: Fraction, b: Fraction) -> Fraction | None:
     return None if x is None or x == 0 else fl + 1 / x
 
 
-def judge_gamma(system, polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+def judge_gamma(system: LinearSystem, polyhedron: Polyhedron, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed gamma*.  A claim below gamma* is invalid (its forward-Euler step
     1/claimed is too large: counterexample given); above it, it is safe but conservative.
 
@@ -241,7 +242,7 @@ def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdi
     return Verdict(status, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed}; exact rho = {rho}")
 
 
-def assert_threshold(system, polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
+def assert_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
     """pytest helper: fail (AssertionError with the counterexample) unless the claim is valid
     (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold).
 

@@ -18,7 +18,7 @@ import numpy as np
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..core.tags import CounterexampleKind
 from ..errors import InvalidInput
-from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, LPResult
+from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, HintBackend, LPResult
 from .oracle_judges import INVALID, TIGHT, VALID, Verdict, _exact_claim, _gap
 
 __all__ = ["LPVerdict", "judge_lp"]
@@ -51,7 +51,7 @@ _VARIABLE_ATTRIBUTES = {"nonneg", "nonpos", "real"}
 
 
 def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", tolerance: Any = "1e-9",
-             limit_denominator: int | None = None, hint: Any = None) -> LPVerdict:
+             limit_denominator: int | None = None, hint: str | HintBackend | None = None) -> LPVerdict:
     """Judge a user's solved cvxpy LP exactly.
 
     ``problem`` is a ``cvxpy.Problem`` with a ``Minimize``/``Maximize`` of an
