@@ -38,6 +38,7 @@ class _HighsModel(HintModel):
         self.equality = np.array(equality, dtype=bool)
         self.R, self.N = A.shape
         self._highs: highspy.Highs | None = None
+        self._last: tuple[np.ndarray, ...] = ()
 
     def solve(self, cost, rhs, nonneg):
         cost = -cost  # HiGHS minimizes
@@ -47,6 +48,7 @@ class _HighsModel(HintModel):
             self._highs = self._build(cost, lower, row_lower, rhs)
         else:
             self._update(cost, lower, row_lower, rhs)
+        self._last = (cost, lower, row_lower, rhs)
         h = self._highs
         h.run()
         status = h.getModelStatus()
@@ -77,10 +79,19 @@ class _HighsModel(HintModel):
         return h
 
     def _update(self, cost, lower, row_lower, rhs) -> None:
-        h, idx, ridx = self._highs, np.arange(self.N, dtype=np.int32), np.arange(self.R, dtype=np.int32)
-        h.changeColsCost(self.N, idx, cost)
-        h.changeColsBounds(self.N, idx, lower, np.full(self.N, highspy.kHighsInf))
-        h.changeRowsBounds(self.R, ridx, row_lower, rhs)
+        """Pass HiGHS only the entries that differ from the last LP (the row LPs
+        of gamma* differ in two costs and two bounds)."""
+        h = self._highs
+        old_cost, old_lower, old_row_lower, old_rhs = self._last
+        idx = np.flatnonzero(cost != old_cost).astype(np.int32)
+        if len(idx):
+            h.changeColsCost(len(idx), idx, cost[idx])
+        idx = np.flatnonzero(lower != old_lower).astype(np.int32)
+        if len(idx):
+            h.changeColsBounds(len(idx), idx, lower[idx], np.full(len(idx), highspy.kHighsInf))
+        idx = np.flatnonzero((row_lower != old_row_lower) | (rhs != old_rhs)).astype(np.int32)
+        if len(idx):
+            h.changeRowsBounds(len(idx), idx, row_lower[idx], rhs[idx])
 
     def _basis(self) -> Basis | None:
         """(basic columns, tight rows = rows whose slack is nonbasic), fetched
