@@ -44,6 +44,7 @@ from .hint import Hint, HintBackend, LPStatus, resolve_hint_backend
 from .reconstruct import (COMMON_DENOMINATOR, basis_solution, exact_pivots, guess_basis, snap_tolerance, snapped,
                           snapped_numerators)
 from .verify import LPData, dot, optimal_values, verify_farkas, verify_optimal, verify_ray
+from .verify_int import optimal_values_int
 
 __all__ = ["LPStatus", "LPPath", "LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED"]
 
@@ -122,9 +123,7 @@ class ExactLPSolver:
         self.hint_backend = resolve_hint_backend(hint)
         self.float_lp = FloatLP(A, self.equality, self.hint_backend)
 
-    @property
-    def AT(self) -> flint.fmpq_mat:
-        return self.data.AT
+    AT = property(lambda self: self.data.AT, doc="A^T (computed once).")
 
     def solve(self, c: Sequence[Fraction] | flint.fmpq_mat, b: Sequence[Fraction] | flint.fmpq_mat,
               nonnegative: Sequence[bool]) -> LPResult:
@@ -154,8 +153,13 @@ class ExactLPSolver:
         C_float, B_float = C_cols.floats(), B_cols.floats()
         signs = [tuple(map(bool, nn)) for nn in nonnegatives]
         proposals = [self._batch_proposal(C_cols, B_cols, k, C_float[k], B_float[k], signs[k]) for k in range(len(signs))]
-        X, Y = _proposal_matrix(proposals, "x", self.N), _proposal_matrix(proposals, "y", self.R)
-        values = optimal_values(self.data, costs, rhss, signs, X, Y)
+        values = None
+        if proposals and all(p is not None and p.over_common for p in proposals):  # integers: the fast exact path
+            Xn, Yn = (np.array([getattr(p, part) for p in proposals], dtype=float).T for part in "xy")
+            values = optimal_values_int(self.data, costs, rhss, signs, Xn, Yn, COMMON_DENOMINATOR)
+        if values is None:
+            X, Y = _proposal_matrix(proposals, "x", self.N), _proposal_matrix(proposals, "y", self.R)
+            values = optimal_values(self.data, costs, rhss, signs, X, Y)
         results = []
         for k, (proposal, value) in enumerate(zip(proposals, values)):
             if value is not None:
@@ -269,14 +273,8 @@ class ExactLPSolver:
         )
 
 
-def solve_lp(
-    A: flint.fmpq_mat,
-    equality: Sequence[bool],
-    b: Sequence[Fraction],
-    c: Sequence[Fraction],
-    nonnegative: Sequence[bool],
-    hint: str | HintBackend | None = None,
-) -> LPResult:
+def solve_lp(A: flint.fmpq_mat, equality: Sequence[bool], b: Sequence[Fraction], c: Sequence[Fraction],
+             nonnegative: Sequence[bool], hint: str | HintBackend | None = None) -> LPResult:
     """Solve one LP exactly (see :class:`ExactLPSolver`; ``hint``: the float-hint backend).
 
     >>> solve_lp(flint.fmpq_mat([[7, 3], [2, 9]]), [False, False], [1, 1], [1, 1], [True, True]).value
