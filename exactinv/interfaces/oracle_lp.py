@@ -1,8 +1,11 @@
 """The oracle's judge of linear programs written in cvxpy (:func:`judge_lp`).
 
-The user's solved ``cvxpy.Problem`` is converted to exact data (the data
-cvxpy hands its solvers, every float taken exactly), solved exactly with a
-verified certificate by :mod:`exactinv.lp`, and its reported value judged.
+The user's solved ``cvxpy.Problem`` is converted to exact data -- the data
+cvxpy hands its solvers (``problem.get_problem_data``: ``minimize c.x + d
+s.t. A x + s = b``, s in {0}^k x R_+^l; for ``Maximize(f)`` cvxpy minimizes
+-f), every float taken exactly (``Fraction(float)``) or rounded as stated --
+solved exactly with a verified certificate by :mod:`exactinv.lp` (float hint
+-> verification in Q -> PPL's exact simplex), and its reported value judged.
 """
 
 from __future__ import annotations
@@ -54,30 +57,17 @@ def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", toler
              limit_denominator: int | None = None, hint: str | HintBackend | None = None) -> LPVerdict:
     """Judge a user's solved cvxpy LP exactly.
 
-    ``problem`` is a ``cvxpy.Problem`` with a ``Minimize``/``Maximize`` of an
-    affine objective and affine ``==``, ``<=``, ``>=`` constraints over
-    variables of any shape (attributes ``nonneg``/``nonpos`` allowed;
-    parameters take their current values).  Anything else (integer variables,
-    cones, quadratic terms, symmetric/PSD/bounded variables) raises
-    :class:`~exactinv.InvalidInput`.
-
-    The data are those cvxpy hands its solvers (``problem.get_problem_data``:
-    ``minimize c.x + d  s.t.  A x + s = b``, s in {0}^k x R_+^l; for
-    ``Maximize(f)`` cvxpy minimizes -f); every float is
-    taken exactly (``Fraction(float)``), or, with ``limit_denominator=L``,
-    rounded to the nearest rational with denominator <= L (a stated rounding:
-    then the verdict is about the rounded LP).  The exact LP is solved by
-    exactinv's engine (float hint -> verification in Q -> PPL's exact simplex;
-    ``hint`` chooses the hint backend).
-
-    ``claimed`` defaults to ``problem.value`` (the problem must then have been
-    solved, status optimal).  With ``claim="optimum"`` the value is judged as
-    the optimum: ``tight`` within the relative ``tolerance``, else ``invalid``
-    with an exact counterexample -- a feasible point beating it (kind
-    ``"better_point"``) or a dual bound proving it unattainable (kind
-    ``"dual_bound"``).  With ``claim="bound"`` it is judged as a primal bound (a
-    value some feasible point attains or beats: >= the minimum, <= the
-    maximum): ``valid``/``tight``, or ``invalid`` with the dual bound.
+    ``problem``: a ``cvxpy.Problem``, ``Minimize``/``Maximize`` of an affine
+    objective under affine ``==``, ``<=``, ``>=`` constraints (variables of any
+    shape, ``nonneg``/``nonpos`` allowed, parameters at their values); else
+    :class:`~exactinv.InvalidInput`.  Floats are taken exactly, or rounded to a
+    denominator <= ``limit_denominator`` (then the verdict is about that LP).
+    ``claimed`` (default ``problem.value``) is judged as the optimum
+    (``claim="optimum"``: ``tight`` within the relative ``tolerance``, else
+    ``invalid`` with a feasible point beating it, kind ``"better_point"``, or a
+    dual bound, ``"dual_bound"``) or as a primal bound (``claim="bound"``:
+    ``valid``/``tight``, or ``invalid`` with the dual bound).  ``hint``: the
+    engine's float-hint backend.
 
     >>> import cvxpy as cp
     >>> x = cp.Variable(2, nonneg=True, name='x')

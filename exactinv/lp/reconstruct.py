@@ -162,12 +162,11 @@ def exact_pivots(data: LPData, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Seq
                  max_steps: int = 200) -> tuple[flint.fmpq_mat, flint.fmpq_mat] | None:
     """Repair a basis by exact simplex steps (active-set form, Bland's rule).
 
-    A vertex is N active constraints W (tight rows and x_i = 0 bounds) with
-    A_W x = b_W.  Multipliers mu solve A_W^T mu = c; if every inequality in W
-    has mu >= 0 the vertex is optimal.  Otherwise leave the first such
-    constraint a with mu_a < 0, move along d with A_W d = -e_a (c.d = -mu_a > 0)
-    to the first constraint that becomes tight, and repeat.  Returns (x, y) or
-    None (a singular start, unboundedness, or more than ``max_steps`` steps).
+    A vertex is N active constraints W (tight rows, x_i = 0 bounds), A_W x = b_W;
+    A_W^T mu = c.  If mu >= 0 on W's inequalities the vertex is optimal; else
+    leave the first a with mu_a < 0, move along A_W d = -e_a (c.d = -mu_a > 0)
+    to the first constraint that becomes tight, and repeat.  (x, y), or None
+    (a singular start, unboundedness, more than ``max_steps`` steps).
 
     >>> data = LPData(flint.fmpq_mat([[1, 1], [1, -1], [-1, 0], [0, -1]]), (False,) * 4)
     >>> col = lambda *v: flint.fmpq_mat(len(v), 1, list(v))
@@ -185,8 +184,7 @@ def exact_pivots(data: LPData, c: flint.fmpq_mat, b: flint.fmpq_mat, nonneg: Seq
         x = M.solve(act.rhs(W))
         for _ in range(max_steps):
             mu = M.transpose().solve(c)
-            leaving = next((t for t, k in sorted(enumerate(W), key=lambda tk: tk[1])
-                            if (k >= data.R or not data.equality[k]) and mu[t, 0] < 0), None)
+            leaving = _leaving(data, W, mu)
             if leaving is None:
                 return x, _scatter(mu, W, data.R)
             e = flint.fmpq_mat(data.N, 1)
@@ -240,6 +238,12 @@ class _Active:
                 if best is None or step < best:
                     best, entering = step, k
         return entering, best
+
+
+def _leaving(data: LPData, W: Sequence[int], mu: flint.fmpq_mat) -> int | None:
+    """Bland's rule: the position in W of the lowest-numbered inequality with mu < 0 (None: optimal)."""
+    return next((t for t, k in sorted(enumerate(W), key=lambda tk: tk[1])
+                 if (k >= data.R or not data.equality[k]) and mu[t, 0] < 0), None)
 
 
 def _active_set(data: LPData, nonneg: Sequence[bool], basis: Basis) -> list[int] | None:
