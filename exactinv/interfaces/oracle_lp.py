@@ -82,8 +82,7 @@ def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", toler
         import cvxpy as cp  # optional dependency: only this judge needs it
     except ImportError:
         raise ImportError("judge_lp judges cvxpy problems and needs cvxpy, an optional dependency: pip install cvxpy") from None
-    claimed = _checked_claim(cp, problem, claimed, claim, limit_denominator)
-    tol = to_rational(tolerance, "tolerance")
+    claimed, tol = _checked_claim(cp, problem, claimed, claim, limit_denominator), to_rational(tolerance, "tolerance")
     maximize = isinstance(problem.objective, cp.Maximize)
     data = _exact_lp_data(cp, problem, limit_denominator)
     R, N = len(data["b"]), len(data["c"])
