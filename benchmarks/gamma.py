@@ -159,6 +159,11 @@ def time_ppl(S, P):
     return elapsed * m / done, done < m, best
 
 
+def paths_text(paths):
+    """The routes of the row LPs, e.g. {'float-rounded': 20}."""
+    return {str(path): count for path, count in paths.items()}
+
+
 def best_of(repeat, fn, *args):
     """The fastest of ``repeat`` runs (the machine is shared: the minimum is the least noisy)."""
     runs = [fn(*args) for _ in range(repeat)]
@@ -180,7 +185,7 @@ def float_only_table(instances, repeat):
             assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
         best = min(tc, th)
         print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
-              f"{te / tr:>12.2f}  {g.paths}  (best float {te / best:.2f}x)")
+              f"{te / tr:>12.2f}  {paths_text(g.paths)}  (best float {te / best:.2f}x)")
         sys.stdout.flush()
 
 
@@ -225,7 +230,7 @@ def main(argv=None):
         assert abs(vc - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (vc, g.value)
         mark = "~" if extrapolated else " "
         print(f"{name:<18}{P.m:>5}{te:>10.3f}{th:>14.3f}{th / te:>12.1f}{tc:>10.3f}{te / tc:>13.2f}{mark}{tp:>10.2f}"
-              f"{tp / te:>13.1f}  {g.paths} | {gh.paths}")
+              f"{tp / te:>13.1f}  {g.value}  {paths_text(g.paths)} | {paths_text(gh.paths)}")
         sys.stdout.flush()
     print("~ = pplpy stopped after its time budget; time extrapolated from the rows it solved")
 
