@@ -10,6 +10,10 @@ On the same instances, in one run:
                 cvxpy's own choice); same exact value, checked;
 * cvxpy      -- the whole LP  min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}
                 as one cvxpy problem solved by HiGHS in floating point (no guarantee);
+* highs      -- the same whole LP handed to HiGHS directly (highspy, sparse
+                column-wise data, no modelling layer): the fastest float-only solve;
+* highs rows -- the m row LPs alone, in HiGHS (warm-started, as the engine's
+                float step poses them): the float part of the certified route;
 * pplpy      -- the m row LPs solved by PPL's exact simplex (MIP_Problem), row by row.
 
 Instances: boxes [-1,1]^n (m = 2n) with row-diagonally-dominant A, and random
@@ -28,10 +32,15 @@ import time
 from fractions import Fraction
 
 import cvxpy as cp
+import flint
+import highspy
 import numpy as np
+import scipy.sparse as sp
 
 import exactinv as ei
-from exactinv.lp.solver import _ppl_maximize
+from exactinv.lp.exact import ppl_maximize
+from exactinv.lp.floatlp import FloatLP
+from exactinv.lp.hint import HighsHint
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 
@@ -80,9 +89,57 @@ def time_cvxpy(S, P):
     return time.perf_counter() - t, problem.value
 
 
-def time_ppl(S, P):
-    import flint
+def time_highs(S, P):
+    """min gamma s.t. H + gamma I >= 0 (entrywise), H G = G A, H b <= 0, by highspy directly."""
+    G = np.array([[float(v) for v in r] for r in P.G])
+    A = np.array([[float(v) for v in r] for r in S.A])
+    b = np.array([float(v) for v in P.b])
+    m, n = G.shape
+    t = time.perf_counter()
+    I = sp.identity(m, format="csr")  # variables: H row-major (m*m), then gamma
+    rows_HG = sp.hstack([sp.kron(I, sp.csr_matrix(G.T)), sp.csr_matrix((m * n, 1))])  # row j*n+i: (HG)_ji
+    rows_Hb = sp.hstack([sp.kron(I, sp.csr_matrix(b[None, :])), sp.csr_matrix((m, 1))])
+    rows_diag = sp.hstack([sp.csr_matrix((np.ones(m), (np.arange(m), np.arange(m) * (m + 1))), shape=(m, m * m)),
+                           sp.csr_matrix(np.ones((m, 1)))])  # h_jj + gamma >= 0
+    M = sp.vstack([rows_HG, rows_Hb, rows_diag]).tocsc()
+    inf, GA = highspy.kHighsInf, (G @ A).reshape(-1)
+    col_lower = np.zeros(m * m + 1)
+    col_lower[np.arange(m) * (m + 1)] = -inf  # diagonal entries and gamma are free
+    col_lower[-1] = -inf
+    lp = highspy.HighsLp()
+    lp.num_col_, lp.num_row_ = m * m + 1, M.shape[0]
+    lp.col_cost_ = np.concatenate([np.zeros(m * m), [1.0]])
+    lp.col_lower_, lp.col_upper_ = col_lower, np.full(m * m + 1, inf)
+    lp.row_lower_ = np.concatenate([GA, np.full(m, -inf), np.zeros(m)])
+    lp.row_upper_ = np.concatenate([GA, np.zeros(m), np.full(m, inf)])
+    lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+    lp.a_matrix_.start_, lp.a_matrix_.index_ = M.indptr.astype(np.int32), M.indices.astype(np.int32)
+    lp.a_matrix_.value_ = M.data
+    h = highspy.Highs()
+    h.setOptionValue("output_flag", False)
+    h.passModel(lp)
+    h.run()
+    return time.perf_counter() - t, h.getInfo().objective_function_value
 
+
+def time_highs_rows(S, P):
+    """The m row LPs of gamma* in HiGHS alone (the certified route's float step, nothing verified)."""
+    m, n = P.m, P.n
+    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
+    GA = np.array([[float(v) for v in r] for r in P.G]) @ np.array([[float(v) for v in r] for r in S.A])
+    t = time.perf_counter()
+    float_lp = FloatLP(constraint, [True] * n + [False], HighsHint())
+    model = float_lp.backend.model(float_lp.A, float_lp.equality)
+    best = -np.inf
+    for j in range(m):
+        cost = np.zeros(m)
+        cost[j] = 1.0
+        hint = model.solve(cost, np.concatenate([GA[j], [0.0]]) * float_lp.row_scale, [k != j for k in range(m)])
+        best = max(best, -hint.x[j] if hint.status == "optimal" else np.inf)
+    return time.perf_counter() - t, best
+
+
+def time_ppl(S, P):
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     GA = P.G_flint * S.A_flint
@@ -92,7 +149,7 @@ def time_ppl(S, P):
     for j in range(m):
         rhs = flint.fmpq_mat(n + 1, 1, [GA[j, i] for i in range(n)] + [0])
         c = flint.fmpq_mat(m, 1, [int(k == j) for k in range(m)])
-        status, x = _ppl_maximize(constraint, [True] * n + [False], rhs, c, [k != j for k in range(m)])
+        status, x = ppl_maximize(constraint, [True] * n + [False], rhs, c, [k != j for k in range(m)])
         value = -Fraction(int(x[j, 0].p), int(x[j, 0].q)) if status == "optimal" else None
         best = value if best is None or (value is not None and value > best) else best
         done += 1
@@ -102,11 +159,44 @@ def time_ppl(S, P):
     return elapsed * m / done, done < m, best
 
 
+def paths_text(paths):
+    """The routes of the row LPs, e.g. {'float-rounded': 20}."""
+    return {str(path): count for path, count in paths.items()}
+
+
+def best_of(repeat, fn, *args):
+    """The fastest of ``repeat`` runs (the machine is shared: the minimum is the least noisy)."""
+    runs = [fn(*args) for _ in range(repeat)]
+    return min(runs, key=lambda r: r[0])
+
+
+def float_only_table(instances, repeat):
+    """The certified gamma* against the float-only solves, best of ``repeat`` runs each."""
+    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
+              f"{'exact/cvxpy':>13}{'exact/highs':>13}{'exact/rows':>12}  route")
+    print(header)
+    print("-" * len(header))
+    for name, S, P in instances:
+        te, g = best_of(repeat, time_exact, S, P)
+        tc, vc = best_of(repeat, time_cvxpy, S, P)
+        th, vh = best_of(repeat, time_highs, S, P)
+        tr, vr = best_of(repeat, time_highs_rows, S, P)
+        for v in (vc, vh, vr):
+            assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
+        best = min(tc, th)
+        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
+              f"{te / tr:>12.2f}  {paths_text(g.paths)}  (best float {te / best:.2f}x)")
+        sys.stdout.flush()
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
     parser.add_argument("--hint-solver", default=None, help="the cvxpy solver of the cvxpy hint backend (default: cvxpy's choice)")
     parser.add_argument("--no-ppl", action="store_true", help="skip the pplpy column")
+    parser.add_argument("--float-only", action="store_true",
+                        help="only the certified route against the float-only solves (cvxpy, HiGHS whole LP, HiGHS rows)")
+    parser.add_argument("--repeat", type=int, default=3, help="--float-only: best of this many runs (default 3)")
     args = parser.parse_args(argv)
     rng = random.Random(20261122)
     instances = []
@@ -116,6 +206,9 @@ def main(argv=None):
     poly_sizes = [(5, 50)] if args.quick else [(5, 50), (8, 100), (10, 250), (10, 500)]
     for n, m in poly_sizes:
         instances.append((f"polytope n={n}", *polytope_instance(n, m, rng)))
+    if args.float_only:
+        float_only_table(instances, args.repeat)
+        return
     probe = cp.Variable()
     probe_lp = cp.Problem(cp.Minimize(probe), [probe >= 0])
     probe_lp.solve(solver=args.hint_solver)
@@ -137,7 +230,7 @@ def main(argv=None):
         assert abs(vc - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (vc, g.value)
         mark = "~" if extrapolated else " "
         print(f"{name:<18}{P.m:>5}{te:>10.3f}{th:>14.3f}{th / te:>12.1f}{tc:>10.3f}{te / tc:>13.2f}{mark}{tp:>10.2f}"
-              f"{tp / te:>13.1f}  {g.value}  {g.paths} | {gh.paths}")
+              f"{tp / te:>13.1f}  {g.value}  {paths_text(g.paths)} | {paths_text(gh.paths)}")
         sys.stdout.flush()
     print("~ = pplpy stopped after its time budget; time extrapolated from the rows it solved")
 

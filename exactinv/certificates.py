@@ -19,7 +19,13 @@ __all__ = ["FORMAT", "VERSION", "encode_real", "problem_record", "method_record"
 
 
 def claims_of(result: Any) -> list[dict]:
-    """The claims a result makes, in the order the checker needs them (its own ``claims()``)."""
+    """The claims a result makes, in the order the checker needs them (its own ``claims()``).
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> [str(c['type']) for c in claims_of(ei.forward_euler_threshold(S, P))]
+    ['gamma_star', 'forward_euler_threshold']
+    """
     claims = getattr(result, "claims", None)
     if claims is None:
         raise TypeError(f"no certificate for {type(result).__name__}")

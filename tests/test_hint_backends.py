@@ -20,6 +20,7 @@ import exactinv as ei
 from exactinv_check import check
 from exactinv.lp import ExactLPSolver, hint
 from exactinv.lp import solver as lp
+from exactinv.lp.exact import ppl_maximize
 
 needs_cvxpy = pytest.mark.skipif(importlib.util.find_spec("cvxpy") is None, reason="cvxpy (optional) is not installed")
 
@@ -163,7 +164,7 @@ def test_random_lps_match_exact_ppl_with_other_backends(data, draw, backend):
     eq = draw.draw(st.lists(st.booleans(), min_size=len(A), max_size=len(A)))
     chosen = hint.CvxpyHint("CLARABEL") if backend == "cvxpy" else _Liar(len(A))
     res = lp.solve_lp(flint.fmpq_mat(A), eq, b, c, nonneg, hint=chosen)
-    status, x = lp._ppl_maximize(flint.fmpq_mat(A), eq, flint.fmpq_mat(len(b), 1, b), flint.fmpq_mat(len(c), 1, c), nonneg)
+    status, x = ppl_maximize(flint.fmpq_mat(A), eq, flint.fmpq_mat(len(b), 1, b), flint.fmpq_mat(len(c), 1, c), nonneg)
     assert res.status == status
     if status == "optimal":
         assert res.value == sum(ci * Fraction(int(xi.p), int(xi.q)) for ci, xi in zip(c, x.entries()))

@@ -61,7 +61,12 @@ class RealAlgebraic:
     @classmethod
     def from_isolating_interval(cls, poly: Any, lower: Any, upper: Any) -> "RealAlgebraic":
         """The root of the irreducible integer polynomial ``poly`` (coefficients
-        low to high, or an fmpz_poly) in (lower, upper); verified exactly."""
+        low to high, or an fmpz_poly) in (lower, upper); verified exactly.
+
+        >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)   # sqrt(2)
+        >>> Fraction(141, 100) < r < Fraction(142, 100), str(r.poly)
+        (True, 'x^2 + (-2)')
+        """
         return cls(flint.fmpz_poly(list(poly) if not isinstance(poly, flint.fmpz_poly) else poly),
                    to_rational(lower, "lower"), to_rational(upper, "upper"))
 
@@ -90,7 +95,12 @@ class RealAlgebraic:
     def tidy(self, digits: int = 12) -> "RealAlgebraic":
         """Replace the isolating interval by a short decimal one (for readable
         output and certificates); the added slivers are proved root-free by
-        Descartes' rule, so the new interval still isolates the same root."""
+        Descartes' rule, so the new interval still isolates the same root.
+
+        >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).tidy(6)
+        >>> r.lower ** 2 < 2 < r.upper ** 2, r.upper - r.lower <= Fraction(1, 10**5)
+        (True, True)
+        """
         self.refine(int(digits * 3.33) + 4)
         scale = 10**digits
         lo = Fraction(_floor(self._lower * scale), scale)
@@ -104,7 +114,12 @@ class RealAlgebraic:
 
     def refine(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval to width <= 2**-bits (exact bisection;
-        the number itself is unchanged).  Returns self."""
+        the number itself is unchanged).  Returns self.
+
+        >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).refine(20)
+        >>> r.upper - r.lower <= Fraction(1, 2**20), r.lower ** 2 < 2 < r.upper ** 2
+        (True, True)
+        """
         width = Fraction(1, 2**bits)
         while self._upper - self._lower > width:
             self._bisect()
@@ -212,7 +227,12 @@ class RealAlgebraic:
 
     def refine_relative(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval until it excludes 0 and its width is at
-        most 2**-bits times the smaller ``abs(end)`` (relative width); returns self."""
+        most 2**-bits times the smaller ``abs(end)`` (relative width); returns self.
+
+        >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).refine_relative(30)
+        >>> r.lower > 0 and (r.upper - r.lower) / r.lower <= Fraction(1, 2**30)
+        True
+        """
         while self._lower <= 0 <= self._upper:
             self._bisect()
         scale = 2**bits
@@ -245,7 +265,11 @@ class RealAlgebraic:
         return f"RealAlgebraic({self}: the root of {poly_text(self.poly)} in ({self._lower}, {self._upper}))"
 
     def to_sympy(self):
-        """A sympy ``CRootOf`` equal to this number."""
+        """A sympy ``CRootOf`` equal to this number.
+
+        >>> RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).to_sympy()
+        CRootOf(x**2 - 2, 1)
+        """
         import sympy
 
         x = sympy.Symbol("x")
@@ -283,19 +307,37 @@ def exact_lt(a: Real, b: Real) -> bool:
 
 
 def exact_eq(a: Real, b: Real) -> bool:
-    """a == b for mixed exact values, in either order."""
+    """a == b for mixed exact values, in either order.
+
+    >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> s = RealAlgebraic.from_isolating_interval([-2, 0, 1], Fraction(7, 5), Fraction(3, 2))
+    >>> exact_eq(r, s), exact_eq(Fraction(7, 5), r), exact_eq(Fraction(2), Fraction(4, 2))
+    (True, False, True)
+    """
     if isinstance(a, Fraction) and not isinstance(b, Fraction):
         return b == a
     return a == b
 
 
 def exact_cmp(a: Real, b: Real) -> int:
-    """-1, 0 or 1 as a <, =, > b (for ``functools.cmp_to_key``)."""
+    """-1, 0 or 1 as a <, =, > b (for ``functools.cmp_to_key``).
+
+    >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> from exactinv.core.scalars import INF
+    >>> exact_cmp(r, Fraction(3, 2)), exact_cmp(Fraction(7, 5), r), exact_cmp(INF, r)
+    (-1, -1, 1)
+    """
     return -1 if exact_lt(a, b) else (1 if exact_lt(b, a) else 0)
 
 
 def upper_bound(v: Real) -> Fraction | Infinity:
-    """A rational (or infinite) upper bound of an exact value: v itself unless algebraic."""
+    """A rational (or infinite) upper bound of an exact value: v itself unless algebraic.
+
+    >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> from exactinv.core.scalars import INF
+    >>> upper_bound(Fraction(1, 3)), upper_bound(r) >= r, upper_bound(INF)
+    (Fraction(1, 3), True, INF)
+    """
     return v.upper if isinstance(v, RealAlgebraic) else v
 
 

@@ -82,8 +82,11 @@ class IntervalUnion:
 
 
 def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> IntervalUnion:
-    """[0, oo) minus the union of open intervals ``bad`` (a, b) (a >= 0, b may
-    be INF) and minus the isolated ``points`` (all > 0)."""
+    """[0, oo) minus the open intervals ``bad`` (a, b) (a >= 0, b may be INF) and the ``points`` (> 0).
+
+    >>> print(complement_of_open([(Fraction(1), Fraction(2)), (Fraction(3), INF)], [Fraction(1, 2)]))
+    [0, 1/2) U (1/2, 1] U [2, 3]
+    """
     bad = sorted(bad, key=cmp_to_key(lambda u, v: exact_cmp(u[0], v[0])))
     merged: list[list[Real]] = []
     for a, b in bad:

@@ -43,7 +43,11 @@ ONE_PLUS_X = flint.fmpq_poly([1, 1])
 
 def as_polynomial(f: Any, name: str = "f") -> flint.fmpq_poly:
     """An exact polynomial from an fmpq_poly/fmpz_poly, a sympy Poly, or a
-    sequence of coefficients from the constant term up."""
+    sequence of coefficients from the constant term up.
+
+    >>> as_polynomial([Fraction(1, 2), 0, 1])   # coefficients from x^0 up
+    x^2 + 1/2
+    """
     if isinstance(f, flint.fmpq_poly):
         return f
     if isinstance(f, flint.fmpz_poly):
@@ -58,20 +62,33 @@ def as_polynomial(f: Any, name: str = "f") -> flint.fmpq_poly:
 
 
 def integer_part(f: flint.fmpq_poly) -> flint.fmpz_poly:
-    """The primitive integer polynomial with the same roots and sign as f."""
+    """The primitive integer polynomial with the same roots and sign as f.
+
+    >>> integer_part(flint.fmpq_poly([1, -3, 2], 6))   # (2x^2 - 3x + 1)/6
+    2*x^2 + (-3)*x + 1
+    """
     num = f.numer()
     return num // num.content() if not num.is_zero() else num
 
 
 def shift(f: flint.fmpq_poly, start: Fraction) -> flint.fmpq_poly:
-    """f(start + x)."""
+    """f(start + x).
+
+    >>> shift(flint.fmpq_poly([0, 0, 1]), Fraction(1))   # (1 + x)^2
+    x^2 + 2*x + 1
+    """
     if start == 0:
         return f
     return f(flint.fmpq_poly([fmpq_of(start), 1]))
 
 
 def sign_at(p: flint.fmpz_poly | flint.fmpq_poly, x: Fraction) -> int:
-    """The exact sign of p(x) at a rational x."""
+    """The exact sign of p(x) at a rational x.
+
+    >>> p = flint.fmpq_poly([-2, 0, 1])   # x^2 - 2
+    >>> sign_at(p, Fraction(7, 5)), sign_at(p, Fraction(3, 2)), sign_at(p * 0, Fraction(1))
+    (-1, 1, 0)
+    """
     v = p(fmpq_of(x))
     return (v > 0) - (v < 0)
 
@@ -79,7 +96,11 @@ def sign_at(p: flint.fmpz_poly | flint.fmpq_poly, x: Fraction) -> int:
 def sign_variations(coeffs: Iterable[Any]) -> int:
     """Number of sign changes in a coefficient sequence, zeros ignored.
     By Descartes' rule it bounds the number of positive roots (with
-    multiplicity) and has the same parity."""
+    multiplicity) and has the same parity.
+
+    >>> sign_variations([1, 0, -2, 3, 0, 4]), sign_variations([1, 2, 3])
+    (2, 0)
+    """
     signs = [c > 0 for c in coeffs if c != 0]
     return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
@@ -87,7 +108,12 @@ def sign_variations(coeffs: Iterable[Any]) -> int:
 def no_root_between(p: Any, a: Fraction, b: Fraction) -> bool:
     """True if Descartes' rule proves that p has no root in the open interval
     (a, b): the Moebius-transformed (1+x)^d p((a + b x)/(1 + x)) has no sign
-    variation.  (False means: not proved.)  Exact; a Taylor shift in FLINT."""
+    variation.  (False means: not proved.)  Exact; a Taylor shift in FLINT.
+
+    >>> p = flint.fmpq_poly([-2, 0, 1])   # roots +-sqrt(2)
+    >>> no_root_between(p, Fraction(0), Fraction(1)), no_root_between(p, Fraction(1), Fraction(2))
+    (True, False)
+    """
     pq = as_polynomial(p)
     shifted = pq(flint.fmpq_poly([fmpq_of(a), fmpq_of(b - a)]))  # p(a + (b - a) y), y in (0, 1)
     transformed = flint.fmpq_poly(list(reversed(shifted.coeffs())))(ONE_PLUS_X)
@@ -95,14 +121,24 @@ def no_root_between(p: Any, a: Fraction, b: Fraction) -> bool:
 
 
 def no_positive_root_below(p: flint.fmpq_poly, T: Fraction) -> bool:
-    """Descartes' rule on (0, T): True proves that p has no root in (0, T)."""
+    """Descartes' rule on (0, T): True proves that p has no root in (0, T).
+
+    >>> p = flint.fmpq_poly([-2, 0, 1])
+    >>> no_positive_root_below(p, Fraction(1)), no_positive_root_below(p, Fraction(2))
+    (True, False)
+    """
     return no_root_between(p, Fraction(0), T)
 
 
 def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:
     """Number of distinct real roots of p in the open interval (lower, upper)
     (None = unbounded), by Sturm's theorem in exact arithmetic.  The ends must
-    not be roots."""
+    not be roots.
+
+    >>> p = flint.fmpq_poly([0, -2, 0, 1])   # x^3 - 2x: roots 0, +-sqrt(2)
+    >>> count_real_roots(p), count_real_roots(p, Fraction(0)), count_real_roots(p, Fraction(-1), Fraction(1))
+    (3, 1, 1)
+    """
     pq = as_polynomial(p)
     seq = [pq, pq.derivative()]
     while not seq[-1].is_zero():
@@ -126,7 +162,12 @@ def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | No
 
 def sign_right_of(f: Any, t: Fraction) -> int:
     """The sign of f on (t, t + eps) for small eps > 0: the sign of the first
-    nonzero Taylor coefficient of f at t (0 only for the zero polynomial)."""
+    nonzero Taylor coefficient of f at t (0 only for the zero polynomial).
+
+    >>> p = flint.fmpq_poly([1, -2, 1])   # (x - 1)^2
+    >>> sign_right_of(p, Fraction(1)), sign_right_of(-p, Fraction(0)), sign_right_of(p * 0, Fraction(0))
+    (1, -1, 0)
+    """
     g = shift(as_polynomial(f), Fraction(t))
     for c in g.coeffs():
         if c != 0:
@@ -135,7 +176,11 @@ def sign_right_of(f: Any, t: Fraction) -> int:
 
 
 def positive_right_of_zero(p: Any) -> bool:
-    """p >= 0 just right of 0 (True for the zero polynomial)."""
+    """p >= 0 just right of 0 (True for the zero polynomial).
+
+    >>> positive_right_of_zero([0, 1]), positive_right_of_zero([0, -1, 5]), positive_right_of_zero([0])
+    (True, False, True)
+    """
     return sign_right_of(p, Fraction(0)) >= 0
 
 
@@ -188,7 +233,11 @@ def poly_text(coeffs: Any, var: str = "x") -> str:
 
 
 def poly_latex(p: Any) -> str:
-    """LaTeX of an integer polynomial in x, highest degree first."""
+    """LaTeX of an integer polynomial in x, highest degree first.
+
+    >>> print(poly_latex(flint.fmpz_poly([-2, 0, 1])))
+    x^{2}-2
+    """
     terms = []
     coeffs = [int(c) for c in p.coeffs()]
     for k in range(len(coeffs) - 1, -1, -1):

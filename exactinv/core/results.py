@@ -43,7 +43,14 @@ class ExactValueMixin(LatexMixin):
         return v
 
     def refine(self, bits: int = 53):
-        """Shrink the enclosure of an algebraic value to absolute width <= 2**-bits; returns self."""
+        """Shrink the enclosure of an algebraic value to absolute width <= 2**-bits; returns self.
+
+        >>> class Root(ExactValueMixin):
+        ...     value = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+        >>> r = Root().refine(40).value
+        >>> r.upper - r.lower <= Fraction(1, 2**40), r.lower ** 2 < 2 < r.upper ** 2
+        (True, True)
+        """
         if isinstance(self.value, RealAlgebraic):
             self.value.refine(bits)
         return self

@@ -146,20 +146,29 @@ def first_sign_change(f: Any, start: Any = 0) -> Real:
     shifted = integer_part(shift(fq, start))
     if sign_variations(shifted.coeffs()) == 0:  # Descartes: no root beyond start
         return INF
-    _, parts = shifted.factor_squarefree()
-    odd = flint.fmpz_poly([1])
-    for p, mult in parts:
-        if mult % 2:
-            odd *= p
-    while odd.degree() > 0 and odd(0) == 0:  # a root at start itself is not "beyond" it
-        odd = flint.fmpz_poly([int(c) for c in odd.coeffs()[1:]])
-    found = _first_positive_root_interval(odd)
+    found = _first_positive_root_interval(_odd_part_beyond_0(shifted))
     if found is None:
         return INF
     if isinstance(found, Fraction):
         return start + found
-    a, b = found
-    lo, hi = start + a, start + b
+    return _owning_factor_root(fq, start + found[0], start + found[1])
+
+
+def _odd_part_beyond_0(f: flint.fmpz_poly) -> flint.fmpz_poly:
+    """The product of f's squarefree factors of odd multiplicity, without the
+    factor x (a root at 0, i.e. at start, is not beyond it)."""
+    _, parts = f.factor_squarefree()
+    odd = flint.fmpz_poly([1])
+    for p, mult in parts:
+        if mult % 2:
+            odd *= p
+    while odd.degree() > 0 and odd(0) == 0:
+        odd = flint.fmpz_poly([int(c) for c in odd.coeffs()[1:]])
+    return odd
+
+
+def _owning_factor_root(fq: flint.fmpq_poly, lo: Fraction, hi: Fraction) -> Real:
+    """The root in (lo, hi) of the odd-multiplicity irreducible factor of fq that changes sign there."""
     _, factors = integer_part(fq).factor()
     for p, mult in factors:
         if mult % 2 == 0:
@@ -178,7 +187,13 @@ def first_sign_change(f: Any, start: Any = 0) -> Real:
 def nonnegative_until(f: Any, start: Any = 0) -> Real:
     """sup{T >= start : f >= 0 on [start, T]} when f >= 0 just right of start
     (f(start) itself is not inspected); ``start`` when f < 0 just right of it.
-    This is the paper's tau_i for f_i, with tangent roots stepped over."""
+    This is the paper's tau_i for f_i, with tangent roots stepped over.
+
+    >>> nonnegative_until([2, -3, 1])   # (1 - t)(2 - t) >= 0 until t = 1
+    Fraction(1, 1)
+    >>> nonnegative_until([1, 0, 1])
+    INF
+    """
     start = to_rational(start, "start")
     if sign_right_of(f, start) < 0:
         return start
@@ -186,7 +201,11 @@ def nonnegative_until(f: Any, start: Any = 0) -> Real:
 
 
 def positive_roots(p: flint.fmpq_poly) -> list[tuple[FiniteReal, int]]:
-    """The distinct positive roots of p with multiplicities, sorted (none for a constant)."""
+    """The distinct positive roots of p with multiplicities, sorted (none for a constant).
+
+    >>> positive_roots(flint.fmpq_poly([4, -4, 1]) * flint.fmpq_poly([-3, 1]))   # (t - 2)^2 (t - 3)
+    [(Fraction(2, 1), 2), (Fraction(3, 1), 1)]
+    """
     if p.degree() < 1:
         return []
     return [(r, m) for r, m in real_roots(p) if r > 0]
@@ -194,7 +213,11 @@ def positive_roots(p: flint.fmpq_poly) -> list[tuple[FiniteReal, int]]:
 
 def negative_segments(p: flint.fmpq_poly) -> list[tuple[Real, Real]]:
     """The open intervals (a, b) in (0, oo) where the polynomial is negative:
-    its sign right of 0, flipped at every root of odd multiplicity."""
+    its sign right of 0, flipped at every root of odd multiplicity.
+
+    >>> negative_segments(flint.fmpq_poly([6, -5, 1]))   # (t - 2)(t - 3) < 0 on (2, 3)
+    [(Fraction(2, 1), Fraction(3, 1))]
+    """
     sign = sign_right_of(p, 0)
     out = []
     left: Real = Fraction(0)

@@ -28,6 +28,16 @@ from typing import Any, Iterable, Sequence
 import flint
 
 from ..errors import InvalidInput
+from .flintq import Matrix, Vector
+from .flintq import (  # noqa: F401 (the Fraction <-> FLINT conversions, re-exported: their old home)
+    dyadic_of,
+    fmpq_column,
+    fmpq_matrix,
+    fmpq_of,
+    fraction_of,
+    matrix_of,
+    vector_of,
+)
 
 __all__ = [
     "INF",
@@ -41,8 +51,6 @@ __all__ = [
     "to_matrix",
 ]
 
-Vector = tuple[Fraction, ...]
-Matrix = tuple[tuple[Fraction, ...], ...]
 
 
 @total_ordering
@@ -120,7 +128,13 @@ def _is_comparable(other: object) -> bool:
 
 
 def exact_from_float(x: float) -> Fraction:
-    """The exact rational value of a finite binary float (0.1 -> 3602879701896397/36028797018963968)."""
+    """The exact rational value of a finite binary float (0.1 -> 3602879701896397/36028797018963968).
+
+    >>> exact_from_float(0.1)
+    Fraction(3602879701896397, 36028797018963968)
+    >>> exact_from_float(0.5)
+    Fraction(1, 2)
+    """
     if not isinstance(x, (float, int)) or isinstance(x, bool):
         x = float(x)
     if not math.isfinite(x):
@@ -130,12 +144,22 @@ def exact_from_float(x: float) -> Fraction:
 
 def nearest_rational(x: float, max_denominator: int = 10**6) -> Fraction:
     """The rational with denominator <= ``max_denominator`` closest to the float ``x``
-    (0.1 -> 1/10).  A deliberate, explicit rounding step."""
+    (0.1 -> 1/10).  A deliberate, explicit rounding step.
+
+    >>> nearest_rational(0.1), nearest_rational(3.14159265, 100)
+    (Fraction(1, 10), Fraction(311, 99))
+    """
     return exact_from_float(x).limit_denominator(max_denominator)
 
 
 def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -> Fraction:
-    """Parse one exact scalar; ``name`` is used in error messages."""
+    """Parse one exact scalar; ``name`` is used in error messages.
+
+    >>> to_rational("3/4"), to_rational(2), to_rational(flint.fmpq(-1, 3))
+    (Fraction(3, 4), Fraction(2, 1), Fraction(-1, 3))
+    >>> to_rational(0.1, allow_float=True) == Fraction(0.1)   # the float's exact value, on request
+    True
+    """
     if isinstance(value, Fraction):
         return value
     if isinstance(value, bool):
@@ -143,43 +167,47 @@ def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -
     if isinstance(value, int):
         return Fraction(value)
     if isinstance(value, str):
-        text = value.strip()
-        if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
-            raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
-        try:
-            return Fraction(text)
-        except (ValueError, ZeroDivisionError):
-            raise InvalidInput(
-                f"{name}: cannot read {value!r} as a rational number (write e.g. '3/4', '-2' or '0.1')"
-            ) from None
+        return _rational_from_text(value, name)
     if isinstance(value, Decimal):
         if not value.is_finite():
             raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
         return Fraction(value)
-    if isinstance(value, flint.fmpq):
+    if isinstance(value, flint.fmpq) or getattr(value, "is_Rational", False):  # flint, sympy Integer / Rational
         return Fraction(int(value.p), int(value.q))
-    if isinstance(value, flint.fmpz):
-        return Fraction(int(value))
-    if getattr(value, "is_Rational", False):  # sympy Integer / Rational
-        return Fraction(int(value.p), int(value.q))
-    if isinstance(value, _abc.Integral):  # numpy integers, gmpy2 mpz
+    if isinstance(value, (flint.fmpz, _abc.Integral)):  # numpy integers, gmpy2 mpz
         return Fraction(int(value))
     if isinstance(value, float) or isinstance(value, _abc.Real) and not isinstance(value, _abc.Rational):
-        as_float = float(value)
-        if not math.isfinite(as_float):
-            raise InvalidInput(f"{name}: {value!r} is not a finite number")
-        if allow_float:
-            return exact_from_float(as_float)
-        raise InvalidInput(
-            f"{name}: got the float {value!r}; floats are not exact. Pass a string "
-            f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
-            f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
-        )
+        return _rational_from_float(value, name, allow_float)
     if isinstance(value, _abc.Rational):  # e.g. gmpy2 mpq
         return Fraction(int(value.numerator), int(value.denominator))
     if getattr(value, "is_number", False) and getattr(value, "is_Rational", None) is False:
         raise InvalidInput(f"{name}: {value} is not a rational number")
     raise InvalidInput(f"{name}: cannot read {value!r} (type {type(value).__name__}) as a rational number")
+
+
+def _rational_from_text(value: str, name: str) -> Fraction:
+    text = value.strip()
+    if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise InvalidInput(f"{name}: {value!r} is not a finite rational number")
+    try:
+        return Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        raise InvalidInput(
+            f"{name}: cannot read {value!r} as a rational number (write e.g. '3/4', '-2' or '0.1')"
+        ) from None
+
+
+def _rational_from_float(value: Any, name: str, allow_float: bool) -> Fraction:
+    as_float = float(value)
+    if not math.isfinite(as_float):
+        raise InvalidInput(f"{name}: {value!r} is not a finite number")
+    if allow_float:
+        return exact_from_float(as_float)
+    raise InvalidInput(
+        f"{name}: got the float {value!r}; floats are not exact. Pass a string "
+        f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
+        f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
+    )
 
 
 def _suggest(x: float) -> str:
@@ -199,7 +227,11 @@ def _rows(value: Any, name: str) -> list:
 def to_vector(
     value: Any, name: str = "vector", *, length: int | None = None, allow_float: bool = False
 ) -> Vector:
-    """Parse a vector of exact scalars, optionally checking its length."""
+    """Parse a vector of exact scalars, optionally checking its length.
+
+    >>> to_vector(['1/3', 2], 'b', length=2)
+    (Fraction(1, 3), Fraction(2, 1))
+    """
     if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
         value = [value[i, j] for i in range(value.nrows()) for j in range(value.ncols())]
     items = _rows(value, name)
@@ -224,7 +256,11 @@ def to_matrix(
     allow_float: bool = False,
 ) -> Matrix:
     """Parse a matrix given as a sequence of rows; checks raggedness, emptiness
-    and (optionally) the shape and squareness, naming the offending position."""
+    and (optionally) the shape and squareness, naming the offending position.
+
+    >>> to_matrix([[1, '1/2'], [0, 3]], 'A', square=True)
+    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(0, 1), Fraction(3, 1)))
+    """
     rows = _rows(value, name)
     if not rows:
         raise InvalidInput(f"{name}: the matrix is empty")
@@ -252,57 +288,21 @@ def to_matrix(
 
 
 # ---------------------------------------------------------------- flint bridge
-def fmpq_of(x: Fraction) -> flint.fmpq:
-    return flint.fmpq(x.numerator, x.denominator)
-
-
-def fraction_of(x: flint.fmpq | flint.fmpz | int) -> Fraction:
-    if isinstance(x, (flint.fmpz, int)):
-        return Fraction(int(x))
-    return _coprime(int(x.p), int(x.q))
-
-
-def _coprime(p: int, q: int) -> Fraction:
-    # flint keeps fmpq canonical (coprime, q > 0): skip Fraction's gcd.
-    try:
-        return Fraction(p, q, _normalize=False)
-    except TypeError:  # Python >= 3.12
-        return Fraction._from_coprime_ints(p, q)
-
-
-def fmpq_matrix(rows: Sequence[Sequence[Fraction]]) -> flint.fmpq_mat:
-    m = len(rows)
-    n = len(rows[0]) if m else 0
-    return flint.fmpq_mat(m, n, [fmpq_of(x) for row in rows for x in row])
-
-
-def fmpq_column(entries: Sequence[Fraction]) -> flint.fmpq_mat:
-    return flint.fmpq_mat(len(entries), 1, [fmpq_of(x) for x in entries])
-
-
-def matrix_of(M: flint.fmpq_mat) -> Matrix:
-    return tuple(tuple(fraction_of(M[i, j]) for j in range(M.ncols())) for i in range(M.nrows()))
-
-
-def vector_of(M: flint.fmpq_mat) -> Vector:
-    """The entries of a column (or row) matrix, as Fractions."""
-    return tuple(fraction_of(x) for x in M.entries())
-
-
 def format_rational(x: Fraction | Infinity) -> str:
-    """The exact string form used in JSON and on the command line ("-3/4")."""
+    """The exact string form used in JSON and on the command line ("-3/4").
+
+    >>> format_rational(Fraction(-3, 4)), format_rational(Fraction(2)), format_rational(INF)
+    ('-3/4', '2', 'oo')
+    """
     return str(x)
 
 
-def dyadic_of(a: flint.arb) -> Fraction:
-    """The midpoint of an Arb ball as an exact dyadic Fraction."""
-    man, exp = a.mid().man_exp()
-    man, exp = int(man), int(exp)
-    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
-
-
 def frac_latex(q: Fraction) -> str:
-    """A Fraction as a compact LaTeX ``\\tfrac``."""
+    """A Fraction as a compact LaTeX ``\\tfrac``.
+
+    >>> print(frac_latex(Fraction(-3, 4)), frac_latex(Fraction(5)))
+    -\\tfrac{3}{4} 5
+    """
     if q.denominator == 1:
         return str(q.numerator)
     sign = "-" if q < 0 else ""
@@ -310,10 +310,18 @@ def frac_latex(q: Fraction) -> str:
 
 
 def vector_text(v: Sequence[Fraction]) -> str:
-    """A vector of exact values as "[a, b, ...]"."""
+    """A vector of exact values as "[a, b, ...]".
+
+    >>> vector_text([Fraction(1, 3), Fraction(-2)])
+    '[1/3, -2]'
+    """
     return "[" + ", ".join(str(x) for x in v) + "]"
 
 
 def matrix_text(M: Sequence[Sequence[Fraction]]) -> str:
-    """A matrix of exact values as "[[a, b], ...]"."""
+    """A matrix of exact values as "[[a, b], ...]".
+
+    >>> matrix_text([[Fraction(1, 2), Fraction(0)], [Fraction(-1), Fraction(3)]])
+    '[[1/2, 0], [-1, 3]]'
+    """
     return "[" + ", ".join(vector_text(r) for r in M) + "]"

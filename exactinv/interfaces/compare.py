@@ -48,6 +48,13 @@ class ThresholdComparison:
         return lo_c / hi_l, hi_c / lo_l
 
     def row(self) -> dict:
+        """One row of the comparison table, as text.
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+        >>> compare_thresholds(S, P, [ei.methods.taylor(1)])[0].row()
+        {'method': 'taylor(1)', 'paper': '1', 'corrected': '1', 'largest': '1', 'corrected/largest': '1'}
+        """
         return {"method": self.method, "paper": str(self.paper), "corrected": str(self.corrected),
                 "largest": str(self.largest) + ("" if self.largest_attained else " (open)"),
                 "corrected/largest": _ratio_text(self)}
@@ -82,7 +89,13 @@ def _decimal(q: Fraction, scale: int, floor: bool) -> str:
 
 
 def compare_thresholds(system: LinearSystem, polyhedron: Polyhedron, methods) -> list[ThresholdComparison]:
-    """For each method: the paper's, the corrected and the exact largest threshold."""
+    """For each method: the paper's, the corrected and the exact largest threshold.
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    >>> [(c.method, c.corrected, c.largest) for c in compare_thresholds(S, P, [ei.methods.taylor(1)])]
+    [('taylor(1)', Fraction(1, 1), Fraction(1, 1))]
+    """
     rows = []
     for m in methods:
         t = steplength_threshold(system, polyhedron, m)

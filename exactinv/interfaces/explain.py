@@ -11,6 +11,7 @@ from typing import Any
 
 from ..core.algebraic import significant_digits
 from ..core.polys import poly_text
+from ..core.tags import ClaimType
 
 __all__ = ["explain"]
 
@@ -146,54 +147,83 @@ def _ellipsoid_claim(kind: str, c: dict) -> str:
 def _claim(kind: str, c: dict) -> str:
     if kind.startswith("ellipsoid_"):
         return _ellipsoid_claim(kind, c)
-    if kind == "gamma_star":
-        return _gamma_star(c)
-    if kind in ("continuous_invariance", "discrete_invariance"):
+    if kind in (ClaimType.CONTINUOUS_INVARIANCE, ClaimType.DISCRETE_INVARIANCE):
         return _invariance(c, kind)
-    if kind == "forward_euler_threshold":
-        return (f"The largest forward-Euler step is {_real(c['value'])}"
-                + ("" if c.get("attained", True) else " (not attained)") + ".  Two independent arguments agree: "
-                f"1/gamma* (Lemma 3.14), and a ratio test at each generator of P ({_generators(c)}): x + dt A x "
-                f"stays in P for every generator x and every facet exactly while dt is at most the smallest ratio "
-                f"(b - g.x)/(g.A x) over the pairs with g.A x > 0.")
-    if kind == "polynomial_threshold":
-        f = c.get("f") or []
-        taus = "; ".join(f"tau_{e['i']} = {_real(e['tau'])}" for e in f)
-        return ("Theorem 3.4: with H^ = H + gamma* I >= 0, r(dt H) = sum_i f_i(dt) H^i, so r(dt H) >= 0 while "
-                f"every f_i >= 0.  For each i the certificate gives f_i at gamma* and tau_i = sup{{T : f_i >= 0 on "
-                f"[0, T]}} (checked by Sturm sequences of the odd-multiplicity part of f_i)"
-                + (f": {taus}" if taus else "") + f".  tau = min_i tau_i = {_real(c['value'])}"
-                + (f" (binding: f_{c['binding']})" if c.get("binding") is not None else "") + ".")
-    if kind == "absolute_monotonicity_radius":
-        return (f"The radius of absolute monotonicity (with j = 0, erratum E1) is {_real(c['value'])} "
-                f"({'attained' if c['attained'] else 'not attained'}); reason: {c['reason']}"
-                + (f", smallest positive pole {_real(c['pole'])}" if c.get("pole") else "") + ".")
-    if kind == "rational_threshold":
-        return (f"Theorem 3.12 with the convergence condition of erratum E2: tau = min(rho/gamma*, z_p/alpha(H)) = "
-                f"{_real(c['value'])} (rho = {_real(c['rho'])}, smallest positive pole z_p = "
-                f"{_real(c['pole']) if c.get('pole') else 'none'}, spectral abscissa alpha(H) = "
-                f"{_real(c['alpha']) if c.get('alpha') else 'not needed'}); "
-                f"{'attained' if c['attained'] else 'valid on [0, tau) only'}.")
-    if kind == "largest_threshold":
-        b = c.get("binding")
-        how = (f"the condition of {b['kind']} {b['generator']} and facet {b['facet']} changes sign at tau"
-               if b else "r(dt A) becomes singular at tau")
-        return (f"The exact largest threshold is {_real(c['value'])} ({'attained' if c['attained'] else 'not attained'}).  "
-                f"A_d(dt) P is inside P iff each generator of P ({_generators(c)}) is mapped into P (vertices into P, "
-                f"rays into its recession cone, lines into its lineality space); each generator-facet pair is a "
-                f"polynomial inequality in dt, all of which hold on [0, tau], and {how}.")
-    if kind == "valid_steplengths":
-        ivs = " U ".join(_interval(iv) for iv in c["intervals"]) or "the empty set"
-        return (f"The set of valid steplengths {{dt >= 0 : A_d(dt) P is inside P}} is exactly {ivs}.  Each generator "
-                f"of P ({_generators(c)}) and each facet give a polynomial inequality in dt; the set is where all "
-                f"of them hold (and r(dt A) exists), its ends are roots of these polynomials, and the sign of every "
-                f"condition is constant between consecutive ends.")
-    return f"(no explanation for claim type {kind})"
+    explained = _EXPLAIN.get(kind)
+    return explained(c) if explained else f"(no explanation for claim type {kind})"
+
+
+def _forward_euler(c: dict) -> str:
+    return (f"The largest forward-Euler step is {_real(c['value'])}"
+            + ("" if c.get("attained", True) else " (not attained)") + ".  Two independent arguments agree: "
+            f"1/gamma* (Lemma 3.14), and a ratio test at each generator of P ({_generators(c)}): x + dt A x "
+            f"stays in P for every generator x and every facet exactly while dt is at most the smallest ratio "
+            f"(b - g.x)/(g.A x) over the pairs with g.A x > 0.")
+
+
+def _polynomial(c: dict) -> str:
+    taus = "; ".join(f"tau_{e['i']} = {_real(e['tau'])}" for e in c.get("f") or [])
+    return ("Theorem 3.4: with H^ = H + gamma* I >= 0, r(dt H) = sum_i f_i(dt) H^i, so r(dt H) >= 0 while "
+            f"every f_i >= 0.  For each i the certificate gives f_i at gamma* and tau_i = sup{{T : f_i >= 0 on "
+            f"[0, T]}} (checked by Sturm sequences of the odd-multiplicity part of f_i)"
+            + (f": {taus}" if taus else "") + f".  tau = min_i tau_i = {_real(c['value'])}"
+            + (f" (binding: f_{c['binding']})" if c.get("binding") is not None else "") + ".")
+
+
+def _radius(c: dict) -> str:
+    return (f"The radius of absolute monotonicity (with j = 0, erratum E1) is {_real(c['value'])} "
+            f"({'attained' if c['attained'] else 'not attained'}); reason: {c['reason']}"
+            + (f", smallest positive pole {_real(c['pole'])}" if c.get("pole") else "") + ".")
+
+
+def _rational(c: dict) -> str:
+    return (f"Theorem 3.12 with the convergence condition of erratum E2: tau = min(rho/gamma*, z_p/alpha(H)) = "
+            f"{_real(c['value'])} (rho = {_real(c['rho'])}, smallest positive pole z_p = "
+            f"{_real(c['pole']) if c.get('pole') else 'none'}, spectral abscissa alpha(H) = "
+            f"{_real(c['alpha']) if c.get('alpha') else 'not needed'}); "
+            f"{'attained' if c['attained'] else 'valid on [0, tau) only'}.")
+
+
+def _largest(c: dict) -> str:
+    b = c.get("binding")
+    how = (f"the condition of {b['kind']} {b['generator']} and facet {b['facet']} changes sign at tau"
+           if b else "r(dt A) becomes singular at tau")
+    return (f"The exact largest threshold is {_real(c['value'])} ({'attained' if c['attained'] else 'not attained'}).  "
+            f"A_d(dt) P is inside P iff each generator of P ({_generators(c)}) is mapped into P (vertices into P, "
+            f"rays into its recession cone, lines into its lineality space); each generator-facet pair is a "
+            f"polynomial inequality in dt, all of which hold on [0, tau], and {how}.")
+
+
+def _valid(c: dict) -> str:
+    ivs = " U ".join(_interval(iv) for iv in c["intervals"]) or "the empty set"
+    return (f"The set of valid steplengths {{dt >= 0 : A_d(dt) P is inside P}} is exactly {ivs}.  Each generator "
+            f"of P ({_generators(c)}) and each facet give a polynomial inequality in dt; the set is where all "
+            f"of them hold (and r(dt A) exists), its ends are roots of these polynomials, and the sign of every "
+            f"condition is constant between consecutive ends.")
+
+
+_EXPLAIN = {
+    ClaimType.GAMMA_STAR: _gamma_star,
+    ClaimType.FORWARD_EULER_THRESHOLD: _forward_euler,
+    ClaimType.POLYNOMIAL_THRESHOLD: _polynomial,
+    ClaimType.ABSOLUTE_MONOTONICITY_RADIUS: _radius,
+    ClaimType.RATIONAL_THRESHOLD: _rational,
+    ClaimType.LARGEST_THRESHOLD: _largest,
+    ClaimType.VALID_STEPLENGTHS: _valid,
+}
 
 
 def explain(cert: dict, verified: bool = False) -> str:
     """Explain every claim of a certificate.  This does not verify: pass
-    ``verified=True`` only after the kernel (``exactinv_check.check``) accepted it."""
+    ``verified=True`` only after the kernel (``exactinv_check.check``) accepted it.
+
+    >>> import exactinv as ei
+    >>> from exactinv.model.record import certificate
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> text = explain(certificate(S, P, None, [ei.forward_euler_threshold(S, P)]))
+    >>> 'The largest forward-Euler step is 2' in text   # (1 - dt) x stays in [-1, 1] iff dt <= 2
+    True
+    """
     p = cert["problem"]
     lines = []
     if "Q" in p:

@@ -1,7 +1,9 @@
-"""The exact LP engine (layer ``lp``): float hint -> exact reconstruction ->
-verification in Q -> exact fallback.  See :mod:`exactinv.lp.solver`; the
-float-hint backends (HiGHS, the default, or any solver through cvxpy) are in
-:mod:`exactinv.lp.hint`."""
+"""The exact LP engine (layer ``lp``), a chain of steps each testable alone:
+float hint (:mod:`~exactinv.lp.floatlp`; backends in :mod:`~exactinv.lp.hint`:
+HiGHS, the default, or any solver through cvxpy) -> exact reconstruction
+(:mod:`~exactinv.lp.reconstruct`) -> verification in Q
+(:mod:`~exactinv.lp.verify`) -> exact fallback (:mod:`~exactinv.lp.exact`);
+the chain is :mod:`exactinv.lp.solver`."""
 
 from .hint import CvxpyHint, HighsHint, HintBackend, get_hint_backend, hint_backend, set_hint_backend
 from .solver import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult, solve_lp

@@ -35,18 +35,16 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
-import importlib.util
-from abc import ABC, abstractmethod
-from dataclasses import dataclass
-from enum import StrEnum
-from typing import Any, Iterator, Sequence
+from typing import Any, Iterator
 
-import highspy
-import numpy as np
+from .backends import CvxpyHint, HighsHint
+from .hint_types import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
 
 __all__ = [
     "LPStatus",
+    "Basis",
     "Hint",
+    "UNKNOWN_HINT",
     "HintBackend",
     "HintModel",
     "HighsHint",
@@ -57,201 +55,6 @@ __all__ = [
     "resolve_hint_backend",
 ]
 
-
-class LPStatus(StrEnum):
-    """The outcome of an LP (equal to its old string: ``LPStatus.OPTIMAL == "optimal"``)."""
-
-    OPTIMAL = "optimal"
-    INFEASIBLE = "infeasible"
-    UNBOUNDED = "unbounded"
-    UNKNOWN = "unknown"  # a float hint that gave up (never a returned result)
-
-
-@dataclass(frozen=True)
-class Hint:
-    """An untrusted float answer: ``status``; for OPTIMAL a primal ``x`` and a
-    dual ``y`` (one entry per row, >= 0 on inequality rows, A^T y = cost on
-    free columns) and, where the backend knows it, ``basis`` =
-    (basic columns, tight rows)."""
-
-    status: LPStatus
-    x: np.ndarray | None = None
-    y: np.ndarray | None = None
-    basis: tuple[tuple[int, ...], tuple[int, ...]] | None = None
-
-
-UNKNOWN_HINT = Hint(LPStatus.UNKNOWN)
-
-
-class HintModel(ABC):
-    """One float model of a constraint matrix, re-solved with new data."""
-
-    @abstractmethod
-    def solve(self, cost: np.ndarray, rhs: np.ndarray, nonneg: Sequence[bool]) -> Hint:
-        """Maximize cost.x subject to the model's rows with right-hand side ``rhs``."""
-
-
-class HintBackend(ABC):
-    """A float LP solver the exact engine may ask for hints."""
-
-    name: str = "?"
-
-    @abstractmethod
-    def model(self, A: np.ndarray, equality: Sequence[bool]) -> HintModel:
-        """A model for the R x N float matrix ``A`` (rows already scaled by the engine)."""
-
-    def __repr__(self) -> str:
-        return f"{type(self).__name__}()"
-
-
-# ----------------------------------------------------------------- HiGHS
-class HighsHint(HintBackend):
-    """HiGHS' simplex through highspy: bases and warm starts (the default)."""
-
-    name = "highs"
-
-    def model(self, A, equality):
-        return _HighsModel(A, equality)
-
-
-class _HighsModel(HintModel):
-    def __init__(self, A: np.ndarray, equality: Sequence[bool]):
-        self.A = A
-        self.equality = np.array(equality, dtype=bool)
-        self.R, self.N = A.shape
-        self._highs: highspy.Highs | None = None
-
-    def solve(self, cost, rhs, nonneg):
-        cost = -cost  # HiGHS minimizes
-        lower = np.array([0.0 if v else -highspy.kHighsInf for v in nonneg])
-        upper = np.full(self.N, highspy.kHighsInf)
-        row_lower = np.where(self.equality, rhs, -highspy.kHighsInf)
-        h = self._highs
-        if h is None:
-            h = highspy.Highs()
-            h.setOptionValue("output_flag", False)
-            h.setOptionValue("presolve", "off")
-            lp = highspy.HighsLp()
-            lp.num_col_, lp.num_row_ = self.N, self.R
-            lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, lower, upper
-            lp.row_lower_, lp.row_upper_ = row_lower, rhs
-            cols = self.A.T
-            nz = [np.nonzero(cols[i])[0] for i in range(self.N)]
-            lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-            lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum([len(z) for z in nz])]).astype(np.int32)
-            lp.a_matrix_.index_ = np.concatenate(nz).astype(np.int32) if nz else np.zeros(0, np.int32)
-            lp.a_matrix_.value_ = np.concatenate([cols[i][z] for i, z in enumerate(nz)]) if nz else np.zeros(0)
-            h.passModel(lp)
-            self._highs = h
-        else:
-            idx = np.arange(self.N, dtype=np.int32)
-            h.changeColsCost(self.N, idx, cost)
-            h.changeColsBounds(self.N, idx, lower, upper)
-            ridx = np.arange(self.R, dtype=np.int32)
-            h.changeRowsBounds(self.R, ridx, row_lower, rhs)
-        h.run()
-        status = h.getModelStatus()
-        S = highspy.HighsModelStatus
-        if status == S.kOptimal:
-            sol = h.getSolution()
-            return Hint(LPStatus.OPTIMAL, np.asarray(sol.col_value), -np.asarray(sol.row_dual), _highs_basis(h.getBasis()))
-        if status == S.kInfeasible:
-            return Hint(LPStatus.INFEASIBLE)
-        if status == S.kUnbounded:
-            return Hint(LPStatus.UNBOUNDED)
-        self._highs = None  # a model in an odd state is rebuilt next time
-        return UNKNOWN_HINT
-
-
-def _highs_basis(basis: highspy.HighsBasis) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    """(basic columns, tight rows = rows whose slack is nonbasic) of a HiGHS basis."""
-    basic = highspy.HighsBasisStatus.kBasic
-    return (tuple(i for i, st in enumerate(basis.col_status) if st == basic),
-            tuple(r for r, st in enumerate(basis.row_status) if st != basic))
-
-
-# ----------------------------------------------------------------- cvxpy
-class CvxpyHint(HintBackend):
-    """Any LP solver configured in cvxpy (``solver=None``: cvxpy chooses).
-
-    The LP is written once per constraint matrix as a DPP-compliant cvxpy
-    problem with parameters for the cost, the right-hand side and the sign
-    mask (``mask_i x_i >= 0``), so re-solving skips cvxpy's canonicalisation.
-    ``solver_options`` are passed to ``Problem.solve``.  cvxpy gives no basis:
-    the engine guesses one from the float point."""
-
-    name = "cvxpy"
-
-    def __init__(self, solver: str | None = None, **solver_options: Any):
-        if importlib.util.find_spec("cvxpy") is None:
-            raise ImportError("the cvxpy hint backend needs cvxpy, an optional dependency: pip install cvxpy")
-        self.solver = solver
-        self.solver_options = solver_options
-
-    def model(self, A, equality):
-        return _CvxpyModel(A, equality, self.solver, self.solver_options)
-
-    def __repr__(self) -> str:
-        return f"CvxpyHint(solver={self.solver!r})"
-
-
-class _CvxpyModel(HintModel):
-    def __init__(self, A: np.ndarray, equality: Sequence[bool], solver: str | None, options: dict):
-        import cvxpy as cp  # optional dependency: imported only by this backend
-
-        self.cp = cp
-        self.solver, self.options = solver, options
-        self.R, self.N = A.shape
-        eq = np.array(equality, dtype=bool)
-        self.eq_rows, self.le_rows = np.flatnonzero(eq), np.flatnonzero(~eq)
-        self.x = cp.Variable(self.N)
-        self.cost = cp.Parameter(self.N)
-        self.mask = cp.Parameter(self.N, nonneg=True)
-        constraints = [cp.multiply(self.mask, self.x) >= 0]
-        self.b_eq = self.b_le = self.c_eq = self.c_le = None
-        if len(self.eq_rows):
-            self.b_eq = cp.Parameter(len(self.eq_rows))
-            self.c_eq = A[self.eq_rows] @ self.x == self.b_eq
-            constraints.append(self.c_eq)
-        if len(self.le_rows):
-            self.b_le = cp.Parameter(len(self.le_rows))
-            self.c_le = A[self.le_rows] @ self.x <= self.b_le
-            constraints.append(self.c_le)
-        self.problem = cp.Problem(cp.Maximize(self.cost @ self.x), constraints)
-
-    def solve(self, cost, rhs, nonneg):
-        cp = self.cp
-        if self.N == 0:
-            return UNKNOWN_HINT
-        self.cost.value = np.asarray(cost, dtype=float)
-        self.mask.value = np.array([1.0 if v else 0.0 for v in nonneg])
-        if self.b_eq is not None:
-            self.b_eq.value = rhs[self.eq_rows]
-        if self.b_le is not None:
-            self.b_le.value = rhs[self.le_rows]
-        try:
-            self.problem.solve(solver=self.solver, **self.options)
-        except (cp.SolverError, ValueError, ArithmeticError):
-            return UNKNOWN_HINT
-        status = self.problem.status
-        if status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
-            return Hint(LPStatus.INFEASIBLE)
-        if status in (cp.UNBOUNDED, cp.UNBOUNDED_INACCURATE):
-            return Hint(LPStatus.UNBOUNDED)
-        if status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE) or self.x.value is None:
-            return UNKNOWN_HINT
-        y = np.zeros(self.R)
-        for rows, con in ((self.eq_rows, self.c_eq), (self.le_rows, self.c_le)):
-            if con is not None:
-                if con.dual_value is None:
-                    return UNKNOWN_HINT
-                y[rows] = np.asarray(con.dual_value, dtype=float).reshape(-1)
-        x = np.asarray(self.x.value, dtype=float).reshape(-1)
-        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
-            return UNKNOWN_HINT
-        return Hint(LPStatus.OPTIMAL, x, y, None)
-
-
 # ------------------------------------------------------------- selection
 _BACKENDS = {"highs": HighsHint, "cvxpy": CvxpyHint}
 _default: HintBackend = HighsHint()
@@ -260,7 +63,11 @@ _current: contextvars.ContextVar[HintBackend | None] = contextvars.ContextVar("e
 
 def resolve_hint_backend(backend: str | HintBackend | None = None, **options: Any) -> HintBackend:
     """A backend from a name (``"highs"``, ``"cvxpy"``) and options, an
-    instance, or None (the current one: :func:`hint_backend` block, else the global)."""
+    instance, or None (the current one: :func:`hint_backend` block, else the global).
+
+    >>> resolve_hint_backend('highs'), resolve_hint_backend('cvxpy', solver='SCS')
+    (HighsHint(), CvxpyHint(solver='SCS'))
+    """
     if backend is None:
         if options:
             raise TypeError("hint backend options need a backend name")
@@ -277,21 +84,42 @@ def resolve_hint_backend(backend: str | HintBackend | None = None, **options: An
 
 def set_hint_backend(backend: str | HintBackend = "highs", **options: Any) -> HintBackend:
     """Set the global float-hint backend (``"highs"``, the default, or
-    ``"cvxpy"`` with e.g. ``solver="CLARABEL"``); returns the previous one."""
+    ``"cvxpy"`` with e.g. ``solver="CLARABEL"``); returns the previous one.
+
+    >>> previous = set_hint_backend('cvxpy', solver='CLARABEL')
+    >>> previous, get_hint_backend()
+    (HighsHint(), CvxpyHint(solver='CLARABEL'))
+    >>> set_hint_backend(previous)   # restore the default
+    CvxpyHint(solver='CLARABEL')
+    """
     global _default
     previous, _default = _default, resolve_hint_backend(backend, **options)
     return previous
 
 
 def get_hint_backend() -> HintBackend:
-    """The backend in effect here (a :func:`hint_backend` block, else the global one)."""
+    """The backend in effect here (a :func:`hint_backend` block, else the global one).
+
+    >>> get_hint_backend()
+    HighsHint()
+    >>> with hint_backend('cvxpy', solver='CLARABEL'):
+    ...     print(get_hint_backend())
+    CvxpyHint(solver='CLARABEL')
+    """
     return resolve_hint_backend()
 
 
 @contextlib.contextmanager
 def hint_backend(backend: str | HintBackend, **options: Any) -> Iterator[HintBackend]:
     """Use ``backend`` for the float hints of every LP solved inside the block
-    (thread- and task-local: a :mod:`contextvars` variable)."""
+    (thread- and task-local: a :mod:`contextvars` variable).
+
+    >>> with hint_backend('cvxpy', solver='CLARABEL') as chosen:
+    ...     print(chosen, get_hint_backend() is chosen)
+    CvxpyHint(solver='CLARABEL') True
+    >>> get_hint_backend()
+    HighsHint()
+    """
     chosen = resolve_hint_backend(backend, **options)
     token = _current.set(chosen)
     try:

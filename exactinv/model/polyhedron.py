@@ -65,7 +65,12 @@ class Polyhedron(LatexMixin):
         allow_float: bool = False,
     ) -> "Polyhedron":
         """P = conv(vertices) + cone(rays) + span(lines), converted exactly to
-        inequalities (an affine hull becomes pairs of opposite inequalities)."""
+        inequalities (an affine hull becomes pairs of opposite inequalities).
+
+        >>> T = Polyhedron.from_vertices([[0, 0], [1, 0], [0, 1]])   # the unit triangle
+        >>> T.contains(['1/2', '1/2']), T.contains(['1/2', '2/3']), T.m
+        (True, False, 3)
+        """
         V = to_matrix(vertices, "vertices", allow_float=allow_float)
         n = len(V[0])
         R = to_matrix(rays, "rays", shape=(None, n), allow_float=allow_float) if _nonempty(rays) else ()
@@ -92,7 +97,11 @@ class Polyhedron(LatexMixin):
 
     @classmethod
     def box(cls, lo: Any, hi: Any, *, allow_float: bool = False) -> "Polyhedron":
-        """The box {x : lo <= x <= hi} with rows e_1..e_n, then -e_1..-e_n."""
+        """The box {x : lo <= x <= hi} with rows e_1..e_n, then -e_1..-e_n.
+
+        >>> Polyhedron.box([-1, 0], [1, '1/2'])
+        Polyhedron(G=[[1, 0], [0, 1], [-1, 0], [0, -1]], b=[1, 1/2, 1, 0])
+        """
         lov = to_vector(lo, "lo", allow_float=allow_float)
         hiv = to_vector(hi, "hi", length=len(lov), allow_float=allow_float)
         for i, (l, h) in enumerate(zip(lov, hiv)):
@@ -177,7 +186,12 @@ class Polyhedron(LatexMixin):
         return self._ppl.is_bounded()
 
     def contains(self, x: Sequence[Any]) -> bool:
-        """Exact membership test G x <= b for a rational point x."""
+        """Exact membership test G x <= b for a rational point x.
+
+        >>> P = Polyhedron.box([-1, -1], [1, 1])
+        >>> P.contains(['1', '-1']), P.contains(['1', '1001/1000'])
+        (True, False)
+        """
         xv = to_vector(x, "x", length=self.n)
         return all(sum(g * xi for g, xi in zip(row, xv)) <= beta for row, beta in zip(self.G, self.b))
 
@@ -185,7 +199,11 @@ class Polyhedron(LatexMixin):
         return self.contains(x)
 
     def to_latex(self) -> str:
-        """LaTeX: P = {x : G x <= b}."""
+        """LaTeX: P = {x : G x <= b}.
+
+        >>> print(Polyhedron.box([-1], [1]).to_latex())
+        P = \\{x : \\begin{pmatrix} 1 \\\\ -1 \\end{pmatrix} x \\le \\begin{pmatrix} 1 \\\\ 1 \\end{pmatrix}\\}
+        """
         return rf"P = \{{x : {latex_matrix(self.G)} x \le {latex_column(self.b)}\}}"
 
     def __repr__(self) -> str:

@@ -30,7 +30,11 @@ class LinearSystem(LatexMixin):
     @classmethod
     def closed_loop(cls, A0: Any, B: Any, F: Any, *, allow_float: bool = False) -> "LinearSystem":
         """The closed loop x' = (A0 + B F) x of x' = A0 x + B u under the
-        linear feedback u = F x."""
+        linear feedback u = F x.
+
+        >>> LinearSystem.closed_loop([[0, 1], [0, 0]], [[0], [1]], [[-1, -2]]).A   # A0 + B F
+        ((Fraction(0, 1), Fraction(1, 1)), (Fraction(-1, 1), Fraction(-2, 1)))
+        """
         A0m = to_matrix(A0, "A0", square=True, allow_float=allow_float)
         n = len(A0m)
         Bm = to_matrix(B, "B", shape=(n, None), allow_float=allow_float)
@@ -48,7 +52,11 @@ class LinearSystem(LatexMixin):
         return fmpq_matrix(self.A)
 
     def to_latex(self) -> str:
-        """LaTeX: the system x' = A x."""
+        """LaTeX: the system x' = A x.
+
+        >>> print(LinearSystem([[-1, '1/2'], [0, -1]]).to_latex())
+        \\dot x = \\begin{pmatrix} -1 & \\frac{1}{2} \\\\ 0 & -1 \\end{pmatrix}\\, x
+        """
         return rf"\dot x = {latex_matrix(self.A)}\, x"
 
     def __repr__(self) -> str:

@@ -21,7 +21,12 @@ _FOR_ELLIPSOIDS = ("; gamma* and the paper's thresholds are about polyhedra -- o
 
 
 def check_polyhedron(P: Any) -> Polyhedron:
-    """P itself, if it is a nonempty :class:`Polyhedron`."""
+    """P itself, if it is a nonempty :class:`Polyhedron`.
+
+    >>> from exactinv.model import Polyhedron
+    >>> check_polyhedron(Polyhedron.box([-1], [1])).b
+    (Fraction(1, 1), Fraction(1, 1))
+    """
     if isinstance(P, Ellipsoid):
         raise InvalidInput(f"polyhedron: got an Ellipsoid{_FOR_ELLIPSOIDS}")
     if not isinstance(P, Polyhedron):
@@ -32,14 +37,25 @@ def check_polyhedron(P: Any) -> Polyhedron:
 
 
 def check_method(method: Any) -> Method:
-    """method itself, if it is a :class:`Method`."""
+    """method itself, if it is a :class:`Method`.
+
+    >>> from exactinv.model import methods
+    >>> check_method(methods.taylor(2)).name
+    'taylor(2)'
+    """
     if not isinstance(method, Method):
         raise InvalidInput(f"method: expected an exactinv method (exactinv.methods.*), got {type(method).__name__}")
     return method
 
 
 def check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
-    """(S, P), if S is a :class:`LinearSystem` and P a nonempty polyhedron of its dimension."""
+    """(S, P), if S is a :class:`LinearSystem` and P a nonempty polyhedron of its dimension.
+
+    >>> from exactinv.model import LinearSystem, Polyhedron
+    >>> S, P = check_pair(LinearSystem([[-1]]), Polyhedron.box([-1], [1]))
+    >>> S.n, P.m
+    (1, 2)
+    """
     if not isinstance(S, LinearSystem):
         raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
     if isinstance(P, Ellipsoid):
@@ -52,6 +68,12 @@ def check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
 
 
 def check_problem(S: Any, P: Any, method: Any) -> tuple[LinearSystem, Polyhedron, Method]:
-    """(S, P, method), each checked."""
+    """(S, P, method), each checked.
+
+    >>> from exactinv.model import LinearSystem, Polyhedron, methods
+    >>> S, P, method = check_problem(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.taylor(1))
+    >>> method.name
+    'taylor(1)'
+    """
     S, P = check_pair(S, P)
     return S, P, check_method(method)

@@ -24,7 +24,8 @@ import flint
 import numpy as np
 
 from ..errors import InvalidInput
-from ..core.scalars import INF, fmpq_of, to_rational, to_vector
+from ..core.scalars import INF, Infinity, fmpq_of, to_rational, to_vector
+from ..core.tags import BisectionStep
 
 __all__ = ["PaperBisectionResult", "paper_bisection", "paper_bisection_float", "paper_bound"]
 
@@ -34,10 +35,10 @@ class PaperBisectionResult:
     """tau as the paper's algorithm returns it, the step that terminated, the
     final bracket [t_l, t_r] and the number of Sturm evaluations."""
 
-    tau: Any
-    terminated_by: str
-    t_l: Any
-    t_r: Any
+    tau: Fraction | float | Infinity
+    terminated_by: BisectionStep
+    t_l: Fraction | float
+    t_r: Fraction | float
     sturm_counts: int
 
 
@@ -54,7 +55,13 @@ def _normalised(alphas: Sequence[Any]) -> tuple[Fraction, ...]:
 
 def paper_bound(alphas: Sequence[Any], repaired: bool = False) -> Fraction:
     """t* of the bound lemma: alpha*/alpha_q + 1 (as printed), or Cauchy's
-    1 + alpha*/|alpha_q| (``repaired``), with alpha* = max(1, |alpha_1|, ..., |alpha_{q-1}|)."""
+    1 + alpha*/|alpha_q| (``repaired``), with alpha* = max(1, |alpha_1|, ..., |alpha_{q-1}|).
+
+    >>> paper_bound([1, -3, 2])   # alpha* = max(1, |-3|) = 3: t* = 3/2 + 1
+    Fraction(5, 2)
+    >>> paper_bound([1, -3, -2], repaired=True)   # Cauchy: 1 + 3/|-2|
+    Fraction(5, 2)
+    """
     a = _normalised(alphas)
     alpha_star = max([Fraction(1)] + [abs(x) for x in a[1:-1]])
     alpha_q = a[-1]
@@ -62,7 +69,12 @@ def paper_bound(alphas: Sequence[Any], repaired: bool = False) -> Fraction:
 
 
 def paper_bisection(alphas: Sequence[Any], epsilon: Any = Fraction(1, 2**30), repaired: bool = False) -> PaperBisectionResult:
-    """Steps 0-5 of the paper in exact arithmetic.  ``alphas`` = [1, alpha_1, ..., alpha_q]."""
+    """Steps 0-5 of the paper in exact arithmetic.  ``alphas`` = [1, alpha_1, ..., alpha_q].
+
+    >>> res = paper_bisection([1, -3, 2])   # 1 - 3t + 2t^2 = (1 - t)(1 - 2t): first root 1/2
+    >>> res.tau < Fraction(1, 2) <= res.tau + Fraction(1, 2**30), res.terminated_by   # Step 5 returns t_l
+    (True, <BisectionStep.STEP_5: 'step 5'>)
+    """
     a = _normalised(alphas)
     eps = to_rational(epsilon, "epsilon")
     f = flint.fmpq_poly([fmpq_of(x) for x in a])
@@ -85,7 +97,12 @@ def paper_bisection(alphas: Sequence[Any], epsilon: Any = Fraction(1, 2**30), re
 
 def paper_bisection_float(alphas: Sequence[Any], epsilon: float = 2.0**-30, repaired: bool = False) -> PaperBisectionResult:
     """Steps 0-5 of the paper in double precision (numpy polynomial division
-    for the Sturm sequence); what a float implementation of the paper gives."""
+    for the Sturm sequence); what a float implementation of the paper gives.
+
+    >>> res = paper_bisection_float([1, -3, 2])
+    >>> abs(res.tau - 0.5) < 1e-8, res.terminated_by
+    (True, <BisectionStep.STEP_5: 'step 5'>)
+    """
     a = [float(x) for x in _normalised(alphas)]
     f = np.polynomial.Polynomial(a)
     seq = [f, f.deriv()]
@@ -126,19 +143,19 @@ def _steps(a, *, f, count, t_star, eps, half, mid, one, counts) -> PaperBisectio
     # Step 2 [Termination 1].
     n_r = count(t_r)
     if n_r == 0:
-        return PaperBisectionResult(INF, "step 2", t_l, t_r, counts())
+        return PaperBisectionResult(INF, BisectionStep.STEP_2, t_l, t_r, counts())
     # Step 3 [Termination 2].
     if n_r == 1 and f(t_r) == 0:
-        return PaperBisectionResult(t_star, "step 3", t_l, t_r, counts())
+        return PaperBisectionResult(t_star, BisectionStep.STEP_3, t_l, t_r, counts())
     # Step 4 [Bisection].
     while abs(t_l - t_r) >= eps:
         t_m = mid(t_l, t_r)
         n_m = count(t_m)
         if n_m == 1 and f(t_m) == 0:
-            return PaperBisectionResult(t_m, "step 4 (termination 3)", t_l, t_r, counts())
+            return PaperBisectionResult(t_m, BisectionStep.STEP_4, t_l, t_r, counts())
         if n_m >= 1:
             t_r = t_m
         else:
             t_l = t_m
     # Step 5 [Termination 4].
-    return PaperBisectionResult(t_l, "step 5", t_l, t_r, counts())
+    return PaperBisectionResult(t_l, BisectionStep.STEP_5, t_l, t_r, counts())

@@ -12,6 +12,7 @@ from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.tags import ClaimType
 from ..errors import VerificationFailed
 from ..model import LinearSystem, Polyhedron
 from ..model.methods import forward_euler
@@ -37,14 +38,26 @@ class ForwardEulerThreshold(ExactValueMixin):
     attained: bool = True
 
     def claims(self) -> list[dict]:
-        """gamma*'s claim and the vertex ratio tests' value."""
+        """gamma*'s claim and the vertex ratio tests' value.
+
+        >>> from exactinv.model import LinearSystem, Polyhedron
+        >>> fe = forward_euler_threshold(LinearSystem([[-1, 1], [-1, -1]]), Polyhedron.box([-1, -1], [1, 1]))
+        >>> [str(c['type']) for c in fe.claims()]
+        ['gamma_star', 'forward_euler_threshold']
+        """
         return self.gamma.claims() + [{
-            "type": "forward_euler_threshold",
+            "type": ClaimType.FORWARD_EULER_THRESHOLD,
             "value": encode_real(self.value),
             **generator_record(self.gamma.polyhedron),
         }]
 
     def to_latex(self) -> str:
+        """The threshold in LaTeX.
+
+        >>> from exactinv.model import LinearSystem, Polyhedron
+        >>> print(forward_euler_threshold(LinearSystem([[-2]]), Polyhedron.box([-1], [1])).to_latex())   # gamma* = 1: (1 - 2 dt) x stays in [-1, 1] iff dt <= 1
+        \\tau_{FE} = 1/\\gamma^* = 1
+        """
         return rf"\tau_{{FE}} = 1/\gamma^* = {latex_real(self.value)}"
 
     @property
@@ -55,7 +68,13 @@ class ForwardEulerThreshold(ExactValueMixin):
 
 def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron) -> ForwardEulerThreshold:
     """The largest forward-Euler steplength, exact, cross-checked: 1/gamma* from
-    the verified LP and the vertex ratio tests must coincide."""
+    the verified LP and the vertex ratio tests must coincide.
+
+    >>> from exactinv.model import LinearSystem, Polyhedron
+    >>> fe = forward_euler_threshold(LinearSystem([[-1, 1], [-1, -1]]), Polyhedron.box([-1, -1], [1, 1]))
+    >>> fe.value, fe.by_gamma, fe.by_vertices   # 1/gamma* with gamma* = 1; the vertex ratio tests agree
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
+    """
     check_problem(system, polyhedron, forward_euler())
     gamma = optimal_gamma(system, polyhedron)
     g = gamma.value

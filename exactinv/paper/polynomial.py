@@ -21,7 +21,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 from math import comb
-from typing import Any
+
+import flint
 
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
@@ -29,9 +30,11 @@ from ..core.latex import dt_poly_latex, latex_real, latex_text
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
+from ..core.tags import ClaimType
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from .invariance import OptimalGamma
+from .monotonicity import AbsoluteMonotonicityRadius
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "polynomial_threshold"]
 
@@ -69,11 +72,11 @@ class SteplengthThreshold(ExactValueMixin):
     table: tuple[FiRow, ...] = field(default=(), repr=False)
     binding: int | None = None
     notes: tuple[str, ...] = field(default=(), repr=False)
-    radius: Any = field(default=None, repr=False)
-    pole: Any = field(default=None, repr=False)
-    spectral_abscissa: Any = field(default=None, repr=False)
-    paper_value: Any = field(default=None, repr=False)
-    certificate_H: Any = field(default=None, repr=False)
+    radius: AbsoluteMonotonicityRadius | None = field(default=None, repr=False)
+    pole: Real | None = field(default=None, repr=False)
+    spectral_abscissa: Real | None = field(default=None, repr=False)
+    paper_value: Real | None = field(default=None, repr=False)
+    certificate_H: tuple[flint.fmpq_mat, Real] | None = field(default=None, repr=False)
 
     @property
     def paper(self) -> Real:
@@ -84,19 +87,25 @@ class SteplengthThreshold(ExactValueMixin):
 
 
     def claims(self) -> list[dict]:
-        """gamma*'s claim, then the threshold's (with the radius' claim for a rational method)."""
+        """gamma*'s claim, then the threshold's (with the radius' claim for a rational method).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+        >>> [str(c['type']) for c in ei.steplength_threshold(S, P, ei.methods.taylor(2)).claims()]
+        ['gamma_star', 'polynomial_threshold']
+        """
         return self.gamma.claims() + self._own_claims()
 
     def _own_claims(self) -> list[dict]:
         if self.method.is_polynomial:
             return [{
-                "type": "polynomial_threshold",
+                "type": ClaimType.POLYNOMIAL_THRESHOLD,
                 "value": encode_real(self.value),
                 "binding": self.binding,
                 "f": [{"i": r.i, "coefficients": [str(c) for c in r.f], "tau": encode_real(r.tau)} for r in self.table],
             }]
         claim = {
-            "type": "rational_threshold",
+            "type": ClaimType.RATIONAL_THRESHOLD,
             "value": encode_real(self.value),
             "attained": self.attained,
             "rho": encode_real(self.radius.value),
@@ -117,6 +126,13 @@ class SteplengthThreshold(ExactValueMixin):
         return make_certificate(self.gamma.system, self.gamma.polyhedron, self.method, [self])
 
     def to_latex(self) -> str:
+        """The threshold in LaTeX.
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+        >>> print(ei.steplength_threshold(S, P, ei.methods.taylor(1)).to_latex())
+        \\begin{array}{l} \\tau = 1\\ (\\text{Theorem 3.4 (polynomial methods)}) \\\\ \\begin{array}{c|l|l} i & f_i(\\Delta t) & \\tau_i \\\\ \\hline 0 & 1-\\Delta t & 1 \\\\ 1 & \\Delta t & \\infty \\end{array} \\end{array}
+        """
         note = latex_text(self.theorem + ("" if self.attained else ", not attained"))
         text = rf"\tau = {latex_real(self.value)}\ ({note})"
         if not self.table:
@@ -127,7 +143,13 @@ class SteplengthThreshold(ExactValueMixin):
         return rf"\begin{{array}}{{l}} {text} \\ {table} \end{{array}}"
 
     def f_symbolic(self):
-        """The f_i as sympy expressions in dt and gamma (the paper's eq. (20))."""
+        """The f_i as sympy expressions in dt and gamma (the paper's eq. (20)).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+        >>> ei.steplength_threshold(S, P, ei.methods.taylor(1)).f_symbolic()   # forward Euler: f_0 = 1 - gamma dt, f_1 = dt
+        [-Delta_t*gamma + 1, Delta_t]
+        """
         return f_i_symbolic(self.method)
 
     def __repr__(self) -> str:
@@ -136,7 +158,12 @@ class SteplengthThreshold(ExactValueMixin):
 
 
 def f_i(sigmas: tuple[Fraction, ...], gamma: Fraction, i: int) -> tuple[Fraction, ...]:
-    """Coefficients (dt^0 .. dt^p) of f_i(dt) = sum_{k=i}^p (-1)^(k-i) sigma_k C(k,i) gamma^(k-i) dt^k."""
+    """Coefficients (dt^0 .. dt^p) of f_i(dt) = sum_{k=i}^p (-1)^(k-i) sigma_k C(k,i) gamma^(k-i) dt^k.
+
+    >>> sigmas = (Fraction(1), Fraction(1), Fraction(1, 2))   # Taylor-2: 1 + z + z^2/2
+    >>> [f_i(sigmas, Fraction(1), i) for i in range(3)]   # 1 - dt + dt^2/2, dt - dt^2, dt^2/2
+    [(Fraction(1, 1), Fraction(-1, 1), Fraction(1, 2)), (Fraction(0, 1), Fraction(1, 1), Fraction(-1, 1)), (Fraction(0, 1), Fraction(0, 1), Fraction(1, 2))]
+    """
     p = len(sigmas) - 1
     return tuple(
         Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
@@ -145,7 +172,12 @@ def f_i(sigmas: tuple[Fraction, ...], gamma: Fraction, i: int) -> tuple[Fraction
 
 
 def f_i_symbolic(method: Method):
-    """[f_0, ..., f_p] as sympy expressions in the symbols dt and gamma."""
+    """[f_0, ..., f_p] as sympy expressions in the symbols dt and gamma.
+
+    >>> from exactinv.model import methods
+    >>> f_i_symbolic(methods.taylor(2))
+    [Delta_t**2*gamma**2/2 - Delta_t*gamma + 1, -Delta_t**2*gamma + Delta_t, Delta_t**2/2]
+    """
     import sympy  # for display only
 
     dt, gamma = sympy.symbols("Delta_t gamma", positive=True)
@@ -158,7 +190,13 @@ def f_i_symbolic(method: Method):
 
 
 def polynomial_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
-    """The paper's threshold for a polynomial method (Theorems 3.4 and 3.13), gamma = gamma*."""
+    """The paper's threshold for a polynomial method (Theorems 3.4 and 3.13), gamma = gamma*.
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    >>> polynomial_threshold(ei.methods.taylor(2), ei.optimal_gamma(S, P)).value   # gamma* = 1: min_i tau_i = 1
+    Fraction(1, 1)
+    """
     sigmas = method.sigmas
     g = gamma.value
     if isinstance(g, Infinity) or g <= 0:

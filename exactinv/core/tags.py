@@ -1,0 +1,62 @@
+"""The tags that results and certificates carry, as ``StrEnum``s.
+
+A ``StrEnum`` member is its string (``ClaimType.GAMMA_STAR == "gamma_star"``,
+``json.dumps`` writes ``"gamma_star"``), so certificates and tests read the
+same as with plain strings, while the code names each tag once.  (The LP
+engine's own tags are :class:`exactinv.lp.hint.LPStatus` and
+:class:`exactinv.lp.solver.LPPath`; the oracle's verdicts are
+:class:`exactinv.interfaces.oracle.Status`; the generator kinds of the valid
+sets are :class:`exactinv.beyond.conditions.Kind`.)
+
+>>> import json
+>>> ClaimType.GAMMA_STAR == "gamma_star", json.dumps({"type": ClaimType.GAMMA_STAR})
+(True, '{"type": "gamma_star"}')
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+__all__ = ["ClaimType", "RadiusReason", "BisectionStep", "CounterexampleKind"]
+
+
+class ClaimType(StrEnum):
+    """The ``"type"`` of a claim in a certificate (docs/certificate-format.md)."""
+
+    GAMMA_STAR = "gamma_star"
+    CONTINUOUS_INVARIANCE = "continuous_invariance"
+    DISCRETE_INVARIANCE = "discrete_invariance"
+    POLYNOMIAL_THRESHOLD = "polynomial_threshold"
+    RATIONAL_THRESHOLD = "rational_threshold"
+    FORWARD_EULER_THRESHOLD = "forward_euler_threshold"
+    ABSOLUTE_MONOTONICITY_RADIUS = "absolute_monotonicity_radius"
+    VALID_STEPLENGTHS = "valid_steplengths"
+    LARGEST_THRESHOLD = "largest_threshold"
+
+
+class RadiusReason(StrEnum):
+    """Why the absolute monotonicity radius rho (Def. 3.11) has its value."""
+
+    COEFFICIENT = "coefficient"  # c_binding changes sign at rho
+    ALL_COEFFICIENTS = "all-coefficients"  # every coefficient stays >= 0: rho = INF
+    NO_POSITIVE_POLE = "no-positive-pole"
+    PRINCIPAL_PART_SIGN = "principal-part-sign"
+    DOMINANCE_AT_0 = "dominance-at-0"
+
+
+class BisectionStep(StrEnum):
+    """The step of the paper's bisection (Section 3.1.2) that returned."""
+
+    STEP_2 = "step 2"
+    STEP_3 = "step 3"
+    STEP_4 = "step 4 (termination 3)"
+    STEP_5 = "step 5"
+
+
+class CounterexampleKind(StrEnum):
+    """The ``"kind"`` of an oracle counterexample to a claimed LP value."""
+
+    INFEASIBLE = "infeasible"  # a Farkas vector: the exact LP has no feasible point
+    UNBOUNDED = "unbounded"  # a feasible point beating the claim, and a ray
+    BETTER_POINT = "better_point"  # a feasible point beating the claimed optimum
+    DUAL_BOUND = "dual_bound"  # a dual vector proving the claim unattainable
