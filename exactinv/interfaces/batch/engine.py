@@ -74,10 +74,11 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     tally, start = Tally(), time.monotonic()
     threads = 0
     if todo:
+        dask = _dask()
         with open(out, "a", encoding="utf-8") as sink:
             _end_torn_line(out, sink)
             bar = _Bar(len(todo), sys.stderr if (progress if progress is not None else sys.stderr.isatty()) else None)
-            threads = _run(todo, limits, workers, scheduler, sink, tally, bar)
+            threads = _run(dask, todo, limits, workers, scheduler, sink, tally, bar)
             bar.close()
     return tally.summary(str(out), len(tasks), len(tasks) - len(todo), time.monotonic() - start, threads)
 
@@ -124,12 +125,20 @@ def _end_torn_line(path: str, sink: TextIO) -> None:
                 sink.write("\n")
 
 
-def _run(todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
+def _dask() -> Any:
+    """The module dask.distributed, or InvalidInput saying how to install it."""
+    try:
+        import dask.distributed
+    except ImportError:
+        raise InvalidInput('exactinv batch needs Dask distributed: pip install "exactinv[batch]" '
+                           '(or pip install "dask[distributed]")') from None
+    return dask.distributed
+
+
+def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
          sink: TextIO, tally: Tally, bar: "_Bar") -> int:
     """Submit ``todo`` to Dask a window at a time, write each record as it comes; the worker threads used."""
-    from dask.distributed import as_completed
-
-    client, cluster = _connect(workers, scheduler)
+    client, cluster = _connect(dask, workers, scheduler)
     try:
         threads = sum(client.nthreads().values())
         pending, futures = iter(todo), {}
@@ -141,7 +150,7 @@ def _run(todo: list[Task], limits: Limits, workers: int | None, scheduler: str |
 
         for task in itertools.islice(pending, max(threads, 1) * _WINDOW):
             submit(task)
-        stream = as_completed(list(futures))
+        stream = dask.as_completed(list(futures))
         for future in stream:
             record = _record(future, futures.pop(future))
             sink.write(json.dumps(record) + "\n")
@@ -166,21 +175,16 @@ def _record(future: Any, task: Task) -> dict:
                 "error": f"the Dask worker failed: {type(exc).__name__}: {exc}", "seconds": 0.0, "peak_mb": 0.0}
 
 
-def _connect(workers: int | None, scheduler: str | None) -> tuple[Any, Any]:
+def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any, Any]:
     """A Dask client: to ``scheduler``, or to a new LocalCluster (closed by the caller)."""
-    try:
-        from dask.distributed import Client, LocalCluster
-    except ImportError:
-        raise InvalidInput('exactinv batch needs Dask distributed: pip install "exactinv[batch]" '
-                           '(or pip install "dask[distributed]")') from None
     if scheduler is not None:
         try:
-            return Client(scheduler, timeout="30s"), None
+            return dask.Client(scheduler, timeout="30s"), None
         except (OSError, TimeoutError, ValueError) as exc:
             raise InvalidInput(f"scheduler: cannot connect to {scheduler} ({exc})") from None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.ERROR)
-    return Client(cluster), cluster
+    cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                dashboard_address=None, silence_logs=logging.ERROR)
+    return dask.Client(cluster), cluster
 
 
 class _Bar:

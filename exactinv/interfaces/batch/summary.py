@@ -77,9 +77,12 @@ class BatchSummary:
         if self.verdicts:
             lines.append("oracle verdicts: " + ", ".join(f"{v} {n}" for v, n in self.verdicts))
         plural = "" if self.total == 1 else "s"
-        lines.append(f"{self.total} problem{plural}: {self.skipped} already in {self.out} (skipped), {self.ran} run in "
-                     f"{self.seconds:.1f} s on {self.workers} worker{'' if self.workers == 1 else 's'} "
-                     f"({self.throughput:.2f} problems/s)")
+        head = f"{self.total} problem{plural}: {self.skipped} already in {self.out} (skipped), "
+        if not self.ran:
+            lines.append(head + "nothing left to run")
+        else:
+            lines.append(head + f"{self.ran} run in {self.seconds:.1f} s on {self.workers} "
+                         f"worker{'' if self.workers == 1 else 's'} ({self.throughput:.2f} problems/s)")
         return "\n".join(lines)
 
 
