@@ -244,3 +244,14 @@ def test_corpus_kinds_and_ids(tmp_path):
     out = tmp_path / "r.jsonl"
     out.write_text('{"id": "a"}\n[1]\n{"id": 3}\n{"id": "b", "status": "ok"}\n{"id": "c"')
     assert done_ids(out) == {"a", "b"} and done_ids(tmp_path / "none.jsonl") == set()
+
+
+def test_a_worker_with_another_exactinv_version_is_refused():
+    from exactinv.interfaces.batch import engine
+
+    class Cluster:  # what Client.run returns: each worker's answer by address
+        def run(self, fn):
+            return {"tcp://10.0.0.1:1234": fn(), "tcp://10.0.0.2:1234": "0.0.1"}
+
+    with pytest.raises(ei.ExactinvError, match=r"worker tcp://10.0.0.2:1234 runs exactinv 0.0.1, this machine"):
+        engine._same_engine(Cluster())

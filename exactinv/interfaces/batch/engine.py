@@ -45,7 +45,7 @@ from ...core.scalars import to_rational
 from ...errors import InvalidInput
 from .corpus import Task, done_ids, read_corpus
 from .summary import BatchSummary, Tally
-from .task import Limits, run_task
+from .task import Limits, engine_version, run_task
 
 __all__ = ["run_batch"]
 
@@ -140,6 +140,7 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
     """Submit ``todo`` to Dask a window at a time, write each record as it comes; the worker threads used."""
     client, cluster = _connect(dask, workers, scheduler)
     try:
+        _same_engine(client)
         threads = sum(client.nthreads().values())
         pending, futures = iter(todo), {}
 
@@ -185,6 +186,16 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                 dashboard_address=None, silence_logs=logging.ERROR)
     return dask.Client(cluster), cluster
+
+
+def _same_engine(client: Any) -> None:
+    """Import exactinv on every worker now (in its main thread) and refuse workers with another version."""
+    mine = engine_version()
+    other = {addr: v for addr, v in client.run(engine_version).items() if v != mine}
+    if other:
+        addr, version = next(iter(other.items()))
+        raise InvalidInput(f"scheduler: the worker {addr} runs exactinv {version}, this machine {mine}; "
+                           "install the same version everywhere")
 
 
 class _Bar:

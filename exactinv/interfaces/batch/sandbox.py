@@ -31,7 +31,7 @@ import resource
 import select
 import signal
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 __all__ = ["Outcome", "run_limited"]
@@ -44,15 +44,17 @@ _CPU_GRACE = 5  # seconds of CPU time above the wall-clock timeout before the ke
 class Outcome:
     """What became of one limited run: ``status`` is ``"ok"`` (``value`` holds
     the function's JSON-able result), ``"timeout"``, ``"memory"`` or
-    ``"crash"`` (``message`` says how); ``seconds`` is the wall time and
-    ``peak_mb`` the child's peak resident memory (it includes the pages shared
-    with the parent that the child touched)."""
+    ``"crash"`` (``message`` says how); ``seconds`` is the wall time,
+    ``cpu_seconds`` the child's CPU time (user + system) and ``peak_mb`` its
+    peak resident memory (it includes the pages shared with the parent that
+    the child touched)."""
 
     status: str
     value: Any = None
     seconds: float = 0.0
     peak_mb: float = 0.0
     message: str = ""
+    cpu_seconds: float = 0.0
 
 
 def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None,
@@ -76,8 +78,10 @@ def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None
     seconds = time.monotonic() - start
     peak = usage.ru_maxrss / 1024  # kilobytes on Linux
     if timed_out:
-        return Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)")
-    return _decode(data, wait_status, memory_mb, seconds, peak)
+        outcome = Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)")
+    else:
+        outcome = _decode(data, wait_status, memory_mb, seconds, peak)
+    return replace(outcome, cpu_seconds=usage.ru_utime + usage.ru_stime)
 
 
 def _child(fn, arg, fd: int, timeout, memory_mb) -> None:

@@ -17,6 +17,7 @@ measurements, not results.
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
@@ -36,7 +37,7 @@ from ..problem import load_problem
 from .corpus import Task
 from .sandbox import run_limited
 
-__all__ = ["Limits", "STATUSES", "run_task"]
+__all__ = ["Limits", "STATUSES", "run_task", "engine_version"]
 
 STATUSES = ("ok", "rejected", "error", "timeout", "memory")
 """A record's status: the kernel verified the certificate (or, with
@@ -61,6 +62,17 @@ class Limits:
     tolerance: str = "1e-9"
 
 
+def engine_version() -> str:
+    """The exactinv version of this process.  Called on every worker (in its main thread: pplpy's
+    cysignals can only be imported there) before any task, so that a worker imports exactinv safely
+    and a cluster running another version is refused.
+
+    >>> engine_version() == sys.modules["exactinv"].__version__
+    True
+    """
+    return sys.modules[__name__.split(".")[0]].__version__
+
+
 def run_task(task: Task, limits: Limits) -> dict:
     """The record of ``task`` run under ``limits`` (see the module docstring)."""
     head = {"id": task.id, "kind": task.kind, "source": task.source}
@@ -69,7 +81,8 @@ def run_task(task: Task, limits: Limits) -> dict:
     outcome = run_limited(_solve, (task, limits), limits.timeout, limits.memory_mb)
     record = dict(outcome.value) if outcome.status == "ok" else {
         "status": "error" if outcome.status == "crash" else outcome.status, "error": outcome.message}
-    return {**head, **record, "seconds": round(outcome.seconds, 4), "peak_mb": round(outcome.peak_mb, 1)}
+    return {**head, **record, "seconds": round(outcome.seconds, 4), "cpu_seconds": round(outcome.cpu_seconds, 4),
+            "peak_mb": round(outcome.peak_mb, 1)}
 
 
 def _solve(job: tuple[Task, Limits]) -> dict:
