@@ -15,7 +15,13 @@ line that is not JSON, an unknown key, a ragged matrix), 0.5% that run past
 the time limit (Pade(40, 40)) and 0.5% that run past the memory limit
 (Taylor 1000); limits --timeout 2 --memory 300.
 
-Run:  python benchmarks/batch.py [--n 1000] [--quick]
+Per-problem costs by family (`--costs`): CPU seconds and peak memory of one
+task in the sandbox (certify + kernel check) for larger families than the
+corpus -- regular polygons with 50 and 200 vertices (Taylor-4), hypercubes
+in R^4 and R^6 (Pade(2,2)) and random 3-D polytopes (RK4) -- the numbers
+behind the 10^5-problem estimate in docs/scale.md.
+
+Run:  python benchmarks/batch.py [--n 1000] [--quick] [--costs]
 """
 
 from __future__ import annotations
@@ -32,6 +38,8 @@ import time
 from dask.distributed import LocalCluster
 
 from exactinv.interfaces.batch import run_batch
+from exactinv.interfaces.batch.corpus import Task
+from exactinv.interfaces.batch.task import Limits, run_task
 from exactinv.interfaces.pipeline import certify
 from exactinv.interfaces.problem import load_problem
 
@@ -134,7 +142,10 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--n", type=int, default=1000)
     parser.add_argument("--quick", action="store_true", help="100 problems")
+    parser.add_argument("--costs", action="store_true", help="only the per-problem costs of larger families")
     args = parser.parse_args()
+    if args.costs:
+        return family_costs()
     n = BASE_N = 100 if args.quick else args.n
     problems = generate(n)
     work = tempfile.mkdtemp(prefix="exactinv-batch-bench-")
@@ -195,6 +206,49 @@ def _costs(path: str) -> None:
     print(f"\nper problem (2-worker run): wall mean {sum(secs) / len(secs):.3f} s, median {q(secs, .5):.3f} s, "
           f"p99 {q(secs, .99):.3f} s, max {secs[-1]:.3f} s; CPU mean {sum(cpus) / len(cpus):.3f} s, "
           f"p99 {q(cpus, .99):.3f} s, max {cpus[-1]:.3f} s; peak RSS median {q(peaks, .5):.0f} MB, max {peaks[-1]:.0f} MB")
+
+
+ROT = [[-1, "1/2"], ["-1/2", -1]]
+
+
+def _families(rng: random.Random) -> dict[str, list[dict]]:
+    sys.path.insert(0, os.path.dirname(__file__))
+    from largest import cube_system, polygon
+
+    def poly(N):
+        return {"vertices": [[str(x) for x in v] for v in polygon(N).vertices]}
+
+    def cube(n):
+        A = cube_system(n, rng).A
+        return {"A": [[str(x) for x in r] for r in A]}, {"G": [[(1 if j == i else 0) * s for j in range(n)]
+                                                             for i in range(n) for s in (1, -1)], "b": [1] * (2 * n)}
+    fam = {
+        "generated (the corpus above)": generate(20, seed=99),
+        "polygon N=50, Taylor-4": [{"system": {"A": ROT}, "polyhedron": poly(50), "method": {"taylor": 4}}] * 3,
+        "polygon N=200, Taylor-4": [{"system": {"A": ROT}, "polyhedron": poly(200), "method": {"taylor": 4}}] * 2,
+        "hypercube R^4, Pade(2,2)": [dict(zip(("system", "polyhedron"), cube(4)), method={"pade": [2, 2]})
+                                     for _ in range(3)],
+        "hypercube R^6, Pade(2,2)": [dict(zip(("system", "polyhedron"), cube(6)), method={"pade": [2, 2]})
+                                     for _ in range(2)],
+    }
+    fam["random 3-D polytope, 20 points, RK4"] = [
+        {"system": {"A": _matrix(rng, 3)}, "polyhedron": {"vertices": [[rng.randint(-9, 9) for _ in range(3)]
+                                                                       for _ in range(20)]}, "method": "rk4"}
+        for _ in range(5)]
+    return fam
+
+
+def family_costs() -> None:
+    print("| family | problems | CPU s / problem (mean) | max | peak RSS MB (max) | statuses |")
+    print("|---|---:|---:|---:|---:|---|")
+    for label, problems in _families(random.Random(5)).items():
+        recs = [run_task(Task(f"{label}-{k}", "certify", text=json.dumps(p)), Limits(timeout=600))
+                for k, p in enumerate(problems)]
+        cpus = [r["cpu_seconds"] for r in recs]
+        statuses = sorted({r["status"] for r in recs})
+        print(f"| {label} | {len(recs)} | {sum(cpus) / len(cpus):.3f} | {max(cpus):.3f} | "
+              f"{max(r['peak_mb'] for r in recs):.0f} | {', '.join(statuses)} |")
+        sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -50,6 +50,7 @@ from .task import Limits, engine_version, run_task
 __all__ = ["run_batch"]
 
 _WINDOW = 4  # tasks in flight per worker thread: enough to keep workers busy, few enough to scale to 10^5 tasks
+_RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may grow, e.g. SLURM jobs starting)
 
 
 def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, workers: int | None = None,
@@ -137,35 +138,41 @@ def _dask() -> Any:
 
 def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
          sink: TextIO, tally: Tally, bar: "_Bar") -> int:
-    """Submit ``todo`` to Dask a window at a time, write each record as it comes; the worker threads used."""
+    """Submit ``todo`` to Dask, about ``_WINDOW`` tasks per worker thread in flight (re-counted as
+    workers join or leave), write each record as it comes; the most worker threads seen."""
     client, cluster = _connect(dask, workers, scheduler)
     try:
         _same_engine(client)
-        threads = sum(client.nthreads().values())
-        pending, futures = iter(todo), {}
+        pending, futures, stream = iter(todo), {}, dask.as_completed()
+        threads, counted = _threads(client), time.monotonic()
+        most = threads
 
-        def submit(task: Task) -> Any:
-            future = client.submit(run_task, task, limits, pure=False)
-            futures[future] = task
-            return future
+        def top_up() -> None:
+            for task in itertools.islice(pending, max(max(threads, 1) * _WINDOW - len(futures), 0)):
+                future = client.submit(run_task, task, limits, pure=False)
+                futures[future] = task
+                stream.add(future)
 
-        for task in itertools.islice(pending, max(threads, 1) * _WINDOW):
-            submit(task)
-        stream = dask.as_completed(list(futures))
+        top_up()
         for future in stream:
             record = _record(future, futures.pop(future))
             sink.write(json.dumps(record) + "\n")
             sink.flush()
             tally.add(record)
             bar.step(record["status"])
-            nxt = next(pending, None)
-            if nxt is not None:
-                stream.add(submit(nxt))
-        return threads
+            if time.monotonic() - counted > _RECOUNT:
+                threads, counted = _threads(client), time.monotonic()
+                most = max(most, threads)
+            top_up()
+        return most
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def _threads(client: Any) -> int:
+    return sum(client.nthreads().values())
 
 
 def _record(future: Any, task: Task) -> dict:
