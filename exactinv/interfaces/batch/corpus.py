@@ -148,7 +148,15 @@ def _csv_tasks(path: str) -> Iterable[Task]:
 def done_ids(out: str | os.PathLike) -> set[str]:
     """The ids already recorded in the results file ``out`` (none if it does
     not exist).  A line that is not a JSON object with an ``"id"`` -- such as
-    the torn last line of an interrupted run -- does not count."""
+    the torn last line of an interrupted run -- does not count.
+
+    >>> import os, tempfile
+    >>> out = os.path.join(tempfile.mkdtemp(), "results.jsonl")
+    >>> with open(out, "w") as fh:
+    ...     _ = fh.write('{"id": "a.json", "status": "ok"}\\n{"id": "b.js')
+    >>> done_ids(out), done_ids(out + ".none")
+    ({'a.json'}, set())
+    """
     ids: set[str] = set()
     try:
         with open(out, encoding="utf-8") as fh:

@@ -14,21 +14,6 @@ tasks in flight.
 
 Dask is an optional extra (``pip install "exactinv[batch]"``), imported only
 when a batch actually runs.
-
->>> import os, tempfile
->>> corpus = tempfile.mkdtemp()
->>> with open(os.path.join(corpus, "box.json"), "w") as fh:
-...     _ = fh.write('{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}')
->>> out = os.path.join(corpus, "results.jsonl")
->>> with open(out, "w") as fh:  # as if an earlier run had done it
-...     _ = fh.write('{"id": "box.json", "status": "ok"}\\n')
->>> summary = run_batch([corpus], out, progress=False)
->>> summary.total, summary.skipped, summary.ran
-(1, 1, 0)
->>> run_batch([corpus], out, workers=0)
-Traceback (most recent call last):
-...
-exactinv.errors.InvalidInput: workers: expected a positive integer, got 0
 """
 
 from __future__ import annotations
@@ -64,7 +49,23 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     instead.  ``timeout`` (seconds) and ``memory_mb`` limit each task;
     ``check`` runs the trusted kernel on every certificate.  ``progress``: a
     progress bar on stderr (default: when stderr is a terminal).  Every value
-    in ``out`` is exact (see :mod:`.task`)."""
+    in ``out`` is exact (see :mod:`.task`).
+
+    >>> import os, tempfile
+    >>> corpus = tempfile.mkdtemp()
+    >>> with open(os.path.join(corpus, "box.json"), "w") as fh:
+    ...     _ = fh.write('{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}')
+    >>> out = os.path.join(corpus, "results.jsonl")
+    >>> with open(out, "w") as fh:  # as if an earlier run had done it
+    ...     _ = fh.write('{"id": "box.json", "status": "ok"}\\n')
+    >>> summary = run_batch([corpus], out, progress=False)
+    >>> summary.total, summary.skipped, summary.ran
+    (1, 1, 0)
+    >>> run_batch([corpus], out, workers=0)
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: workers: expected a positive integer, got 0
+    """
     limits = _limits(timeout, memory_mb, check, tolerance)
     workers = _workers(workers, scheduler)
     out = os.fspath(out) if isinstance(out, (str, os.PathLike)) else out
