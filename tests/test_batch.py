@@ -193,6 +193,11 @@ def test_command_line_batch(scheduler, tmp_path, capsys):
     (tmp_path / "corpus" / "bad.json").write_text('{"system": {"A": [[1]]}}')
     assert main(["batch", str(tmp_path / "corpus"), "-o", out, "--scheduler", scheduler]) == 1
     assert json.loads(open(out).read().splitlines()[-1])["error"].startswith("polyhedron")
+    unchecked = str(tmp_path / "unchecked.jsonl")
+    assert main(["batch", str(tmp_path / "corpus" / "decay-2-1.json"), "-o", unchecked, "--scheduler", scheduler,
+                 "--no-check"]) == 0
+    record = json.loads(open(unchecked).read())
+    assert record["status"] == "ok" and record["checked"] is False and record["values"]["gamma_star"] == "1"
     assert main(["batch", str(tmp_path / "nowhere"), "-o", out]) == 2
     assert "no such file or directory" in capsys.readouterr().err
 
@@ -255,3 +260,20 @@ def test_a_worker_with_another_exactinv_version_is_refused():
 
     with pytest.raises(ei.ExactinvError, match=r"worker tcp://10.0.0.2:1234 runs exactinv 0.0.1, this machine"):
         engine._same_engine(Cluster())
+
+
+def test_an_unreachable_scheduler_is_named_and_nothing_is_written(tmp_path, monkeypatch):
+    from exactinv.interfaces.batch import engine
+
+    monkeypatch.setattr(engine, "_CONNECT_TIMEOUT", "1s")
+    with pytest.raises(ei.ExactinvError, match="scheduler: cannot connect to tcp://127.0.0.1:1"):
+        run_batch([os.path.join(EXAMPLES, "paper_box_taylor4.json")], tmp_path / "r.jsonl", scheduler="tcp://127.0.0.1:1")
+    assert not (tmp_path / "r.jsonl").exists()
+
+
+@pytest.mark.parametrize("argument", [["--timeout", "-1"], ["--memory", "0"], ["--workers", "two"],
+                                      ["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"]])
+def test_command_line_refuses_bad_limits(tmp_path, capsys, argument):
+    with pytest.raises(SystemExit) as stop:
+        main(["batch", EXAMPLES, "-o", str(tmp_path / "r.jsonl"), *argument])
+    assert stop.value.code == 2 and argument[0] in capsys.readouterr().err

@@ -6,7 +6,7 @@ the kernel, the oracle and the explainer return.
     exactinv explain CERT.json
     exactinv oracle RESULTS.csv [--tolerance 1e-9]
     exactinv batch INPUT... --out RESULTS.jsonl [--workers N | --scheduler ADDRESS]
-                   [--timeout S] [--memory MB] [--no-check] [--tolerance 1e-9]
+                   [--timeout S] [--memory MB] [--check/--no-check] [--tolerance 1e-9]
     exactinv --version
 
 Exit codes: 0 success; 1 a certificate was rejected, an oracle verdict was
@@ -168,7 +168,7 @@ def _oracle(args) -> int:
 
 def _batch(args) -> int:
     summary = run_batch(args.inputs, args.out, workers=args.workers, scheduler=args.scheduler,
-                        timeout=args.timeout, memory_mb=args.memory, check=not args.no_check,
+                        timeout=args.timeout, memory_mb=args.memory, check=args.check,
                         tolerance=args.tolerance)
     print(summary.table())
     return 0 if summary.ok else 1
@@ -260,7 +260,8 @@ def _batch_parser(sub, fmt) -> None:
     b.add_argument("--timeout", type=_positive(float), metavar="S", help="wall-clock seconds per problem (default: none)")
     b.add_argument("--memory", type=_positive(float), metavar="MB",
                    help="megabytes per problem beyond the worker's own footprint (default: none)")
-    b.add_argument("--no-check", action="store_true", help="skip the trusted kernel's check of each certificate")
+    b.add_argument("--check", action=argparse.BooleanOptionalAction, default=True,
+                   help="run the trusted kernel on each certificate (default; --no-check skips it)")
     b.add_argument("--tolerance", default="1e-9", help="the oracle's relative tolerance for 'tight' (default 1e-9)")
     b.set_defaults(run=_batch)
 

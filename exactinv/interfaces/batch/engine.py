@@ -18,6 +18,7 @@ when a batch actually runs.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import json
 import logging
@@ -35,6 +36,7 @@ from .task import Limits, engine_version, run_task
 __all__ = ["run_batch"]
 
 _WINDOW = 4  # tasks in flight per worker thread: enough to keep workers busy, few enough to scale to 10^5 tasks
+_CONNECT_TIMEOUT = "30s"  # to reach an existing scheduler
 _RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may grow, e.g. SLURM jobs starting)
 
 
@@ -76,12 +78,9 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     tally, start = Tally(), time.monotonic()
     threads = 0
     if todo:
-        dask = _dask()
-        with open(out, "a", encoding="utf-8") as sink:
-            _end_torn_line(out, sink)
-            bar = _Bar(len(todo), sys.stderr if (progress if progress is not None else sys.stderr.isatty()) else None)
-            threads = _run(dask, todo, limits, workers, scheduler, sink, tally, bar)
-            bar.close()
+        bar = _Bar(len(todo), sys.stderr if (progress if progress is not None else sys.stderr.isatty()) else None)
+        threads = _run(_dask(), todo, limits, workers, scheduler, out, tally, bar)
+        bar.close()
     return tally.summary(str(out), len(tasks), len(tasks) - len(todo), time.monotonic() - start, threads)
 
 
@@ -138,12 +137,15 @@ def _dask() -> Any:
 
 
 def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
-         sink: TextIO, tally: Tally, bar: "_Bar") -> int:
+         out: str, tally: Tally, bar: "_Bar") -> int:
     """Submit ``todo`` to Dask, about ``_WINDOW`` tasks per worker thread in flight (re-counted as
-    workers join or leave), write each record as it comes; the most worker threads seen."""
+    workers join or leave), append each record to ``out`` as it comes; the most worker threads seen."""
     client, cluster = _connect(dask, workers, scheduler)
+    stack = contextlib.ExitStack()
     try:
         _same_engine(client)
+        sink = stack.enter_context(open(out, "a", encoding="utf-8"))
+        _end_torn_line(out, sink)
         pending, futures, stream = iter(todo), {}, dask.as_completed()
         threads, counted = _threads(client), time.monotonic()
         most = threads
@@ -167,6 +169,7 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
             top_up()
         return most
     finally:
+        stack.close()
         client.close()
         if cluster is not None:
             cluster.close()
@@ -188,7 +191,7 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     """A Dask client: to ``scheduler``, or to a new LocalCluster (closed by the caller)."""
     if scheduler is not None:
         try:
-            return dask.Client(scheduler, timeout="30s"), None
+            return dask.Client(scheduler, timeout=_CONNECT_TIMEOUT), None
         except (OSError, TimeoutError, ValueError) as exc:
             raise InvalidInput(f"scheduler: cannot connect to {scheduler} ({exc})") from None
     cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
