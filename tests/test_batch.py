@@ -205,9 +205,11 @@ def test_command_line_batch(scheduler, tmp_path, capsys):
 @pytest.mark.parametrize("kwargs, message", [
     ({"workers": 0}, "workers: expected a positive integer"),
     ({"workers": 2, "scheduler": "tcp://127.0.0.1:1"}, "not both"),
-    ({"timeout": -1}, "timeout: expected a positive number"),
-    ({"timeout": True}, "timeout: expected a positive number"),
-    ({"memory_mb": "lots"}, "memory_mb: expected a positive number"),
+    ({"timeout": -1}, "timeout: expected a positive finite number"),
+    ({"timeout": True}, "timeout: expected a positive finite number"),
+    ({"timeout": float("inf")}, "timeout: expected a positive finite number"),
+    ({"memory_mb": "lots"}, "memory_mb: expected a positive finite number"),
+    ({"memory_mb": float("nan")}, "memory_mb: expected a positive finite number"),
     ({"check": "yes"}, "check: expected True or False"),
 ])
 def test_bad_arguments_are_named(tmp_path, kwargs, message):

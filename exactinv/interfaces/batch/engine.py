@@ -22,6 +22,7 @@ import contextlib
 import itertools
 import json
 import logging
+import math
 import os
 import sys
 import time
@@ -86,8 +87,9 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
 
 def _limits(timeout: Any, memory_mb: Any, check: Any, tolerance: Any) -> Limits:
     for name, value in (("timeout", timeout), ("memory_mb", memory_mb)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0):
-            raise InvalidInput(f"{name}: expected a positive number (or None for no limit), got {value!r}")
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                  or not 0 < value < math.inf):
+            raise InvalidInput(f"{name}: expected a positive finite number (or None for no limit), got {value!r}")
     if not isinstance(check, bool):
         raise InvalidInput(f"check: expected True or False, got {check!r}")
     if to_rational(tolerance, "tolerance") < 0:

@@ -111,7 +111,7 @@ def _limit(timeout: float | None, memory_mb: float | None) -> None:
         signal.signal(sig, signal.SIG_DFL)
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     if memory_mb is not None:
-        ceiling = _address_space() + int(memory_mb * 2**20)
+        ceiling = min(_address_space() + int(memory_mb * 2**20), 2**62)
         resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
     if timeout is not None:
         cpu = int(math.ceil(timeout)) + _CPU_GRACE
