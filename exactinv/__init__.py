@@ -36,6 +36,7 @@ from .core.roots import first_sign_change, nonnegative_until, real_roots
 from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed
 from .interfaces import display, oracle
+from .interfaces.batch import BatchSummary, run_batch
 from .interfaces.compare import ThresholdComparison, compare_thresholds
 from .interfaces.dispatch import (
     continuous_invariance,
@@ -62,6 +63,8 @@ __version__ = "0.1.0"
 __all__ = [
     "AbsoluteMonotonicityRadius",
     "absolute_monotonicity_radius",
+    "BatchSummary",
+    "run_batch",
     "INF",
     "Infinity",
     "ContinuousInvariance",

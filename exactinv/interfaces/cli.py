@@ -5,6 +5,8 @@ the kernel, the oracle and the explainer return.
     exactinv check CERT.json
     exactinv explain CERT.json
     exactinv oracle RESULTS.csv [--tolerance 1e-9]
+    exactinv batch INPUT... --out RESULTS.jsonl [--workers N | --scheduler ADDRESS]
+                   [--timeout S] [--memory MB] [--check/--no-check] [--tolerance 1e-9]
     exactinv --version
 
 Exit codes: 0 success; 1 a certificate was rejected, an oracle verdict was
@@ -27,6 +29,7 @@ from exactinv_check.kernel import BadInput, load as _load_certificate
 from ..core.encode import dumps
 from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
+from .batch import run_batch
 from .explain import explain
 from .oracle import judge_batch
 from .pipeline import certify, stages
@@ -163,6 +166,14 @@ def _oracle(args) -> int:
     return 1 if invalid else (2 if errors else 0)
 
 
+def _batch(args) -> int:
+    summary = run_batch(args.inputs, args.out, workers=args.workers, scheduler=args.scheduler,
+                        timeout=args.timeout, memory_mb=args.memory, check=args.check,
+                        tolerance=args.tolerance)
+    print(summary.table())
+    return 0 if summary.ok else 1
+
+
 def _explain(args) -> int:
     cert = _load_cert(args.certificate)
     report = exactinv_check.check(cert)
@@ -188,7 +199,7 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="exactinv", description="Exact steplength thresholds with certificates.",
                                      epilog=EXIT_CODES, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=_version())
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{certify,check,explain,oracle}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{certify,check,explain,oracle,batch}")
     p = sub.add_parser("certify", help="compute and certify everything that applies to a problem file",
                        description="Compute gamma*, the forward-Euler step, the paper's threshold, the exact valid "
                                    "steplengths and the largest threshold of a problem, and certify them.",
@@ -221,7 +232,51 @@ def _parser() -> argparse.ArgumentParser:
     o.add_argument("results", help="CSV or JSON-lines file of float results")
     o.add_argument("--tolerance", default="1e-9", help="relative tolerance for 'tight' (default 1e-9)")
     o.set_defaults(run=_oracle)
+    _batch_parser(sub, fmt)
     return parser
+
+
+BATCH_EPILOG = """\
+inputs: a directory (every *.json problem file below it), a .json problem file, a .jsonl file
+(one problem object per line) or an oracle .csv (problem,quantity,method,claimed: each row judged).
+ids: the path below the directory, the file as given, a line's "name" (else FILE:LINE), FILE:ROW.
+each record (one JSON line): id, kind, status (ok, rejected, error, timeout, memory), exact values
+as strings (values / verdict), seconds, peak_mb, error.  A run skips ids already in --out.
+exit: 0 if every task run ended ok and no judged claim was invalid, else 1; 2 for bad arguments.
+"""
+
+
+def _batch_parser(sub, fmt) -> None:
+    b = sub.add_parser("batch", help="certify or judge a corpus on Dask (local cores or a cluster); resumable",
+                       description="Certify every problem (judge every oracle row) of a corpus on Dask distributed, "
+                                   "each under a time and memory limit, streaming one JSON record per problem to "
+                                   "--out.  Needs the batch extra: pip install \"exactinv[batch]\".",
+                       epilog=BATCH_EPILOG + "\n" + EXIT_CODES, formatter_class=fmt)
+    b.add_argument("inputs", nargs="+", metavar="INPUT", help="problem directory, .json, .jsonl or oracle .csv")
+    b.add_argument("-o", "--out", required=True, help="results file (JSON lines); appended to, done ids skipped")
+    where = b.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=_positive(int), metavar="N", help="local worker processes (default: every core)")
+    where.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask scheduler, e.g. tcp://10.0.0.1:8786")
+    b.add_argument("--timeout", type=_positive(float), metavar="S", help="wall-clock seconds per problem (default: none)")
+    b.add_argument("--memory", type=_positive(float), metavar="MB",
+                   help="megabytes per problem beyond the worker's own footprint (default: none)")
+    b.add_argument("--check", action=argparse.BooleanOptionalAction, default=True,
+                   help="run the trusted kernel on each certificate (default; --no-check skips it)")
+    b.add_argument("--tolerance", default="1e-9", help="the oracle's relative tolerance for 'tight' (default 1e-9)")
+    b.set_defaults(run=_batch)
+
+
+def _positive(kind):
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a positive {kind.__name__}, got {text!r}") from None
+        if not value > 0 or value != value or value == float("inf"):
+            raise argparse.ArgumentTypeError(f"expected a positive {kind.__name__}, got {text!r}")
+        return value
+    parse.__name__ = kind.__name__
+    return parse
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -22,7 +22,7 @@ with a verified certificate, and its reported value judged.
 
 from __future__ import annotations
 
-from .oracle_batch import BatchRow, judge_batch
+from .oracle_batch import BatchRow, judge_batch, judge_row
 from .oracle_judges import (
     INVALID,
     TIGHT,
@@ -38,4 +38,4 @@ from .oracle_judges import (
 from .oracle_lp import LPVerdict, judge_lp
 
 __all__ = ["Status", "Verdict", "LPVerdict", "BatchRow", "judge_threshold", "judge_gamma", "judge_root", "judge_radius",
-           "judge_lp", "assert_threshold", "judge_batch", "VALID", "TIGHT", "INVALID"]
+           "judge_lp", "assert_threshold", "judge_batch", "judge_row", "VALID", "TIGHT", "INVALID"]

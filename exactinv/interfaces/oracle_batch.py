@@ -18,7 +18,7 @@ from ..errors import ExactinvException, InvalidInput
 from .oracle_judges import Verdict, judge_gamma, judge_radius, judge_threshold
 from .problem import did_you_mean, load_problem, method_from_text, parse_method
 
-__all__ = ["BatchRow", "judge_batch"]
+__all__ = ["BatchRow", "judge_batch", "judge_row"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +89,22 @@ def _json_row(line: str) -> Any:
         return InvalidInput(f"not valid JSON ({exc})")
 
 
+def judge_row(row: dict, base: str = ".", tolerance: Any = "1e-9", number: int = 1) -> BatchRow:
+    """Judge one row of a batch (a dict with problem, quantity, method,
+    claimed; ``problem`` a file relative to ``base``, a problem dict or its
+    JSON text), as :func:`judge_batch` judges row ``number``: a row that
+    cannot be judged comes back with its ``error``.
+
+    >>> box = {"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}
+    >>> print(judge_row({"problem": box, "quantity": "gamma", "claimed": "0.5"}).status)  # gamma* = 1/2
+    tight
+    """
+    tol = to_rational(tolerance, "tolerance")
+    if tol < 0:
+        raise InvalidInput(f"tolerance: must be >= 0, got {tolerance}")
+    return _safe_row(number, row, base, tol)
+
+
 def _safe_row(k: int, row: Any, base: str, tolerance: Fraction) -> BatchRow:
     get = row.get if isinstance(row, dict) else (lambda key, default=None: default)
     name = get("problem")
@@ -132,7 +148,8 @@ def _judge_row(k: int, row: dict, base: str, tolerance: Any) -> BatchRow:
     source = row.get("problem")
     if not source:
         raise InvalidInput(f"row {k}: problem: missing")
-    prob = load_problem(source if isinstance(source, dict) else os.path.join(base, source))
+    inline = isinstance(source, dict) or source.lstrip().startswith("{")  # the problem itself, not a file name
+    prob = load_problem(source if inline else os.path.join(base, source))
     spec = row.get("method") or None
     if isinstance(spec, str):
         method = method_from_text(spec, "method")
@@ -151,5 +168,5 @@ def _judge_row(k: int, row: dict, base: str, tolerance: Any) -> BatchRow:
     else:
         raise InvalidInput(f"row {k}: quantity: unknown {quantity!r}{did_you_mean(quantity, ('threshold', 'gamma', 'radius'))} "
                            "(threshold, gamma, radius)")
-    name = prob.name if isinstance(source, dict) else os.path.basename(str(source))
+    name = prob.name if inline else os.path.basename(str(source))
     return BatchRow(name, quantity, method.name if method else "-", str(row["claimed"]), v, row=k)

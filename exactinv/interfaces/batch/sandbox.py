@@ -1,0 +1,166 @@
+"""Run one function in a forked child under a time and a memory limit.
+
+The child is a ``fork`` of the calling process, so everything the parent has
+imported (exactinv, FLINT, pplpy) is there at no cost; the result comes back
+as JSON through a pipe.  Limits are enforced by the operating system, not by
+the computation's good will:
+
+* memory: ``setrlimit(RLIMIT_AS)`` in the child, at the address space it
+  inherits plus ``memory_mb``.  Python then raises :class:`MemoryError`;
+  FLINT and GMP abort the child when an allocation fails.  Both are reported
+  as ``"memory"``.
+* time: the parent waits at most ``timeout`` seconds of wall time, then sends
+  ``SIGKILL`` -- which stops a FLINT loop that never returns to Python.  A
+  CPU-time limit a little above ``timeout`` is a second guard should the
+  parent itself die.
+
+Linux (POSIX ``fork`` and ``RLIMIT_AS``).
+
+>>> run_limited(sum, [1, 2, 3], timeout=30).value
+6
+>>> run_limited(bytearray, 10 ** 10, timeout=30, memory_mb=64).status
+'memory'
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import resource
+import select
+import signal
+import time
+from dataclasses import dataclass, replace
+from typing import Any, Callable
+
+__all__ = ["Outcome", "run_limited"]
+
+_FATAL = (signal.SIGSEGV, signal.SIGFPE, signal.SIGABRT, signal.SIGBUS, signal.SIGILL)
+_CPU_GRACE = 5  # seconds of CPU time above the wall-clock timeout before the kernel stops an orphan
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What became of one limited run: ``status`` is ``"ok"`` (``value`` holds
+    the function's JSON-able result), ``"timeout"``, ``"memory"`` or
+    ``"crash"`` (``message`` says how); ``seconds`` is the wall time,
+    ``cpu_seconds`` the child's CPU time (user + system) and ``peak_mb`` its
+    peak resident memory (it includes the pages shared with the parent that
+    the child touched)."""
+
+    status: str
+    value: Any = None
+    seconds: float = 0.0
+    peak_mb: float = 0.0
+    message: str = ""
+    cpu_seconds: float = 0.0
+
+
+def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None,
+                memory_mb: float | None = None) -> Outcome:
+    """``fn(arg)`` in a forked child, killed after ``timeout`` seconds and
+    denied memory beyond ``memory_mb`` megabytes more than it inherits
+    (either limit None: no limit).  The result must be JSON-able.  An
+    exception other than MemoryError is the caller's to catch inside ``fn``;
+    one that escapes is reported as a ``"crash"`` with its message."""
+    read_end, write_end = os.pipe()
+    start = time.monotonic()
+    pid = os.fork()
+    if pid == 0:  # the child: never returns
+        os.close(read_end)
+        _child(fn, arg, write_end, timeout, memory_mb)
+    os.close(write_end)
+    data, timed_out = _read_until(read_end, None if timeout is None else start + timeout)
+    if timed_out:
+        os.kill(pid, signal.SIGKILL)
+    _, wait_status, usage = os.wait4(pid, 0)
+    seconds = time.monotonic() - start
+    peak = usage.ru_maxrss / 1024  # kilobytes on Linux
+    if timed_out:
+        outcome = Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)")
+    else:
+        outcome = _decode(data, wait_status, memory_mb, seconds, peak)
+    return replace(outcome, cpu_seconds=usage.ru_utime + usage.ru_stime)
+
+
+def _child(fn, arg, fd: int, timeout, memory_mb) -> None:
+    code = 0
+    try:
+        _limit(timeout, memory_mb)
+        try:
+            reply = {"ok": fn(arg)}
+        except MemoryError:
+            reply = {"memory": "MemoryError (the --memory limit)"}
+        except BaseException as exc:  # the function's own bug: report it, never hang the batch
+            reply = {"crash": f"{type(exc).__name__}: {exc}"}
+        payload = json.dumps(reply).encode()
+        view = memoryview(payload)
+        while view:
+            view = view[os.write(fd, view):]
+    except BaseException:
+        code = 3
+    finally:
+        os._exit(code)  # skip the parent's atexit handlers and buffered output
+
+
+def _limit(timeout: float | None, memory_mb: float | None) -> None:
+    # a fatal signal ends the child at once: no crash handler (cysignals, loaded by
+    # pplpy, would attach a debugger) and no core dump
+    for sig in _FATAL:
+        signal.signal(sig, signal.SIG_DFL)
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    if memory_mb is not None:
+        ceiling = min(_address_space() + int(memory_mb * 2**20), 2**62)
+        resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
+    if timeout is not None:
+        cpu = int(math.ceil(timeout)) + _CPU_GRACE
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+
+
+def _address_space() -> int:
+    """The current virtual memory size of this process, in bytes (Linux /proc)."""
+    with open("/proc/self/status", encoding="ascii") as fh:
+        for line in fh:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024
+    raise OSError("VmSize missing from /proc/self/status")
+
+
+def _read_until(fd: int, deadline: float | None) -> tuple[bytes, bool]:
+    """Everything written to ``fd`` until end of file, or (partial, True) at the deadline."""
+    chunks = []
+    try:
+        while True:
+            wait = None if deadline is None else max(deadline - time.monotonic(), 0)
+            ready, _, _ = select.select([fd], [], [], wait)
+            if not ready:
+                return b"".join(chunks), True
+            chunk = os.read(fd, 1 << 16)
+            if not chunk:
+                return b"".join(chunks), False
+            chunks.append(chunk)
+    finally:
+        os.close(fd)
+
+
+def _decode(data: bytes, wait_status: int, memory_mb, seconds: float, peak: float) -> Outcome:
+    if os.WIFSIGNALED(wait_status):
+        sig = signal.Signals(os.WTERMSIG(wait_status)).name
+        if sig == "SIGXCPU":
+            return Outcome("timeout", None, seconds, peak, "stopped by the CPU-time limit")
+        if memory_mb is not None and sig in ("SIGABRT", "SIGSEGV", "SIGBUS", "SIGKILL"):
+            return Outcome("memory", None, seconds, peak,
+                           f"the child died of {sig} under the --memory limit of {memory_mb:g} MB "
+                           "(FLINT and GMP abort when an allocation fails)")
+        return Outcome("crash", None, seconds, peak, f"the child died of {sig}")
+    try:
+        reply = json.loads(data)
+    except ValueError:
+        return Outcome("crash", None, seconds, peak,
+                       f"the child exited with code {os.waitstatus_to_exitcode(wait_status)} without a result")
+    if "ok" in reply:
+        return Outcome("ok", reply["ok"], seconds, peak)
+    if "memory" in reply:
+        return Outcome("memory", None, seconds, peak, reply["memory"])
+    return Outcome("crash", None, seconds, peak, reply["crash"])

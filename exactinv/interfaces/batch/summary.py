@@ -1,0 +1,112 @@
+"""The summary of a batch run: counts by status (and, for judged oracle rows,
+by verdict), times and memory, and the table ``exactinv batch`` prints.
+
+>>> tally = Tally()
+>>> for r in ({"status": "ok", "seconds": 0.5, "peak_mb": 90.0}, {"status": "timeout", "seconds": 2.0, "peak_mb": 60.0}):
+...     tally.add(r)
+>>> s = tally.summary("out.jsonl", total=3, skipped=1, seconds=2.5, workers=2)
+>>> s.ran, s.count("ok"), s.ok
+(2, 1, False)
+>>> print(s.table())
+status        count    mean s     max s   max MB
+ok                1     0.500     0.500     90.0
+rejected          0         -         -        -
+error             0         -         -        -
+timeout           1     2.000     2.000     60.0
+memory            0         -         -        -
+3 problems: 1 already in out.jsonl (skipped), 2 run in 2.5 s on 2 workers (0.80 problems/s)
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+from .task import STATUSES
+
+__all__ = ["BatchSummary", "Tally"]
+
+
+@dataclass(frozen=True)
+class BatchSummary:
+    """What one run of a batch did.  ``total`` tasks in the corpus, ``skipped``
+    of them already recorded in ``out`` (a resumed run), the others run in
+    ``seconds`` of wall time on ``workers`` worker threads.  ``stats``: per
+    status (count, summed seconds, max seconds, max peak MB); ``verdicts``:
+    the oracle verdicts of judged rows.  ``ok``: every task run this time
+    ended ``ok`` and no judged claim was ``invalid``."""
+
+    out: str
+    total: int
+    skipped: int
+    seconds: float
+    workers: int
+    stats: tuple[tuple[str, int, float, float, float], ...] = field(repr=False)
+    verdicts: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def ran(self) -> int:
+        return sum(row[1] for row in self.stats)
+
+    def count(self, status: str) -> int:
+        """How many tasks of this run ended with ``status``."""
+        return next((row[1] for row in self.stats if row[0] == status), 0)
+
+    @property
+    def ok(self) -> bool:
+        return self.count("ok") == self.ran and not dict(self.verdicts).get("invalid")
+
+    @property
+    def throughput(self) -> float:
+        """Tasks per second of wall time in this run."""
+        return self.ran / self.seconds if self.seconds > 0 else 0.0
+
+    @property
+    def task_seconds(self) -> float:
+        """The summed wall time of the tasks themselves (each in its child process)."""
+        return sum(row[2] for row in self.stats)
+
+    def table(self) -> str:
+        """The summary table printed at the end of ``exactinv batch``."""
+        lines = [f"{'status':<10}{'count':>9}{'mean s':>10}{'max s':>10}{'max MB':>9}"]
+        for status, n, total, slowest, peak in self.stats:
+            if n:
+                lines.append(f"{status:<10}{n:>9}{total / n:>10.3f}{slowest:>10.3f}{peak:>9.1f}")
+            else:
+                lines.append(f"{status:<10}{0:>9}{'-':>10}{'-':>10}{'-':>9}")
+        if self.verdicts:
+            lines.append("oracle verdicts: " + ", ".join(f"{v} {n}" for v, n in self.verdicts))
+        plural = "" if self.total == 1 else "s"
+        head = f"{self.total} problem{plural}: {self.skipped} already in {self.out} (skipped), "
+        if not self.ran:
+            lines.append(head + "nothing left to run")
+        else:
+            lines.append(head + f"{self.ran} run in {self.seconds:.1f} s on {self.workers} "
+                         f"worker{'' if self.workers == 1 else 's'} ({self.throughput:.2f} problems/s)")
+        return "\n".join(lines)
+
+
+class Tally:
+    """Counts records as they arrive; :meth:`summary` freezes them."""
+
+    def __init__(self) -> None:
+        self.n: Counter = Counter()
+        self.time: Counter = Counter()
+        self.slowest: dict[str, float] = {}
+        self.peak: dict[str, float] = {}
+        self.verdicts: Counter = Counter()
+
+    def add(self, record: dict) -> None:
+        status = record["status"]
+        seconds, peak = float(record.get("seconds", 0.0)), float(record.get("peak_mb", 0.0))
+        self.n[status] += 1
+        self.time[status] += seconds
+        self.slowest[status] = max(self.slowest.get(status, 0.0), seconds)
+        self.peak[status] = max(self.peak.get(status, 0.0), peak)
+        if isinstance(record.get("verdict"), dict):
+            self.verdicts[record["verdict"]["status"]] += 1
+
+    def summary(self, out: str, total: int, skipped: int, seconds: float, workers: int) -> BatchSummary:
+        order = list(STATUSES) + sorted(set(self.n) - set(STATUSES))
+        stats = tuple((s, self.n[s], self.time[s], self.slowest.get(s, 0.0), self.peak.get(s, 0.0)) for s in order)
+        return BatchSummary(out, total, skipped, seconds, workers, stats, tuple(sorted(self.verdicts.items())))

@@ -1,0 +1,159 @@
+"""One task of a batch, as a worker runs it: certify (and kernel-check) a
+problem, or judge an oracle row, inside the sandbox's time and memory
+limits, and return one JSON-able record.  :func:`run_task` never raises: a
+problem that fails is recorded and the batch goes on.
+
+A record holds exact values only as the certificate encodes them
+(:func:`exactinv.core.encode.encode_real`): a rational as ``"p/q"``,
+infinity as ``"oo"``, an algebraic number as ``{"poly": [...], "interval":
+[lo, hi]}`` -- strings, never floats.  ``seconds`` and ``peak_mb`` are
+measurements, not results.
+
+>>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": 2}}'
+>>> r = run_task(Task("box", "certify", text=box), Limits(timeout=60))
+>>> r["status"], r["values"]["gamma_star"], r["values"]["largest_threshold"]
+('ok', '1/2', '2')
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, replace
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from ...beyond.largest import LargestThreshold, ValidSteplengths
+from ...core.algebraic import RealAlgebraic
+from ...core.encode import encode_real
+from ...core.scalars import Infinity
+from ...errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
+from ...paper.forward_euler import ForwardEulerThreshold
+from ...paper.invariance import OptimalGamma
+from ...paper.polynomial import SteplengthThreshold
+from ..oracle import judge_row
+from ..pipeline import certify
+from ..problem import load_problem
+from .corpus import Task
+from .sandbox import run_limited
+
+__all__ = ["Limits", "STATUSES", "run_task", "engine_version"]
+
+STATUSES = ("ok", "rejected", "error", "timeout", "memory")
+"""A record's status: the kernel verified the certificate (or, with
+``check=False``, the engine finished; for a judged row: the row was judged,
+its verdict is in ``verdict``); the kernel rejected it; bad input or an
+engine failure (``error`` says which); the time limit; the memory limit."""
+
+_KEYS = ((OptimalGamma, "gamma_star"), (ForwardEulerThreshold, "forward_euler"),
+         (SteplengthThreshold, "paper_threshold"), (LargestThreshold, "largest_threshold"))
+
+
+@dataclass(frozen=True)
+class Limits:
+    """How each task runs: wall-clock ``timeout`` (seconds) and ``memory_mb``
+    (megabytes beyond what the worker holds) per task, None for no limit;
+    ``check``: run the trusted kernel on each certificate; ``tolerance``:
+    the oracle's relative tolerance for ``tight``."""
+
+    timeout: float | None = None
+    memory_mb: float | None = None
+    check: bool = True
+    tolerance: str = "1e-9"
+
+
+def engine_version() -> str:
+    """The exactinv version of this process.  Called on every worker (in its main thread: pplpy's
+    cysignals can only be imported there) before any task, so that a worker imports exactinv safely
+    and a cluster running another version is refused.
+
+    >>> engine_version() == sys.modules["exactinv"].__version__
+    True
+    """
+    return sys.modules[__name__.split(".")[0]].__version__
+
+
+def run_task(task: Task, limits: Limits) -> dict:
+    """The record of ``task`` run under ``limits`` (see the module docstring)."""
+    head = {"id": task.id, "kind": task.kind, "source": task.source}
+    if task.error:
+        return {**head, "status": "error", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
+    outcome = run_limited(_solve, (task, limits), limits.timeout, limits.memory_mb)
+    record = dict(outcome.value) if outcome.status == "ok" else {
+        "status": "error" if outcome.status == "crash" else outcome.status, "error": outcome.message}
+    return {**head, **record, "seconds": round(outcome.seconds, 4), "cpu_seconds": round(outcome.cpu_seconds, 4),
+            "peak_mb": round(outcome.peak_mb, 1)}
+
+
+def _solve(job: tuple[Task, Limits]) -> dict:
+    task, limits = job
+    try:
+        return _certify(task, limits.check) if task.kind == "certify" else _judge(task, limits.tolerance)
+    except VerificationFailed as exc:
+        return {"status": "error", "error": f"internal verification failed: {exc}"}
+    except Undecided as exc:
+        return {"status": "error", "error": f"undecided: {exc}"}
+    except ExactinvException as exc:
+        return {"status": "error", "error": str(exc)}
+    except RecursionError:
+        return {"status": "error", "error": "input nested too deeply"}
+    except MemoryError:
+        raise
+    except Exception as exc:  # an engine bug: recorded, never the end of the batch
+        return {"status": "error", "error": f"internal error (a bug; please report it): {type(exc).__name__}: {exc}"}
+
+
+def _certify(task: Task, check: bool) -> dict:
+    text = task.text or ""
+    if not text.lstrip().startswith("{"):
+        raise InvalidInput("expected a problem: a JSON object with \"system\" and \"polyhedron\"")
+    problem = load_problem(text)
+    if problem.name == "problem" and task.kind == "certify" and task.source.endswith(".json"):
+        problem = replace(problem, name=Path(task.source).stem)  # a file's name, as `exactinv certify` does
+    report = certify(problem, check=check)
+    record = {"status": "ok" if not check or report.ok else "rejected",
+              "name": report.problem.name, "method": report.method.name if report.method else None,
+              "checked": check, "claims": len(report.certificate["claims"]), "values": _values(report.results)}
+    if check and not report.ok:
+        record["error"] = f"the kernel rejected the certificate: {report.check}"
+    return record
+
+
+def _values(results: tuple) -> dict:
+    values: dict[str, Any] = {}
+    for r in results:
+        for kind, key in _KEYS:
+            if isinstance(r, kind):
+                values[key] = encode_real(r.value)
+        if isinstance(r, LargestThreshold):
+            values["largest_attained"] = bool(r.attained)
+        if isinstance(r, ValidSteplengths):
+            values["valid_steplengths"] = [
+                {"lo": encode_real(i.lo), "hi": encode_real(i.hi), "lo_closed": i.lo_closed, "hi_closed": i.hi_closed}
+                for i in r.intervals]
+    return values
+
+
+def _judge(task: Task, tolerance: str) -> dict:
+    row = judge_row(task.row or {}, tolerance=tolerance, number=int(task.id.rsplit(":", 1)[-1]))
+    record = {"name": row.name, "method": row.method, "quantity": row.quantity, "claimed": row.claimed}
+    if row.verdict is None:
+        return {"status": "error", **record, "error": row.error}
+    v = row.verdict
+    verdict = {"status": str(v.status), "exact": _jsonable(v.exact), "message": v.message}
+    if v.relative_gap is not None:
+        verdict["relative_gap"] = str(v.relative_gap)
+    if v.counterexample is not None:
+        verdict["counterexample"] = _jsonable(v.counterexample)
+    return {"status": "ok", **record, "verdict": verdict}
+
+
+def _jsonable(x: Any) -> Any:
+    """Exact values as the certificate writes them, containers element by element, anything else as text."""
+    if isinstance(x, (Fraction, int, Infinity, RealAlgebraic)) and not isinstance(x, bool):
+        return encode_real(x)
+    if isinstance(x, dict):
+        return {str(k): _jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_jsonable(v) for v in x]
+    return x if isinstance(x, (str, bool)) or x is None else str(x)
