@@ -76,7 +76,17 @@ def coefficient_matrices(system: LinearSystem, Q: flint.fmpq_mat, method: Method
 
 
 def step_matrix(coefficients: list[flint.fmpq_mat], h: Fraction) -> flint.fmpq_mat:
-    """M'(h) = M(h)/h = sum_j M_{j+1} h^j, exactly (Horner)."""
+    """M'(h) = M(h)/h = sum_j M_{j+1} h^j, exactly (Horner).
+
+    For forward Euler, A = [[-1, -2], [2, -1]] and Q = I: M'(h) = K - hB with
+    K = -(A^T + A) = 2I and B = A^T A = 5I, so M'(1/5) = I.
+
+    >>> from exactinv.model import methods
+    >>> S = LinearSystem([[-1, -2], [2, -1]])
+    >>> M = coefficient_matrices(S, flint.fmpq_mat([[1, 0], [0, 1]]), methods.forward_euler())
+    >>> step_matrix(M, Fraction(1, 5)).entries()
+    [1, 0, 0, 1]
+    """
     hq = fmpq_of(Fraction(h))
     out = coefficients[-1]
     for Mj in reversed(coefficients[:-1]):
@@ -101,7 +111,24 @@ def _interpolate(points: list[int], values: list[list[flint.fmpq]]) -> list[flin
 
 def psd_polynomials(system: LinearSystem, Q: flint.fmpq_mat, method: Method) -> tuple[list[flint.fmpq_poly], flint.fmpq_poly]:
     """([q_1, ..., q_n], D): q_k(h) = e_k(M'(h)) (see the module docstring) and
-    D(h) = det h(hA) (the constant 1 for polynomial methods)."""
+    D(h) = det h(hA) (the constant 1 for polynomial methods).
+
+    Forward Euler, A = [[-1, -2], [2, -1]], Q = I: M'(h) = (2 - 5h) I, so
+    q_1 = trace = 4 - 10h and q_2 = det = (2 - 5h)^2.
+
+    >>> from exactinv.model import methods
+    >>> S = LinearSystem([[-1, -2], [2, -1]])
+    >>> qs, D = psd_polynomials(S, flint.fmpq_mat([[1, 0], [0, 1]]), methods.forward_euler())
+    >>> [q.coeffs() for q in qs], D
+    ([[4, -10], [4, -20, 25]], 1)
+
+    Backward Euler on x' = -x, Q = 1: H = 1 + h, G = 1, M(h) = (1 + h)^2 - 1, so
+    q_1 = M'(h) = 2 + h and D(h) = 1 + h.
+
+    >>> qs, D = psd_polynomials(LinearSystem([[-1]]), flint.fmpq_mat([[1]]), methods.backward_euler())
+    >>> qs[0].coeffs(), D.coeffs()
+    ([2, 1], [1, 1])
+    """
     coefficients = coefficient_matrices(system, Q, method)
     n, degree = Q.nrows(), len(coefficients) - 1
     points = _points(n * max(degree, len(method.denominator) - 1) + 1)

@@ -46,6 +46,11 @@ class QuadraticWitness:
     norm: Fraction
 
     def record(self) -> dict:
+        """The certificate record {"v", "value"} (``norm`` is recomputed by the checker).
+
+        >>> QuadraticWitness((Fraction(3, 2), Fraction(1)), Fraction(5, 2), Fraction(13, 4)).record()
+        {'v': ['3/2', '1'], 'value': '5/2'}
+        """
         return {"v": vec(self.v), "value": str(self.value)}
 
     def __repr__(self) -> str:
@@ -72,6 +77,17 @@ class EllipsoidInvariance(LatexMixin):
         return self.holds
 
     def claims(self) -> list[dict]:
+        """The certificate claim: the kind, ``holds``, A_d (and dt) if discrete, the witness if it fails.
+
+        A = [[-1, 3], [0, -1]], Q = I: -(A^T + A) = [[2, -3], [-3, 2]] is indefinite
+        (v = (3/2, 1): v^T (A^T + A) v = -9/2 - 2 + 9 = 5/2 > 0).
+
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> ellipsoid_continuous_invariance(LinearSystem([[-1, 3], [0, -1]]), E).claims()
+        [{'type': 'ellipsoid_continuous_invariance', 'holds': False, 'witness': {'v': ['3/2', '1'], 'value': '5/2'}}]
+        >>> ellipsoid_discrete_invariance([["1/2", 0], [0, -1]], E).claims()
+        [{'type': 'ellipsoid_discrete_invariance', 'holds': True, 'Ad': [['1/2', '0'], ['0', '-1']]}]
+        """
         claim: dict = {"type": f"ellipsoid_{self.kind}_invariance", "holds": self.holds}
         if self.kind == "discrete":
             claim["Ad"] = mat(self.Ad)
@@ -91,6 +107,12 @@ class EllipsoidInvariance(LatexMixin):
     certificate_json = certificate
 
     def to_latex(self) -> str:
+        """LaTeX: the exact proof, or the witness direction v.
+
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> print(ellipsoid_continuous_invariance(LinearSystem([[-1, 3], [0, -1]]), E).to_latex())
+        \\text{not invariant: } v = \\begin{pmatrix} \\frac{3}{2} \\\\ 1 \\end{pmatrix}
+        """
         if self.holds:
             return r"\text{invariant (exact } LDL^T,\ D \ge 0)"
         return rf"\text{{not invariant: }} v = {latex_column(self.witness.v)}"
@@ -103,7 +125,15 @@ class EllipsoidInvariance(LatexMixin):
 
 
 def check_ellipsoid_pair(system: Any, ellipsoid: Any) -> tuple[LinearSystem, Ellipsoid]:
-    """(system, ellipsoid), if both have the right type and dimension."""
+    """(system, ellipsoid), if both have the right type and dimension (else InvalidInput).
+
+    >>> check_ellipsoid_pair(LinearSystem([[-1, 3], [0, -1]]), Ellipsoid([[2, 0], [0, "1/2"]]))
+    (LinearSystem(A=[[-1, 3], [0, -1]]), Ellipsoid(Q=[[2, 0], [0, 1/2]]))
+    >>> check_ellipsoid_pair(LinearSystem([[-1]]), Ellipsoid([[1, 0], [0, 1]]))
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: system/ellipsoid: A is 1x1 but Q is 2x2
+    """
     if not isinstance(system, LinearSystem):
         raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(system).__name__}")
     if not isinstance(ellipsoid, Ellipsoid):

@@ -57,6 +57,15 @@ class EllipsoidValidSteplengths(ValidSteplengths):
         return self.polyhedron
 
     def claims(self) -> list[dict]:
+        """The certificate claim: the intervals with exact ends and D(h) = det h(hA).
+
+        Forward Euler, A = [[-1, -2], [2, -1]], Q = I: M'(h) = (2 - 5h) I >= 0 iff h <= 2/5.
+
+        >>> from exactinv.model import methods
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> ellipsoid_valid_steplengths(LinearSystem([[-1, -2], [2, -1]]), E, methods.forward_euler()).claims()
+        [{'type': 'ellipsoid_valid_steplengths', 'intervals': [{'lo': '0', 'hi': '2/5', 'lo_closed': True, 'hi_closed': True}], 'determinant': ['1']}]
+        """
         return [{
             "type": "ellipsoid_valid_steplengths",
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
@@ -82,6 +91,16 @@ class EllipsoidLargestThreshold(LargestThreshold):
         return self.polyhedron
 
     def claims(self) -> list[dict]:
+        """The certificate claim: the value, whether attained, D(h) and the binding q_k.
+
+        Taylor(2) on x' = -x, Q = I: r(-h) = 1 - h + h^2/2 and
+        1 - r(-h)^2 = h (1 - h/2)(2 - h + h^2/2) >= 0 iff h <= 2 (q_1 binds).
+
+        >>> from exactinv.model import methods
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> ellipsoid_largest_threshold(LinearSystem([[-1, 0], [0, -1]]), E, methods.taylor(2)).claims()
+        [{'type': 'ellipsoid_largest_threshold', 'value': '2', 'attained': True, 'determinant': ['1'], 'binding': 1}]
+        """
         return [{"type": "ellipsoid_largest_threshold", "value": encode_real(self.value), "attained": self.attained,
                  "determinant": vec(self.determinant), "binding": self.coefficient}]
 
@@ -104,6 +123,14 @@ class EllipsoidForwardEulerThreshold(ExactValueMixin):
     attained: bool = True
 
     def claims(self) -> list[dict]:
+        """The certificate claim: the exact value (the checker recomputes both routes).
+
+        A = [[-a, -b], [b, -a]], Q = I: K = 2a I, B = (a^2 + b^2) I, tau = 2a/(a^2 + b^2).
+
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> ellipsoid_forward_euler_threshold(LinearSystem([[-1, -2], [2, -1]]), E).claims()
+        [{'type': 'ellipsoid_forward_euler_threshold', 'value': '2/5'}]
+        """
         return [{"type": "ellipsoid_forward_euler_threshold", "value": encode_real(self.value)}]
 
     @property
@@ -112,6 +139,12 @@ class EllipsoidForwardEulerThreshold(ExactValueMixin):
         return make_certificate(self.system, self.ellipsoid, None, [self])
 
     def to_latex(self) -> str:
+        """LaTeX: tau_FE = the exact value.
+
+        >>> E = Ellipsoid([[1, 0], [0, 1]])
+        >>> print(ellipsoid_forward_euler_threshold(LinearSystem([[-1, -2], [2, -1]]), E).to_latex())
+        \\tau_{FE} = \\frac{2}{5}
+        """
         return rf"\tau_{{FE}} = {latex_real(self.value)}"
 
 

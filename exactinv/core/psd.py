@@ -66,7 +66,15 @@ class PSDDecision:
 
 
 def symmetric_matrix(M: Any, name: str = "M", *, allow_float: bool = False) -> Matrix:
-    """M as an exact square symmetric matrix, or :class:`~exactinv.InvalidInput` naming ``name``."""
+    """M as an exact square symmetric matrix, or :class:`~exactinv.InvalidInput` naming ``name``.
+
+    >>> symmetric_matrix([[1, "1/2"], ["1/2", 3]])
+    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(1, 2), Fraction(3, 1)))
+    >>> symmetric_matrix([[1, 2], [0, 1]], "Q")
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: Q: not symmetric, Q[1][0] = 0 but Q[0][1] = 2
+    """
     Mm = to_matrix(M, name, square=True, allow_float=allow_float)
     for i, row in enumerate(Mm):
         for j in range(i):

@@ -110,14 +110,25 @@ class Ellipsoid(LatexMixin):
         return fmpq_matrix(self.Q)
 
     def contains(self, x: Sequence[Any]) -> bool:
-        """Exact membership x^T Q x <= 1 for a rational point x."""
+        """Exact membership x^T Q x <= 1 for a rational point x.
+
+        >>> E = Ellipsoid([[2, 0], [0, "1/2"]])
+        >>> E.contains(["1/2", 1])       # 2/4 + 1/2 = 1: on the boundary
+        True
+        >>> E.contains(["1/2", "11/10"])  # 1/2 + 121/200 > 1
+        False
+        """
         return quadratic_form(self.Q, to_vector(x, "x", length=self.n)) <= 1
 
     def __contains__(self, x: Sequence[Any]) -> bool:
         return self.contains(x)
 
     def to_latex(self) -> str:
-        """LaTeX: E = {x : x^T Q x <= 1}."""
+        """LaTeX: E = {x : x^T Q x <= 1}.
+
+        >>> print(Ellipsoid([[2, 0], [0, "1/2"]]).to_latex())
+        E = \\{x : x^T \\begin{pmatrix} 2 & 0 \\\\ 0 & \\frac{1}{2} \\end{pmatrix} x \\le 1\\}
+        """
         return rf"E = \{{x : x^T {latex_matrix(self.Q)} x \le 1\}}"
 
     def __repr__(self) -> str:

@@ -57,7 +57,21 @@ class Task:
 def read_corpus(inputs: Sequence[str | os.PathLike]) -> list[Task]:
     """The tasks of ``inputs`` (directories, .json, .jsonl, .csv), in order.
     Raises :class:`InvalidInput` for an input that does not exist or has an
-    unknown suffix, and for two tasks with the same id."""
+    unknown suffix, and for two tasks with the same id.
+
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> os.mkdir(os.path.join(d, "sub"))
+    >>> for name in ("sub/box.json", "a.json"):
+    ...     with open(os.path.join(d, name), "w") as fh:
+    ...         _ = fh.write('{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}')
+    >>> [(t.id, t.kind, t.error) for t in read_corpus(d)]
+    [('a.json', 'certify', None), ('sub/box.json', 'certify', None)]
+    >>> read_corpus([os.path.join(d, "a.txt")])
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: ...a.txt: no such file or directory
+    """
     if isinstance(inputs, (str, os.PathLike)):
         inputs = [inputs]
     if not inputs:

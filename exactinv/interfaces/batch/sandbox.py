@@ -63,7 +63,14 @@ def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None
     denied memory beyond ``memory_mb`` megabytes more than it inherits
     (either limit None: no limit).  The result must be JSON-able.  An
     exception other than MemoryError is the caller's to catch inside ``fn``;
-    one that escapes is reported as a ``"crash"`` with its message."""
+    one that escapes is reported as a ``"crash"`` with its message.
+
+    >>> from fractions import Fraction
+    >>> run_limited(lambda q: str(Fraction(*q) ** 2), (2, 3), timeout=30).value
+    '4/9'
+    >>> o = run_limited(lambda x: 1 // x, 0, timeout=30); o.status, o.message
+    ('crash', 'ZeroDivisionError: integer division or modulo by zero')
+    """
     read_end, write_end = os.pipe()
     start = time.monotonic()
     pid = os.fork()

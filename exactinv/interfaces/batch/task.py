@@ -74,7 +74,19 @@ def engine_version() -> str:
 
 
 def run_task(task: Task, limits: Limits) -> dict:
-    """The record of ``task`` run under ``limits`` (see the module docstring)."""
+    """The record of ``task`` run under ``limits`` (see the module docstring).
+
+    Taylor(2) on x' = -x, P = [-1, 1]: r(-h) = 1 - h + h^2/2 >= -1 for all h and
+    <= 1 iff h <= 2, so the largest threshold is 2.  An unreadable input is an
+    ``error`` record without running.
+
+    >>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": 2}}'
+    >>> r = run_task(Task("box", "certify", text=box), Limits(timeout=60, check=False))
+    >>> r["status"], r["checked"], r["values"]["largest_threshold"]
+    ('ok', False, '2')
+    >>> run_task(Task("bad", "certify", error="bad.json: cannot read"), Limits())["status"]
+    'error'
+    """
     head = {"id": task.id, "kind": task.kind, "source": task.source}
     if task.error:
         return {**head, "status": "error", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
