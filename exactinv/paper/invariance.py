@@ -66,7 +66,11 @@ class FacetWitness:
     value: Fraction
 
     def record(self) -> dict:
-        """The witness as exact strings (for a claim)."""
+        """The witness as exact strings (for a claim).
+
+        >>> FacetWitness((Fraction(1),), 0, Fraction(1)).record()
+        {'x': ['1'], 'facet': 0, 'value': '1'}
+        """
         return {"x": vec(self.x), "facet": self.facet, "value": str(self.value)}
 
     def __repr__(self) -> str:
@@ -133,6 +137,17 @@ class ContinuousInvariance(_Invariance):
         return make_certificate(self.system, self.polyhedron, None, [self])
 
     def claims(self) -> list[dict]:
+        """The continuous_invariance claim: H, or the facet witness.
+
+        x' = -x on P = [-1, 1] (G = (1, -1)^T, b = (1, 1)): HG = GA gives
+        h11 = h12 - 1, h22 = h21 - 1, and Hb <= 0 gives h12, h21 <= 1/2.
+
+        >>> P = Polyhedron([[1], [-1]], [1, 1])
+        >>> continuous_invariance(LinearSystem([[-1]]), P).claims()[0]["holds"]
+        True
+        >>> continuous_invariance(LinearSystem([[1]]), P).claims()   # x' = x leaves through x = 1
+        [{'type': 'continuous_invariance', 'holds': False, 'witness': {'x': ['1'], 'facet': 0, 'value': '1'}}]
+        """
         return self._claim()
 
 
@@ -157,7 +172,18 @@ class DiscreteInvariance(_Invariance):
 
     def claims(self) -> list[dict]:
         """With dt (A_d = r(dt A) built from a system and a method), the claim names
-        dt, and the kernel recomputes A_d itself (certificate version 2)."""
+        dt, and the kernel recomputes A_d itself (certificate version 2).
+
+        Forward Euler with dt = 3 on x' = -x: A_d = 1 - 3 = -2 maps x = -1 in
+        P = [-1, 1] to 2 > b_0 = 1.
+
+        >>> from exactinv.model import methods
+        >>> P = Polyhedron([[1], [-1]], [1, 1])
+        >>> discrete_invariance(LinearSystem([[-1]]), P, methods.forward_euler(), 3).claims()
+        [{'type': 'discrete_invariance', 'holds': False, 'Ad': [['-2']], 'dt': '3', 'witness': {'x': ['-1'], 'facet': 0, 'value': '2'}}]
+        >>> discrete_invariance([["1/2"]], P).claims()   # H~ = I/2: H~G = G/2, H~b = b/2 <= b
+        [{'type': 'discrete_invariance', 'holds': True, 'Ad': [['1/2']], 'H': [['1/2', '0'], ['0', '1/2']]}]
+        """
         return self._claim(Ad=mat(self.Ad), **({} if self.dt is None else {"dt": str(self.dt)}))
 
     @property
@@ -245,7 +271,20 @@ class OptimalGamma(LatexMixin):
 
     def claims(self) -> list[dict]:
         """The gamma_star claim: the witness, the rows' points and rays (-oo),
-        or H with the binding row's dual."""
+        or H with the binding row's dual.
+
+        x' = -x on P = [-1, 1]: row 0 is max h_0 s.t. h_0 - h_1 = -1,
+        h_0 + h_1 <= 0, h_1 >= 0, so h = (-1/2, 1/2) and gamma* = 1/2; its dual
+        (y, lambda) = (1/2, 1/2) has y + lambda = 1 (row 0), -y + lambda = 0 >= 0
+        (row 1) and (A^T g_0) y = -1/2 = max h_0.
+
+        >>> P = Polyhedron([[1], [-1]], [1, 1])
+        >>> c = optimal_gamma(LinearSystem([[-1]]), P).claims()[0]
+        >>> c["value"], c["H"], c["binding_row"], c["dual"]
+        ('1/2', [['-1/2', '1/2'], ['1/2', '-1/2']], 0, {'y': ['1/2'], 'lambda': '1/2'})
+        >>> optimal_gamma(LinearSystem([[1]]), P).claims()[0]["witness"]
+        {'x': ['1'], 'facet': 0, 'value': '1'}
+        """
         claim = {"type": "gamma_star", "value": encode_real(self.value), "paths": self.paths}
         if self.witness is not None:
             claim["witness"] = self.witness.record()
@@ -261,6 +300,12 @@ class OptimalGamma(LatexMixin):
         return [claim]
 
     def to_latex(self) -> str:
+        """LaTeX: gamma* with H, or gamma* = oo with the facet witness.
+
+        >>> P = Polyhedron([[1], [-1]], [1, 1])
+        >>> print(optimal_gamma(LinearSystem([[-1]]), P).to_latex())
+        \\gamma^* = \\frac{1}{2}, \\quad H = \\begin{pmatrix} -\\frac{1}{2} & \\frac{1}{2} \\\\ \\frac{1}{2} & -\\frac{1}{2} \\end{pmatrix}
+        """
         if self.witness is not None:
             w = self.witness
             return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_column(w.x)}"
@@ -289,6 +334,16 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     The m row LPs share their constraint matrix [G^T; b^T], so one float model
     is warm-started from row to row.  Exact: every row value is verified by
     primal and dual certificates in Q (see :mod:`exactinv.lp`).
+
+    x' = -x on [-1, 1]: gamma* = 1/2, so forward Euler keeps P for h <= 2
+    (1 - h >= -1); x' = x is not invariant (gamma* = oo, witness x = 1).
+
+    >>> P = Polyhedron([[1], [-1]], [1, 1])
+    >>> g = optimal_gamma(LinearSystem([[-1]]), P)
+    >>> g.value, g.forward_euler_step
+    (Fraction(1, 2), Fraction(2, 1))
+    >>> optimal_gamma(LinearSystem([[1]]), P)
+    OptimalGamma(value=INF, not invariant, witness=FacetWitness(x=[1], facet=0, value=1))
     """
     S, P = check_pair(system, polyhedron)
     m, n = P.m, P.n
@@ -313,7 +368,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
 
 def continuous_invariance(system: LinearSystem, polyhedron: Polyhedron) -> ContinuousInvariance:
     """Decide exactly whether P is invariant for x' = Ax (paper, Theorem on
-    continuous invariance), with an exact H or an exact facet witness."""
+    continuous invariance), with an exact H or an exact facet witness.
+
+    >>> P = Polyhedron([[1], [-1]], [1, 1])
+    >>> continuous_invariance(LinearSystem([[-1]]), P)
+    ContinuousInvariance(holds=True, H=[[-1/2, 1/2], [1/2, -1/2]])
+    >>> continuous_invariance(LinearSystem([[1]]), P).witness   # g_0.x = 1 = b_0, g_0.Ax = 1 > 0
+    FacetWitness(x=[1], facet=0, value=1)
+    """
     g = optimal_gamma(system, polyhedron)
     if g.witness is not None:
         return ContinuousInvariance(False, None, g.witness, g.system, g.polyhedron)
@@ -336,6 +398,14 @@ def discrete_invariance(
     by LP duality its optimal dual is row j of H~ when the optimum is <= b_j,
     and its optimal point is a witness x in P with A_d x not in P otherwise.
     The m LPs share G and are verified as one batch (:meth:`ExactLPSolver.solve_many`).
+
+    On P = [-1, 1], x+ = a x keeps P iff |a| <= 1:
+
+    >>> P = Polyhedron([[1], [-1]], [1, 1])
+    >>> discrete_invariance([["1/2"]], P)
+    DiscreteInvariance(holds=True, H~=[[1/2, 0], [0, 1/2]])
+    >>> discrete_invariance([[-2]], P).witness   # g_0.A_d x = -2 * -1 = 2 > 1
+    FacetWitness(x=[-1], facet=0, value=2)
     """
     P = check_polyhedron(polyhedron)
     origin: dict = {}
