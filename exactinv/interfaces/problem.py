@@ -51,13 +51,24 @@ class Problem:
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
-    """'; did you mean "x"?' for the closest choice, or '' (difflib)."""
+    """'; did you mean "x"?' for the closest choice, or '' (difflib).
+
+    >>> did_you_mean("polyhedra", TOP_KEYS), did_you_mean("zzz", TOP_KEYS)
+    ('; did you mean "polyhedron"?', '')
+    """
     close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
     return f'; did you mean "{close[0]}"?' if close else ""
 
 
 def check_keys(obj: dict, allowed: Iterable[str], path: str) -> None:
-    """Refuse a key of ``obj`` outside ``allowed``, naming its JSON path and the closest allowed key."""
+    """Refuse a key of ``obj`` outside ``allowed``, naming its JSON path and the closest allowed key.
+
+    >>> check_keys({"G": [[1]], "b": [1]}, ("G", "b"), "polyhedron")   # all allowed: no error
+    >>> check_keys({"G": [[1]], "bb": [1]}, ("G", "b"), "polyhedron")
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: polyhedron.bb: unknown key; did you mean "b"? (allowed: G, b)
+    """
     allowed = list(allowed)
     for key in obj:
         if key not in allowed:
@@ -105,7 +116,19 @@ def _kind(value: Any) -> str:
 
 
 def parse_method(spec: Any, path: str = "method") -> Method:
-    """A method from its JSON form, e.g. {"taylor": 4}, {"preset": "rk4"} or the preset name "rk4"."""
+    """A method from its JSON form, e.g. {"taylor": 4}, {"preset": "rk4"} or the preset name "rk4".
+
+    Taylor(2) is r(z) = 1 + z + z^2/2; backward Euler, r(z) = 1/(1 - z), as a rational method:
+
+    >>> parse_method({"taylor": 2}).numerator
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 2))
+    >>> m = parse_method({"rational": {"num": [1], "den": [1, -1]}}); m.numerator, m.denominator
+    ((Fraction(1, 1),), (Fraction(1, 1), Fraction(-1, 1)))
+    >>> parse_method({"tailor": 2})
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: method.tailor: unknown kind of method; did you mean "taylor"? (known: ...)
+    """
     if isinstance(spec, str):
         return _preset(spec, path)
     if not isinstance(spec, dict) or len(spec) != 1:
@@ -155,7 +178,19 @@ def _preset(name: str, where: str) -> Method:
 
 
 def method_from_text(text: str, where: str = "--method") -> Method:
-    """A method from command-line text: JSON (``{"taylor": 4}``) or a preset name (``rk4``)."""
+    """A method from command-line text: JSON (``{"taylor": 4}``) or a preset name (``rk4``).
+
+    Pade(1,1) is the trapezoid rule, r(z) = (1 + z/2)/(1 - z/2); rk4 is Taylor(4).
+
+    >>> m = method_from_text('{"pade": [1, 1]}'); m.numerator, m.denominator
+    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(1, 1), Fraction(-1, 2)))
+    >>> method_from_text("rk4").numerator == parse_method({"taylor": 4}).numerator
+    True
+    >>> method_from_text('{"theta": 0.5}')
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: --method: the JSON number 0.5 is a float; write it as a string ("0.5") to mean it exactly
+    """
     text = text.strip()
     if text[:1] in "{[\"":
         try:
@@ -226,7 +261,16 @@ def _invariant_set(data: dict) -> Polyhedron | Ellipsoid:
 
 
 def problem_from_dict(data: Any, name: str = "problem") -> Problem:
-    """A :class:`Problem` from the parsed JSON of a problem file (every key checked)."""
+    """A :class:`Problem` from the parsed JSON of a problem file (every key checked).
+
+    >>> problem_from_dict({"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, "1/2"]},
+    ...                    "method": {"taylor": 2}}, "box")
+    Problem(system=LinearSystem(A=[[-1]]), polyhedron=Polyhedron(G=[[1], [-1]], b=[1, 1/2]), method=Method(taylor(2): r(z) = z**2/2 + z + 1), name='box')
+    >>> problem_from_dict({"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "methd": "rk4"})
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: methd: unknown key; did you mean "method"? (allowed: ...)
+    """
     if not isinstance(data, dict):
         raise InvalidInput(f"expected a JSON object with \"system\" and \"polyhedron\", got {_kind(data)}")
     if {"format", "claims"} & set(data):
@@ -249,7 +293,20 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
 
 def load_problem(source: Any) -> Problem:
     """Read a problem from a dict, a JSON string or a path to a JSON file.
-    Errors from a file are prefixed with its path."""
+    Errors from a file are prefixed with its path.
+
+    >>> import pathlib, exactinv
+    >>> examples = pathlib.Path(exactinv.__file__).parents[1] / "examples"
+    >>> p = load_problem(examples / "paper_box_taylor4.json")
+    >>> p.name, p.system, p.polyhedron.m, p.method.name
+    ('paper_box_taylor4', LinearSystem(A=[[-1, 1], [-1, -1]]), 4, 'taylor(4)')
+    >>> load_problem('{"system": {"A": [[-1]]}, "ellipsoid": {"Q": [["1/4"]]}}').polyhedron
+    Ellipsoid(Q=[[1/4]])
+    >>> load_problem('{"system": {"A": [[-1.0]]}, "ellipsoid": {"Q": [[1]]}}')
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: the JSON number -1.0 is a float; write it as a string ("-1.0") to mean it exactly
+    """
     if isinstance(source, dict):
         return problem_from_dict(source)
     if isinstance(source, str) and source.lstrip().startswith("{"):
