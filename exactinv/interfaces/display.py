@@ -37,7 +37,15 @@ __all__ = [
 
 
 def to_latex(result: Any) -> str:
-    """LaTeX for any exactinv result or model object: its own ``to_latex()``."""
+    """LaTeX for any exactinv result or model object: its own ``to_latex()``.
+
+    >>> print(to_latex(Ellipsoid([["1/4"]])))
+    E = \\{x : x^T \\begin{pmatrix} \\frac{1}{4} \\end{pmatrix} x \\le 1\\}
+    >>> to_latex(0.5)
+    Traceback (most recent call last):
+    ...
+    TypeError: no LaTeX for float
+    """
     method = getattr(result, "to_latex", None)
     if method is None:
         raise TypeError(f"no LaTeX for {type(result).__name__}")
@@ -92,7 +100,20 @@ def plot_f_i(threshold, upto: float | None = None):
     term ``abs(c_i) * dt**i`` (which keeps its sign on dt > 0 and starts every curve at
     +-1), so that the sign changes are visible whatever the sizes of the f_i.
     Each tau_i (first sign change of f_i) is marked and labelled in the colour of
-    its f_i; tau = min tau_i is the black line."""
+    its f_i; tau = min tau_i is the black line.
+
+    Taylor(2) on x' = -x, P = [-1, 1] (gamma* = 1/2): f_1(dt) = dt - dt^2/2
+    changes sign at tau_1 = 2; f_0 and f_2 never do.
+
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> from exactinv.model import LinearSystem, Polyhedron, methods
+    >>> t = steplength_threshold(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1]), methods.taylor(2))
+    >>> fig = plot_f_i(t)
+    >>> [text.get_text() for text in fig.axes[0].get_legend().get_texts()]
+    ['$f_{0}$,  $\\\\tau_{0} = \\\\infty$', '$f_{1}$,  $\\\\tau_{1} = 2$', '$f_{2}$,  $\\\\tau_{2} = \\\\infty$', '$\\\\tau = 2$']
+    >>> plt.close(fig)
+    """
     plt = _plt()
     marks = [_f(r.tau) for r in threshold.table if _finite(r.tau) and r.tau != 0]
     if _finite(threshold.value) and threshold.value != 0:
@@ -135,7 +156,18 @@ def plot_f_i(threshold, upto: float | None = None):
 
 
 def plot_coefficients(method, count: int = 6, upto: float | None = None):
-    """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! at -kappa, each scaled to [-1, 1], with rho marked."""
+    """The Taylor coefficients c_j(kappa) = r^(j)(-kappa)/j! at -kappa, each scaled to [-1, 1], with rho marked.
+
+    Forward Euler: c_0 = 1 - kappa, c_1 = 1, c_j = 0 (j >= 2), so rho = 1.
+
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> from exactinv.model import methods
+    >>> fig = plot_coefficients(methods.forward_euler(), count=3)
+    >>> [text.get_text() for text in fig.axes[0].get_legend().get_texts()][-1], fig.axes[0].get_xlabel()
+    ('$\\\\rho = 1$', '$\\\\kappa$')
+    >>> plt.close(fig)
+    """
     plt = _plt()
     rho = absolute_monotonicity_radius(method)
     top = upto or (2.0 * _f(rho.value) if not isinstance(rho.value, Infinity) and rho.value != 0 else 4.0)
@@ -165,7 +197,19 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     """The exact valid steplengths on a number line, with the paper's, the
     corrected and the exact largest threshold.  Works for every answer of
     :func:`valid_steplengths`: where P is not invariant for x' = Ax there is no
-    paper threshold (the plot says so) and the valid set may still hold steps."""
+    paper threshold (the plot says so) and the valid set may still hold steps.
+
+    Taylor(2) on x' = -x, P = [-1, 1]: r(-dt) = 1 - dt + dt^2/2 lies in [-1, 1]
+    iff dt <= 2, and all three thresholds are 2.
+
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> from exactinv.model import LinearSystem, Polyhedron, methods
+    >>> fig = plot_valid_set(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1]), methods.taylor(2))
+    >>> fig.axes[0].get_title(), [text.get_text() for text in fig.axes[0].texts]
+    ('valid steplengths of taylor(2) (green): [0, 2]', [' paper $2$', ' corrected $2$', ' largest $2$'])
+    >>> plt.close(fig)
+    """
     plt = _plt()
     if isinstance(polyhedron, Ellipsoid):  # the paper is about polyhedra: no paper threshold on E
         V = ellipsoid_valid_steplengths(system, polyhedron, method)
@@ -220,7 +264,23 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
 
 def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     """A 2-D polytope P (or ellipse E) and its images A_d(dt) P; vertices mapped outside P
-    (for E: the exact witness directions of the steps that fail) in red."""
+    (for E: the exact witness directions of the steps that fail) in red.
+
+    Forward Euler on x' = -x: A_d(dt) = (1 - dt) I maps the square [-1, 1]^2
+    onto itself for dt = 1 (to 0) and onto [-2, 2]^2 for dt = 3: all 4 vertices out.
+
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> from exactinv.model import LinearSystem, Polyhedron, methods
+    >>> square = Polyhedron([[1, 0], [-1, 0], [0, 1], [0, -1]], [1, 1, 1, 1])
+    >>> fig = plot_images(LinearSystem([[-1, 0], [0, -1]]), square, methods.forward_euler(), [1, 3])
+    >>> ax = fig.axes[0]
+    >>> [text.get_text() for text in ax.get_legend().get_texts()]
+    ['P', '$A_d(1)\\\\,P$', '$A_d(3)\\\\,P$']
+    >>> [len(line.get_xdata()) for line in ax.lines if line.get_color() == "crimson"]
+    [4]
+    >>> plt.close(fig)
+    """
     plt = _plt()
     if isinstance(polyhedron, Ellipsoid):
         return _plot_ellipse_images(plt, system, polyhedron, method, dts)
