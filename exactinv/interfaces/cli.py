@@ -280,7 +280,28 @@ def _positive(kind):
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code (0, 1 or 2; see the module docstring)."""
+    """Run the command line; returns the exit code (0, 1 or 2; see the module docstring).
+
+    The paper's box example: A = [[-1, 1], [-1, -1]] on [-1, 1]^2 has gamma* = 1
+    (row 1: max h_1 s.t. h^T G = g_1^T A = (-1, 1), h^T b <= 0 is h = (-1, 0, 1, 0)),
+    and Taylor(4) keeps the box up to the root 1.7496... of x^4 - 6x^2 + 12x - 12.
+
+    >>> import contextlib, io, pathlib, exactinv
+    >>> examples = pathlib.Path(exactinv.__file__).parents[1] / "examples"
+    >>> out = io.StringIO()
+    >>> with contextlib.redirect_stdout(out):
+    ...     code = main(["certify", str(examples / "paper_box_taylor4.json")])
+    >>> lines = out.getvalue().splitlines()
+    >>> code, [line.split("[")[0] for line in lines if line.startswith(("gamma*", "independent"))]
+    (0, ['gamma*: 1   ', 'independent check: VERIFIED (5 claims)'])
+    >>> "the root of x^4 - 6x^2 + 12x - 12" in out.getvalue()
+    True
+    >>> err = io.StringIO()
+    >>> with contextlib.redirect_stderr(err):
+    ...     code = main(["certify", str(examples / "missing.json")])
+    >>> code, err.getvalue().endswith("missing.json: no such file\\n")
+    (2, True)
+    """
     args = _parser().parse_args(argv)
     try:
         return args.run(args)
