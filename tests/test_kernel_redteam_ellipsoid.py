@@ -451,3 +451,24 @@ def test_kernel_valid_set_matches_direct_evaluation_and_pruning_is_exact(seed):
                                if x is not None and x > 0)
     for h in sorted(samples):
         assert _contains(pruned, h) == _direct_valid(A, Q, method.numerator, method.denominator, h), (name, A, Q, h)
+
+
+# --------------------------------------------------------------------------
+# A near tie claimed as a tie: A = diag(-1, -(1 + 10^-40)), Q = I, forward
+# Euler: |1 + h a_i| <= 1 iff h <= -2/a_i, so tau = 2/(1 + 10^-40), not 2 (the
+# root of c_2 = h m_1 m_2 at 2 is not the first), and not a rational 10^-90 off.
+
+def test_a_near_tie_is_not_a_tie():
+    eps = Fraction(1, 10**40)
+    tau = 2 / (1 + eps)
+    a2 = str(-(1 + eps))
+
+    def cert(value):
+        return _cert([["-1", "0"], ["0", a2]], I2, [
+            {"type": "ellipsoid_forward_euler_threshold", "value": value},
+            {"type": "ellipsoid_largest_threshold", "value": value, "attained": True},
+            {"type": "ellipsoid_valid_steplengths", "intervals": [_iv("0", value)]}], (["1", "1"], ["1"]))
+    _accepted(cert(str(tau)))
+    for forged in ("2", str(tau + Fraction(1, 10**90)), str(tau - Fraction(1, 10**90))):
+        ok, text = _verdict(cert(forged))
+        assert not ok and text.count("[REJECTED]") == 3, text
