@@ -84,6 +84,9 @@ TAU_T2 = {"poly": ["-8", "8", "-20", "25"], "interval": ["430182216867/500000000
 # 3 s at n = 40, 28 s at n = 80 (~ n^3.2 with gcd-heavy Fraction growth), so
 # n = 200 takes ~10 minutes and MAX_DIMENSION = 2000 days.  The claim is false
 # (A = I: A^T Q + Q A = 2Q is positive definite, E is not invariant).
+# The same elimination decides ellipsoid_continuous/discrete_invariance: with
+# Q = I (fast) and a dense A, psd(Q - A_d^T Q A_d) took 0.4 s at n = 20 and
+# 2.8 s at n = 40 (Taylor(2), dt = 1/(7n)), the same growth.
 # Fix: bound n for ellipsoid problems (every condition claim already needs
 # n (2s - 1) <= 200; continuous/discrete invariance could share a bound such as
 # n <= 200), and/or fraction-free (Bareiss) LDL^T with a bit-size budget.
