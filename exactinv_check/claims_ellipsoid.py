@@ -18,7 +18,7 @@ from fractions import Fraction
 from . import polys
 from .claims_invariance import _discrete_matrix
 from .ellipsoids import condition_polynomials, psd, quadratic_form
-from .rationals import boolean, integer, matmul, rational, require, transpose, vector
+from .rationals import boolean, describe, integer, matmul, rational, require, transpose, vector
 from .reals import Real
 from .validset import first_end, valid_set
 
@@ -42,7 +42,7 @@ def continuous_invariance(problem, claim, context):
         require(psd([[-x for x in r] for r in L])[0], "A^T Q + Q A is not negative semidefinite")
         return "E is invariant for x' = Ax: -(A^T Q + Q A) >= 0 (exact elimination)"
     value = _witness(problem, claim, L, "v^T (A^T Q + Q A) v > 0")
-    return f"E is NOT invariant: v^T (A^T Q + Q A) v = {value} > 0, so v/||v||_Q leaves E"
+    return f"E is NOT invariant: v^T (A^T Q + Q A) v = {describe(value)} > 0, so v/||v||_Q leaves E"
 
 
 def discrete_invariance(problem, claim, context):
@@ -54,7 +54,7 @@ def discrete_invariance(problem, claim, context):
         require(psd([[-x for x in r] for r in M])[0], "Q - A_d^T Q A_d is not positive semidefinite")
         return f"A_d E is a subset of E for {what} (Q - A_d^T Q A_d >= 0)"
     value = _witness(problem, claim, M, "v^T (A_d^T Q A_d - Q) v > 0")
-    return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {value} > 0"
+    return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {describe(value)} > 0"
 
 
 def _conditions(problem, claim, context, numerator=None, denominator=None):

@@ -101,9 +101,14 @@ def _interpolate(points: list[int], values: list[list[flint.fmpq]]) -> list[flin
 
 def psd_polynomials(system: LinearSystem, Q: flint.fmpq_mat, method: Method) -> tuple[list[flint.fmpq_poly], flint.fmpq_poly]:
     """([q_1, ..., q_n], D): q_k(h) = e_k(M'(h)) (see the module docstring) and
-    D(h) = det h(hA) (the constant 1 for polynomial methods)."""
+    D(h) = det h(hA) (the constant 1 for polynomial methods).
+
+    r = 1 (s = 0) gives A_d = I and M = 0 for every h: every q_k is the zero
+    polynomial (no condition), so every h >= 0 is valid."""
     coefficients = coefficient_matrices(system, Q, method)
     n, degree = Q.nrows(), len(coefficients) - 1
+    if not coefficients:
+        return [flint.fmpq_poly([]) for _ in range(n)], flint.fmpq_poly([1])
     points = _points(n * max(degree, len(method.denominator) - 1) + 1)
     rows = []
     for t in points:
