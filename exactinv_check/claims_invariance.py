@@ -122,4 +122,4 @@ def gamma_star(problem, claim, context):
         require(s == 1 if k == j else s >= 0, f"dual constraint {k} fails")
     require(dot(matvec(transpose(A), G[j]), y) == -gamma, "the dual objective differs from -gamma")
     context["gamma"], context["H"] = value, H
-    return f"gamma* = {gamma}: H attains it, the dual of row {j} proves no smaller gamma is feasible"
+    return f"gamma* = {describe(gamma)}: H attains it, the dual of row {j} proves no smaller gamma is feasible"
