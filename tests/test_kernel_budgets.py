@@ -109,6 +109,40 @@ def test_work_over_a_budget_is_a_clean_rejection_naming_it(cert, what):
     assert "over the kernel's work budget" in text and what in text, text
 
 
+def test_invariance_of_large_problems_is_priced_before_the_products():
+    # Q = I, A dense 200 x 200: A^T Q + Q A costs 8 10^6 products, its elimination is over the budget
+    report = check(_ellipsoid_cert(_dense(200, 1, -600), _identity(200),
+                                   [{"type": "ellipsoid_continuous_invariance", "holds": True}]))
+    assert not report.ok and "over the kernel's work budget" in str(report), str(report)
+    # r(dt A) in Fractions for a dense 80 x 80 A is priced before it is computed
+    report = check(_ellipsoid_cert(_dense(80, 3, -240), _identity(80), [
+        {"type": "ellipsoid_discrete_invariance", "holds": True, "dt": "1/560"}], (["1", "1", "1/2"], ["1"])))
+    assert not report.ok and "r(dt A) for a 80 x 80 matrix" in str(report), str(report)
+
+
+def test_invariance_of_a_mid_size_problem_is_decided_exactly():
+    # A = S - I with S skew (n = 30): A^T + A = -2I, so E = unit ball is invariant for x' = Ax;
+    # A = S + e_1 e_1^T: v = e_1 gives v^T (A^T + A) v = 2 > 0
+    n = 30
+    S = [[(i - j) % 5 - 2 if i < j else -((j - i) % 5 - 2) if i > j else 0 for j in range(n)] for i in range(n)]
+    assert all(S[i][j] == -S[j][i] for i in range(n) for j in range(n))
+    minus = [[str(S[i][j] - (i == j)) for j in range(n)] for i in range(n)]
+    plus = [[str(S[i][j] + (i == j == 0)) for j in range(n)] for i in range(n)]
+    holds = {"type": "ellipsoid_continuous_invariance", "holds": True}
+    assert check(_ellipsoid_cert(minus, _identity(n), [holds])).ok
+    assert not check(_ellipsoid_cert(plus, _identity(n), [holds])).ok
+    witness = {"type": "ellipsoid_continuous_invariance", "holds": False, "witness": {"v": ["1"] + ["0"] * (n - 1),
+                                                                                          "value": "2"}}
+    assert check(_ellipsoid_cert(plus, _identity(n), [witness])).ok
+    # the discrete step of the contraction: A_d = I + A/4 with A = -I + S: |A_d|_2 may exceed 1,
+    # decided against sympy
+    method, dt = (["1", "1"], ["1"]), Fraction(1, 4)
+    Ad = sp.eye(n) + sp.Rational(1, 4) * sp.Matrix([[S[i][j] - (i == j) for j in range(n)] for i in range(n)])
+    truth = bool((sp.eye(n) - Ad.T * Ad).is_positive_semidefinite)
+    claim = {"type": "ellipsoid_discrete_invariance", "holds": True, "dt": str(dt)}
+    assert check(_ellipsoid_cert(minus, _identity(n), [claim], method)).ok == truth
+
+
 def test_an_ellipsoid_problem_above_the_degree_bound_is_rejected():
     report = check(_ellipsoid_cert(_identity(201), _identity(201),
                                    [{"type": "ellipsoid_continuous_invariance", "holds": True}]))
