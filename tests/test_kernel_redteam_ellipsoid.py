@@ -13,8 +13,9 @@ tests below (regression guards).
 The holes are resources (and two rejections of true claims): certificates
 well inside the kernel's stated bounds (MAX_DIMENSION = 2000, n (2s - 1) <= 200,
 method degree <= 64, 4000-digit numbers) make it run for minutes to hours
-before it gives a verdict.  Those tests are xfail(strict=True) and fail (time
-out) until the kernel is fixed.
+before it gives a verdict.  Those tests were xfail(strict=True); the kernel
+now prices such work before it runs and rejects it ("over the kernel's work
+budget", tests/test_kernel_budgets.py), and they pass.
 """
 
 import copy
@@ -74,7 +75,7 @@ TAU_T2 = {"poly": ["-8", "8", "-20", "25"], "interval": ["430182216867/500000000
 
 
 # ==========================================================================
-# HOLES (xfail strict): the kernel works for minutes/hours inside its bounds
+# HOLES (fixed): the kernel worked for minutes/hours inside its bounds
 # ==========================================================================
 
 # --------------------------------------------------------------------------
