@@ -17,44 +17,81 @@ from fractions import Fraction
 
 from . import polys
 from .claims_invariance import _discrete_matrix
-from .ellipsoids import condition_polynomials, psd, quadratic_form
-from .rationals import boolean, integer, matmul, rational, require, transpose, vector
+from .ellipsoids import condition_polynomials, psd
+from .rationals import (boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational, require, transpose,
+                        vector, within_budget)
 from .reals import Real
 from .validset import first_end, valid_set
 
 
-def _witness(problem, claim, M, what):
+FRACTION_WEIGHT = 100  # word operations per Fraction operation, for the work budget
+
+
+def _witness(problem, claim, form, what):
+    """form(v) = v^T X v for the claim's rational v, compared with the recorded value, > 0."""
     w = claim["witness"]
     require(isinstance(w, dict) and set(w) <= {"v", "value"} and "v" in w, "a witness has the keys v (and value)")
     v = vector(w["v"], "witness v", problem.n)
-    value = quadratic_form(M, v)
+    value = form(v)
     if "value" in w:
         require(rational(w["value"], "witness value") == value, "the witness's recorded value is wrong")
     require(value > 0, f"the witness does not show {what}")
     return value
 
 
+def _integer_product(X, Y, what):
+    """(x, y, X_i Y_i) with X = X_i/x, Y = Y_i/y, X_i and Y_i integral, priced first."""
+    (x, Xi), (y, Yi) = integer_matrix(X), integer_matrix(Y)
+    n = len(X)
+    bits = max((abs(c).bit_length() for M in (Xi, Yi) for row in M for c in row), default=0)
+    within_budget(n ** 3 * (1 + (2 * bits + n.bit_length()) // 64), f"{what} of {n} x {n} matrices")
+    return x, y, matmul(Xi, Yi)
+
+
 def continuous_invariance(problem, claim, context):
+    """-(A^T Q + Q A) >= 0, decided on beta alpha (A^T Q + Q A) = (Q_i A_i)^T + Q_i A_i (a
+    positive multiple, integral); or a v with v^T (A^T Q + Q A) v = 2 v^T Q A v > 0."""
     A, Q = problem.A, problem.Q
-    L = [[a + b for a, b in zip(r, s)] for r, s in zip(matmul(transpose(A), Q), matmul(Q, A))]
     if boolean(claim["holds"], "holds"):
         require("witness" not in claim, "a claim that holds carries no witness")
-        require(psd([[-x for x in r] for r in L])[0], "A^T Q + Q A is not negative semidefinite")
+        _, _, QA = _integer_product(Q, A, "the product Q A")
+        n = problem.n
+        require(psd([[-(QA[i][j] + QA[j][i]) for j in range(n)] for i in range(n)])[0],
+                "A^T Q + Q A is not negative semidefinite")
         return "E is invariant for x' = Ax: -(A^T Q + Q A) >= 0 (exact elimination)"
-    value = _witness(problem, claim, L, "v^T (A^T Q + Q A) v > 0")
-    return f"E is NOT invariant: v^T (A^T Q + Q A) v = {value} > 0, so v/||v||_Q leaves E"
+    value = _witness(problem, claim, lambda v: 2 * dot(v, matvec(Q, matvec(A, v))), "v^T (A^T Q + Q A) v > 0")
+    return f"E is NOT invariant: v^T (A^T Q + Q A) v = {describe(value)} > 0, so v/||v||_Q leaves E"
+
+
+def _price_step(problem, claim):
+    """Reject before recomputing r(dt A) in Fractions when that is over the work budget."""
+    if "dt" in claim and problem.method is not None:
+        n, g, h = problem.n, problem.method.numerator, problem.method.denominator
+        steps = len(g) if len(h) == 1 else (n * (len(h) - 1) + 1) * (len(g) + len(h) + 2)
+        within_budget(FRACTION_WEIGHT * n ** 3 * steps, f"r(dt A) for a {n} x {n} matrix A")
 
 
 def discrete_invariance(problem, claim, context):
+    """Q - A_d^T Q A_d >= 0, decided on beta delta^2 (Q - A_d^T Q A_d) = delta^2 Q_i - N^T Q_i N
+    (A_d = N/delta, Q = Q_i/beta integral); or v with (A_d v)^T Q (A_d v) - v^T Q v > 0."""
+    _price_step(problem, claim)
     Ad, what = _discrete_matrix(problem, claim)
     Q = problem.Q
-    M = [[a - b for a, b in zip(r, s)] for r, s in zip(matmul(matmul(transpose(Ad), Q), Ad), Q)]  # A_d^T Q A_d - Q
     if boolean(claim["holds"], "holds"):
         require("witness" not in claim, "a claim that holds carries no witness")
-        require(psd([[-x for x in r] for r in M])[0], "Q - A_d^T Q A_d is not positive semidefinite")
+        beta, delta, QN = _integer_product(Q, Ad, "the product Q A_d")
+        _, N = integer_matrix(Ad)
+        _, _, NtQN = _integer_product(transpose(N), QN, "the product A_d^T Q A_d")
+        Qi = integer_matrix(Q)[1]
+        M = [[delta * delta * q - x for q, x in zip(r, s)] for r, s in zip(Qi, NtQN)]
+        require(psd(M)[0], "Q - A_d^T Q A_d is not positive semidefinite")
         return f"A_d E is a subset of E for {what} (Q - A_d^T Q A_d >= 0)"
-    value = _witness(problem, claim, M, "v^T (A_d^T Q A_d - Q) v > 0")
-    return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {value} > 0"
+
+    def form(v):
+        w = matvec(Ad, v)
+        return dot(w, matvec(Q, w)) - dot(v, matvec(Q, v))
+    value = _witness(problem, claim, form, "v^T (A_d^T Q A_d - Q) v > 0")
+    return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {describe(value)} > 0"
 
 
 def _conditions(problem, claim, context, numerator=None, denominator=None):

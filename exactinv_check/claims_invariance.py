@@ -12,7 +12,7 @@
 from fractions import Fraction
 
 from .conditions import method_matrices
-from .rationals import dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
+from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
 
 
@@ -45,7 +45,7 @@ def continuous_invariance(problem, claim, context):
         return "P is invariant for x' = Ax (H: off-diagonal >= 0, HG = GA, Hb <= 0)"
     j, value = facet_witness(problem, problem.A, claim["witness"], on_facet=True)
     require(value > 0, f"the witness does not leave P through facet {j}")
-    return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {value} > 0"
+    return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {describe(value)} > 0"
 
 
 def _discrete_matrix(problem, claim):
@@ -56,11 +56,11 @@ def _discrete_matrix(problem, claim):
         require(dt >= 0, "dt must be >= 0")
         D, N = method_matrices(problem.A, problem.method.numerator, problem.method.denominator)
         d = sum(c * dt ** k for k, c in enumerate(D))
-        require(d != 0, f"r(dt A) does not exist at dt = {dt}")
+        require(d != 0, f"r(dt A) does not exist at dt = {describe(dt)}")
         Ad = [[sum(Nk[i][j] * dt ** k for k, Nk in enumerate(N)) / d for j in range(problem.n)] for i in range(problem.n)]
         if "Ad" in claim:
             require(matrix(claim["Ad"], "Ad", problem.n, problem.n) == Ad, "Ad is not r(dt A)")
-        return Ad, f"A_d = r(dt A) with dt = {dt}"
+        return Ad, f"A_d = r(dt A) with dt = {describe(dt)}"
     return matrix(claim["Ad"], "Ad", problem.n, problem.n), "the matrix A_d stated in the claim"
 
 
@@ -122,4 +122,4 @@ def gamma_star(problem, claim, context):
         require(s == 1 if k == j else s >= 0, f"dual constraint {k} fails")
     require(dot(matvec(transpose(A), G[j]), y) == -gamma, "the dual objective differs from -gamma")
     context["gamma"], context["H"] = value, H
-    return f"gamma* = {gamma}: H attains it, the dual of row {j} proves no smaller gamma is feasible"
+    return f"gamma* = {describe(gamma)}: H attains it, the dual of row {j} proves no smaller gamma is feasible"

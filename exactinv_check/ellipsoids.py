@@ -11,15 +11,19 @@ coefficient polynomials of "A_d(h) E is a subset of E".
   its characteristic polynomial) is >= 0.  The conditions are
   c_k(h) = h e_k(M'(h)) >= 0 (k = 1..n): for h > 0 the sign of
   e_k(M(h)) = h^k e_k(M'(h)), and 0 at h = 0, where A_d = I is always valid.
-  Each c_k is rebuilt by evaluating M'(t) at integer t, characteristic
-  polynomials (Hessenberg) and interpolation of each coefficient.
+  Each c_k is rebuilt, up to a positive constant factor, by evaluating
+  L M'(t) (L clears denominators) at integer t, characteristic polynomials over
+  Z (Berkowitz, division-free) and interpolation of each coefficient.
+* Work budgets (rationals.within_budget): each elimination and each rebuild
+  of the conditions is priced before it runs; over the budget the claim is
+  rejected with "over the kernel's work budget", never left to run for minutes.
 """
 
 from fractions import Fraction
 
 from . import polys
-from .linalg import characteristic_polynomial
-from .rationals import determinant, identity, matmul, require, transpose
+from .linalg import integer_characteristic_polynomial, integer_determinant
+from .rationals import integer_matrix, matmul, require, transpose, within_budget
 
 
 def quadratic_form(M, v):
@@ -31,21 +35,32 @@ def is_symmetric(M):
 
 
 def psd(M):
-    """(is M >= 0, is M > 0) for a symmetric rational M, by exact elimination."""
-    S = [list(r) for r in M]
-    rest = list(range(len(S)))
+    """(is M >= 0, is M > 0) for a symmetric rational M.
+
+    M is scaled to the integer L M (L > 0: no sign changes), then eliminated
+    fraction-free (symmetric Bareiss) on positive diagonal pivots: after the
+    pivots K each remaining entry is det (L M)[K + a, K + b], the Schur complement
+    entry times the last pivot det (L M)[K, K] > 0, so its sign is the Schur
+    complement's.  A remainder with no positive diagonal entry is PSD iff it is
+    zero (a negative diagonal, or a zero diagonal beside a nonzero entry,
+    refutes).  Over the work budget the kernel rejects before eliminating."""
+    _, S = integer_matrix(M)
+    n = len(S)
+    bits = max((abs(x).bit_length() for row in S for x in row), default=0)
+    within_budget(n ** 3 * (1 + n * (bits + n.bit_length()) // 64) // 3,
+                  f"exact elimination of a {n} x {n} matrix with {bits}-bit entries")
+    rest, last = list(range(n)), 1
     while rest:
         k = next((i for i in rest if S[i][i] > 0), None)
         if k is None:
-            zero = all(S[i][j] == 0 for i in rest for j in rest)
-            return zero, False
+            return all(S[i][j] == 0 for i in rest for j in rest), False
         rest.remove(k)
-        d = S[k][k]
+        d, pivot_row = S[k][k], S[k]
         for a in rest:
-            f = S[a][k] / d
-            if f:
-                for b in rest:
-                    S[a][b] -= f * S[k][b]
+            row, f = S[a], S[a][k]
+            for b in rest:
+                row[b] = (d * row[b] - f * pivot_row[b]) // last  # exact (Bareiss)
+        last = d
     return True, True
 
 
@@ -57,60 +72,95 @@ def _added(X, Y):
     return [[a + b for a, b in zip(r, s)] for r, s in zip(X, Y)]
 
 
+def _bits(M):
+    return max((abs(x).bit_length() for row in M for x in row), default=0)
+
+
 def coefficient_matrices(A, Q, numerator, denominator):
-    """[M_1, ..., M_2s]: M(h) = sum_j M_j h^j = H^T Q H - G^T Q G (M_0 = 0)."""
-    n = len(A)
-    s = max(len(numerator), len(denominator)) - 1
-    g = list(numerator) + [Fraction(0)] * (s + 1 - len(numerator))
-    d = list(denominator) + [Fraction(0)] * (s + 1 - len(denominator))
-    powers = [identity(n)]
+    """Integer matrices [K_0, ..., K_{2s-1}] with L M'(h) = sum_j K_j h^j for one
+    constant L > 0, where M(h) = H^T Q H - G^T Q G = sum_j M_j h^j (M_0 = 0) and
+    M'(h) = M(h)/h.  With A = Ai/alpha, Q = Qi/beta and gamma g, gamma h_r integral:
+    gamma^2 beta alpha^j M_j = sum_{a+b=j} (gamma^2 (d_a d_b - g_a g_b)) (Ai^a)^T Qi Ai^b,
+    so L = gamma^2 beta alpha^(2s) and K_j = alpha^(2s-j-1) (gamma^2 beta alpha^(j+1) M_{j+1}).
+    [] for s = 0 (r = 1).  Priced before it runs (integer products only)."""
+    n, s = len(A), max(len(numerator), len(denominator)) - 1
+    alpha, Ai = integer_matrix(A)
+    _, Qi = integer_matrix(Q)
+    _, (gi, di) = integer_matrix([list(numerator) + [Fraction(0)] * (s + 1 - len(numerator)),
+                                  list(denominator) + [Fraction(0)] * (s + 1 - len(denominator))])
+    bits = _bits(Qi) + 2 * s * (_bits(Ai) + n.bit_length()) + _bits([gi, di])
+    within_budget((s + 1) ** 2 * n ** 3 * (1 + bits // 64), f"the coefficient matrices of a {n} x {n} problem, s = {s}")
+    powers = [[[int(i == j) for j in range(n)] for i in range(n)]]
     for _ in range(s):
-        powers.append(matmul(powers[-1], A))
+        powers.append(matmul(powers[-1], Ai))
+    left = [matmul(transpose(P), Qi) for P in powers]
     out = []
     for j in range(1, 2 * s + 1):
-        Mj = [[Fraction(0)] * n for _ in range(n)]
+        Kj = [[0] * n for _ in range(n)]
         for a in range(max(0, j - s), min(j, s) + 1):
-            c = d[a] * d[j - a] - g[a] * g[j - a]
+            c = di[a] * di[j - a] - gi[a] * gi[j - a]
             if c:
-                Mj = _added(Mj, _scaled(matmul(matmul(transpose(powers[a]), Q), powers[j - a]), c))
-        out.append(Mj)
+                Kj = _added(Kj, _scaled(matmul(left[a], powers[j - a]), c))
+        out.append(_scaled(Kj, alpha ** (2 * s - j)))
     return out
 
 
 def _at(coefficients, t):
-    """M'(t) = sum_j M_{j+1} t^j."""
+    """sum_j K_j t^j (Horner)."""
     out = coefficients[-1]
     for Mj in reversed(coefficients[:-1]):
         out = _added(_scaled(out, t), Mj)
     return out
 
 
+def _conditions_cost(coefficients, n, count):
+    """Estimated word operations of condition_polynomials: Berkowitz (~n^4/4
+    products of numbers up to n (bits + log n) bits) at `count` points, and the
+    Newton interpolation of n value columns."""
+    bits = max(_bits(Kj) for Kj in coefficients) + (len(coefficients) - 1) * count.bit_length() + n.bit_length()
+    words = 1 + n * bits // 64
+    return count * n ** 4 * words // 4 + (n + 1) * count ** 2 * words + count * n ** 3 * words
+
+
 def condition_polynomials(A, Q, numerator, denominator):
-    """(D, [c_1, ..., c_n]) with D(h) = det h_r(hA) (module docstring); a c_k that
-    vanishes identically is the empty list."""
+    """(D, [c_1, ..., c_n]) with D(h) = det h_r(hA) and c_k(h) = h e_k(L M'(h)) for
+    a constant L > 0 (module docstring; e_k(L M') = L^k e_k(M') has the same signs
+    and roots); a c_k that vanishes identically is the empty list.  r = 1 (s = 0)
+    has M = 0: every c_k vanishes (every h >= 0 is valid, A_d = I).  The
+    characteristic polynomials are Berkowitz's over Z at integer points; over
+    the work budget the kernel rejects before evaluating."""
     n = len(A)
-    coefficients = coefficient_matrices(A, Q, numerator, denominator)
-    degree = len(coefficients) - 1  # of M'
-    count = n * max(degree, len(denominator) - 1) + 1
+    s = max(len(numerator), len(denominator)) - 1
+    if s == 0:
+        return [Fraction(1)], [[] for _ in range(n)]
+    count = n * max(2 * s - 1, len(denominator) - 1) + 1
     require(count - 1 <= polys.MAX_DEGREE, f"n (2s - 1) = {count - 1} exceeds the kernel's degree bound {polys.MAX_DEGREE}")
-    points = [Fraction(t) for t in range(count)]
+    coefficients = coefficient_matrices(A, Q, numerator, denominator)
+    within_budget(_conditions_cost(coefficients, n, count),
+                  f"the characteristic polynomial of a {n} x {n} matrix at {count} points")
+    points = list(range(count))
     values = []
     for t in points:
-        p = characteristic_polynomial(_at(coefficients, t))  # det(x I - M'(t)), low to high
+        p = integer_characteristic_polynomial(_at(coefficients, t))  # det(x I - L M'(t)), low to high
         values.append([(-1) ** k * p[n - k] for k in range(1, n + 1)])
-    conditions = [polys.trim([Fraction(0)] + polys.interpolate(points, [row[k] for row in values])) for k in range(n)]
+    points = [Fraction(t) for t in points]
+    conditions = [polys.trim([Fraction(0)] + polys.interpolate(points, [Fraction(row[k]) for row in values]))
+                  for k in range(n)]
     D = [Fraction(1)]
     if len(denominator) > 1:
-        dets = [determinant(_hA(A, denominator, t)) for t in points]
-        D = polys.interpolate(points, dets)
+        B = _denominator_matrices(A, denominator)
+        D = polys.interpolate(points, [Fraction(integer_determinant(_at(B, int(t)))) for t in points])
     return D, conditions
 
 
-def _hA(A, denominator, t):
-    n = len(A)
-    out = [[Fraction(0)] * n for _ in range(n)]
-    for c in reversed(denominator):  # Horner in tA
-        out = matmul(out, [[t * a for a in row] for row in A])
-        for i in range(n):
-            out[i][i] += c
+def _denominator_matrices(A, denominator):
+    """Integer matrices B_k with gamma alpha^m h_r(tA) = sum_k B_k t^k (m = deg h_r,
+    A = Ai/alpha, gamma h_r integral): D(t) = det of it is det h_r(tA) times the
+    positive constant (gamma alpha^m)^n."""
+    alpha, Ai = integer_matrix(A)
+    _, (di,) = integer_matrix([list(denominator)])
+    m, power, out = len(denominator) - 1, [[int(i == j) for j in range(len(A))] for i in range(len(A))], []
+    for k in range(m + 1):
+        out.append(_scaled(power, di[k] * alpha ** (m - k)))
+        power = matmul(power, Ai)
     return out

@@ -89,6 +89,8 @@ class Problem:
             self.A = matrix(record["A"], "A")
             self.n = len(self.A)
             require(self.n >= 1 and all(len(r) == self.n for r in self.A), "A is not a nonempty square matrix")
+            require(self.n <= polys.MAX_DEGREE, f"an ellipsoid problem has dimension at most {polys.MAX_DEGREE} "
+                    f"(every condition claim needs n (2s - 1) <= {polys.MAX_DEGREE}), not {self.n}")
             self.Q = matrix(record["Q"], "Q", self.n, self.n)
             require(ellipsoids.is_symmetric(self.Q), "Q is not symmetric")
             require(ellipsoids.psd(self.Q)[1], "Q is not positive definite: {x : x^T Q x <= 1} is no ellipsoid")

@@ -39,6 +39,40 @@ def characteristic_polynomial(M):
     return p[n]
 
 
+def integer_characteristic_polynomial(M):
+    """det(xI - M), low to high, for an integer matrix M: Berkowitz's algorithm,
+    division-free (integer additions and multiplications only, O(n^4)), so it is
+    exact over Z with no fraction and no gcd.  Step k multiplies the characteristic
+    polynomial of the leading k x k block by the Toeplitz matrix with first column
+    1, -a_kk, -R C, -R B C, ..., -R B^(k-1) C (B the block, R its row, C its column)."""
+    p = [1]  # high to low
+    for k in range(len(M)):
+        row, v = M[k][:k], [M[i][k] for i in range(k)]
+        column = [1, -M[k][k]]
+        for _ in range(k):
+            column.append(-sum(r * x for r, x in zip(row, v)))
+            v = [sum(m * x for m, x in zip(M[i][:k], v)) for i in range(k)]
+        p = [sum(column[i - j] * p[j] for j in range(max(0, i - k - 1), min(i, k) + 1)) for i in range(k + 2)]
+    return p[::-1]
+
+
+def integer_determinant(M):
+    """det M for an integer matrix M: Bareiss's fraction-free elimination (every
+    intermediate entry is a minor of M, so each division is exact)."""
+    S, sign, last = [list(r) for r in M], 1, 1
+    n = len(S)
+    for k in range(n):
+        pivot = next((i for i in range(k, n) if S[i][k]), None)
+        if pivot is None:
+            return 0
+        if pivot != k:
+            S[k], S[pivot], sign = S[pivot], S[k], -sign
+        for i in range(k + 1, n):
+            S[i] = [(S[k][k] * S[i][j] - S[i][k] * S[k][j]) // last if j > k else 0 for j in range(n)]
+        last = S[k][k]
+    return sign * last if n else 1
+
+
 def largest_real_root(p):
     """The largest real root of p as a Real, or None if p has none."""
     p = polys.trim(p)

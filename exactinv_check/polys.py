@@ -12,6 +12,7 @@ from .rationals import require
 
 MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 MAX_BISECTIONS = 4000
+STURM_BUDGET = 10**11  # degree^4 * bits^2 of a polynomial to isolate: about seconds of gcd / Sturm work
 
 
 def trim(p):
@@ -215,12 +216,23 @@ def _bounded(p):
     return p
 
 
+def _affordable(ints):
+    """Reject, before any pseudo-remainder sequence, an integer polynomial whose
+    degree^4 * bits^2 (the cost of its gcd or Sturm sequence) is over the budget,
+    whether a certificate wrote it or the kernel built it."""
+    bits = max((abs(c).bit_length() for c in ints), default=0)
+    require((len(ints) - 1) ** 4 * bits ** 2 <= STURM_BUDGET,
+            f"over the kernel's work budget: root isolation of a polynomial of degree {len(ints) - 1} "
+            f"with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
+    return ints
+
+
 def squarefree(p):
     """The squarefree part p / gcd(p, p') as coprime integers, with p's leading sign."""
     a = integer_coefficients(_bounded(trim(p)))
     if len(a) <= 2:
         return a
-    g = _integer_gcd(a, _integer_derivative(a))
+    g = _integer_gcd(_affordable(a), _integer_derivative(a))
     return _exact_quotient(a, g) if len(g) > 1 else a
 
 
@@ -246,7 +258,7 @@ class Sturm:
     """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
 
     def __init__(self, p):
-        a = integer_coefficients(_bounded(p))
+        a = _affordable(integer_coefficients(_bounded(p)))
         self.p = a
         seq = [a, _content_free(_integer_derivative(a))] if len(a) > 1 else [a]
         while len(seq) > 1 and seq[-1]:

@@ -8,9 +8,12 @@ over-long string -- is rejected, so parsing can neither hang nor guess.
 
 import re
 from fractions import Fraction
+from math import gcd
 
 MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
 MAX_DIMENSION = 2000  # bound on every vector and matrix dimension
+WORK_BUDGET = 10**8  # estimated word operations of one exact computation: about seconds of work
+SHOWN_DIGITS = 60  # longer numbers are described by their size in messages
 
 _NUMBER = re.compile(r"[+-]?[0-9]+(?:/[0-9]+|\.[0-9]+)?")
 
@@ -23,6 +26,35 @@ def require(condition, message):
     """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
     if not condition:
         raise CheckFailure(message)
+
+
+def within_budget(cost, what):
+    """Reject (never run) a computation whose estimated cost exceeds WORK_BUDGET:
+    a certificate must not make the kernel work for minutes before its verdict."""
+    require(cost <= WORK_BUDGET, f"over the kernel's work budget: {what} (estimated {cost:.2e} word "
+            f"operations > {WORK_BUDGET:.0e})")
+
+
+def describe(x):
+    """x for a message: in full if short, else by its size ("a 6001-digit integer"),
+    so that a huge exact number never reaches str() (Python limits int -> str)."""
+    if isinstance(x, (int, Fraction)) and not isinstance(x, bool):
+        q = Fraction(x)
+        digits = max(abs(q.numerator).bit_length(), q.denominator.bit_length()) * 30103 // 100000 + 1
+        if digits > SHOWN_DIGITS:
+            kind = "integer" if q.denominator == 1 else "rational"
+            return f"a {digits}-digit {'negative ' if q < 0 else ''}{kind}"
+    return str(x)
+
+
+def integer_matrix(M):
+    """(L, L M) with L > 0 the least common denominator of M's entries: L M is integral,
+    and L M >= 0 iff M >= 0 (a positive factor changes no sign)."""
+    L = 1
+    for row in M:
+        for x in row:
+            L = L * x.denominator // gcd(L, x.denominator)
+    return L, [[x.numerator * (L // x.denominator) for x in row] for row in M]
 
 
 def rational(s, what="number"):

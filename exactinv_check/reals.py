@@ -11,10 +11,10 @@ from fractions import Fraction
 
 from . import polys
 from .polys import evaluate, sign
-from .rationals import CheckFailure, rational, require
+from .rationals import CheckFailure, describe, rational, require
 
 MAX_REFINEMENTS = 20000
-STURM_BUDGET = 10**11  # degree^4 * bits^2 of a certificate's polynomial: about seconds of Sturm work
+STURM_BUDGET = polys.STURM_BUDGET  # degree^4 * bits^2 of a certificate's polynomial: about seconds of Sturm work
 
 
 class Real:
@@ -190,8 +190,8 @@ class Real:
         if self.inf:
             return "oo" if self.inf > 0 else "-oo"
         if self.poly is None:
-            return str(self.q)
-        return f"root of {[str(c) for c in self.poly]} in ({self.lo}, {self.hi})"
+            return describe(self.q)
+        return f"root of {[describe(c) for c in self.poly]} in ({describe(self.lo)}, {describe(self.hi)})"
 
 
 def separate(a, b):

@@ -113,6 +113,9 @@ def psd_polynomials(system: LinearSystem, Q: flint.fmpq_mat, method: Method) -> 
     """([q_1, ..., q_n], D): q_k(h) = e_k(M'(h)) (see the module docstring) and
     D(h) = det h(hA) (the constant 1 for polynomial methods).
 
+    r = 1 (s = 0) gives A_d = I and M = 0 for every h: every q_k is the zero
+    polynomial (no condition), so every h >= 0 is valid.
+
     Forward Euler, A = [[-1, -2], [2, -1]], Q = I: M'(h) = (2 - 5h) I, so
     q_1 = trace = 4 - 10h and q_2 = det = (2 - 5h)^2.
 
@@ -131,6 +134,8 @@ def psd_polynomials(system: LinearSystem, Q: flint.fmpq_mat, method: Method) -> 
     """
     coefficients = coefficient_matrices(system, Q, method)
     n, degree = Q.nrows(), len(coefficients) - 1
+    if not coefficients:
+        return [flint.fmpq_poly([]) for _ in range(n)], flint.fmpq_poly([1])
     points = _points(n * max(degree, len(method.denominator) - 1) + 1)
     rows = []
     for t in points:
