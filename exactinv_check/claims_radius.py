@@ -30,7 +30,7 @@ from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0"}
+           "dominance-at-0", "tie"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
@@ -126,7 +126,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie"},
             "binding belongs to the coefficient reasons only")
     if method.is_polynomial:
         require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
@@ -142,6 +142,19 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(_all_roots_real_positive(den), "h has a root that is not real and positive")
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
+    elif reason == "tie":
+        require(not value.inf, "a tie radius is finite")
+        hint = claim.get("tail_index")
+        hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
+        N = prove_tail(num, den, None, hint, tie=Real.parse(claim["value"], "rho"))
+        K = value.bounds()[1]
+        count = max(N, len(num), len(den), 1)
+        first, _, d = recompute(num, den, count, False, K)
+        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) ends before the tie {value}")
+        rho, rho_attained = value, True
+        how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
+               f"the tail j >= {N} is proved positive on [0, kappa*] with the tied poles at ratio 1, "
+               f"c_0 .. c_{count - 1} recomputed")
     else:
         K = None if value.inf == 1 else value.bounds()[1]
         require(value.inf != -1, "rho >= 0")
@@ -154,7 +167,7 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

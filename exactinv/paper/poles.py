@@ -12,11 +12,13 @@ a linear recurrence with characteristic roots 1/(z_k + kappa).  With p* the smal
 and strictly closer beyond it.  kappa_A = min_k kappa_k is an algebraic number: every kappa_k is a
 root of the *tie polynomial*
 
-    T(kappa) = Res_x(P2_kappa, G_kappa),   G_kappa: roots w_l^2,  P2_kappa: roots w_i w_j (i < j),
+    T(kappa) = Res_x(P2_kappa, G_kappa) Res_x(G_kappa, G_kappa'),   G_kappa: roots w_l^2,
+                                                                     P2_kappa: roots w_i w_j (i < j),
 
-w_l = z_l + kappa the roots of h(w - kappa) (squarefree part); a tie is w_i w_j = |w_i|^2 = w*^2.
-T is never identically 0 ((z_i + kappa)(z_j + kappa) = (z_l + kappa)^2 for all kappa forces
-z_i = z_j = z_l), so kappa_A is isolated exactly among the real roots of T.
+w_l = z_l + kappa the roots of h(w - kappa) (squarefree part).  A tie of a non-real pole is
+w_i w_j = |w_i|^2 = w*^2 (first factor), of a negative real pole w_i^2 = w*^2 (the discriminant of G).
+T is never identically 0 ((z_i + kappa)(z_j + kappa) = (z_l + kappa)^2 or (z_i + kappa)^2 =
+(z_l + kappa)^2 for all kappa force equal poles), so kappa_A is isolated exactly among T's real roots.
 
 Everything here is the engine's (FLINT Arb balls, exact FLINT polynomials); the kernel re-proves it.
 """
@@ -142,7 +144,7 @@ def _tie_value(h: flint.fmpq_poly, kappa: int) -> flint.fmpq:
     pairs = [(s[k - 1] ** 2 - s[2 * k - 1]) / 2 for k in range(1, n2 + 1)]  # power sums of {w_i w_j : i < j}
     P2 = flint.fmpq_poly(_from_power_sums(pairs, n2)) if n2 else flint.fmpq_poly([1])
     G = flint.fmpq_poly(_from_power_sums([s[2 * k - 1] for k in range(1, d + 1)], d))
-    return P2.resultant(G) if n2 else fmpq_of(1)
+    return P2.resultant(G) * G.resultant(G.derivative())
 
 
 def tie_polynomial(h: flint.fmpq_poly) -> flint.fmpq_poly:
@@ -158,7 +160,7 @@ def tie_polynomial(h: flint.fmpq_poly) -> flint.fmpq_poly:
     if d < 2:
         return flint.fmpq_poly([1])
     n2 = d * (d - 1) // 2
-    degree = 2 * n2 * d
+    degree = 2 * n2 * d + 2 * d * (d - 1)
     hq = flint.fmpq_poly(sq)
     points = list(range(degree + 1))
     return interpolate(points, [_tie_value(hq, t) for t in points])
