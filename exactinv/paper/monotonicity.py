@@ -58,6 +58,7 @@ __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
+_MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
 
 
@@ -286,8 +287,9 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
     if tie is not None and positive_tie is None:
-        raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' residues balance "
-                        "p*'s exactly to working precision")
+        raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
+                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
+                        "inequality, and an exact balance needs a finer argument than the tail bound")
     bound = None if tie is None else _short_upper(dyadic_of(tie.kappa.upper()))  # rational K >= the bound
     exact_bound = None
     tied = ()
@@ -300,7 +302,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     for j, d in enumerate(_coefficient_polynomials(method)):
         if N is not None and j >= max(N, first):
             break
-        if j >= _MAX_SCAN:
+        if j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
             return _undecided_scan(method, tie)
         if tie is None and value is None and j == first + len(method.denominator):
             infinite = _infinite_radius_certificate(method, s.balls, s.star)
@@ -336,8 +338,11 @@ def _ambiguous(end, ball: flint.arb) -> bool:
 
 def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
     if tie is None:
-        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN - 1} are nonnegative for "
-                        "every kappa >= 0 and no certificate for the infinite tail (product, termwise) applies")
+        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative "
+                        "for every kappa >= 0 and p* stays the nearest pole for every kappa, but a non-real pole with "
+                        "Re z > p* approaches p*'s distance as kappa -> oo (ratio -> 1), so no tail index is uniform "
+                        "in kappa; rho = oo would need the kappa -> oo asymptotics of c_j(kappa) uniformly in j/kappa "
+                        "(not implemented), and product/termwise certificates need all poles real")
     raise Undecided(f"absolute monotonicity of {method.name}: rho <= kappa_A = {float(tie.kappa.mid()):.6g}, where "
                     f"{len(tie.tied)} other pole(s) reach p*'s distance from -kappa and outweigh it; no c_j with "
                     f"j < {_MAX_SCAN} turns negative below kappa_A.  Deciding this is the positivity problem for a "
