@@ -171,16 +171,16 @@ def _series_at_zero(method: Method, count: int) -> list[Fraction]:
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:
-    """The least j < _WITNESS_SCAN with c_j(0) < 0 (exact FLINT power series, doubling the length)."""
-    g = [fmpq_of(c) for c in method.numerator]
-    h = [fmpq_of(c) for c in method.denominator]
-    n = 32
-    while n <= _WITNESS_SCAN:
-        series = flint.fmpq_series(g, prec=n) / flint.fmpq_series(h, prec=n)
-        for j, c in enumerate(series.coeffs()):
-            if c < 0:
-                return j
-        n *= 2
+    """The least j < _WITNESS_SCAN with c_j(0) < 0 (exact series of g/h at 0, stopping at the first)."""
+    g, h = method.numerator, method.denominator
+    c: list[Fraction] = []
+    for j in range(_WITNESS_SCAN):
+        value = g[j] if j < len(g) else Fraction(0)
+        for i in range(1, min(j, len(h) - 1) + 1):
+            value -= h[i] * c[j - i]
+        if value < 0:
+            return j
+        c.append(value)  # h[0] = 1
     return None
 
 
