@@ -158,18 +158,6 @@ def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
 
 
 # ------------------------------------------------------------- rational case
-def _series_at_zero(method: Method, count: int) -> list[Fraction]:
-    """Taylor coefficients c_0(0), c_1(0), ... of r = g/h at 0 (h(0) = 1)."""
-    g, h = method.numerator, method.denominator
-    c: list[Fraction] = []
-    for j in range(count):
-        value = g[j] if j < len(g) else Fraction(0)
-        for i in range(1, min(j, len(h) - 1) + 1):
-            value -= h[i] * c[j - i]
-        c.append(value)  # h[0] = 1
-    return c
-
-
 def _negative_coefficient_at_zero(method: Method) -> int | None:
     """The least j < _WITNESS_SCAN with c_j(0) < 0 (exact series of g/h at 0, stopping at the first)."""
     g, h = method.numerator, method.denominator
