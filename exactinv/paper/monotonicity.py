@@ -300,11 +300,13 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         if _nonnegative_on(d, bound):
             continue
         end = _first_end(d)
+        if end == INF:
+            continue
         if exact_bound is None and tie is not None and _ambiguous(end, tie.kappa):
             exact_bound = dominance_tie(s, method.h, exact=True).kappa
         if exact_bound is not None and not ExactKey(end) < ExactKey(exact_bound):
             continue
-        if end == INF or exact_bound is None and tie is not None and not flint.arb(fmpq_of(_rational_upper(end))) < tie.kappa:
+        if exact_bound is None and tie is not None and not flint.arb(fmpq_of(_rational_upper(end))) < tie.kappa:
             continue
         if value is None or ExactKey(end) < ExactKey(value):
             value, binding, exact_bound = end, j, end
