@@ -21,16 +21,35 @@ the engine argues in four exact or certified steps:
 2. Let p* be the smallest positive real pole, of multiplicity mu.  Its
    principal part dominates the tail, so it must have the right sign:
    a_mu (-1)^mu > 0 where r ~ a_mu/(z - p*)^mu; otherwise rho = 0 (witness j).
-3. Dominance: another pole z_k closer to -kappa than p* (for kappa above an
-   algebraic bound kappa_A) also violates Pringsheim, so rho <= kappa_A.
-4. On [0, K] with K < kappa_A, an explicit index N (certified by FLINT's Arb
-   ball arithmetic on the partial fraction expansion) bounds where the tail
-   c_j, j >= N, is positive; c_0 .. c_{N-1} are checked exactly.
+3. Dominance: another pole z_k = a + ib (a < p*) is as close to -kappa as p* at
+   kappa_k = (|z_k|^2 - p*^2)/(2(p* - a)) and closer beyond it, which again
+   violates Pringsheim, so rho <= kappa_A = min_k kappa_k.  kappa_A is exact:
+   a root of the tie polynomial (:mod:`exactinv.paper.poles`), an algebraic
+   condition isolated among that polynomial's real roots.
+4. The tail: on [0, K] with K < kappa_A an explicit index N (Arb ball bounds
+   on the partial fraction expansion) bounds where c_j, j >= N, is positive.
+   The scan runs d_0, d_1, ... incrementally (Descartes' rule on [0, K]
+   first, FLINT root isolation only where it is inconclusive); each sign
+   change found below the current K lowers K and with it N.
+5. The tie itself: if no coefficient ends below kappa_A and p* still wins
+   there -- every tied pole has multiplicity < mu, or = mu with
+   sum |b_{k,mu}| < b_{*,mu} -- the dominance bound holds uniformly on
+   [0, kappa_A] with the tied poles at ratio 1, and rho = kappa_A
+   (reason ``"tie"``, attained).  If the tied poles outweigh p*, some c_j
+   turns negative below kappa_A and the scan finds it.
 
+Undecided (documented, never a guess): (a) the tied poles' principal parts
+balance p*'s exactly (sum = b_{*,mu}; e.g. 1/(1 - 2z/3 - z^2/4)), where the
+strict tail bound fails; (b) the tied poles outweigh p* and no c_j with
+j < 600 turns negative below kappa_A -- for one dominant pair this happens
+only if its argument is a rational multiple of pi, and for several tied
+pairs it is the positivity problem of linear recurrences with several
+dominant characteristic roots, open in general; (c) no pole ever gets as
+close as p* but a non-real pole with Re z > p* approaches p*'s distance as
+kappa -> oo (e.g. 1/(1 - z + z^2/4 - z^3/40)): no tail index is uniform in
+kappa, and rho = oo would need the kappa -> oo asymptotics of c_j(kappa).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
-records the argument.  Where the argument cannot decide (rho would be limited
-by a tie between two poles), :class:`~exactinv.Undecided` is raised rather
-than a guess.
+records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
 
 from __future__ import annotations
