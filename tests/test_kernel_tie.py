@@ -6,7 +6,6 @@ import copy
 import json
 from fractions import Fraction
 
-import flint
 import pytest
 
 import exactinv as ei

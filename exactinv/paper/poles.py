@@ -43,7 +43,12 @@ _MAX_INDEX = 1 << 20
 
 
 class precision:
-    """Arb working precision (bits) inside a ``with`` block."""
+    """Arb working precision (bits) inside a ``with`` block.
+
+    >>> with precision(100):
+    ...     flint.ctx.prec
+    100
+    """
 
     def __init__(self, bits: int):
         self.bits = bits
@@ -194,7 +199,17 @@ def _tie_balls(s: PoleStructure) -> list:
 def dominance_tie(s: PoleStructure, h: flint.fmpq_poly, exact: bool = True) -> Tie | None:
     """kappa_A = min kappa_k and the tied poles; None when no pole ever gets as close to -kappa as p*.
     ``exact``: kappa_A as the root of :func:`tie_polynomial` (else an Arb ball).  Undecided when the
-    balls cannot be separated."""
+    balls cannot be separated.
+
+    >>> from fractions import Fraction as F
+    >>> from exactinv.model.methods import pade
+    >>> m = pade(2, 3)                     # Radau IIA 3: p* = 3.6378..., a complex pair
+    >>> p = RealAlgebraic.from_isolating_interval([-60, 36, -9, 1], F(36, 10), F(37, 10))
+    >>> with precision(256):
+    ...     tie = dominance_tie(pole_structure(m.numerator, m.denominator, p), m.h)
+    >>> tie.kappa.poly, len(tie.tied)      # kappa_A: the root of 2k^3 + 9k^2 - 36 near 1.703
+    (2*x^3 + 9*x^2 + (-36), 2)
+    """
     values = _tie_balls(s)
     if not values:
         return None
@@ -230,7 +245,13 @@ def _ratio_bound(z: flint.acb, p: flint.arb, K: Fraction) -> flint.arb:
 def tail_index(s: PoleStructure, K: Fraction, first: int, tied: tuple = ()) -> int:
     """An index N >= first with c_j(kappa) > 0 for all j >= N and kappa in [0, K] (the kernel's
     dominance bound, exactinv_check.tail).  Poles in ``tied`` are at most as close as p* on [0, K]
-    (K <= kappa_A): they enter with ratio Q = 1 and must have multiplicity <= mu."""
+    (K <= kappa_A): they enter with ratio Q = 1 and must have multiplicity <= mu.
+
+    >>> from fractions import Fraction as F
+    >>> with precision(128):                # trapezoid: one pole, c_j > 0 for j >= 1 on [0, 2]
+    ...     tail_index(pole_structure([F(1), F(1, 2)], [F(1), F(-1, 2)], F(2)), F(2), first=1)
+    1
+    """
     z_star, mu, b_star = s.balls[s.star]
     p = z_star.real
     b_mu = b_star[mu - 1].real
