@@ -102,3 +102,24 @@ def test_a_tie_on_a_method_with_only_real_positive_poles_is_rejected():
     for key in ("binding", "d"):
         claim.pop(key, None)
     _rejected(cert)
+
+
+# ------------------------------------------------------- the recomputation's filter and guard (claims_radius)
+@pytest.mark.parametrize("value", ["1/2", "11957/10000", "2"])
+def test_a_moved_coefficient_radius_is_rejected(value):
+    """Pade(0,3): rho = 0.58446...  Below it (1/2) every d_j is positive on (0, K] and is set aside, so only
+    the guard 2K + 1 - kappa is left, beyond K: rejected.  Above it the binding d_j ends first: rejected."""
+    cert = _cert(M.pade(0, 3))
+    claim = cert["claims"][0]
+    claim.pop("d", None)
+    claim["value"] = value
+    _rejected(cert)
+
+
+def test_the_guard_never_stands_in_for_rho():
+    """A claimed rho = 0 with K = 0 for Pade(1,1) (true rho = 2) is rejected: nothing is set aside at K = 0."""
+    cert = _cert(M.trapezoid())
+    claim = cert["claims"][0]
+    claim.update(value="0", binding=None)
+    claim.pop("d", None)
+    _rejected(cert)
