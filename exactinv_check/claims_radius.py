@@ -30,7 +30,7 @@ from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0"}
+           "dominance-at-0", "tie"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
@@ -87,10 +87,23 @@ def _all_roots_real_positive(h):
     return total == len(p) - 1
 
 
-def recompute(num, den, count, K_is_infinite):
-    """(rho, attained, ends) from d_0 .. d_{count-1} and the poles on the negative axis."""
+def _positive_up_to(p, K):
+    """True proves p > 0 on (0, K] (its first end lies beyond K): positive right of 0 and at K, and no
+    root in (0, K) by Descartes' rule.  False says nothing."""
+    return polys.sign_right_of(p, Fraction(0)) > 0 and polys.sign_at(polys.integer_coefficients(p), K) > 0 \
+        and polys.no_root_in(p, K, depth=1)
+
+
+def recompute(num, den, count, K_is_infinite, K=None):
+    """(rho, attained, ends) from d_0 .. d_{count-1} and the poles on the negative axis.  With a finite K
+    the caller requires rho <= K: d_j proved positive on (0, K] cannot end the interval first and are set
+    aside, and a guard 2K + 1 - kappa (ending beyond K) bounds the root isolation of the others."""
     d = d_polynomials(num, den, count)
-    rho, _ = first_end([Fraction(1)], [p for p in d if p], [])
+    live = [p for p in d if p]
+    if K is not None:
+        guard = [2 * K + 1, Fraction(-1)]
+        live = [guard] + [p for p in live if not (K > 0 and _positive_up_to(p, K))]
+    rho, _ = first_end([Fraction(1)], live, [], first=live[:1] if K is not None else ())
     attained = True
     if rho.is_zero():  # kappa = 0 is admissible iff every c_j(0) >= 0
         attained = all(polys.evaluate(p, Fraction(0)) >= 0 for p in d)
@@ -113,7 +126,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie"},
             "binding belongs to the coefficient reasons only")
     if method.is_polynomial:
         require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
@@ -129,6 +142,19 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(_all_roots_real_positive(den), "h has a root that is not real and positive")
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
+    elif reason == "tie":
+        require(not value.inf, "a tie radius is finite")
+        hint = claim.get("tail_index")
+        hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
+        N = prove_tail(num, den, None, hint, tie=Real.parse(claim["value"], "rho"))
+        K = value.bounds()[1]
+        count = max(N, len(num), len(den), 1)
+        first, _, d = recompute(num, den, count, False, K)
+        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) ends before the tie {value}")
+        rho, rho_attained = value, True
+        how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
+               f"the tail j >= {N} is proved positive on [0, kappa*] with the tied poles at ratio 1, "
+               f"c_0 .. c_{count - 1} recomputed")
     else:
         K = None if value.inf == 1 else value.bounds()[1]
         require(value.inf != -1, "rho >= 0")
@@ -136,12 +162,12 @@ def absolute_monotonicity_radius(problem, claim, context):
         hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
         N = prove_tail(num, den, K, hint)
         count = max(N, len(num), len(den), 1)
-        rho, rho_attained, d = recompute(num, den, count, K is None)
+        rho, rho_attained, d = recompute(num, den, count, K is None, K)
         require(K is None and rho.inf == 1 or K is not None and rho.compare(Real.rational(K)) <= 0,
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")
@@ -151,7 +177,8 @@ def absolute_monotonicity_radius(problem, claim, context):
             require(polys.trim(vector(dj, f"d_{j}")) == d[j], f"d_{j} does not match r")
     if claim.get("binding") is not None and d:
         j = integer(claim["binding"], "binding", 0, len(d))
-        end, _ = first_end([Fraction(1)], [d[j]] if d[j] else [], [])
+        guard = [] if rho.inf else [[2 * rho.bounds()[1] + 1, Fraction(-1)]]  # bounds the isolation
+        end, _ = first_end([Fraction(1)], guard + ([d[j]] if d[j] else []), [], first=guard)
         require(end.compare(rho) == 0, f"c_{j} does not end the interval at rho")
     if claim.get("pole") is not None:
         pole = smallest_positive_root(den)

@@ -43,6 +43,7 @@ from math import ceil, comb, isqrt
 from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
     primitive, sign, squarefree, sub, trim
 from .rationals import CheckFailure, require
+from .tie import kappa_enclosure, tie_interval
 
 MAX_INDEX = 1 << 20  # the largest tail index the kernel will certify
 MAX_REFINE = 2000  # bisections when separating a real pole from other roots
@@ -50,9 +51,12 @@ PREC = 128  # bits kept in the centres of the disk arithmetic
 MAX_WEIERSTRASS = 40  # refinement steps of the root approximations
 
 
-def prove_tail(numerator, denominator, K, N_hint=0):
+def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
     """An int N >= N_hint with c_j(kappa) > 0 for all kappa in [0, K] (K None: [0, oo)) and all j >= N
-    (the least such index the certificate proves); CheckFailure when no certificate applies."""
+    (the least such index the certificate proves); CheckFailure when no certificate applies.
+    With ``tie`` (a Real kappa*, claimed to be the first kappa where another pole is as close to -kappa
+    as p*): the range is [0, kappa*] instead, K is ignored, and the poles whose tie is proved to be
+    kappa* (module tie) enter the dominance bound with ratio Q = 1."""
     exact = all(isinstance(c, (int, Fraction)) and not isinstance(c, bool) for c in [*numerator, *denominator])
     require(exact, "tail: coefficients must be exact rationals (int or Fraction)")
     g = [Fraction(c) for c in trim(numerator)]
@@ -75,6 +79,9 @@ def prove_tail(numerator, denominator, K, N_hint=0):
     require(signs[mu - 1] > 0, f"tail: the principal part at the smallest positive pole p* has the wrong sign "
                                f"(b_mu = (-1)^mu a_mu < 0, mu = {mu})")
     first = max(len(g) - len(h) + 1, 0)  # (E) holds for j > deg q = deg g - deg h
+    if tie is not None:
+        lo, hi = tie_interval(h, tie)
+        return _dominance(g, h, factors, f_star, mu, poles[0], hi, max(N_hint, first), (lo, hi))
     if len(poles) == len(squarefree(h)) - 1:  # every pole is real and positive
         if len(g) == 1:
             return max(N_hint, 0)  # product certificate
@@ -359,8 +366,11 @@ def _pow_up(Q, n):
     return result
 
 
-def _dominance(g, h, factors, f_star, mu, iv, K, first):
-    """The least N >= first with B(N) < b_{*,mu} (module docstring, dominance), or CheckFailure."""
+def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
+    """The least N >= first with B(N) < b_{*,mu} (module docstring, dominance), or CheckFailure.
+    ``tie`` = (lo, hi) isolating kappa* among the roots of the tie polynomial (K = hi): a pole whose
+    kappa_z enclosure lies in (lo, hi) has kappa_z = kappa*, so p* + kappa <= |z + kappa| on [0, kappa*]
+    and it enters with Q = 1 (multiplicity <= mu required); at least one pole must be tied."""
     disks = {id(f): _disks(f) for f, _ in factors}
     lo, hi = iv
     for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
@@ -381,13 +391,19 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first):
     b_mu = star[mu - 1][0] - star[mu - 1][2]  # b_{*,mu} is real: a lower bound
     require(b_mu > 0, "tail: the dominant principal part could not be bounded away from 0")
     D_hi = P_hi + K
-    others = []
+    others, tied = [], 0
     for f, M in factors:
         for k, z in enumerate(disks[id(f)]):
             if f is f_star and k == hits[0]:
                 continue
-            Q = _ratio_bound(z, P_hi, K)
+            enclosure = kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) if tie else None
+            if enclosure and tie[0] < enclosure[0] and enclosure[1] < tie[1]:
+                require(M <= mu, "tie: a tied pole has a higher multiplicity than p*; p* does not dominate")
+                Q, tied = Fraction(1), tied + 1
+            else:
+                Q = _ratio_bound(z, P_hi, K)
             others.append((Q, M, [_absup(b) for b in _b_balls(g, h, M, z)]))
+    require(tie is None or tied > 0, "tie: no pole is proved to reach p*'s distance at the claimed kappa*")
     start = first
     for Q, M, _ in others:
         if M > mu:

@@ -21,16 +21,35 @@ the engine argues in four exact or certified steps:
 2. Let p* be the smallest positive real pole, of multiplicity mu.  Its
    principal part dominates the tail, so it must have the right sign:
    a_mu (-1)^mu > 0 where r ~ a_mu/(z - p*)^mu; otherwise rho = 0 (witness j).
-3. Dominance: another pole z_k closer to -kappa than p* (for kappa above an
-   algebraic bound kappa_A) also violates Pringsheim, so rho <= kappa_A.
-4. On [0, K] with K < kappa_A, an explicit index N (certified by FLINT's Arb
-   ball arithmetic on the partial fraction expansion) bounds where the tail
-   c_j, j >= N, is positive; c_0 .. c_{N-1} are checked exactly.
+3. Dominance: another pole z_k = a + ib (a < p*) is as close to -kappa as p* at
+   kappa_k = (|z_k|^2 - p*^2)/(2(p* - a)) and closer beyond it, which again
+   violates Pringsheim, so rho <= kappa_A = min_k kappa_k.  kappa_A is exact:
+   a root of the tie polynomial (:mod:`exactinv.paper.poles`), an algebraic
+   condition isolated among that polynomial's real roots.
+4. The tail: on [0, K] with K < kappa_A an explicit index N (Arb ball bounds
+   on the partial fraction expansion) bounds where c_j, j >= N, is positive.
+   The scan runs d_0, d_1, ... incrementally (Descartes' rule on [0, K]
+   first, FLINT root isolation only where it is inconclusive); each sign
+   change found below the current K lowers K and with it N.
+5. The tie itself: if no coefficient ends below kappa_A and p* still wins
+   there -- every tied pole has multiplicity < mu, or = mu with
+   sum |b_{k,mu}| < b_{*,mu} -- the dominance bound holds uniformly on
+   [0, kappa_A] with the tied poles at ratio 1, and rho = kappa_A
+   (reason ``"tie"``, attained).  If the tied poles outweigh p*, some c_j
+   turns negative below kappa_A and the scan finds it.
 
+Undecided (documented, never a guess): (a) the tied poles' principal parts
+balance p*'s exactly (sum = b_{*,mu}; e.g. 1/(1 - 2z/3 - z^2/4)), where the
+strict tail bound fails; (b) the tied poles outweigh p* and no c_j with
+j < 600 turns negative below kappa_A -- for one dominant pair this happens
+only if its argument is a rational multiple of pi, and for several tied
+pairs it is the positivity problem of linear recurrences with several
+dominant characteristic roots, open in general; (c) no pole ever gets as
+close as p* but a non-real pole with Re z > p* approaches p*'s distance as
+kappa -> oo (e.g. 1/(1 - z + z^2/4 - z^3/40)): no tail index is uniform in
+kappa, and rho = oo would need the kappa -> oo asymptotics of c_j(kappa).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
-records the argument.  Where the argument cannot decide (rho would be limited
-by a tie between two poles), :class:`~exactinv.Undecided` is raised rather
-than a guess.
+records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
 
 from __future__ import annotations
@@ -44,7 +63,7 @@ import flint
 from ..core.algebraic import ExactKey, Real, RealAlgebraic
 from ..core.encode import encode_real, envelope
 from ..core.latex import latex_real, latex_text
-from ..core.polys import count_real_roots, integer_part, sign_at
+from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until, real_roots
 from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
@@ -52,11 +71,14 @@ from ..errors import Undecided
 from ..model.methods import Method
 from ..model.record import method_record
 from ..model.validate import check_method
+from .poles import dominance_tie, pole_structure, precision, tail_index
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
-_MAX_COEFFICIENTS = 64  # coefficients tried below a dominance bound
+_MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
+_MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
+_BITS = 256  # Arb working precision
 
 
 @dataclass(frozen=True)
@@ -155,22 +177,17 @@ def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
 
 
 # ------------------------------------------------------------- rational case
-def _series_at_zero(method: Method, count: int) -> list[Fraction]:
-    """Taylor coefficients c_0(0), c_1(0), ... of r = g/h at 0 (h(0) = 1)."""
+def _negative_coefficient_at_zero(method: Method) -> int | None:
+    """The least j < _WITNESS_SCAN with c_j(0) < 0 (exact series of g/h at 0, stopping at the first)."""
     g, h = method.numerator, method.denominator
     c: list[Fraction] = []
-    for j in range(count):
+    for j in range(_WITNESS_SCAN):
         value = g[j] if j < len(g) else Fraction(0)
         for i in range(1, min(j, len(h) - 1) + 1):
             value -= h[i] * c[j - i]
-        c.append(value)  # h[0] = 1
-    return c
-
-
-def _negative_coefficient_at_zero(method: Method) -> int | None:
-    for j, c in enumerate(_series_at_zero(method, _WITNESS_SCAN)):
-        if c < 0:
+        if value < 0:
             return j
+        c.append(value)  # h[0] = 1
     return None
 
 
@@ -195,232 +212,172 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
     return sign_at(q, alpha.lower) * (1 if p.numer().leading_coefficient() * q.leading_coefficient() > 0 else -1)
 
 
+def _coefficient_polynomials(method: Method):
+    """d_0, d_1, ... incrementally (the recurrence of :func:`taylor_coefficient_polynomials`)."""
+    kappa = flint.fmpq_poly([0, 1])
+
+    def shifted(coeffs):
+        return [sum((flint.fmpq_poly([fmpq_of(coeffs[k] * comb(k, i))]) * (-kappa) ** (k - i)
+                     for k in range(i, len(coeffs))), flint.fmpq_poly([0])) for i in range(len(coeffs))]
+
+    G, Hs = shifted(method.numerator), shifted(method.denominator)
+    d, powers, j = [], [flint.fmpq_poly([1])], 0
+    while True:
+        while len(powers) <= j:
+            powers.append(powers[-1] * Hs[0])
+        value = (G[j] if j < len(G) else flint.fmpq_poly([0])) * powers[j]
+        for i in range(1, min(j, len(Hs) - 1) + 1):
+            value -= Hs[i] * d[j - i] * powers[i - 1]
+        d.append(value)
+        yield value
+        j += 1
+
+
+def _nonnegative_on(d: flint.fmpq_poly, K: Fraction | None) -> bool:
+    """True proves d >= 0 on [0, K] ([0, oo) for None): positive right of 0 and, by Descartes' rule,
+    no root in (0, K).  False means: not proved (the caller then locates the sign change exactly)."""
+    if d.is_zero():
+        return True
+    if sign_right_of(d, Fraction(0)) < 0:
+        return False
+    if K is None:
+        return sign_variations(d.coeffs()) == 0
+    return K == 0 or no_root_between(d, Fraction(0), K)
+
+
+def _first_end(d: flint.fmpq_poly) -> Real:
+    """sup{T : d >= 0 on [0, T]} (d >= 0 just right of 0 or not): 0, INF or the least positive root of
+    odd multiplicity -- FLINT's squarefree factorisation and certified (Arb) root isolation."""
+    if sign_right_of(d, Fraction(0)) < 0:
+        return Fraction(0)
+    _, parts = integer_part(d).factor_squarefree()
+    odd = [p for p, m in parts if m % 2]
+    roots = [r for p in odd for r, _ in real_roots(flint.fmpq_poly(p)) if r > 0]
+    return min(roots, key=ExactKey) if roots else INF
+
+
 def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
-    g, h = method.g, method.h
-    poles = real_roots(h)
-    positive = [(z, m) for z, m in poles if z > 0]
+    h = method.h
+    positive = [(z, m) for z, m in real_roots(h) if z > 0]
     if not positive:
         return _zero_radius(method, "no-positive-pole")
     p_star, mu = positive[0]
-    # sign of a_mu = mu! g(p*)/h^(mu)(p*);  need a_mu (-1)^mu > 0
     h_mu = h
     for _ in range(mu):
         h_mu = h_mu.derivative()
-    lead_sign = _sign_at_real(g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu
-    if lead_sign <= 0:
+    if _sign_at_real(method.g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu <= 0:
         return _zero_radius(method, "principal-part-sign", p_star)
-
-    with _precision(256):
-        balls = _pole_balls(method)
-        star = _star_ball(balls, p_star)
-        kappa_A = _dominance_bound(balls, star)  # arb upper bound on rho, or None (no limit)
-        if kappa_A is not None and not kappa_A > 0:
+    with precision(_BITS):
+        s = pole_structure(method.numerator, method.denominator, p_star)
+        tie = dominance_tie(s, h, exact=False)
+        if tie is not None and tie.kappa < 0:
             return _zero_radius(method, "dominance-at-0", p_star)
-
-        count = len(method.numerator) + len(method.denominator) + 2
-        while True:
-            d = taylor_coefficient_polynomials(method, count)
-            ends = [nonnegative_until(p) for p in d]
-            candidate = min(ends, key=ExactKey)
-            if kappa_A is None:
-                if candidate == INF:
-                    infinite = _infinite_radius_certificate(method, balls, star)
-                    if infinite is None:
-                        raise Undecided(f"absolute monotonicity of {method.name}: c_0..c_{count - 1} are nonnegative "
-                                        "for every kappa, but no certificate for the infinite tail applies")
-                    return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
-                break
-            if candidate != INF and _certainly_below(candidate, kappa_A):
-                break
-            if count >= _MAX_COEFFICIENTS:
-                raise Undecided(f"absolute monotonicity of {method.name}: rho is limited by a pole as close to "
-                                "-rho as p* (kappa_A); no coefficient sign change below kappa_A was found")
-            count *= 2
-        K = _rational_upper(candidate)
-        N = _tail_index(balls, star, K, first=max(len(method.numerator) - len(method.denominator) + 1, 1))
-        if N > count:
-            d = taylor_coefficient_polynomials(method, N)
-            ends += [nonnegative_until(p) for p in d[count:]]
-            candidate = min(ends, key=ExactKey)
-    binding = next(j for j, e in enumerate(ends) if e == candidate)
-    coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d[: max(N, binding + 1)])
-    attained = candidate != 0 or all(p(0) >= 0 for p in d)
-    return AbsoluteMonotonicityRadius(candidate, attained, "coefficient", method, binding, tail_index=N, pole=p_star,
-                                      coefficients=coeffs)
+        return _decide(method, s, tie, p_star)
 
 
-class _precision:
-    def __init__(self, bits):
-        self.bits = bits
+def _tie_positive(s, tie) -> bool | None:
+    """At kappa_A, does p* still win?  True: every tied pole has multiplicity < mu, or = mu with
+    sum |b_{k,mu}| < b_{*,mu}; False: it loses (a tied pole dominates, so c_j(kappa_A) < 0 for some j
+    when the tied poles are one non-real pair or a negative real pole); None: not separated."""
+    mu, b_mu = s.mu, s.balls[s.star][2][s.mu - 1].real
+    if any(s.balls[k][1] > mu for k in tie.tied):
+        return False
+    total = sum((abs(s.balls[k][2][mu - 1]) for k in tie.tied if s.balls[k][1] == mu), flint.arb(0))
+    if total < b_mu:
+        return True
+    return False if total > b_mu else None
 
-    def __enter__(self):
-        self.saved = flint.ctx.prec
-        flint.ctx.prec = self.bits
 
-    def __exit__(self, *exc):
-        flint.ctx.prec = self.saved
+def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
+    """Scan d_0, d_1, ... for the first end of nonnegativity below the current bound K (Descartes on
+    [0, K] first, exact location only when it fails), with the tail index N bounded before the scan."""
+    first = max(len(method.numerator) - len(method.denominator) + 1, 1)
+    positive_tie = None if tie is None else _tie_positive(s, tie)
+    if tie is not None and positive_tie is None:
+        raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
+                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
+                        "inequality, and an exact balance needs a finer argument than the tail bound")
+    bound = None if tie is None else _short_upper(dyadic_of(tie.kappa.upper()))  # rational K >= the bound
+    exact_bound = None
+    tied = ()
+    N = None
+    if positive_tie:
+        exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        bound, tied = _short_upper(exact_bound), tie.tied
+        N = tail_index(s, bound, first, tied)
+    value, binding, ds = None, None, []
+    for j, d in enumerate(_coefficient_polynomials(method)):
+        if N is not None and j >= max(N, first):
+            break
+        if j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
+            return _undecided_scan(method, tie)
+        if tie is None and value is None and j == first + len(method.denominator):
+            infinite = _infinite_radius_certificate(method, s.balls, s.star)
+            if infinite is not None:
+                return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        ds.append(d)
+        if _nonnegative_on(d, bound):
+            continue
+        end = _first_end(d)
+        if end == INF:
+            continue
+        if exact_bound is None and tie is not None and _ambiguous(end, tie.kappa):
+            exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        if exact_bound is not None and not ExactKey(end) < ExactKey(exact_bound):
+            continue
+        if exact_bound is None and tie is not None and not flint.arb(fmpq_of(_rational_upper(end))) < tie.kappa:
+            continue
+        if value is None or ExactKey(end) < ExactKey(value):
+            value, binding, exact_bound = end, j, end
+            bound, tied = _short_upper(end), ()
+            N = tail_index(s, bound, first)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N)
 
 
-def _certainly_below(v, bound: flint.arb) -> bool:
-    """v < bound, certified; refines an algebraic v's enclosure if needed."""
-    for _ in range(12):
-        if flint.arb(fmpq_of(_rational_upper(v))) < bound:
-            return True
-        if not isinstance(v, RealAlgebraic) or not flint.arb(fmpq_of(v.lower)) < bound:
+def _ambiguous(end, ball: flint.arb) -> bool:
+    """Is end < kappa_A (an Arb ball) undecided after refining end's enclosure?"""
+    for bits in (0, 32, 64, 128, 256, 512):
+        if bits and isinstance(end, RealAlgebraic):
+            end.refine(bits)
+        lo, hi = (end.lower, end.upper) if isinstance(end, RealAlgebraic) else (end, end)
+        if flint.arb(fmpq_of(hi)) < ball or flint.arb(fmpq_of(lo)) > ball:
             return False
-        v.refine(2 * max(64, (v.upper - v.lower).denominator.bit_length()))
-    return False
+    return True
+
+
+def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
+    if tie is None:
+        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative "
+                        "for every kappa >= 0 and p* stays the nearest pole for every kappa, but a non-real pole with "
+                        "Re z > p* approaches p*'s distance as kappa -> oo (ratio -> 1), so no tail index is uniform "
+                        "in kappa; rho = oo would need the kappa -> oo asymptotics of c_j(kappa) uniformly in j/kappa "
+                        "(not implemented), and product/termwise certificates need all poles real")
+    raise Undecided(f"absolute monotonicity of {method.name}: rho <= kappa_A = {float(tie.kappa.mid()):.6g}, where "
+                    f"{len(tie.tied)} other pole(s) reach p*'s distance from -kappa and outweigh it; no c_j with "
+                    f"j < {_MAX_SCAN} turns negative below kappa_A.  Deciding this is the positivity problem for a "
+                    "linear recurrence with several dominant characteristic roots (open in general)")
+
+
+def _finish(method, kappa_A, p_star, value, binding, ds, N) -> AbsoluteMonotonicityRadius:
+    if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
+        return AbsoluteMonotonicityRadius(kappa_A, True, "tie", method, tail_index=N, pole=p_star)
+    attained = value != 0 or all(p(0) >= 0 for p in ds)
+    coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
+    return AbsoluteMonotonicityRadius(value, attained, "coefficient", method, binding, tail_index=N, pole=p_star,
+                                      coefficients=coeffs)
 
 
 def _rational_upper(v) -> Fraction:
     return v.upper if isinstance(v, RealAlgebraic) else v
 
 
-def _taylor_at(coeffs: list[flint.acb], z: flint.acb) -> list[flint.acb]:
-    """p(z + w) = sum_j t_j w^j: the Taylor coefficients t_j = p^(j)(z)/j! (repeated Horner)."""
-    c = list(coeffs)
-    d = len(c) - 1
-    for i in range(d):
-        for k in range(d - 1, i - 1, -1):
-            c[k] = c[k] + z * c[k + 1]
-    return c
-
-
-def _acb(q: Fraction) -> flint.acb:
-    return flint.acb(flint.arb(fmpq_of(q)))
-
-
-def _pole_balls(method: Method) -> list[tuple[flint.acb, int, list[flint.acb]]]:
-    """Every pole z_k of r = g/h (an Arb ball), its multiplicity M and the
-    coefficients b_{k,m} = a_{k,m} (-1)^m (m = 1..M) of the partial fraction
-    expansion r = q + sum_k sum_m a_{k,m}/(z - z_k)^m (certified balls)."""
-    g = [_acb(c) for c in method.numerator]
-    h = [_acb(c) for c in method.denominator]
-    _, factors = integer_part(method.h).factor()
-    out = []
-    for p, M in factors:
-        for z, _ in p.complex_roots():
-            tg = _taylor_at(g, z)
-            th = _taylor_at(h, z)[M:]  # the first M coefficients vanish exactly
-            if th[0].contains(0):
-                raise Undecided("a pole's leading Taylor coefficient could not be separated from 0")
-            # phi = G/H~ as a power series to order M;  a_{k,m} = [w^(M-m)] phi
-            phi = []
-            for i in range(M):
-                acc = tg[i] if i < len(tg) else flint.acb(0)
-                for t in range(1, i + 1):
-                    if t < len(th):
-                        acc -= th[t] * phi[i - t]
-                phi.append(acc / th[0])
-            b = [phi[M - m] * (-1) ** m for m in range(1, M + 1)]
-            out.append((z, int(M), b))
-    return out
-
-
-def _star_ball(balls, p_star) -> int:
-    """The index of the ball that holds the exact pole p*."""
-    lo, hi = (p_star.lower, p_star.upper) if isinstance(p_star, RealAlgebraic) else (p_star, p_star)
-    for k, (z, _, _) in enumerate(balls):
-        if z.imag.is_zero() and dyadic_of(z.real.lower()) <= hi and lo <= dyadic_of(z.real.upper()):
-            return k
-    raise Undecided("could not match the smallest positive pole to its Arb enclosure")
-
-
-def _dominance_bound(balls, star):
-    """An Arb enclosure of kappa_A: the largest kappa for which p* is still
-    (weakly) the nearest pole to -kappa; None when no pole ever gets closer."""
-    p = balls[star][0].real
-    bound = None
-    for k, (z, M, _) in enumerate(balls):
-        if k == star:
-            continue
-        a, b = z.real, z.imag
-        if b.is_zero() and a > 0:
-            continue  # a farther positive real pole is never closer
-        if not (a < p):
-            if b.is_zero() or a > p:
-                continue
-            raise Undecided("a pole has the same real part as p*; dominance not decided")
-        value = (a * a + b * b - p * p) / (2 * (p - a))
-        bound = value if bound is None else _arb_min(bound, value)
-    return bound
-
-
-def _arb_min(x, y):
-    if x < y:
-        return x
-    if y < x:
-        return y
-    return flint.arb.union(x, y) if hasattr(flint.arb, "union") else x.union(y)
-
-
-def _tail_index(balls, star, K: Fraction, first: int) -> int:
-    """An index N >= first with c_j(kappa) > 0 for all j >= N and all kappa in [0, K].
-
-    Dividing c_j by its dominant term b_mu C(j+mu-1, mu-1) D^-(mu+j) (D = p* + kappa)
-    leaves b_mu + E_j(kappa) with
-    |E_j| <= sum_{m<mu} |b_{*,m}| R_m(j) D^(mu-m) + sum_{k != *} sum_m |b_{k,m}| R_m(j) D^(mu-m) Q_k^(m+j),
-    R_m(j) = C(j+m-1, m-1)/C(j+mu-1, mu-1) and Q_k >= D/|z_k + kappa| on [0, K].
-    R_m(j+1)/R_m(j) = (j+m)/(j+mu), so each term is nonincreasing in j once
-    j >= (m Q_k - mu)/(1 - Q_k); N is the first such index with E_N < b_mu."""
-    z_star, mu, b_star = balls[star]
-    p = z_star.real
-    b_mu = b_star[mu - 1].real
-    if not b_mu > 0:
-        raise Undecided("the dominant principal part could not be certified positive")
-    Kq = flint.arb(fmpq_of(K))
-    D_max = p + Kq
-    others = []
-    for k, (z, M, b) in enumerate(balls):
-        if k == star:
-            continue
-        Q = _ratio_bound(z, p, K)
-        if not Q < 1:
-            raise Undecided("the tail bound needs p* to dominate every other pole on [0, rho]; "
-                            "a pole is (nearly) as close as p*")
-        others.append((Q, M, [abs(v) for v in b]))
-    start = max(first, 1)
-    for Q, M, _ in others:
-        for m in range(mu + 1, M + 1):
-            need = (m * Q - mu) / (1 - Q)
-            while not flint.arb(start) >= need:
-                start *= 2
-    N = start
-    while True:
-        E = flint.arb(0)
-        for m in range(1, mu):
-            E += abs(b_star[m - 1]) * _R(N, m, mu) * D_max ** (mu - m)
-        for Q, M, b in others:
-            for m in range(1, M + 1):
-                scale = D_max ** (mu - m) if mu >= m else p ** (mu - m)
-                E += b[m - 1] * _R(N, m, mu) * scale * Q ** (m + N)
-        if E < b_mu:
-            return N
-        N *= 2
-        if N > 1 << 20:
-            raise Undecided("no tail index below 2^20 could be certified")
-
-
-def _R(j: int, m: int, mu: int) -> flint.arb:
-    return flint.arb(fmpq_of(Fraction(comb(j + m - 1, m - 1), comb(j + mu - 1, mu - 1))))
-
-
-def _ratio_bound(z: flint.acb, p: flint.arb, K: Fraction, pieces: int = 64) -> flint.arb:
-    """An upper bound of (p + kappa)/|z + kappa| over kappa in [0, K] (Arb, by subdivision)."""
-    best = flint.arb(0)
-    for t in range(pieces):
-        lo, hi = K * t / pieces, K * (t + 1) / pieces
-        kappa = flint.arb(fmpq_of((lo + hi) / 2), fmpq_of((hi - lo) / 2))
-        distance = abs(z + flint.acb(kappa))
-        ratio = (p + flint.arb(fmpq_of(hi))) / distance
-        best = _arb_max(best, ratio)
-    return best
-
-
-def _arb_max(x: flint.arb, y: flint.arb) -> flint.arb:
-    """An arb whose every point is >= every point of x and of y."""
-    hi = x.upper() if x.upper() > y.upper() else y.upper()
-    return flint.arb(hi)
+def _short_upper(v, bits: int = 48) -> Fraction:
+    """A short dyadic >= v (>= 0): Descartes tests on [0, K] stay cheap with a short K."""
+    q = _rational_upper(v)
+    if q <= 0:
+        return Fraction(0) if q == 0 else q
+    scale = 1 << max(0, bits - max(q.numerator.bit_length() - q.denominator.bit_length(), 0))
+    return Fraction(-((-q.numerator * scale) // q.denominator), scale)
 
 
 def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
@@ -429,8 +386,7 @@ def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
                     so the product is absolutely monotonic on (-oo, 0]);
     ``termwise`` -- deg g <= deg h, all poles real and positive and every
                     b_{k,m} > 0: each c_j, j >= 1, is a sum of positive terms."""
-    real_positive = all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls)
-    if not real_positive:
+    if not all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls):
         return None
     if len(method.numerator) == 1:
         return "product"

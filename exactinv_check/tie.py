@@ -1,0 +1,115 @@
+"""Equal-modulus ties between the poles of r seen from -kappa -- located exactly.
+
+With p* the smallest positive pole, another pole z = a + ib with a < p* is exactly as far from -kappa as p* at
+    kappa_z = (a^2 + b^2 - p*^2) / (2 (p* - a)),
+farther before it (|z + kappa|^2 - (p* + kappa)^2 = |z|^2 - p*^2 + 2 kappa (a - p*) decreases in kappa) and
+closer after it.  Every kappa_z is a root of the tie polynomial
+    T(kappa) = Res_x(P2, G) Res_x(G, G'),   G: the roots w_l^2,  P2: the products w_i w_j (i < j),
+w_l = z_l + kappa over the distinct poles (non-real z: w w-bar = w*^2 is a root of P2 and of G; negative real z:
+w_z^2 = w*^2 is a double root of G).  T is not identically 0 (that would force two poles to coincide).
+T is computed by interpolation at integer kappa: at each point the power sums of the w_l (Newton's identities)
+give G and P2 exactly, and the resultants are Euclid's (polys.resultant).
+
+``tie_predicate(h, value)`` proves that ``value`` is a root of T and isolates it: (lo, hi) holding exactly one
+root of T.  A pole whose rational enclosure of kappa_z lies in (lo, hi) then has kappa_z = value exactly.
+"""
+
+from fractions import Fraction
+
+from . import polys
+from .rationals import require
+from .reals import Real
+
+MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate
+MAX_ISOLATE = 4000
+
+
+def _power_sums(monic, count):
+    d = len(monic) - 1
+    e = [(-1) ** k * monic[d - k] for k in range(d + 1)]
+    s = [Fraction(0)] * (count + 1)
+    for k in range(1, count + 1):
+        acc = (-1) ** (k - 1) * k * e[k] if k <= d else Fraction(0)
+        for i in range(1, min(k - 1, d) + 1):
+            acc += (-1) ** (i - 1) * e[i] * s[k - i]
+        s[k] = acc
+    return s[1:]
+
+
+def _from_power_sums(s, d):
+    e = [Fraction(1)]
+    for k in range(1, d + 1):
+        e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
+    return [(-1) ** (d - i) * e[d - i] for i in range(d + 1)]
+
+
+def _shift(p, t):
+    """p(w - t) (coefficients low to high)."""
+    out = [Fraction(0)] * len(p)
+    for k in range(len(p) - 1, -1, -1):  # Horner in (w - t)
+        out = [-t * out[0]] + [out[i - 1] - t * out[i] for i in range(1, len(out))]
+        out[0] += p[k]
+    return out
+
+
+def _value(h, t):
+    q = _shift(h, t)
+    c = [x / q[-1] for x in q]
+    d = len(c) - 1
+    n2 = d * (d - 1) // 2
+    s = _power_sums(c, 2 * max(n2, d))
+    P2 = _from_power_sums([(s[k - 1] ** 2 - s[2 * k - 1]) / 2 for k in range(1, n2 + 1)], n2)
+    G = _from_power_sums([s[2 * k - 1] for k in range(1, d + 1)], d)
+    return polys.resultant(P2, G) * polys.resultant(G, polys.derivative(G))
+
+
+def tie_polynomial(h):
+    """T for the squarefree part of h (degree >= 2), by interpolation."""
+    sq = polys.monic(polys.squarefree(h))
+    d = len(sq) - 1
+    require(d >= 2, "tie: r needs two poles for a tie")
+    degree = d * d * (d - 1) + 2 * d * (d - 1)
+    require(degree <= MAX_TIE_DEGREE, f"tie: the tie polynomial would exceed degree {MAX_TIE_DEGREE}")
+    points = [Fraction(t) for t in range(degree + 1)]
+    T = polys.interpolate(points, [_value(sq, t) for t in points])
+    require(len(T) > 1 or (T and T[0] != 0), "tie: the tie polynomial vanishes identically")
+    return T
+
+
+def tie_interval(h, value):
+    """(lo, hi) with value in it and exactly one root of T there (so every root of T in it is value)."""
+    require(not value.inf, "tie: the tie value must be finite")
+    T = polys.squarefree(tie_polynomial(h))
+    require(value.sign_of(T) == 0, "tie: the claimed radius is not a root of the tie polynomial")
+    ints = polys.integer_coefficients(T)
+    if value.is_rational:
+        q, width = value.q, Fraction(1)
+        for _ in range(MAX_ISOLATE):
+            lo, hi = q - width, q + width
+            if polys.sign_at(ints, lo) and polys.sign_at(ints, hi) and polys.count_roots(T, lo, hi) == 1:
+                return lo, hi
+            width /= 2
+    else:
+        v = Real(poly=value.poly, lo=value.lo, hi=value.hi)
+        for _ in range(MAX_ISOLATE):
+            if v.poly is None:
+                return tie_interval(h, Real.rational(v.q))
+            if polys.sign_at(ints, v.lo) and polys.sign_at(ints, v.hi) and polys.count_roots(T, v.lo, v.hi) == 1:
+                return v.lo, v.hi
+            v.bisect()
+    require(False, "tie: could not isolate the claimed radius among the roots of the tie polynomial")
+
+
+def kappa_enclosure(z, P_lo, P_hi, sqrt_bounds):
+    """Rationals (lo, hi) around kappa_z for every pole in the disk z = (a, b, rad) and p* in [P_lo, P_hi],
+    or None unless Re z < p* is certain."""
+    a, b, rad = z
+    if not a + rad < P_lo:
+        return None
+    m_lo, m_hi = sqrt_bounds(a * a + b * b)
+    r_lo, r_hi = max(m_lo - rad, Fraction(0)) ** 2, (m_hi + rad) ** 2  # |z|^2
+    num_lo, num_hi = r_lo - P_hi ** 2, r_hi - P_lo ** 2
+    den_lo, den_hi = 2 * (P_lo - a - rad), 2 * (P_hi - a + rad)  # 0 < den_lo <= 2 (p* - Re z) <= den_hi
+    lo = num_lo / (den_hi if num_lo >= 0 else den_lo)
+    hi = num_hi / (den_lo if num_hi >= 0 else den_hi)
+    return lo, hi
