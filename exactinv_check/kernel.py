@@ -32,8 +32,8 @@ CLAIMS = {
     "rational_threshold": (claims_thresholds.rational_threshold, {"value", "attained", "rho"},
                            {"pole", "alpha", "H", "gamma_H"}),
     "largest_threshold": (claims_sets.largest_threshold, {"value", "attained", "vertices", "rays", "lines"},
-                          {"determinant", "binding"}),
-    "valid_steplengths": (claims_sets.valid_steplengths, {"intervals", "vertices", "rays", "lines"}, {"determinant"}),
+                          {"determinant", "binding", "pruning"}),
+    "valid_steplengths": (claims_sets.valid_steplengths, {"intervals", "vertices", "rays", "lines"}, {"determinant", "pruning"}),
     "forward_euler_threshold": (claims_thresholds.forward_euler_threshold, {"value", "vertices", "rays", "lines"},
                                 {"attained"}),
 }

@@ -1,0 +1,204 @@
+"""Certified pruning of vertex-facet pairs before any polynomial is built (issue 13).
+
+For a polynomial method A_d(h) = sum_k h^k N_k (N_0 = I) and 0 <= h <= T,
+
+    b_j - g_j A_d(h) v = s_jv - g_j (A_d(h) - I) v,   s_jv = b_j - g_j v >= 0,
+    |g_j (A_d(h) - I) v| <= ||g_j||_1 ||(A_d(h) - I) v||_oo <= ||g_j||_1 beta_v(T),
+    beta_v(T) = || M_T |v| ||_oo,   M_T = sum_{k>=1} T^k |N_k|   (entrywise |.|),
+
+so a pair with s_jv > ||g_j||_1 beta_v(T) -- a per-facet norm times a
+per-vertex bound, compared with the slack -- satisfies its condition strictly
+on all of [0, T] and cannot bind there.  Rays are never pruned (their slack
+-g_j r is scale-free but usually 0 on the facets that matter) and lines give
+equalities, which no slack can settle; both keep every pair.
+
+Which T.  If S is any set of conditions whose valid set V_S lies in [0, T]
+(here: every condition of one vertex, whose valid set is bounded for most
+methods and vertices), then the valid set V of all conditions satisfies
+V = V_{S u U} with U the pairs that survive the test on [0, T]: beyond T
+both sides are empty (V is inside V_S), and on [0, T] every pruned condition
+is positive.  The same T serves the largest threshold: its value is at most
+the first end of S, hence at most T.  The kernel repeats the test exactly
+(:mod:`exactinv_check.pruning`); the certificate only names T and the vertex.
+
+The engine's test is vectorised and exact: every quantity is rounded to an
+integer grid of step 2^-24 (relative to the vertices' size) in the safe
+direction, the slacks of all pairs are products of int64 matrices (numpy,
+bounded magnitudes: no overflow), and a pair survives unless its rounded
+slack provably exceeds its rounded bound.  Rounding only lets more pairs
+survive, never fewer.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from fractions import Fraction
+
+import flint
+import numpy as np
+
+from ..core.algebraic import ExactKey, upper_bound
+from ..core.intervals import complement_of_open
+from ..core.roots import negative_segments, nonnegative_until
+from ..core.scalars import INF, Infinity, fraction_of
+from .conditions import Kind
+
+__all__ = ["Pruning", "bound_matrix", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
+
+_BITS = 24  # the grid: K = 2^24
+_CHUNK = 4_000_000  # slack entries per numpy block
+
+
+def coarse_above(x: Fraction, bits: int = 64) -> Fraction:
+    """A dyadic rational >= x with about ``bits`` significant bits (0 for x = 0).
+
+    >>> coarse_above(Fraction(1, 3), 8)
+    Fraction(171, 512)
+    """
+    if x == 0:
+        return Fraction(0)
+    shift = bits - (x.numerator.bit_length() - x.denominator.bit_length())
+    if shift > 0:
+        return Fraction(-((-x.numerator << shift) // x.denominator), 1 << shift)
+    return Fraction(-(-x.numerator // (x.denominator << -shift)) << -shift)
+
+
+def bound_matrix(N: list[flint.fmpq_mat], T: Fraction) -> list[list[Fraction]]:
+    """M_T = sum_{k>=1} T^k |N_k| entrywise, exactly: ||(A_d(h) - I) v||_oo <= ||M_T |v| ||_oo on [0, T].
+
+    >>> bound_matrix([flint.fmpq_mat([[1]]), flint.fmpq_mat([[-2]]), flint.fmpq_mat([[2]])], Fraction(1, 2))
+    [[Fraction(3, 2)]]
+    """
+    n = N[0].nrows()
+    M = [[Fraction(0)] * n for _ in range(n)]
+    for k, Nk in enumerate(N[1:], start=1):
+        Tk = T**k
+        for i in range(n):
+            for l in range(n):
+                M[i][l] += Tk * abs(fraction_of(Nk[i, l]))
+    return M
+
+
+def _grid_vertices(W: flint.fmpq_mat, K: int):
+    """(U, a, R): U[l, i] = floor(v_il K / R) (int64), a = |U| + 1 >= |v| K / R, R a power of 2 >= max |v_il|."""
+    Z, d = W.numer_denom()
+    d = int(d)
+    n, V = W.nrows(), W.ncols()
+    ints = [int(x) for x in Z.entries()]
+    top = max((abs(x) for x in ints), default=0)
+    r = (-(-top // d)).bit_length() if top else 0  # R = 2^r >= top / d
+    e = _BITS - r
+    if e >= 0:
+        U = [(x << e) // d for x in ints]
+    else:
+        U = [x // (d << -e) for x in ints]
+    U = np.array(U, dtype=np.int64).reshape(n, V)
+    return U, np.abs(U) + 1, Fraction(2) ** r
+
+
+def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, M: list[list[Fraction]]) -> tuple[np.ndarray, np.ndarray]:
+    """(facets, vertices): the pairs (j, i) that the test on [0, T] cannot prune, M = M_T.
+
+    Every pair not returned has b_j - g_j v_i > ||g_j||_1 ||M |v_i| ||_oo,
+    proved on the integer grid (see the module docstring)."""
+    n, m, V = W.nrows(), G.nrows(), W.ncols()
+    K = 1 << _BITS
+    U, a, R = _grid_vertices(W, K)
+    cap = Fraction(2**62, n * (K + 1) * K)
+    if n > 64 or any(x > cap for row in M for x in row):
+        return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
+    Mt = np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64)
+    beta = (Mt @ a).max(axis=0)  # >= K^2 beta_v / R
+    Gt, bt = [], []
+    for j in range(m):
+        g = [fraction_of(G[j, l]) for l in range(n)]
+        norm = sum(abs(x) for x in g)
+        Gt.append([round(x / norm * K) for x in g])
+        bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
+        bt.append(math.floor(bbar * K * K))
+    Gt = np.array(Gt, dtype=np.int64)
+    bt = np.array(bt, dtype=np.int64) - ((n + 2) * K + n)  # minus the rounding error E
+    facets, vertices = [], []
+    step = max(1, _CHUNK // max(m, 1))
+    for start in range(0, V, step):
+        stop = min(V, start + step)
+        slack = bt[:, None] - Gt @ U[:, start:stop]
+        j, i = np.nonzero(slack <= beta[None, start:stop])
+        facets.append(j)
+        vertices.append(i + start)
+    return np.concatenate(facets), np.concatenate(vertices)
+
+
+def vertex_order(W: flint.fmpq_mat) -> list[int]:
+    """A permutation of the vertices that keeps near vertices near (Morton order of
+    rounded coordinates): the kernel checks the pruning block by block along it.
+    Only a hint -- any permutation is correct, a good one is faster to check."""
+    n, V = W.nrows(), W.ncols()
+    dims = min(n, max(1, 48 // 12))
+    Z, d = W.numer_denom()
+    x = np.array([float(fraction_of(flint.fmpq(int(e), int(d)))) for e in Z.entries()[: dims * V]]).reshape(dims, V)
+    lo, hi = x.min(axis=1, keepdims=True), x.max(axis=1, keepdims=True)
+    q = ((x - lo) / np.where(hi > lo, hi - lo, 1) * 4095).astype(np.int64)
+    key = np.zeros(V, dtype=np.int64)
+    for bit in range(11, -1, -1):
+        for l in range(dims):
+            key = (key << 1) | ((q[l] >> bit) & 1)
+    return [int(i) for i in np.argsort(key, kind="stable")]
+
+
+@dataclass(frozen=True)
+class Pruning:
+    """How the pairs were pruned: the ``horizon`` T (a rational bound on the valid set,
+    or on its first interval, given by vertex ``vertex``), the number of vertex-facet
+    ``pairs``, the ``survivors`` built as polynomials, and seconds per stage."""
+
+    horizon: Fraction
+    vertex: int
+    pairs: int
+    survivors: int
+    order: tuple[int, ...] = field(repr=False)
+    seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
+
+    def record(self) -> dict:
+        """The certificate's pruning record: the kernel recomputes the rest."""
+        return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
+
+    def finished(self, total: float) -> "Pruning":
+        """With the remaining time (roots and intervals) as the last stage."""
+        rest = total - sum(s for _, s in self.seconds)
+        return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
+
+
+def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
+    """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
+    set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded."""
+    t0 = time.perf_counter()
+    first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
+    if first_end:
+        end = min((nonnegative_until(c.p) for c in first), key=ExactKey, default=INF)
+    else:
+        bad = [seg for c in first for seg in negative_segments(c.p)]
+        union = complement_of_open(bad, [])
+        end = union.intervals[-1].hi if union.intervals else Fraction(0)
+    T = None if isinstance(end, Infinity) else coarse_above(upper_bound(end))
+    return T, first, [("bounding vertex", time.perf_counter() - t0)]
+
+
+def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Pruning]:
+    """(inequalities, equalities, record) for the horizon T: vertex 0's conditions,
+    the surviving vertex-facet pairs, every ray pair (inequalities) and line pair."""
+    t0 = time.perf_counter()
+    W, m, V = cs.W[Kind.VERTEX], cs.polyhedron.m, cs.count(Kind.VERTEX)
+    facets, vertices = surviving_pairs(cs.G, cs.b, W, bound_matrix(cs.N, T))
+    keep = vertices != 0
+    pairs = list(zip(vertices[keep].tolist(), facets[keep].tolist()))
+    order = tuple(vertex_order(W))
+    t1 = time.perf_counter()
+    inequalities = first + cs.pairs(Kind.VERTEX, pairs)
+    inequalities += cs.pairs(Kind.RAY, [(i, j) for i in range(cs.count(Kind.RAY)) for j in range(m)])
+    equalities = cs.pairs(Kind.LINE, [(i, j) for i in range(cs.count(Kind.LINE)) for j in range(m)])
+    t2 = time.perf_counter()
+    stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("survivor polynomials", t2 - t1))
+    return inequalities, equalities, Pruning(T, 0, m * V, len(pairs) + m, order, stages)
