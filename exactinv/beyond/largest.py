@@ -72,7 +72,7 @@ class ValidSteplengths:
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
             **generator_record(self.polyhedron),
             "determinant": vec(self.determinant),
-            **({} if self.pruning is None else {"pruning": self.pruning.record()}),
+            **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
 
     @property
@@ -121,7 +121,7 @@ class LargestThreshold(ExactValueMixin):
             "binding": None if self.binding is None else {
                 "kind": self.binding.kind, "generator": self.binding.generator, "facet": self.binding.facet,
                 "poly": vec(self.binding.poly)},
-            **({} if self.pruning is None else {"pruning": self.pruning.record()}),
+            **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
 
     @property

@@ -49,6 +49,7 @@ __all__ = ["Pruning", "bound_matrix", "surviving_pairs", "coarse_above", "vertex
 
 _BITS = 24  # the grid: K = 2^24
 _CHUNK = 4_000_000  # slack entries per numpy block
+WORTHWHILE = 0.3  # above this fraction of surviving pairs, build all pairs at once
 
 
 def coarse_above(x: Fraction, bits: int = 64) -> Fraction:
@@ -152,7 +153,9 @@ def vertex_order(W: flint.fmpq_mat) -> list[int]:
 class Pruning:
     """How the pairs were pruned: the ``horizon`` T (a rational bound on the valid set,
     or on its first interval, given by vertex ``vertex``), the number of vertex-facet
-    ``pairs``, the ``survivors`` built as polynomials, and seconds per stage."""
+    ``pairs``, the ``survivors`` built as polynomials, and seconds per stage.
+    ``applied`` is False when too many survived (more than :data:`WORTHWHILE` of
+    the pairs): then every pair was built by the all-pairs products instead."""
 
     horizon: Fraction
     vertex: int
@@ -160,9 +163,12 @@ class Pruning:
     survivors: int
     order: tuple[int, ...] = field(repr=False)
     seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
+    applied: bool = True
 
-    def record(self) -> dict:
+    def record(self) -> dict | None:
         """The certificate's pruning record: the kernel recomputes the rest."""
+        if not self.applied:
+            return None
         return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
 
     def finished(self, total: float) -> "Pruning":
@@ -196,6 +202,10 @@ def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Prun
     pairs = list(zip(vertices[keep].tolist(), facets[keep].tolist()))
     order = tuple(vertex_order(W))
     t1 = time.perf_counter()
+    if len(pairs) > WORTHWHILE * m * V:  # the all-pairs FLINT products are cheaper
+        inequalities, equalities = cs.all()
+        stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("all polynomials", time.perf_counter() - t1))
+        return inequalities, equalities, Pruning(T, 0, m * V, m * V, order, stages, applied=False)
     inequalities = first + cs.pairs(Kind.VERTEX, pairs)
     inequalities += cs.pairs(Kind.RAY, [(i, j) for i in range(cs.count(Kind.RAY)) for j in range(m)])
     equalities = cs.pairs(Kind.LINE, [(i, j) for i in range(cs.count(Kind.LINE)) for j in range(m)])
