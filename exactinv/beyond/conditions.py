@@ -73,8 +73,8 @@ def method_matrices(method: Method, A: flint.fmpq_mat) -> tuple[flint.fmpq_poly,
 
     >>> from exactinv.model import methods
     >>> D, N = method_matrices(methods.backward_euler(), flint.fmpq_mat([[2]]))
-    >>> D, [int(Nk[0, 0]) for Nk in N]
-    (-2*x + 1, [1])
+    >>> [int(c) for c in D.coeffs()], [int(Nk[0, 0]) for Nk in N]   # D = det(1 - 2t), N = D r(2t) = 1
+    ([1, -2], [1])
     """
     n = A.nrows()
     if method.is_polynomial:

@@ -103,7 +103,13 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, M: list[list[
     """(facets, vertices): the pairs (j, i) that the test on [0, T] cannot prune, M = M_T.
 
     Every pair not returned has b_j - g_j v_i > ||g_j||_1 ||M |v_i| ||_oo,
-    proved on the integer grid (see the module docstring)."""
+    proved on the integer grid (see the module docstring).
+
+    >>> G, W = flint.fmpq_mat([[1], [-1]]), flint.fmpq_mat([[1, -1]])   # [-1, 1], vertices 1 and -1
+    >>> f, v = surviving_pairs(G, [1, 1], W, [[Fraction(1, 2)]])
+    >>> sorted(zip(v.tolist(), f.tolist()))   # the far facet of each vertex is pruned
+    [(0, 0), (1, 1)]
+    """
     n, m, V = W.nrows(), G.nrows(), W.ncols()
     K = 1 << _BITS
     U, a, R = _grid_vertices(W, K)
@@ -135,7 +141,11 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, M: list[list[
 def vertex_order(W: flint.fmpq_mat) -> list[int]:
     """A permutation of the vertices that keeps near vertices near (Morton order of
     rounded coordinates): the kernel checks the pruning block by block along it.
-    Only a hint -- any permutation is correct, a good one is faster to check."""
+    Only a hint -- any permutation is correct, a good one is faster to check.
+
+    >>> vertex_order(flint.fmpq_mat([[0, 5, 1, 4]]))
+    [0, 2, 3, 1]
+    """
     n, V = W.nrows(), W.ncols()
     dims = min(n, max(1, 48 // 12))
     Z, d = W.numer_denom()
@@ -179,7 +189,14 @@ class Pruning:
 
 def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
     """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
-    set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded."""
+    set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
+
+    >>> import exactinv as ei
+    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> bounding_horizon(cs, False)[0]
+    Fraction(2, 1)
+    """
     t0 = time.perf_counter()
     first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
     if first_end:
@@ -194,7 +211,15 @@ def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
 
 def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Pruning]:
     """(inequalities, equalities, record) for the horizon T: vertex 0's conditions,
-    the surviving vertex-facet pairs, every ray pair (inequalities) and line pair."""
+    the surviving vertex-facet pairs, every ray pair (inequalities) and line pair.
+
+    >>> import exactinv as ei
+    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> T, first, seconds = bounding_horizon(cs, False)
+    >>> prune(cs, Fraction(1, 2), first, seconds)[2].survivors   # vertex 0's two pairs, vertex 1's own facet
+    3
+    """
     t0 = time.perf_counter()
     W, m, V = cs.W[Kind.VERTEX], cs.polyhedron.m, cs.count(Kind.VERTEX)
     facets, vertices = surviving_pairs(cs.G, cs.b, W, bound_matrix(cs.N, T))
