@@ -8,7 +8,7 @@ from hypothesis import given, settings, strategies as st
 
 import exactinv as ei
 import exactinv.beyond.pruning as engine_pruning
-from exactinv.beyond.largest import ConditionSet
+from exactinv.beyond.conditions import ConditionSet, Kind
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
 
@@ -138,7 +138,7 @@ def test_the_engine_grid_test_is_conservative():
     cs = ConditionSet(SPIN, DIAMOND, M.taylor(2))
     T = Fraction(1, 8)
     Mt = engine_pruning.bound_matrix(cs.N, T)
-    facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[ei.beyond.conditions.Kind.VERTEX], Mt)
+    facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], Mt)
     kept = set(zip(vertices.tolist(), facets.tolist()))
     A, G, b, verts = _fractions(SPIN, DIAMOND)
     for i, v in enumerate(verts):
