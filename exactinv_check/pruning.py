@@ -6,17 +6,21 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
 1. Vertex k bounds the set: the valid set of vertex k's own conditions lies
    in [0, T] (for a largest-threshold claim: its first interval ends by T).
    The valid set of all conditions lies inside it, so nothing beyond T counts.
-2. On [0, T] a pair (v, j) cannot bind when its slack exceeds a bound on the
-   change of A_d(h)v: with A_d(h) = sum_k h^k N_k (N_0 = I),
-       |g_j (A_d(h) - I) v| <= ||g_j||_1 beta_v,  beta_v = max_i (M_T |v|)_i,
-       M_T = sum_{k>=1} T^k |N_k|  (entrywise absolute values),
-   so b_j - g_j v > ||g_j||_1 beta_v proves the condition positive on [0, T].
-   The kernel decides this itself for every pair, in integers: coordinates
-   are rounded outwards to a grid of step 1/K, so the test may keep more
-   pairs than needed, never fewer.  To stay cheap it first tests blocks of
-   consecutive vertices along ``order`` (any permutation; a good one keeps
-   near vertices together): the box around a block, widened by the block's
-   largest beta, inside the open half-space of facet j prunes the whole block.
+2. On [0, T] a pair (v, j) cannot bind when the path A_d(h) v stays strictly
+   inside facet j's half-space.  [0, T] is cut into pieces [t, t + d] at the
+   nodes T x, x in {0, 1, a/16, 2^-i, 1 - 2^-i : a < 16, i <= 12}; with
+   A_d(h) = sum_k h^k N_k (N_0 = I) and s = h - t in [0, d],
+       A_d(t + s) v = X + s Y + R(s),  X = A_d(t) v,  Y = A_d'(t) v,
+       |R(s)| <= M |v| entrywise,  M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|,
+   so on the piece A_d(h) v lies in the box spanned by X and Z = X + d Y,
+   widened by rho_v = max_i (M |v|)_i in every coordinate.  A box inside
+   the open half-space g_j x < b_j on every piece proves the condition
+   positive on [0, T].  The kernel decides this itself for every pair, in
+   integers: coordinates are rounded outwards to a grid of step 1/K, so it
+   may keep more pairs than needed, never fewer.  To stay cheap it tests
+   boxes around blocks of consecutive vertices along ``order`` (any
+   permutation; a good one keeps near vertices together) first over all
+   pieces at once, then piece by piece, and only then vertex by vertex.
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
 """
@@ -51,16 +55,30 @@ def parse(record, vertex_count):
     return T, k, order
 
 
-def bound_matrix(N, T):
-    """M_T = sum_{k>=1} T^k |N_k| (entrywise)."""
+def nodes(T):
+    """The ends of the pieces of [0, T]."""
+    if T == 0:
+        return [Fraction(0), Fraction(0)]
+    xs = {Fraction(0), Fraction(1)} | {Fraction(a, 16) for a in range(1, 16)}
+    xs |= {Fraction(1, 2**i) for i in range(1, 13)} | {1 - Fraction(1, 2**i) for i in range(1, 13)}
+    return [T * x for x in sorted(xs)]
+
+
+def _piece(N, t, d):
+    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]."""
     n = len(N[0])
+    X = [[Fraction(0)] * n for _ in range(n)]
+    Y = [[Fraction(0)] * n for _ in range(n)]
     M = [[Fraction(0)] * n for _ in range(n)]
-    for k in range(1, len(N)):
-        Tk = T**k
+    for k, Nk in enumerate(N):
+        x, y = t**k, (k * t ** (k - 1) * d if k else 0)
+        c = (t + d) ** k - t**k - k * t ** (k - 1) * d if k >= 2 else 0
         for i in range(n):
             for l in range(n):
-                M[i][l] += Tk * abs(N[k][i][l])
-    return M
+                X[i][l] += x * Nk[i][l]
+                Y[i][l] += y * Nk[i][l]
+                M[i][l] += c * abs(Nk[i][l])
+    return X, Y, M
 
 
 def _integer_rows(G, b):
@@ -75,27 +93,49 @@ def _integer_rows(G, b):
     return rows
 
 
-def _outside(row, lo, hi, B):
-    """True unless the box [lo, hi] / K widened by B / K lies in g x < b (then the pairs are pruned)."""
+def _boxes(vertices, N, T):
+    """boxes[i][a] = (lo, hi, B): integer box around the chord of vertex i on piece a, widened by B / K >= rho."""
+    ends = nodes(T)
+    pieces = [_piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
+    out = []
+    for v in vertices:
+        av = [abs(x) for x in v]
+        mine = []
+        for X, Y, M in pieces:
+            x = [sum(a * b for a, b in zip(row, v)) for row in X]
+            z = [xi + sum(a * b for a, b in zip(row, v)) for xi, row in zip(x, Y)]
+            rho = max(sum(a * b for a, b in zip(row, av)) for row in M)
+            mine.append(([_floor(min(p, q) * K) for p, q in zip(x, z)], [_ceil(max(p, q) * K) for p, q in zip(x, z)],
+                         _ceil(rho * K)))
+        out.append(mine)
+    return out
+
+
+def _union(boxes):
+    lo = [min(c) for c in zip(*(b[0] for b in boxes))]
+    hi = [max(c) for c in zip(*(b[1] for b in boxes))]
+    return lo, hi, max(b[2] for b in boxes)
+
+
+def _outside(row, box):
+    """True unless the box (widened by B / K) lies in g x < b (then the pairs are pruned)."""
     gp, gn, Kb, norm = row
+    lo, hi, B = box
     return Kb <= sum(map(int.__mul__, gp, hi)) + sum(map(int.__mul__, gn, lo)) + norm * B
 
 
 def survivors(G, b, vertices, N, T, order):
-    """{vertex index: [facets]} of the pairs the test on [0, T] cannot prune."""
-    M = bound_matrix(N, T)
+    """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune."""
     rows = _integer_rows(G, b)
-    lo = [[_floor(x * K) for x in v] for v in vertices]
-    hi = [[_ceil(x * K) for x in v] for v in vertices]
-    B = [_ceil(max(sum(Mi[l] * abs(v[l]) for l in range(len(v))) for Mi in M) * K) for v in vertices]
-    out = {}
+    boxes = _boxes(vertices, N, T)
+    out = {i: [] for i in range(len(vertices))}
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
         block = order[start:start + size]
-        blo = [min(lo[i][l] for i in block) for l in range(len(lo[0]))]
-        bhi = [max(hi[i][l] for i in block) for l in range(len(hi[0]))]
-        bB = max(B[i] for i in block)
-        near = [j for j, row in enumerate(rows) if _outside(row, blo, bhi, bB)]
-        for i in block:
-            out[i] = [j for j in near if _outside(rows[j], lo[i], hi[i], B[i])]
-    return out
+        per_piece = [_union([boxes[i][a] for i in block]) for a in range(len(boxes[block[0]]))]
+        near = [j for j, row in enumerate(rows) if _outside(row, _union(per_piece))]
+        for a, box in enumerate(per_piece):
+            hits = [j for j in near if _outside(rows[j], box)]
+            for i in block:
+                out[i].extend(j for j in hits if _outside(rows[j], boxes[i][a]))
+    return {i: sorted(set(f)) for i, f in out.items()}

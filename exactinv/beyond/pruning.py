@@ -1,16 +1,21 @@
 """Certified pruning of vertex-facet pairs before any polynomial is built (issue 13).
 
-For a polynomial method A_d(h) = sum_k h^k N_k (N_0 = I) and 0 <= h <= T,
+For a polynomial method A_d(h) = sum_k h^k N_k (N_0 = I), split [0, T] into
+pieces [t, t + d] (:func:`nodes`: graded towards both ends, where images
+are close to the boundary).  On a piece, with s = h - t in [0, d],
 
-    b_j - g_j A_d(h) v = s_jv - g_j (A_d(h) - I) v,   s_jv = b_j - g_j v >= 0,
-    |g_j (A_d(h) - I) v| <= ||g_j||_1 ||(A_d(h) - I) v||_oo <= ||g_j||_1 beta_v(T),
-    beta_v(T) = || M_T |v| ||_oo,   M_T = sum_{k>=1} T^k |N_k|   (entrywise |.|),
+    A_d(t + s) v = X + s Y + R(s),  X = A_d(t) v,  Y = A_d'(t) v,
+    |R(s)| <= M |v| entrywise,  M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|,
 
-so a pair with s_jv > ||g_j||_1 beta_v(T) -- a per-facet norm times a
-per-vertex bound, compared with the slack -- satisfies its condition strictly
-on all of [0, T] and cannot bind there.  Rays are never pruned (their slack
--g_j r is scale-free but usually 0 on the facets that matter) and lines give
-equalities, which no slack can settle; both keep every pair.
+(each scalar factor is increasing in s, N_k's entries taken in absolute
+value), so g_j A_d(h) v <= max(g_j X, g_j Z) + ||g_j||_1 rho_v with Z = X + d Y
+and rho_v = max_i (M |v|)_i: the linear part is largest at an end of the
+chord.  A pair whose slacks b_j - g_j X and b_j - g_j Z both exceed
+||g_j||_1 rho_v -- a per-facet norm times a per-vertex bound, compared with
+per-vertex slacks -- satisfies its condition strictly on the piece; a pair
+that passes on every piece cannot bind anywhere in [0, T] and is not built.
+Rays are never pruned and lines give equalities, which no slack can settle;
+both keep every pair.
 
 Which T.  If S is any set of conditions whose valid set V_S lies in [0, T]
 (here: every condition of one vertex, whose valid set is bounded for most
@@ -22,7 +27,7 @@ the first end of S, hence at most T.  The kernel repeats the test exactly
 (:mod:`exactinv_check.pruning`); the certificate only names T and the vertex.
 
 The engine's test is vectorised and exact: every quantity is rounded to an
-integer grid of step 2^-24 (relative to the vertices' size) in the safe
+integer grid of step 2^-24 (relative to the points' size) in the safe
 direction, the slacks of all pairs are products of int64 matrices (numpy,
 bounded magnitudes: no overflow), and a pair survives unless its rounded
 slack provably exceeds its rounded bound.  Rounding only lets more pairs
@@ -42,10 +47,10 @@ import numpy as np
 from ..core.algebraic import ExactKey, upper_bound
 from ..core.intervals import complement_of_open
 from ..core.roots import negative_segments, nonnegative_until
-from ..core.scalars import INF, Infinity, fraction_of
+from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 
-__all__ = ["Pruning", "bound_matrix", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
 
 _BITS = 24  # the grid: K = 2^24
 _CHUNK = 4_000_000  # slack entries per numpy block
@@ -66,58 +71,104 @@ def coarse_above(x: Fraction, bits: int = 64) -> Fraction:
     return Fraction(-(-x.numerator // (x.denominator << -shift)) << -shift)
 
 
-def bound_matrix(N: list[flint.fmpq_mat], T: Fraction) -> list[list[Fraction]]:
-    """M_T = sum_{k>=1} T^k |N_k| entrywise, exactly: ||(A_d(h) - I) v||_oo <= ||M_T |v| ||_oo on [0, T].
+def nodes(T: Fraction) -> list[Fraction]:
+    """The ends of the pieces of [0, T]: T x for x in 0, 1, a/16 and 2^-i, 1 - 2^-i (i <= 12).
 
-    >>> bound_matrix([flint.fmpq_mat([[1]]), flint.fmpq_mat([[-2]]), flint.fmpq_mat([[2]])], Fraction(1, 2))
-    [[Fraction(3, 2)]]
+    >>> nodes(Fraction(0))
+    [Fraction(0, 1), Fraction(0, 1)]
+    >>> len(nodes(Fraction(1)))
+    33
+    """
+    if T == 0:
+        return [Fraction(0), Fraction(0)]
+    xs = {Fraction(0), Fraction(1)} | {Fraction(a, 16) for a in range(1, 16)}
+    xs |= {Fraction(1, 2**i) for i in range(1, 13)} | {1 - Fraction(1, 2**i) for i in range(1, 13)}
+    return [T * x for x in sorted(xs)]
+
+
+def piece(N: list[flint.fmpq_mat], t: Fraction, d: Fraction):
+    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]: M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|.
+
+    >>> X, Y, M = piece([flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1]]), flint.fmpq_mat([[1, ]])], Fraction(1), Fraction(1))
+    >>> X[0, 0], Y[0, 0], M
+    (1, 1, [[Fraction(1, 1)]])
     """
     n = N[0].nrows()
+    X, Y = N[0] * 0, N[0] * 0
     M = [[Fraction(0)] * n for _ in range(n)]
-    for k, Nk in enumerate(N[1:], start=1):
-        Tk = T**k
-        for i in range(n):
-            for l in range(n):
-                M[i][l] += Tk * abs(fraction_of(Nk[i, l]))
-    return M
+    tq, dq = fmpq_of(t), fmpq_of(d)
+    for k, Nk in enumerate(N):
+        X += Nk * tq**k
+        if k:
+            Y += Nk * (k * tq ** (k - 1) * dq)
+        c = (t + d) ** k - t**k - k * t ** max(k - 1, 0) * d if k >= 2 else Fraction(0)
+        if c:
+            for i in range(n):
+                for l in range(n):
+                    M[i][l] += c * abs(fraction_of(Nk[i, l]))
+    return X, Y, M
 
 
-def _grid_vertices(W: flint.fmpq_mat, K: int):
-    """(U, a, R): U[l, i] = floor(v_il K / R) (int64), a = |U| + 1 >= |v| K / R, R a power of 2 >= max |v_il|."""
-    Z, d = W.numer_denom()
-    d = int(d)
-    n, V = W.nrows(), W.ncols()
-    ints = [int(x) for x in Z.entries()]
-    top = max((abs(x) for x in ints), default=0)
-    r = (-(-top // d)).bit_length() if top else 0  # R = 2^r >= top / d
-    e = _BITS - r
-    if e >= 0:
-        U = [(x << e) // d for x in ints]
-    else:
-        U = [x // (d << -e) for x in ints]
-    U = np.array(U, dtype=np.int64).reshape(n, V)
-    return U, np.abs(U) + 1, Fraction(2) ** r
+def _grid(mats: list[flint.fmpq_mat], e: int) -> list[np.ndarray]:
+    """floor(x 2^e) of every entry, as int64 arrays of the matrices' shapes."""
+    out = []
+    for W in mats:
+        Z, d = W.numer_denom()
+        d = int(d)
+        ints = [int(x) for x in Z.entries()]
+        U = [(x << e) // d for x in ints] if e >= 0 else [x // (d << -e) for x in ints]
+        out.append(np.array(U, dtype=np.int64).reshape(W.nrows(), W.ncols()))
+    return out
 
 
-def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, M: list[list[Fraction]]) -> tuple[np.ndarray, np.ndarray]:
-    """(facets, vertices): the pairs (j, i) that the test on [0, T] cannot prune, M = M_T.
+def _scale(mats: list[flint.fmpq_mat]) -> int:
+    """r with 2^r >= every |entry|."""
+    r = 0
+    for W in mats:
+        Z, d = W.numer_denom()
+        top = max((abs(int(x)) for x in Z.entries()), default=0)
+        if top:
+            r = max(r, (-(-top // int(d))).bit_length())
+    return r
 
-    Every pair not returned has b_j - g_j v_i > ||g_j||_1 ||M |v_i| ||_oo,
-    proved on the integer grid (see the module docstring).
+
+def _dot(Gt: np.ndarray, U: np.ndarray) -> np.ndarray:
+    """Gt @ U for a small inner dimension (int64 matmul has no BLAS: outer products are faster)."""
+    out = Gt[:, 0, None] * U[0]
+    for l in range(1, Gt.shape[1]):
+        out += Gt[:, l, None] * U[l]
+    return out
+
+
+def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint.fmpq_mat],
+                    T: Fraction) -> tuple[np.ndarray, np.ndarray]:
+    """(facets, vertices): the pairs (j, i) that the test on the pieces of [0, T] cannot prune.
+
+    Every pair not returned has, on every piece, both chord-end slacks above
+    ||g_j||_1 rho_v, proved on the integer grid (see the module docstring).
 
     >>> G, W = flint.fmpq_mat([[1], [-1]]), flint.fmpq_mat([[1, -1]])   # [-1, 1], vertices 1 and -1
-    >>> f, v = surviving_pairs(G, [1, 1], W, [[Fraction(1, 2)]])
-    >>> sorted(zip(v.tolist(), f.tolist()))   # the far facet of each vertex is pruned
+    >>> f, v = surviving_pairs(G, [1, 1], W, [flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1]])], Fraction(1, 2))
+    >>> sorted(zip(v.tolist(), f.tolist()))   # x' = -x, forward Euler: the far facet of each vertex is pruned
     [(0, 0), (1, 1)]
     """
     n, m, V = W.nrows(), G.nrows(), W.ncols()
     K = 1 << _BITS
-    U, a, R = _grid_vertices(W, K)
+    ends = nodes(T)
+    pieces = [piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
+    points = []
+    for X, Y, _ in pieces:
+        XW = X * W
+        points += [XW, XW + Y * W]
+    r = _scale(points + [W])
+    R = Fraction(2) ** r
+    grids = _grid(points + [W], _BITS - r)
+    a = np.abs(grids.pop()) + 1  # >= |v| K / R
     cap = Fraction(2**62, n * (K + 1) * K)
-    if n > 64 or any(x > cap for row in M for x in row):
+    if n > 64 or any(x > cap for _, _, M in pieces for row in M for x in row):
         return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
-    Mt = np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64)
-    beta = (Mt @ a).max(axis=0)  # >= K^2 beta_v / R
+    rho = [(np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64) @ a).max(axis=0)
+           for _, _, M in pieces]  # >= K^2 rho_v / R
     Gt, bt = [], []
     for j in range(m):
         g = [fraction_of(G[j, l]) for l in range(n)]
@@ -126,13 +177,16 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, M: list[list[
         bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
         bt.append(math.floor(bbar * K * K))
     Gt = np.array(Gt, dtype=np.int64)
-    bt = np.array(bt, dtype=np.int64) - ((n + 2) * K + n)  # minus the rounding error E
+    bt = (np.array(bt, dtype=np.int64) - ((n + 2) * K + n))[:, None]  # minus the rounding error E
     facets, vertices = [], []
     step = max(1, _CHUNK // max(m, 1))
     for start in range(0, V, step):
-        stop = min(V, start + step)
-        slack = bt[:, None] - Gt @ U[:, start:stop]
-        j, i = np.nonzero(slack <= beta[None, start:stop])
+        cols = slice(start, min(V, start + step))
+        keep = np.zeros((m, cols.stop - start), dtype=bool)
+        for k, bound in enumerate(rho):
+            for U in grids[2 * k: 2 * k + 2]:
+                keep |= bt - _dot(Gt, U[:, cols]) <= bound[None, cols]
+        j, i = np.nonzero(keep)
         facets.append(j)
         vertices.append(i + start)
     return np.concatenate(facets), np.concatenate(vertices)
@@ -222,7 +276,7 @@ def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Prun
     """
     t0 = time.perf_counter()
     W, m, V = cs.W[Kind.VERTEX], cs.polyhedron.m, cs.count(Kind.VERTEX)
-    facets, vertices = surviving_pairs(cs.G, cs.b, W, bound_matrix(cs.N, T))
+    facets, vertices = surviving_pairs(cs.G, cs.b, W, cs.N, T)
     keep = vertices != 0
     pairs = list(zip(vertices[keep].tolist(), facets[keep].tolist()))
     order = tuple(vertex_order(W))
