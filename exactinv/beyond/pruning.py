@@ -53,7 +53,7 @@ from .conditions import Kind
 __all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
 
 _BITS = 24  # the grid: K = 2^24
-_CHUNK = 4_000_000  # slack entries per numpy block
+_BLOCK = 64  # vertices per block of the box test
 WORTHWHILE = 0.3  # above this fraction of surviving pairs, build all pairs at once
 
 
@@ -109,27 +109,18 @@ def piece(N: list[flint.fmpq_mat], t: Fraction, d: Fraction):
     return X, Y, M
 
 
-def _grid(mats: list[flint.fmpq_mat], e: int) -> list[np.ndarray]:
-    """floor(x 2^e) of every entry, as int64 arrays of the matrices' shapes."""
-    out = []
-    for W in mats:
-        Z, d = W.numer_denom()
-        d = int(d)
-        ints = [int(x) for x in Z.entries()]
-        U = [(x << e) // d for x in ints] if e >= 0 else [x // (d << -e) for x in ints]
-        out.append(np.array(U, dtype=np.int64).reshape(W.nrows(), W.ncols()))
-    return out
+def _grid(Q: flint.fmpq_mat, Wz: flint.fmpz_mat, dW: int, e: int) -> np.ndarray:
+    """floor(2^e Q W) entrywise as int64, W = Wz / dW: one integer product, one division per entry."""
+    Qz, dQ = Q.numer_denom()
+    d = int(dQ) * dW
+    ints = [int(x) for x in (Qz * Wz).entries()]
+    U = [(x << e) // d for x in ints] if e >= 0 else [x // (d << -e) for x in ints]
+    return np.array(U, dtype=np.int64).reshape(Q.nrows(), Wz.ncols())
 
 
-def _scale(mats: list[flint.fmpq_mat]) -> int:
-    """r with 2^r >= every |entry|."""
-    r = 0
-    for W in mats:
-        Z, d = W.numer_denom()
-        top = max((abs(int(x)) for x in Z.entries()), default=0)
-        if top:
-            r = max(r, (-(-top // int(d))).bit_length())
-    return r
+def _norm(Q: flint.fmpq_mat) -> Fraction:
+    """||Q||_oo, the largest absolute row sum (so |Q v|_oo <= ||Q||_oo |v|_oo)."""
+    return max(sum(abs(fraction_of(Q[i, l])) for l in range(Q.ncols())) for i in range(Q.nrows()))
 
 
 def _dot(Gt: np.ndarray, U: np.ndarray) -> np.ndarray:
@@ -156,13 +147,14 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
     K = 1 << _BITS
     ends = nodes(T)
     pieces = [piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
-    points = []
-    for X, Y, _ in pieces:
-        XW = X * W
-        points += [XW, XW + Y * W]
-    r = _scale(points + [W])
+    maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [N[0] ** 0]  # the chord ends, then v itself
+    Wz, dW = W.numer_denom()
+    dW = int(dW)
+    vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), dW)
+    top = vmax * max(_norm(Q) for Q in maps)  # >= every |coordinate| of every point
+    r = math.ceil(top).bit_length() if top else 0
     R = Fraction(2) ** r
-    grids = _grid(points + [W], _BITS - r)
+    grids = [_grid(Q, Wz, dW, _BITS - r) for Q in maps]
     a = np.abs(grids.pop()) + 1  # >= |v| K / R
     cap = Fraction(2**62, n * (K + 1) * K)
     if n > 64 or any(x > cap for _, _, M in pieces for row in M for x in row):
@@ -178,17 +170,37 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
         bt.append(math.floor(bbar * K * K))
     Gt = np.array(Gt, dtype=np.int64)
     bt = (np.array(bt, dtype=np.int64) - ((n + 2) * K + n))[:, None]  # minus the rounding error E
+    return _blocked_test(Gt, bt, grids, rho, np.array(vertex_order(W), dtype=np.int64))
+
+
+def _blocked_test(Gt, bt, grids, rho, order):
+    """The surviving (facets, vertices): boxes around blocks of vertices (along ``order``)
+    first, then vertex by vertex for the facets a block's box does not clear."""
+    m, V = Gt.shape[0], grids[0].shape[1]
+    size = _BLOCK
+    blocks = -(-V // size)
+    idx = np.concatenate([order, np.repeat(order[-1:], blocks * size - V)]).reshape(blocks, size)
+    Gp, Gn = np.maximum(Gt, 0), np.minimum(Gt, 0)
+    near = np.zeros((m, blocks), dtype=bool)
+    for k, bound in enumerate(rho):
+        X, Z = grids[2 * k][:, idx], grids[2 * k + 1][:, idx]  # n x blocks x size
+        lo, hi = np.minimum(X, Z).min(axis=2), np.maximum(X, Z).max(axis=2)
+        near |= bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]
     facets, vertices = [], []
-    step = max(1, _CHUNK // max(m, 1))
-    for start in range(0, V, step):
-        cols = slice(start, min(V, start + step))
-        keep = np.zeros((m, cols.stop - start), dtype=bool)
+    for blk in range(blocks):
+        F = np.nonzero(near[:, blk])[0]
+        if not len(F):
+            continue
+        cols = np.unique(idx[blk])
+        keep = np.zeros((len(F), len(cols)), dtype=bool)
         for k, bound in enumerate(rho):
             for U in grids[2 * k: 2 * k + 2]:
-                keep |= bt - _dot(Gt, U[:, cols]) <= bound[None, cols]
+                keep |= bt[F] - _dot(Gt[F], U[:, cols]) <= bound[None, cols]
         j, i = np.nonzero(keep)
-        facets.append(j)
-        vertices.append(i + start)
+        facets.append(F[j])
+        vertices.append(cols[i])
+    if not facets:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     return np.concatenate(facets), np.concatenate(vertices)
 
 
