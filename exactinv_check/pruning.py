@@ -10,8 +10,9 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    inside facet j's half-space.  [0, T] is cut into pieces [t, t + d] at the
    nodes T x, x in {0, 1, a/16, 2^-i, 1 - 2^-i : a < 16, i <= 12}; with
    A_d(h) = sum_k h^k N_k (N_0 = I) and s = h - t in [0, d],
-       A_d(t + s) v = X + s Y + R(s),  X = A_d(t) v,  Y = A_d'(t) v,
-       |R(s)| <= M |v| entrywise,  M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|,
+       A_d(t + s) = sum_k s^k D_k,  D_k = sum_{i>=k} C(i, k) t^(i-k) N_i,
+       A_d(t + s) v = X + s Y + R(s),  X = D_0 v,  Y = D_1 v,
+       |R(s)| <= M |v| entrywise,  M = sum_{k>=2} d^k |D_k|,
    so on the piece A_d(h) v lies in the box spanned by X and Z = X + d Y,
    widened by rho_v = max_i (M |v|)_i in every coordinate.  A box inside
    the open half-space g_j x < b_j on every piece proves the condition
@@ -26,7 +27,7 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
 """
 
 from fractions import Fraction
-from math import gcd, isqrt
+from math import comb, gcd, isqrt
 
 from .rationals import integer, rational, require
 
@@ -65,20 +66,15 @@ def nodes(T):
 
 
 def _piece(N, t, d):
-    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]."""
+    """(D_0, d D_1, M) for the piece [t, t + d]: A_d(t + s) = sum_k s^k D_k with
+    D_k = sum_{i>=k} C(i, k) t^(i-k) N_i, and M = sum_{k>=2} d^k |D_k| entrywise."""
     n = len(N[0])
-    X = [[Fraction(0)] * n for _ in range(n)]
-    Y = [[Fraction(0)] * n for _ in range(n)]
-    M = [[Fraction(0)] * n for _ in range(n)]
-    for k, Nk in enumerate(N):
-        x, y = t**k, (k * t ** (k - 1) * d if k else 0)
-        c = (t + d) ** k - t**k - k * t ** (k - 1) * d if k >= 2 else 0
-        for i in range(n):
-            for l in range(n):
-                X[i][l] += x * Nk[i][l]
-                Y[i][l] += y * Nk[i][l]
-                M[i][l] += c * abs(Nk[i][l])
-    return X, Y, M
+    D = [[[sum(comb(i, k) * t ** (i - k) * N[i][r][c] for i in range(k, len(N))) for c in range(n)] for r in range(n)]
+         for k in range(len(N))]
+    zero = [[Fraction(0)] * n for _ in range(n)]
+    Y = [[d * x for x in row] for row in D[1]] if len(D) > 1 else zero
+    M = [[sum(d**k * abs(D[k][r][c]) for k in range(2, len(D))) for c in range(n)] for r in range(n)]
+    return D[0], Y, M
 
 
 def _integer_rows(G, b):

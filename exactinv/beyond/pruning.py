@@ -4,16 +4,18 @@ For a polynomial method A_d(h) = sum_k h^k N_k (N_0 = I), split [0, T] into
 pieces [t, t + d] (:func:`nodes`: graded towards both ends, where images
 are close to the boundary).  On a piece, with s = h - t in [0, d],
 
-    A_d(t + s) v = X + s Y + R(s),  X = A_d(t) v,  Y = A_d'(t) v,
-    |R(s)| <= M |v| entrywise,  M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|,
+    A_d(t + s) = sum_k s^k D_k,  D_k = sum_{i>=k} C(i, k) t^(i-k) N_i  (exact),
+    A_d(t + s) v = X + s Y + R(s),  X = D_0 v,  Y = D_1 v,
+    |R(s)| <= M |v| entrywise,  M = sum_{k>=2} d^k |D_k|,
 
-(each scalar factor is increasing in s, N_k's entries taken in absolute
-value), so g_j A_d(h) v <= max(g_j X, g_j Z) + ||g_j||_1 rho_v with Z = X + d Y
+so g_j A_d(h) v <= max(g_j X, g_j Z) + ||g_j||_1 rho_v with Z = X + d Y
 and rho_v = max_i (M |v|)_i: the linear part is largest at an end of the
-chord.  A pair whose slacks b_j - g_j X and b_j - g_j Z both exceed
-||g_j||_1 rho_v -- a per-facet norm times a per-vertex bound, compared with
-per-vertex slacks -- satisfies its condition strictly on the piece; a pair
-that passes on every piece cannot bind anywhere in [0, T] and is not built.
+chord.  (Expanding at t, not at 0, keeps the cancellation of alternating
+series such as exp(-t): M is small where A_d(h) is.)  A pair whose slacks
+b_j - g_j X and b_j - g_j Z both exceed ||g_j||_1 rho_v -- a per-facet norm
+times a per-vertex bound, compared with per-vertex slacks -- satisfies its
+condition strictly on the piece; a pair that passes on every piece cannot
+bind anywhere in [0, T] and is not built.
 Rays are never pruned and lines give equalities, which no slack can settle;
 both keep every pair.
 
@@ -27,8 +29,8 @@ the first end of S, hence at most T.  The kernel repeats the test exactly
 (:mod:`exactinv_check.pruning`); the certificate only names T and the vertex.
 
 The engine's test is vectorised and exact: every quantity is rounded to an
-integer grid of step 2^-24 (relative to the points' size) in the safe
-direction, the slacks of all pairs are products of int64 matrices (numpy,
+integer grid of step 2^-24 (relative to the points' size; each gridded
+coordinate within 2 steps of the exact one, the error E below accounts for it), the slacks of all pairs are products of int64 matrices (numpy,
 bounded magnitudes: no overflow), and a pair survives unless its rounded
 slack provably exceeds its rounded bound.  Rounding only lets more pairs
 survive, never fewer.
@@ -38,6 +40,7 @@ from __future__ import annotations
 
 import math
 import time
+from math import comb
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
@@ -87,35 +90,36 @@ def nodes(T: Fraction) -> list[Fraction]:
 
 
 def piece(N: list[flint.fmpq_mat], t: Fraction, d: Fraction):
-    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]: M = sum_{k>=2} ((t+d)^k - t^k - k t^(k-1) d) |N_k|.
+    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]: with A_d(t + s) = sum_k s^k D_k
+    (D_k = sum_{i>=k} C(i, k) t^(i-k) N_i, exact), M = sum_{k>=2} d^k |D_k| bounds the
+    remainder |A_d(t + s) - D_0 - s D_1| entrywise for s in [0, d].
 
     >>> X, Y, M = piece([flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1]]), flint.fmpq_mat([[1, ]])], Fraction(1), Fraction(1))
     >>> X[0, 0], Y[0, 0], M
     (1, 1, [[Fraction(1, 1)]])
     """
     n = N[0].nrows()
-    X, Y = N[0] * 0, N[0] * 0
-    M = [[Fraction(0)] * n for _ in range(n)]
     tq, dq = fmpq_of(t), fmpq_of(d)
-    for k, Nk in enumerate(N):
-        X += Nk * tq**k
-        if k:
-            Y += Nk * (k * tq ** (k - 1) * dq)
-        c = (t + d) ** k - t**k - k * t ** max(k - 1, 0) * d if k >= 2 else Fraction(0)
-        if c:
-            for i in range(n):
-                for l in range(n):
-                    M[i][l] += c * abs(fraction_of(Nk[i, l]))
-    return X, Y, M
+    D = []
+    for k in range(len(N)):
+        Dk = N[0] * 0
+        for i in range(k, len(N)):
+            Dk += N[i] * (comb(i, k) * tq ** (i - k))
+        D.append(Dk)
+    M = [[Fraction(0)] * n for _ in range(n)]
+    for k in range(2, len(D)):
+        dk = d**k
+        for i in range(n):
+            for l in range(n):
+                M[i][l] += dk * abs(fraction_of(D[k][i, l]))
+    return D[0], (D[1] * dq if len(D) > 1 else D[0] * 0), M
 
 
-def _grid(Q: flint.fmpq_mat, Wz: flint.fmpz_mat, dW: int, e: int) -> np.ndarray:
-    """floor(2^e Q W) entrywise as int64, W = Wz / dW: one integer product, one division per entry."""
+def _grid(Q: flint.fmpq_mat, Wf: flint.fmpz_mat, f: int, e: int) -> np.ndarray:
+    """floor(2^(e-f) Q Wf) entrywise as int64, Wf = floor(2^f W): within 1 + 2^(e-f) ||Q||_oo of 2^e Q W."""
     Qz, dQ = Q.numer_denom()
-    d = int(dQ) * dW
-    ints = [int(x) for x in (Qz * Wz).entries()]
-    U = [(x << e) // d for x in ints] if e >= 0 else [x // (d << -e) for x in ints]
-    return np.array(U, dtype=np.int64).reshape(Q.nrows(), Wz.ncols())
+    d = int(dQ) << (f - e)
+    return np.array([int(x) // d for x in (Qz * Wf).entries()], dtype=np.int64).reshape(Q.nrows(), Wf.ncols())
 
 
 def _norm(Q: flint.fmpq_mat) -> Fraction:
@@ -149,13 +153,16 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
     pieces = [piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
     maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [N[0] ** 0]  # the chord ends, then v itself
     Wz, dW = W.numer_denom()
-    dW = int(dW)
-    vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), dW)
-    top = vmax * max(_norm(Q) for Q in maps)  # >= every |coordinate| of every point
+    vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), int(dW))
+    qmax = max(_norm(Q) for Q in maps)
+    top = vmax * qmax  # >= every |coordinate| of every point
     r = math.ceil(top).bit_length() if top else 0
     R = Fraction(2) ** r
-    grids = [_grid(Q, Wz, dW, _BITS - r) for Q in maps]
-    a = np.abs(grids.pop()) + 1  # >= |v| K / R
+    e = _BITS - r
+    f = max(e, 0) + math.ceil(qmax).bit_length() + 1  # 2^(f-e) >= ||Q||_oo: grid error <= 2
+    Wf = flint.fmpz_mat(W.nrows(), W.ncols(), [(x * 2**f).floor() for x in W.entries()])
+    grids = [_grid(Q, Wf, f, e) for Q in maps]
+    a = np.abs(grids.pop()) + 2  # >= |v| K / R
     cap = Fraction(2**62, n * (K + 1) * K)
     if n > 64 or any(x > cap for _, _, M in pieces for row in M for x in row):
         return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
@@ -169,7 +176,7 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
         bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
         bt.append(math.floor(bbar * K * K))
     Gt = np.array(Gt, dtype=np.int64)
-    bt = (np.array(bt, dtype=np.int64) - ((n + 2) * K + n))[:, None]  # minus the rounding error E
+    bt = (np.array(bt, dtype=np.int64) - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
     return _blocked_test(Gt, bt, grids, rho, np.array(vertex_order(W), dtype=np.int64))
 
 
