@@ -221,8 +221,7 @@ def vertex_order(W: flint.fmpq_mat) -> list[int]:
     """
     n, V = W.nrows(), W.ncols()
     dims = min(n, max(1, 48 // 12))
-    Z, d = W.numer_denom()
-    x = np.array([float(fraction_of(flint.fmpq(int(e), int(d)))) for e in Z.entries()[: dims * V]]).reshape(dims, V)
+    x = np.array([float(e) for e in W.entries()[: dims * V]]).reshape(dims, V)
     lo, hi = x.min(axis=1, keepdims=True), x.max(axis=1, keepdims=True)
     q = ((x - lo) / np.where(hi > lo, hi - lo, 1) * 4095).astype(np.int64)
     key = np.zeros(V, dtype=np.int64)
@@ -278,7 +277,7 @@ def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
         bad = [seg for c in first for seg in negative_segments(c.p)]
         union = complement_of_open(bad, [])
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
-    T = None if isinstance(end, Infinity) else coarse_above(upper_bound(end))
+    T = None if isinstance(end, Infinity) else coarse_above(upper_bound(end), 20)  # short: cheap pieces
     return T, first, [("bounding vertex", time.perf_counter() - t0)]
 
 
