@@ -89,20 +89,40 @@ def _integer_rows(G, b):
     return rows
 
 
+def _integer_matrix(Q):
+    """(Q_int, d) with Q = Q_int / d, d > 0."""
+    d = 1
+    for row in Q:
+        for x in row:
+            d = d * x.denominator // gcd(d, x.denominator)
+    return [[int(x * d) for x in row] for row in Q], d
+
+
 def _boxes(vertices, N, T):
-    """boxes[i][a] = (lo, hi, B): integer box around the chord of vertex i on piece a, widened by B / K >= rho."""
+    """boxes[i][a] = (lo, hi, B): integer box around the chord of vertex i on piece a
+    (scaled by K, rounded outwards), widened by B / K >= rho; integer arithmetic only."""
     ends = nodes(T)
-    pieces = [_piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
+    maps = []
+    for t, u in zip(ends, ends[1:]):
+        X, Y, M = _piece(N, t, u - t)
+        Z = [[x + y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)]
+        maps.append((_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)))
     out = []
     for v in vertices:
-        av = [abs(x) for x in v]
+        q = 1
+        for x in v:
+            q = q * x.denominator // gcd(q, x.denominator)
+        p = [int(x * q) for x in v]
+        ap = [abs(x) for x in p]
         mine = []
-        for X, Y, M in pieces:
-            x = [sum(a * b for a, b in zip(row, v)) for row in X]
-            z = [xi + sum(a * b for a, b in zip(row, v)) for xi, row in zip(x, Y)]
-            rho = max(sum(a * b for a, b in zip(row, av)) for row in M)
-            mine.append(([_floor(min(p, q) * K) for p, q in zip(x, z)], [_ceil(max(p, q) * K) for p, q in zip(x, z)],
-                         _ceil(rho * K)))
+        for (Xi, dX), (Zi, dZ), (Mi, dM) in maps:
+            x = [sum(map(int.__mul__, row, p)) for row in Xi]  # dX q (X v)
+            z = [sum(map(int.__mul__, row, p)) for row in Zi]
+            rho = max(sum(map(int.__mul__, row, ap)) for row in Mi)  # dM q rho
+            dx, dz = dX * q, dZ * q
+            lo = [min((K * a) // dx, (K * c) // dz) for a, c in zip(x, z)]
+            hi = [max(-((-K * a) // dx), -((-K * c) // dz)) for a, c in zip(x, z)]
+            mine.append((lo, hi, -((-K * rho) // (dM * q))))
         out.append(mine)
     return out
 

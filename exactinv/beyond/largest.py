@@ -38,7 +38,7 @@ from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
 from ..model.validate import check_problem
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
-from .pruning import Pruning, bounding_horizon, prune as prune_pairs
+from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet"]
 
@@ -140,7 +140,8 @@ def _conditions(cs: ConditionSet, first_end: bool, allow: bool) -> tuple[list, l
     """(inequalities, equalities, pruning): every pair, or -- for a polynomial method
     whose vertex 0 bounds the set (or its first interval) by a horizon T -- vertex
     0's conditions, the surviving vertex pairs and every ray and line pair."""
-    if allow and cs.method.is_polynomial and cs.count(Kind.VERTEX) > 1:
+    P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
+    if allow and cs.method.is_polynomial and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
         T, first, seconds = bounding_horizon(cs, first_end)
         if T is not None:
             return prune_pairs(cs, T, first, seconds)
