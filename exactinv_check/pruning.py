@@ -78,14 +78,14 @@ def _piece(N, t, d):
 
 
 def _integer_rows(G, b):
-    """Each row of (G | b) times a positive integer: (g+, g-, K b, ||g||_1)."""
+    """Each row of (G | b) times a positive integer: (g+ g- ||g||_1 concatenated, K b)."""
     rows = []
     for g, beta in zip(G, b):
         d = 1
         for x in list(g) + [beta]:
             d = d * x.denominator // gcd(d, x.denominator)
         gi = [int(x * d) for x in g]
-        rows.append(([max(x, 0) for x in gi], [min(x, 0) for x in gi], int(beta * d) * K, sum(map(abs, gi))))
+        rows.append(([max(x, 0) for x in gi] + [min(x, 0) for x in gi] + [sum(map(abs, gi))], int(beta * d) * K))
     return rows
 
 
@@ -99,7 +99,7 @@ def _integer_matrix(Q):
 
 
 def _boxes(vertices, N, T):
-    """boxes[i][a] = (lo, hi, B): integer box around the chord of vertex i on piece a
+    """boxes[i][a] = hi + lo + [B]: integer box around the chord of vertex i on piece a
     (scaled by K, rounded outwards), widened by B / K >= rho; integer arithmetic only."""
     ends = nodes(T)
     maps = []
@@ -122,22 +122,22 @@ def _boxes(vertices, N, T):
             dx, dz = dX * q, dZ * q
             lo = [min((K * a) // dx, (K * c) // dz) for a, c in zip(x, z)]
             hi = [max(-((-K * a) // dx), -((-K * c) // dz)) for a, c in zip(x, z)]
-            mine.append((lo, hi, -((-K * rho) // (dM * q))))
+            mine.append(hi + lo + [-((-K * rho) // (dM * q))])
         out.append(mine)
     return out
 
 
 def _union(boxes):
-    lo = [min(c) for c in zip(*(b[0] for b in boxes))]
-    hi = [max(c) for c in zip(*(b[1] for b in boxes))]
-    return lo, hi, max(b[2] for b in boxes)
+    """The box around boxes given as (hi lo B concatenated): coordinate-wise max of hi and B, min of lo."""
+    n = (len(boxes[0]) - 1) // 2
+    cols = list(zip(*boxes))
+    return [max(c) for c in cols[:n]] + [min(c) for c in cols[n:2 * n]] + [max(cols[-1])]
 
 
 def _outside(row, box):
-    """True unless the box (widened by B / K) lies in g x < b (then the pairs are pruned)."""
-    gp, gn, Kb, norm = row
-    lo, hi, B = box
-    return Kb <= sum(map(int.__mul__, gp, hi)) + sum(map(int.__mul__, gn, lo)) + norm * B
+    """True unless the box [lo, hi] / K widened by B / K lies in g x < b (then the pairs are pruned):
+    max over the box of g x is g+ hi + g- lo, and |g (A_d - I) ...| adds at most ||g||_1 B / K."""
+    return row[1] <= sum(map(int.__mul__, row[0], box))
 
 
 def survivors(G, b, vertices, N, T, order):
@@ -149,7 +149,8 @@ def survivors(G, b, vertices, N, T, order):
     for start in range(0, len(order), size):
         block = order[start:start + size]
         per_piece = [_union([boxes[i][a] for i in block]) for a in range(len(boxes[block[0]]))]
-        near = [j for j, row in enumerate(rows) if _outside(row, _union(per_piece))]
+        whole = _union(per_piece)
+        near = [j for j, row in enumerate(rows) if _outside(row, whole)]
         for a, box in enumerate(per_piece):
             hits = [j for j in near if _outside(rows[j], box)]
             for i in block:
