@@ -167,15 +167,21 @@ class ConditionSet:
         if self._Grows is None:
             self._Grows = [[self.G[j, l] for l in range(n)] for j in range(self.G.nrows())]
         Grows = self._Grows
+        by_generator: dict[int, list[int]] = {}
+        for i, j in pairs:
+            if (kind, i, j) not in self._built:
+                by_generator.setdefault(i, []).append(j)
+        for i, facets in by_generator.items():  # one small FLINT product per generator: rows g_j, columns N_k w
+            Gi = flint.fmpq_mat(len(facets), n, [x for j in facets for x in Grows[j]])
+            Ni = flint.fmpq_mat(n, len(NW), [E[l * cols + i] for l in range(n) for E in NW])
+            coeffs = (Gi * Ni).entries()
+            for r, j in enumerate(facets):
+                self._built[kind, i, j] = self._condition(kind, i, j, coeffs[r * len(NW):(r + 1) * len(NW)])
         out = []
         for i, j in pairs:
-            key = (kind, i, j)
-            if key not in self._built:
-                g = Grows[j]
-                gN = [sum((g[l] * E[l * cols + i] for l in range(n)), flint.fmpq(0)) for E in NW]
-                self._built[key] = self._condition(kind, i, j, gN)
-            if self._built[key] is not None:
-                out.append(self._built[key])
+            c = self._built[kind, i, j]
+            if c is not None:
+                out.append(c)
         return out
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
