@@ -199,12 +199,18 @@ class ConditionSet:
         W = self.W[kind]
         entries = [(self.G * (Nk * W)).entries() for Nk in self.N]
         cols, m, b = W.ncols(), self.G.nrows(), self.b
-        cheap_skip = self.method.is_polynomial and kind != Kind.LINE
+        Dc = self.D.coeffs()
+        # D's coefficients all >= 0 (always for polynomial methods, D = 1): if those of
+        # q = b_j D - g_j N w are too, c = q D has no negative coefficient and never binds
+        cheap_skip = kind != Kind.LINE and all(c >= 0 for c in Dc)
+        Dc = Dc + [flint.fmpq(0)] * (len(entries) - len(Dc))
         out = []
         for j in range(m):
+            bj = b[j] if kind == Kind.VERTEX else 0
             for i in range(cols):
                 idx = j * cols + i
-                if cheap_skip and all(e[idx] <= 0 for e in entries[1:]) and (kind == Kind.RAY or entries[0][idx] <= b[j]):
+                if cheap_skip and all(e[idx] <= bj * d for e, d in zip(entries, Dc)) and \
+                        all(bj * d >= 0 for d in Dc[len(entries):]):
                     continue  # every coefficient of c is >= 0: never binds (Descartes), decided before building c
                 c = self._condition(kind, i, j, [e[idx] for e in entries])
                 if c is not None:
