@@ -151,3 +151,23 @@ def test_the_engine_grid_test_is_conservative():
     _, N = method_matrices(A, [Fraction(1), Fraction(1), Fraction(1, 2)], [Fraction(1)])
     near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
     assert {(i, j) for i, f in near.items() for j in f} <= kept < {(i, j) for i in range(8) for j in range(len(G))}
+
+
+@pytest.mark.parametrize("method", [M.backward_euler(), M.trapezoid(), M.pade(2, 2), M.theta("1/3"), M.pade(1, 3)],
+                         ids=lambda m: m.name)
+@pytest.mark.parametrize("S, P", [(SPIN, DIAMOND), (ei.LinearSystem([[1, 2], [-3, -1]]), BOX)])
+def test_rational_valid_sets_agree_with_direct_checks(S, P, method):
+    """N(h) = D(h) r(hA) from the n x n interpolation and the Descartes pre-filter:
+    membership of rational steps agrees with A_d(h) v in P checked vertex by vertex."""
+    V = ei.valid_steplengths(S, P, method)
+    A, G, b, verts = _fractions(S, P)
+    for k in range(0, 40):
+        h = Fraction(k, 9)
+        try:
+            Ad = method.matrix(S, h)
+        except ei.ExactinvError:  # h(hA) singular: h is no valid steplength
+            assert h not in V
+            continue
+        inside = all(sum(g * sum(a * x for a, x in zip(row, v)) for g, row in zip(G[j], Ad)) <= b[j]
+                     for v in verts for j in range(len(G)))
+        assert (h in V) == inside, h
