@@ -20,7 +20,7 @@ Fraction(1, 1)
 Fraction(1, 1)
 """
 
-from .beyond.largest import LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
+from .beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
@@ -64,6 +64,7 @@ __all__ = [
     "forward_euler_threshold",
     "largest_threshold",
     "valid_steplengths",
+    "ConditionSet",
     "InvalidInput",
     "LinearSystem",
     "Method",
