@@ -28,7 +28,7 @@ from .beyond.ellipsoid_thresholds import (
     EllipsoidLargestThreshold,
     EllipsoidValidSteplengths,
 )
-from .beyond.largest import LargestThreshold, ValidSteplengths
+from .beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
@@ -85,6 +85,7 @@ __all__ = [
     "forward_euler_threshold",
     "largest_threshold",
     "valid_steplengths",
+    "ConditionSet",
     "InvalidInput",
     "LinearSystem",
     "Method",

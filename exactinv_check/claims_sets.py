@@ -10,29 +10,60 @@ the claim must equal the recomputation, end by end and flag by flag.
 
 from types import SimpleNamespace
 
-from . import polys
-from .conditions import condition_polynomials
+from . import polys, pruning
+from .conditions import condition_polynomials, method_matrices
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
 from .reals import Real
 from .validset import first_end, valid_set
 
 
-def _conditions(problem, claim, context):
+def _conditions(problem, claim, context, first_end_claim=False):
     """The proved generators and their conditions; computed once per certificate for
-    the same generator lists (a fact this kernel derived itself, kept in the context)."""
+    the same generator lists (a fact this kernel derived itself, kept in the context).
+    With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
+    rule out are built, after proving that the record's vertex bounds the set by T."""
     require(problem.method is not None, "a method is needed")
     lists = tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
-    key = ("conditions", repr(lists))
+    gkey = ("generators", repr(lists))
+    if gkey not in context:
+        context[gkey] = prove_generators(problem.G, problem.b, *lists)
+    gens = context[gkey]
+    record = claim.get("pruning")
+    key = ("conditions", repr(lists), None if record is None else repr(record), first_end_claim and record is not None)
     if key not in context:
-        gens = prove_generators(problem.G, problem.b, *lists)
-        context[key] = (gens,) + condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
-                                                       problem.method.denominator, gens)
-    gens, D, inequalities, equalities = context[key]
+        if record is None:
+            context[key] = condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
+                                                 problem.method.denominator, gens)
+        else:
+            context[key] = _pruned(problem, gens, record, first_end_claim)
+    D, inequalities, equalities = context[key]
     if claim.get("determinant") is not None:
         claimed = polys.trim(vector(claim["determinant"], "determinant"))
         require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
     return gens, D, inequalities, equalities
+
+
+def _pruned(problem, gens, record, first_end_claim):
+    """The conditions of vertex k, the surviving pairs, every ray and line pair."""
+    method = problem.method
+    require(method.is_polynomial, "pruning is defined for polynomial methods only")
+    T, k, order = pruning.parse(record, len(gens.vertices))
+    args = (problem.A, problem.G, problem.b, method.numerator, method.denominator)
+    alone = SimpleNamespace(vertices=[gens.vertices[k]], rays=[], lines=[])
+    D, own, _ = condition_polynomials(*args, alone)
+    if first_end_claim:
+        end, _ = first_end(D, own, {})
+    else:
+        own_set = valid_set(D, list(own), [])
+        end = own_set[-1].hi if own_set else Real.rational(0)
+    require(not end.inf and end.compare(Real.rational(T)) <= 0,
+            f"vertex {k} does not bound the {'first interval' if first_end_claim else 'valid set'} by the "
+            f"horizon {T}: its own ends at {end}")
+    _, N = method_matrices(problem.A, method.numerator, method.denominator)
+    near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T, order)
+    everything = range(problem.m)
+    return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]))
 
 
 def _first_vertex(inequalities):
@@ -42,7 +73,7 @@ def _first_vertex(inequalities):
 
 
 def largest_threshold(problem, claim, context):
-    gens, D, inequalities, equalities = _conditions(problem, claim, context)
+    gens, D, inequalities, equalities = _conditions(problem, claim, context, first_end_claim=True)
     tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities))
     value = Real.parse(claim["value"], "tau")
     require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")

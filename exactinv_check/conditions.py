@@ -84,14 +84,21 @@ def _integer_polynomial_product(p, q):
     return out
 
 
-def condition_polynomials(A, G, b, numerator, denominator, generators):
+def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of=None):
     """(D, inequalities, equalities): the distinct nonzero condition polynomials
     (each inequality must be >= 0, each equality = 0), as tuples of coprime
     integers (a positive multiple of the condition, so with its signs), keyed to
-    where they come from ((kind, index, facet) of one generator-facet pair)."""
+    where they come from ((kind, index, facet) of one generator-facet pair).
+    ``facets_of(kind, index)``, if given, names the facets to build for that
+    generator (None: all of them)."""
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
-    pairs = m * (len(generators.vertices) + len(generators.rays) + len(generators.lines))
+    facet_lists = {}
+    for kind, vectors in (("vertex", generators.vertices), ("ray", generators.rays), ("line", generators.lines)):
+        for index in range(len(vectors)):
+            chosen = None if facets_of is None else facets_of(kind, index)
+            facet_lists[kind, index] = range(m) if chosen is None else chosen
+    pairs = sum(len(f) for f in facet_lists.values())
     require(pairs <= MAX_CONDITIONS, f"{pairs} generator-facet conditions exceed the kernel's bound")
     # integers throughout: G N_k = GN_k / d_k, D = D_int / dD, w = w_int / d_w, b_j = bn_j / bd_j
     GN = [matmul(G, Nk) for Nk in N]
@@ -107,9 +114,8 @@ def condition_polynomials(A, G, b, numerator, denominator, generators):
         for index, w in enumerate(vectors):
             dw = _common_denominator(w)
             w_int = [int(x * dw) for x in w]
-            images = [[sum(a * x for a, x in zip(row, w_int)) for row in M] for M in GN_int]  # L dw g_j N_k w
-            for j in range(m):
-                e = polys.trim([images[k][j] for k in range(len(images))])  # L dw (g_j N(h) w)
+            for j in facet_lists[kind, index]:
+                e = polys.trim([sum(a * x for a, x in zip(M[j], w_int)) for M in GN_int])  # L dw (g_j N(h) w)
                 if kind == "line":
                     if e:
                         equalities.setdefault(tuple(polys.integer_coefficients(e)), (kind, index, j))

@@ -10,9 +10,15 @@ a polynomial matrix, each condition is a polynomial sign condition:
     ray r,    facet j:  c(dt) = -(g_j N(dt) r) D(dt) >= 0,
     line l,   facet j:  e(dt) = g_j N(dt) l = 0.
 
-The coefficients of all vertex-facet polynomials come from the matrix
-products G A^k V (FLINT); a polynomial whose coefficient signs show no
-positive root (Descartes) never binds and is skipped.
+N(dt) = sum_k dt^k N_k is computed once on the small n x n matrices
+(:func:`method_matrices`; for a rational method by exact interpolation of
+D(t) r(tA) at deg + 1 regular points, one n x n solve per point), and the
+coefficients of a vertex-facet polynomial are g_j N_k v: products G N_k W
+for all pairs at once, or one length-n dot product per selected pair.  A
+polynomial whose coefficient signs show no positive root (Descartes) never
+binds and is skipped.  :class:`ConditionSet` builds each of these once per
+(system, polyhedron, method) and is shared by the valid set, the largest
+threshold and the certificate.
 """
 
 from __future__ import annotations
@@ -20,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
+from typing import Iterable
 
 import flint
 
@@ -28,7 +35,7 @@ from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 
-__all__ = ["Kind", "Condition", "conditions_of", "distinct_conditions"]
+__all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "conditions_of", "distinct_conditions"]
 
 
 class Kind(StrEnum):
@@ -55,102 +62,167 @@ class Condition:
         return tuple(fraction_of(c) for c in self.p.coeffs())
 
 
-def _evaluate_rational(method: Method, A: flint.fmpq_mat, t: Fraction, W: flint.fmpq_mat):
-    """(D(t), D(t) A_d(t) W) exactly, D = det h(t A)."""
-    M = A * fmpq_of(t)
-    Hm = matrix_polynomial(method.denominator, M)
-    D = Hm.det()
-    if D == 0:
-        return None
-    return D, Hm.solve(matrix_polynomial(method.numerator, M) * W) * D
+def method_matrices(method: Method, A: flint.fmpq_mat) -> tuple[flint.fmpq_poly, list[flint.fmpq_mat]]:
+    """(D, [N_0, N_1, ...]) with D(t) = det h(tA) and D(t) r(tA) = sum_k t^k N_k, exactly.
 
+    Polynomial methods: D = 1, N_k = sigma_k A^k.  Rational methods: D and the
+    n^2 entries of N are polynomials of degree <= max(n deg h, (n-1) deg h + deg g),
+    interpolated from their values at that many + 1 points t = 0, 1, 2, ... where
+    h(tA) is regular -- one n x n determinant and solve per point, then one
+    product with the inverse Vandermonde matrix for all n^2 + 1 entries at once.
 
-def _interpolate_columns(points: list[Fraction], values: list[flint.fmpq_mat]) -> list[flint.fmpq_mat]:
-    """Coefficient matrices C_0..C_d with sum_d C_d t^d = values[k] at t = points[k]."""
-    d = len(points)
-    V = flint.fmpq_mat(d, d, [fmpq_of(p) ** e for p in points for e in range(d)])
-    Vinv = V.inv()
-    return [sum((values[k] * Vinv[e, k] for k in range(d)), values[0] * 0) for e in range(d)]
-
-
-def _generator_matrices(P: Polyhedron):
-    def mat(rows):
-        if not rows:
-            return None
-        return flint.fmpq_mat(len(rows[0]), len(rows), [fmpq_of(rows[i][k]) for k in range(len(rows[0])) for i in range(len(rows))])
-
-    return mat(P.vertices), mat(P.rays), mat(P.lines)
-
-
-def conditions_of(system: LinearSystem, P: Polyhedron, method: Method):
-    """All vertex/ray inequality conditions c >= 0, line equalities e = 0, and D."""
-    A, G = system.A_flint, P.G_flint
-    b = [fmpq_of(x) for x in P.b]
-    V, R, L = _generator_matrices(P)
+    >>> from exactinv.model import methods
+    >>> D, N = method_matrices(methods.backward_euler(), flint.fmpq_mat([[2]]))
+    >>> [int(c) for c in D.coeffs()], [int(Nk[0, 0]) for Nk in N]   # D = det(1 - 2t), N = D r(2t) = 1
+    ([1, -2], [1])
+    """
+    n = A.nrows()
     if method.is_polynomial:
-        D = flint.fmpq_poly([1])
+        out, power = [], flint.fmpq_mat(n, n, [int(i == j) for i in range(n) for j in range(n)])
+        for k, s in enumerate(method.sigmas):
+            if k:
+                power = power * A
+            out.append(power * fmpq_of(s))
+        return flint.fmpq_poly([1]), out
+    dh, dg = len(method.denominator) - 1, len(method.numerator) - 1
+    count = max(n * dh, (n - 1) * dh + dg) + 1
+    points, rows = [], []
+    t = 0
+    while len(points) < count:
+        M = A * t
+        H = matrix_polynomial(method.denominator, M)
+        d = H.det()
+        if d != 0:
+            X = H.solve(matrix_polynomial(method.numerator, M)) * d
+            points.append(t)
+            rows.append([d] + X.entries())
+        t += 1
+    vandermonde = flint.fmpq_mat(count, count, [fmpq_of(p) ** e for p in points for e in range(count)])
+    coeffs = vandermonde.inv() * flint.fmpq_mat(count, n * n + 1, [x for row in rows for x in row])
+    D = flint.fmpq_poly([coeffs[e, 0] for e in range(count)])
+    N = [flint.fmpq_mat(n, n, [coeffs[e, 1 + k] for k in range(n * n)]) for e in range(count)]
+    while len(N) > 1 and not any(N[-1].entries()):
+        N.pop()
+    return D, N
 
-        def coefficient_blocks(W):
-            blocks, Wk = [], W
-            for k, s in enumerate(method.sigmas):
-                if k:
-                    Wk = A * Wk
-                blocks.append(G * Wk * fmpq_of(s))
-            return blocks
-    else:
-        degree_D = P.n * (len(method.denominator) - 1)
-        degree_N = (P.n - 1) * (len(method.denominator) - 1) + len(method.numerator) - 1
-        count = max(degree_D, degree_N) + 1
-        points, Ds = [], []
-        t = Fraction(0)
-        while len(points) < count:
-            trial = _evaluate_rational(method, A, t, flint.fmpq_mat(P.n, 1))
-            if trial is not None:
-                points.append(t)
-                Ds.append(trial[0])
-            t += 1
-        Dc = _interpolate_columns(points, [flint.fmpq_mat(1, 1, [v]) for v in Ds])
-        D = flint.fmpq_poly([c[0, 0] for c in Dc])
 
-        def coefficient_blocks(W):
-            values = [G * _evaluate_rational(method, A, p, W)[1] for p in points]
-            return _interpolate_columns(points, values)
-
-    Dcoeffs = [fraction_of(c) for c in D.coeffs()]
-    conditions: list[Condition] = []
-    equalities: list[Condition] = []
-    for kind, W in ((Kind.VERTEX, V), (Kind.RAY, R), (Kind.LINE, L)):
-        if W is None:
-            continue
-        blocks = coefficient_blocks(W)
-        entries = [blk.entries() for blk in blocks]
-        cols = W.ncols()
-        cheap_skip = method.is_polynomial and kind != Kind.LINE
-        for j in range(P.m):
-            for i in range(cols):
-                idx = j * cols + i
-                if cheap_skip and all(e[idx] <= 0 for e in entries[1:]) and (kind == Kind.RAY or entries[0][idx] <= b[j]):
-                    continue  # every coefficient of c is >= 0: never binds (Descartes), decided before building c
-                gN = [e[idx] for e in entries]  # g_j N(dt) w, coefficients
-                if kind == Kind.LINE:
-                    poly = flint.fmpq_poly(gN)
-                    if not poly.is_zero():
-                        equalities.append(Condition(kind, i, j, poly))
-                    continue
-                q = -flint.fmpq_poly(gN)
-                if kind == Kind.VERTEX:
-                    q += D * b[j]
-                c = q * D
-                if _never_binds(c.coeffs()):
-                    continue
-                conditions.append(Condition(kind, i, j, c))
-    return conditions, equalities, D, Dcoeffs
+def _generator_matrix(rows) -> flint.fmpq_mat | None:
+    """The generators as the columns of an n x count matrix (None if there are none)."""
+    if not rows:
+        return None
+    n, count = len(rows[0]), len(rows)
+    return flint.fmpq_mat(n, count, [fmpq_of(rows[i][k]) for k in range(n) for i in range(count)])
 
 
 def _never_binds(coeffs) -> bool:
     """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes)."""
     nonzero = [c for c in coeffs if c != 0]
     return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
+
+
+class ConditionSet:
+    """The conditions of one (system, polyhedron, method), each built at most once.
+
+    ``D`` and ``N`` (:func:`method_matrices`) are computed on construction;
+    :meth:`all` builds every generator-facet condition (FLINT products
+    G N_k W), :meth:`pairs` only selected ones; both cache what they built."""
+
+    def __init__(self, system: LinearSystem, polyhedron: Polyhedron, method: Method):
+        self.system, self.polyhedron, self.method = system, polyhedron, method
+        self.D, self.N = method_matrices(method, system.A_flint)
+        self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]
+        self.G = polyhedron.G_flint
+        self.b = [fmpq_of(x) for x in polyhedron.b]
+        self.W = {Kind.VERTEX: _generator_matrix(polyhedron.vertices), Kind.RAY: _generator_matrix(polyhedron.rays),
+                  Kind.LINE: _generator_matrix(polyhedron.lines)}
+        self._NW: dict[Kind, list[list]] = {}
+        self._built: dict[tuple, Condition | None] = {}
+        self._Grows: list[list] | None = None
+        self._all: tuple[list[Condition], list[Condition]] | None = None
+
+    def count(self, kind: Kind) -> int:
+        """How many generators of this kind P has."""
+        W = self.W[kind]
+        return 0 if W is None else W.ncols()
+
+    def _condition(self, kind: Kind, i: int, j: int, gN: list) -> Condition | None:
+        """The condition of generator i of ``kind`` and facet j from g_j N_k w (k = 0, 1, ...)."""
+        if kind == Kind.LINE:
+            poly = flint.fmpq_poly(gN)
+            return None if poly.is_zero() else Condition(kind, i, j, poly)
+        q = -flint.fmpq_poly(gN)
+        if kind == Kind.VERTEX:
+            q += self.D * self.b[j]
+        c = q * self.D
+        return None if _never_binds(c.coeffs()) else Condition(kind, i, j, c)
+
+    def pairs(self, kind: Kind, pairs: Iterable[tuple[int, int]]) -> list[Condition]:
+        """The nontrivial conditions of the (generator, facet) pairs given, each built once."""
+        pairs = list(pairs)
+        if not pairs:
+            return []
+        if kind not in self._NW:
+            self._NW[kind] = [(Nk * self.W[kind]).entries() for Nk in self.N]
+        NW, cols, n = self._NW[kind], self.count(kind), self.polyhedron.n
+        if self._Grows is None:
+            self._Grows = [[self.G[j, l] for l in range(n)] for j in range(self.G.nrows())]
+        Grows = self._Grows
+        by_generator: dict[int, list[int]] = {}
+        for i, j in pairs:
+            if (kind, i, j) not in self._built:
+                by_generator.setdefault(i, []).append(j)
+        for i, facets in by_generator.items():  # one small FLINT product per generator: rows g_j, columns N_k w
+            Gi = flint.fmpq_mat(len(facets), n, [x for j in facets for x in Grows[j]])
+            Ni = flint.fmpq_mat(n, len(NW), [E[l * cols + i] for l in range(n) for E in NW])
+            coeffs = (Gi * Ni).entries()
+            for r, j in enumerate(facets):
+                self._built[kind, i, j] = self._condition(kind, i, j, coeffs[r * len(NW):(r + 1) * len(NW)])
+        out = []
+        for i, j in pairs:
+            c = self._built[kind, i, j]
+            if c is not None:
+                out.append(c)
+        return out
+
+    def all(self) -> tuple[list[Condition], list[Condition]]:
+        """(inequalities, equalities) over every generator-facet pair (built once)."""
+        if self._all is None:
+            conditions: list[Condition] = []
+            equalities: list[Condition] = []
+            for kind in (Kind.VERTEX, Kind.RAY, Kind.LINE):
+                if self.W[kind] is not None:
+                    (equalities if kind == Kind.LINE else conditions).extend(self._all_of(kind))
+            self._all = (conditions, equalities)
+        return self._all
+
+    def _all_of(self, kind: Kind) -> list[Condition]:
+        W = self.W[kind]
+        entries = [(self.G * (Nk * W)).entries() for Nk in self.N]
+        cols, m, b = W.ncols(), self.G.nrows(), self.b
+        Dc = self.D.coeffs()
+        # D's coefficients all >= 0 (always for polynomial methods, D = 1): if those of
+        # q = b_j D - g_j N w are too, c = q D has no negative coefficient and never binds
+        cheap_skip = kind != Kind.LINE and all(c >= 0 for c in Dc)
+        Dc = Dc + [flint.fmpq(0)] * (len(entries) - len(Dc))
+        out = []
+        for j in range(m):
+            bj = b[j] if kind == Kind.VERTEX else 0
+            for i in range(cols):
+                idx = j * cols + i
+                if cheap_skip and all(e[idx] <= bj * d for e, d in zip(entries, Dc)) and \
+                        all(bj * d >= 0 for d in Dc[len(entries):]):
+                    continue  # every coefficient of c is >= 0: never binds (Descartes), decided before building c
+                c = self._condition(kind, i, j, [e[idx] for e in entries])
+                if c is not None:
+                    out.append(c)
+        return out
+
+
+def conditions_of(system: LinearSystem, P: Polyhedron, method: Method):
+    """All vertex/ray inequality conditions c >= 0, line equalities e = 0, D and its coefficients."""
+    cs = ConditionSet(system, P, method)
+    conditions, equalities = cs.all()
+    return conditions, equalities, cs.D, cs.Dcoeffs
 
 
 def distinct_conditions(conditions: list[Condition]) -> dict[tuple, Condition]:

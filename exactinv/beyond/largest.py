@@ -8,10 +8,19 @@ its sign, tracked from the sign right of 0 through the odd multiplicities, is
 negative; dt must avoid the roots of D (where r(dt A) is singular).  A
 polynomial that Descartes' rule shows nonnegative up to the current bound is
 skipped, so only pairs that can actually bind reach root isolation.
+
+For polynomial methods the pairs are first pruned (:mod:`.pruning`): the
+conditions of vertex 0 bound the valid set (or the first interval) by a
+horizon T, and only the pairs whose slack does not provably exceed the
+change of A_d(h)v on [0, T] are built at all.  ``prune=False`` builds every
+pair (the unpruned route: the same exact answer).  Pass one
+:class:`ConditionSet` as ``conditions=`` to share the built conditions
+between the valid set, the largest threshold and the certificate.
 """
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -26,10 +35,12 @@ from ..core.roots import negative_segments, nonnegative_until, positive_roots
 from ..core.scalars import INF, Infinity, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
+from ..errors import InvalidInput
 from ..model.validate import check_problem
-from .conditions import Condition, Kind, conditions_of, distinct_conditions
+from .conditions import Condition, ConditionSet, Kind, distinct_conditions
+from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 
-__all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold"]
+__all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +57,7 @@ class ValidSteplengths:
     system: LinearSystem | None = field(default=None, repr=False)
     polyhedron: Polyhedron | None = field(default=None, repr=False)
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
+    pruning: Pruning | None = field(default=None, repr=False)
 
     def __iter__(self):
         return iter(self.intervals)
@@ -60,6 +72,7 @@ class ValidSteplengths:
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
             **generator_record(self.polyhedron),
             "determinant": vec(self.determinant),
+            **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
 
     @property
@@ -96,6 +109,7 @@ class LargestThreshold(ExactValueMixin):
     polyhedron: Polyhedron | None = field(default=None, repr=False)
     checked: tuple[Condition, ...] = field(default=(), repr=False)
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
+    pruning: Pruning | None = field(default=None, repr=False)
 
     def claims(self) -> list[dict]:
         return [{
@@ -107,6 +121,7 @@ class LargestThreshold(ExactValueMixin):
             "binding": None if self.binding is None else {
                 "kind": self.binding.kind, "generator": self.binding.generator, "facet": self.binding.facet,
                 "poly": vec(self.binding.poly)},
+            **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
 
     @property
@@ -121,12 +136,46 @@ class LargestThreshold(ExactValueMixin):
         return f"LargestThreshold(value={self.value}, attained={self.attained}, method={self.method.name})"
 
 
-def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> ValidSteplengths:
+def _conditions(cs: ConditionSet, first_end: bool, allow: bool) -> tuple[list, list, Pruning | None]:
+    """(inequalities, equalities, pruning): every pair, or -- for a polynomial method
+    whose vertex 0 bounds the set (or its first interval) by a horizon T -- vertex
+    0's conditions, the surviving vertex pairs and every ray and line pair."""
+    P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
+    if allow and cs.method.is_polynomial and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
+        T, first, seconds = bounding_horizon(cs, first_end)
+        if T is not None:
+            return prune_pairs(cs, T, first, seconds)
+    conditions, equalities = cs.all()
+    return conditions, equalities, None
+
+
+def _problem(system, polyhedron, method, conditions):
+    if conditions is None:
+        check_problem(system, polyhedron, method)
+        return ConditionSet(system, polyhedron, method)
+    if not all(a is b or a == b for a, b in ((conditions.system, system), (conditions.polyhedron, polyhedron),
+                                               (conditions.method, method))):
+        raise InvalidInput("conditions: a ConditionSet of another (system, polyhedron, method)")
+    return conditions
+
+
+def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
+                      conditions: ConditionSet | None = None) -> ValidSteplengths:
     """The exact set {dt >= 0 : A_d(dt) P subset of P} as a union of intervals
-    with exact ends (open/closed marked); singular points of r(dt A) excluded."""
-    check_problem(system, polyhedron, method)
-    conditions, equalities, D, _ = conditions_of(system, polyhedron, method)
-    distinct = distinct_conditions(conditions)
+    with exact ends (open/closed marked); singular points of r(dt A) excluded.
+    ``prune``: certified pruning of the vertex-facet pairs (same result);
+    ``conditions``: a shared :class:`ConditionSet` of the same problem.
+
+    >>> import exactinv as ei
+    >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> V.intervals
+    [0, 2]
+    """
+    cs = _problem(system, polyhedron, method, conditions)
+    t0 = time.perf_counter()
+    inequalities, equalities, pruning = _conditions(cs, False, prune)
+    D = cs.D
+    distinct = distinct_conditions(inequalities)
     singular = [r for r, _ in positive_roots(D)]
     # The valid set lies inside the valid set of any single generator: take the
     # conditions of the first vertex exactly, then skip every other condition
@@ -151,32 +200,47 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
             allowed = roots if allowed is None else {r for r in allowed if any(r == s for s in roots)}
         points = [Fraction(0)] + sorted((r for r in allowed or () if r in union), key=ExactKey)
         union = IntervalUnion(tuple(Interval(p, p, True, True) for p in points))
-    return ValidSteplengths(union, method, tuple(singular), len(conditions), len(distinct), system, polyhedron,
-                            tuple(fraction_of(c) for c in D.coeffs()))
+    if pruning is not None:
+        pruning = pruning.finished(time.perf_counter() - t0)
+    return ValidSteplengths(union, method, tuple(singular), len(inequalities), len(distinct), system, polyhedron,
+                            tuple(cs.Dcoeffs), pruning)
 
 
-def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> LargestThreshold:
+def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
+                      conditions: ConditionSet | None = None) -> LargestThreshold:
     """The exact largest threshold sup{T : A_d(dt) P subset of P for all dt in [0, T)}
     -- the end of the first interval of :func:`valid_steplengths` -- computed
-    directly from the first sign change of each condition and the first pole."""
-    check_problem(system, polyhedron, method)
-    conditions, equalities, D, Dcoeffs = conditions_of(system, polyhedron, method)
-    distinct = list(distinct_conditions(conditions).values())
+    directly from the first sign change of each condition and the first pole.
+    ``prune`` and ``conditions`` as for :func:`valid_steplengths`.
+
+    >>> import exactinv as ei
+    >>> largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2)).value
+    Fraction(2, 1)
+    """
+    cs = _problem(system, polyhedron, method, conditions)
+    t0 = time.perf_counter()
+    inequalities, equalities, pruning = _conditions(cs, True, prune)
+    distinct = list(distinct_conditions(inequalities).values())
+    Dcoeffs = tuple(cs.Dcoeffs)
     if equalities:
-        return LargestThreshold(Fraction(0), True, method, equalities[0], None, system, polyhedron, tuple(distinct), tuple(Dcoeffs))
+        return LargestThreshold(Fraction(0), True, method, equalities[0], None, system, polyhedron, tuple(distinct),
+                                Dcoeffs, pruning)
     best: Real = INF
     binding: Condition | None = None
-    for c in sorted(distinct, key=lambda c: c.p(0)):  # the tightest pairs first
+    for c in sorted(distinct, key=lambda c: (c.kind != Kind.VERTEX or c.generator != 0, c.p(0))):
         if not isinstance(best, Infinity) and positive_right_of_zero(c.p) and no_positive_root_below(c.p, upper_bound(best)):
             continue  # c >= 0 on [0, best]: cannot end the first interval earlier
         end = nonnegative_until(c.p)
         if exact_lt(end, best):
             best, binding = end, c
-    poles = positive_roots(D)
+    poles = positive_roots(cs.D)
     singular = poles[0][0] if poles else None
     attained = True
     if singular is not None and not exact_lt(best, singular):
         best, binding, attained = singular, None, False
     if isinstance(best, Infinity):
         attained = True
-    return LargestThreshold(best, attained, method, binding, singular, system, polyhedron, tuple(distinct), tuple(Dcoeffs))
+    if pruning is not None:
+        pruning = pruning.finished(time.perf_counter() - t0)
+    return LargestThreshold(best, attained, method, binding, singular, system, polyhedron, tuple(distinct), Dcoeffs,
+                            pruning)

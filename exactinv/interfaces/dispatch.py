@@ -24,7 +24,7 @@ from ..beyond.ellipsoid_thresholds import (
     ellipsoid_largest_threshold,
     ellipsoid_valid_steplengths,
 )
-from ..beyond.largest import LargestThreshold, ValidSteplengths
+from ..beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths
 from ..model import Ellipsoid
 from ..paper import forward_euler as paper_fe, invariance as paper_inv
 from ..paper.forward_euler import ForwardEulerThreshold
@@ -71,8 +71,11 @@ def forward_euler_threshold(system: Any, invariant_set: Any) -> ForwardEulerThre
     return paper_fe.forward_euler_threshold(system, invariant_set)
 
 
-def valid_steplengths(system: Any, invariant_set: Any, method: Any) -> ValidSteplengths:
+def valid_steplengths(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
+                      conditions: ConditionSet | None = None) -> ValidSteplengths:
     """The exact set of valid steplengths h >= 0, a union of intervals with exact ends.
+    On a polyhedron, ``prune`` and ``conditions`` (a :class:`ConditionSet` of the
+    same problem, shared with :func:`largest_threshold`) are passed on.
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> valid_steplengths(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.taylor(2))
@@ -80,11 +83,13 @@ def valid_steplengths(system: Any, invariant_set: Any, method: Any) -> ValidStep
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_valid_steplengths(system, invariant_set, method)
-    return polyhedral.valid_steplengths(system, invariant_set, method)
+    return polyhedral.valid_steplengths(system, invariant_set, method, prune=prune, conditions=conditions)
 
 
-def largest_threshold(system: Any, invariant_set: Any, method: Any) -> LargestThreshold:
-    """The exact largest threshold: the end of the first interval of the valid set.
+def largest_threshold(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
+                      conditions: ConditionSet | None = None) -> LargestThreshold:
+    """The exact largest threshold: the end of the first interval of the valid set
+    (``prune``, ``conditions`` as for :func:`valid_steplengths`).
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> largest_threshold(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.backward_euler()).value
@@ -92,4 +97,4 @@ def largest_threshold(system: Any, invariant_set: Any, method: Any) -> LargestTh
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_largest_threshold(system, invariant_set, method)
-    return polyhedral.largest_threshold(system, invariant_set, method)
+    return polyhedral.largest_threshold(system, invariant_set, method, prune=prune, conditions=conditions)

@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 import exactinv_check
 
-from ..beyond.largest import largest_threshold, valid_steplengths
+from ..beyond.largest import ConditionSet, largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic, significant_digits
 from ..core.polys import poly_text
 from ..model import Method
@@ -175,8 +175,9 @@ def _paper_threshold(S, P, method: Method, lines: list[str]) -> list[Any]:
 
 
 def _largest(S, P, method: Method, lines: list[str]) -> list[Any]:
-    V = valid_steplengths(S, P, method)
-    L = largest_threshold(S, P, method)
+    conditions = ConditionSet(S, P, method)  # built once, shared by both results
+    V = valid_steplengths(S, P, method, conditions=conditions)
+    L = largest_threshold(S, P, method, conditions=conditions)
     lines.append(f"exact valid steplengths for {method.name}: {V.intervals!r}")
     lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)"))
     return [L, V]

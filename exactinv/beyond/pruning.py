@@ -1,0 +1,311 @@
+"""Certified pruning of vertex-facet pairs before any polynomial is built (issue 13).
+
+For a polynomial method A_d(h) = sum_k h^k N_k (N_0 = I), split [0, T] into
+pieces [t, t + d] (:func:`nodes`: graded towards both ends, where images
+are close to the boundary).  On a piece, with s = h - t in [0, d],
+
+    A_d(t + s) = sum_k s^k D_k,  D_k = sum_{i>=k} C(i, k) t^(i-k) N_i  (exact),
+    A_d(t + s) v = X + s Y + R(s),  X = D_0 v,  Y = D_1 v,
+    |R(s)| <= M |v| entrywise,  M = sum_{k>=2} d^k |D_k|,
+
+so g_j A_d(h) v <= max(g_j X, g_j Z) + ||g_j||_1 rho_v with Z = X + d Y
+and rho_v = max_i (M |v|)_i: the linear part is largest at an end of the
+chord.  (Expanding at t, not at 0, keeps the cancellation of alternating
+series such as exp(-t): M is small where A_d(h) is.)  A pair whose slacks
+b_j - g_j X and b_j - g_j Z both exceed ||g_j||_1 rho_v -- a per-facet norm
+times a per-vertex bound, compared with per-vertex slacks -- satisfies its
+condition strictly on the piece; a pair that passes on every piece cannot
+bind anywhere in [0, T] and is not built.
+Rays are never pruned and lines give equalities, which no slack can settle;
+both keep every pair.
+
+Which T.  If S is any set of conditions whose valid set V_S lies in [0, T]
+(here: every condition of one vertex, whose valid set is bounded for most
+methods and vertices), then the valid set V of all conditions satisfies
+V = V_{S u U} with U the pairs that survive the test on [0, T]: beyond T
+both sides are empty (V is inside V_S), and on [0, T] every pruned condition
+is positive.  The same T serves the largest threshold: its value is at most
+the first end of S, hence at most T.  The kernel repeats the test exactly
+(:mod:`exactinv_check.pruning`); the certificate only names T and the vertex.
+
+The engine's test is vectorised and exact: every quantity is rounded to an
+integer grid of step 2^-24 (relative to the points' size; each gridded
+coordinate within 2 steps of the exact one, the error E below accounts for it), the slacks of all pairs are products of int64 matrices (numpy,
+bounded magnitudes: no overflow), and a pair survives unless its rounded
+slack provably exceeds its rounded bound.  Rounding only lets more pairs
+survive, never fewer.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from math import comb
+from dataclasses import dataclass, field, replace
+from fractions import Fraction
+
+import flint
+import numpy as np
+
+from ..core.algebraic import ExactKey, upper_bound
+from ..core.intervals import complement_of_open
+from ..core.roots import negative_segments, nonnegative_until
+from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from .conditions import Kind
+
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
+
+_BITS = 24  # the grid: K = 2^24
+_BLOCK = 64  # vertices per block of the box test
+WORTHWHILE = 0.3  # above this fraction of surviving pairs, build all pairs at once
+
+
+def coarse_above(x: Fraction, bits: int = 64) -> Fraction:
+    """A dyadic rational >= x with about ``bits`` significant bits (0 for x = 0).
+
+    >>> coarse_above(Fraction(1, 3), 8)
+    Fraction(171, 512)
+    """
+    if x == 0:
+        return Fraction(0)
+    shift = bits - (x.numerator.bit_length() - x.denominator.bit_length())
+    if shift > 0:
+        return Fraction(-((-x.numerator << shift) // x.denominator), 1 << shift)
+    return Fraction(-(-x.numerator // (x.denominator << -shift)) << -shift)
+
+
+def nodes(T: Fraction) -> list[Fraction]:
+    """The ends of the pieces of [0, T]: T x for x in 0, 1, a/16 and 2^-i, 1 - 2^-i (i <= 12).
+
+    >>> nodes(Fraction(0))
+    [Fraction(0, 1), Fraction(0, 1)]
+    >>> len(nodes(Fraction(1)))
+    33
+    """
+    if T == 0:
+        return [Fraction(0), Fraction(0)]
+    xs = {Fraction(0), Fraction(1)} | {Fraction(a, 16) for a in range(1, 16)}
+    xs |= {Fraction(1, 2**i) for i in range(1, 13)} | {1 - Fraction(1, 2**i) for i in range(1, 13)}
+    return [T * x for x in sorted(xs)]
+
+
+def piece(N: list[flint.fmpq_mat], t: Fraction, d: Fraction):
+    """(A_d(t), d A_d'(t), M) for the piece [t, t + d]: with A_d(t + s) = sum_k s^k D_k
+    (D_k = sum_{i>=k} C(i, k) t^(i-k) N_i, exact), M = sum_{k>=2} d^k |D_k| bounds the
+    remainder |A_d(t + s) - D_0 - s D_1| entrywise for s in [0, d].
+
+    >>> X, Y, M = piece([flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1]]), flint.fmpq_mat([[1, ]])], Fraction(1), Fraction(1))
+    >>> X[0, 0], Y[0, 0], M
+    (1, 1, [[Fraction(1, 1)]])
+    """
+    n = N[0].nrows()
+    tq, dq = fmpq_of(t), fmpq_of(d)
+    D = []
+    for k in range(len(N)):
+        Dk = N[0] * 0
+        for i in range(k, len(N)):
+            Dk += N[i] * (comb(i, k) * tq ** (i - k))
+        D.append(Dk)
+    M = [[Fraction(0)] * n for _ in range(n)]
+    for k in range(2, len(D)):
+        dk = d**k
+        for i in range(n):
+            for l in range(n):
+                M[i][l] += dk * abs(fraction_of(D[k][i, l]))
+    return D[0], (D[1] * dq if len(D) > 1 else D[0] * 0), M
+
+
+def _grid(Q: flint.fmpq_mat, Wf: flint.fmpz_mat, f: int, e: int) -> np.ndarray:
+    """floor(2^(e-f) Q Wf) entrywise as int64, Wf = floor(2^f W): within 1 + 2^(e-f) ||Q||_oo of 2^e Q W."""
+    Qz, dQ = Q.numer_denom()
+    d = int(dQ) << (f - e)
+    return np.array([int(x) // d for x in (Qz * Wf).entries()], dtype=np.int64).reshape(Q.nrows(), Wf.ncols())
+
+
+def _norm(Q: flint.fmpq_mat) -> Fraction:
+    """||Q||_oo, the largest absolute row sum (so |Q v|_oo <= ||Q||_oo |v|_oo)."""
+    return max(sum(abs(fraction_of(Q[i, l])) for l in range(Q.ncols())) for i in range(Q.nrows()))
+
+
+def _dot(Gt: np.ndarray, U: np.ndarray) -> np.ndarray:
+    """Gt @ U for a small inner dimension (int64 matmul has no BLAS: outer products are faster)."""
+    out = Gt[:, 0, None] * U[0]
+    for l in range(1, Gt.shape[1]):
+        out += Gt[:, l, None] * U[l]
+    return out
+
+
+def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint.fmpq_mat],
+                    T: Fraction) -> tuple[np.ndarray, np.ndarray]:
+    """(facets, vertices): the pairs (j, i) that the test on the pieces of [0, T] cannot prune.
+
+    Every pair not returned has, on every piece, both chord-end slacks above
+    ||g_j||_1 rho_v, proved on the integer grid (see the module docstring).
+
+    >>> G, W = flint.fmpq_mat([[1], [-1]]), flint.fmpq_mat([[1, -1]])   # [-1, 1], vertices 1 and -1
+    >>> f, v = surviving_pairs(G, [1, 1], W, [flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1]])], Fraction(1, 2))
+    >>> sorted(zip(v.tolist(), f.tolist()))   # x' = -x, forward Euler: the far facet of each vertex is pruned
+    [(0, 0), (1, 1)]
+    """
+    n, m, V = W.nrows(), G.nrows(), W.ncols()
+    K = 1 << _BITS
+    ends = nodes(T)
+    pieces = [piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
+    maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [N[0] ** 0]  # the chord ends, then v itself
+    Wz, dW = W.numer_denom()
+    vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), int(dW))
+    qmax = max(_norm(Q) for Q in maps)
+    top = vmax * qmax  # >= every |coordinate| of every point
+    r = math.ceil(top).bit_length() if top else 0
+    R = Fraction(2) ** r
+    e = _BITS - r
+    f = max(e, 0) + math.ceil(qmax).bit_length() + 1  # 2^(f-e) >= ||Q||_oo: grid error <= 2
+    Wf = flint.fmpz_mat(W.nrows(), W.ncols(), [(x * 2**f).floor() for x in W.entries()])
+    grids = [_grid(Q, Wf, f, e) for Q in maps]
+    a = np.abs(grids.pop()) + 2  # >= |v| K / R
+    cap = Fraction(2**62, n * (K + 1) * K)
+    if n > 64 or any(x > cap for _, _, M in pieces for row in M for x in row):
+        return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
+    rho = [(np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64) @ a).max(axis=0)
+           for _, _, M in pieces]  # >= K^2 rho_v / R
+    Gt, bt = [], []
+    for j in range(m):
+        g = [fraction_of(G[j, l]) for l in range(n)]
+        norm = sum(abs(x) for x in g)
+        Gt.append([round(x / norm * K) for x in g])
+        bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
+        bt.append(math.floor(bbar * K * K))
+    Gt = np.array(Gt, dtype=np.int64)
+    bt = (np.array(bt, dtype=np.int64) - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
+    return _blocked_test(Gt, bt, grids, rho, np.array(vertex_order(W), dtype=np.int64))
+
+
+def _blocked_test(Gt, bt, grids, rho, order):
+    """The surviving (facets, vertices): boxes around blocks of vertices (along ``order``)
+    first, then vertex by vertex for the facets a block's box does not clear."""
+    m, V = Gt.shape[0], grids[0].shape[1]
+    size = _BLOCK
+    blocks = -(-V // size)
+    idx = np.concatenate([order, np.repeat(order[-1:], blocks * size - V)]).reshape(blocks, size)
+    Gp, Gn = np.maximum(Gt, 0), np.minimum(Gt, 0)
+    near = np.zeros((m, blocks), dtype=bool)
+    for k, bound in enumerate(rho):
+        X, Z = grids[2 * k][:, idx], grids[2 * k + 1][:, idx]  # n x blocks x size
+        lo, hi = np.minimum(X, Z).min(axis=2), np.maximum(X, Z).max(axis=2)
+        near |= bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]
+    facets, vertices = [], []
+    for blk in range(blocks):
+        F = np.nonzero(near[:, blk])[0]
+        if not len(F):
+            continue
+        cols = np.unique(idx[blk])
+        keep = np.zeros((len(F), len(cols)), dtype=bool)
+        for k, bound in enumerate(rho):
+            for U in grids[2 * k: 2 * k + 2]:
+                keep |= bt[F] - _dot(Gt[F], U[:, cols]) <= bound[None, cols]
+        j, i = np.nonzero(keep)
+        facets.append(F[j])
+        vertices.append(cols[i])
+    if not facets:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    return np.concatenate(facets), np.concatenate(vertices)
+
+
+def vertex_order(W: flint.fmpq_mat) -> list[int]:
+    """A permutation of the vertices that keeps near vertices near (Morton order of
+    rounded coordinates): the kernel checks the pruning block by block along it.
+    Only a hint -- any permutation is correct, a good one is faster to check.
+
+    >>> vertex_order(flint.fmpq_mat([[0, 5, 1, 4]]))
+    [0, 2, 3, 1]
+    """
+    n, V = W.nrows(), W.ncols()
+    dims = min(n, max(1, 48 // 12))
+    x = np.array([float(e) for e in W.entries()[: dims * V]]).reshape(dims, V)
+    lo, hi = x.min(axis=1, keepdims=True), x.max(axis=1, keepdims=True)
+    q = ((x - lo) / np.where(hi > lo, hi - lo, 1) * 4095).astype(np.int64)
+    key = np.zeros(V, dtype=np.int64)
+    for bit in range(11, -1, -1):
+        for l in range(dims):
+            key = (key << 1) | ((q[l] >> bit) & 1)
+    return [int(i) for i in np.argsort(key, kind="stable")]
+
+
+@dataclass(frozen=True)
+class Pruning:
+    """How the pairs were pruned: the ``horizon`` T (a rational bound on the valid set,
+    or on its first interval, given by vertex ``vertex``), the number of vertex-facet
+    ``pairs``, the ``survivors`` built as polynomials, and seconds per stage.
+    ``applied`` is False when too many survived (more than :data:`WORTHWHILE` of
+    the pairs): then every pair was built by the all-pairs products instead."""
+
+    horizon: Fraction
+    vertex: int
+    pairs: int
+    survivors: int
+    order: tuple[int, ...] = field(repr=False)
+    seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
+    applied: bool = True
+
+    def record(self) -> dict | None:
+        """The certificate's pruning record: the kernel recomputes the rest."""
+        if not self.applied:
+            return None
+        return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
+
+    def finished(self, total: float) -> "Pruning":
+        """With the remaining time (roots and intervals) as the last stage."""
+        rest = total - sum(s for _, s in self.seconds)
+        return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
+
+
+def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
+    """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
+    set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
+
+    >>> import exactinv as ei
+    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> bounding_horizon(cs, False)[0]
+    Fraction(2, 1)
+    """
+    t0 = time.perf_counter()
+    first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
+    if first_end:
+        end = min((nonnegative_until(c.p) for c in first), key=ExactKey, default=INF)
+    else:
+        bad = [seg for c in first for seg in negative_segments(c.p)]
+        union = complement_of_open(bad, [])
+        end = union.intervals[-1].hi if union.intervals else Fraction(0)
+    T = None if isinstance(end, Infinity) else coarse_above(upper_bound(end), 20)  # short: cheap pieces
+    return T, first, [("bounding vertex", time.perf_counter() - t0)]
+
+
+def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Pruning]:
+    """(inequalities, equalities, record) for the horizon T: vertex 0's conditions,
+    the surviving vertex-facet pairs, every ray pair (inequalities) and line pair.
+
+    >>> import exactinv as ei
+    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> T, first, seconds = bounding_horizon(cs, False)
+    >>> prune(cs, Fraction(1, 2), first, seconds)[2].survivors   # vertex 0's two pairs, vertex 1's own facet
+    3
+    """
+    t0 = time.perf_counter()
+    W, m, V = cs.W[Kind.VERTEX], cs.polyhedron.m, cs.count(Kind.VERTEX)
+    facets, vertices = surviving_pairs(cs.G, cs.b, W, cs.N, T)
+    keep = vertices != 0
+    pairs = list(zip(vertices[keep].tolist(), facets[keep].tolist()))
+    order = tuple(vertex_order(W))
+    t1 = time.perf_counter()
+    if len(pairs) > WORTHWHILE * m * V:  # the all-pairs FLINT products are cheaper
+        inequalities, equalities = cs.all()
+        stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("all polynomials", time.perf_counter() - t1))
+        return inequalities, equalities, Pruning(T, 0, m * V, m * V, order, stages, applied=False)
+    inequalities = first + cs.pairs(Kind.VERTEX, pairs)
+    inequalities += cs.pairs(Kind.RAY, [(i, j) for i in range(cs.count(Kind.RAY)) for j in range(m)])
+    equalities = cs.pairs(Kind.LINE, [(i, j) for i in range(cs.count(Kind.LINE)) for j in range(m)])
+    t2 = time.perf_counter()
+    stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("survivor polynomials", t2 - t1))
+    return inequalities, equalities, Pruning(T, 0, m * V, len(pairs) + m, order, stages)

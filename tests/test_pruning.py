@@ -1,0 +1,173 @@
+"""Certified pruning of vertex-facet pairs (issue 13): the same exact answers as
+the unpruned route, a sound bound, and a kernel that rejects what it cannot prove."""
+
+from fractions import Fraction
+
+import pytest
+from hypothesis import given, settings, strategies as st
+
+import exactinv as ei
+import exactinv.beyond.pruning as engine_pruning
+from exactinv.beyond.conditions import ConditionSet, Kind
+from exactinv_check import check, pruning
+from exactinv_check.conditions import method_matrices
+
+M = ei.methods
+SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
+# an elongated octagon: x' = Ax is not invariant on it, and the Taylor-2 valid set is [0, 0] U [594/1019, 2194/1769]
+DIAMOND = ei.Polyhedron.from_vertices([[10, 0], [0, 1], [-10, 0], [0, -1], [7, "7/10"], [-7, "7/10"],
+                                       [7, "-7/10"], [-7, "-7/10"]])
+BOX = ei.Polyhedron.box([-1, -2], [1, 2])
+ROT = ei.LinearSystem([[-1, "1/2"], ["-1/2", -1]])
+INSTANCES = [(SPIN, DIAMOND), (ROT, BOX), (ROT, ei.Polyhedron.from_vertices([[1, 0], [0, 1], [-1, 0], [0, -1], [2, 2]])),
+             (ei.LinearSystem([[-1, 2], [0, -3]]), ei.Polyhedron.box([0, 0], [3, 1]))]
+METHODS = [M.taylor(1), M.taylor(2), M.taylor(4), M.polynomial([1, 1, 0, "1/4"])]
+
+
+@pytest.fixture
+def forced(monkeypatch):
+    """Pruning always applied, however many pairs survive."""
+    monkeypatch.setattr(engine_pruning, "WORTHWHILE", 1.0)
+
+
+def _fractions(S, P):
+    A = [[Fraction(x) for x in r] for r in S.A]
+    return A, [[Fraction(x) for x in r] for r in P.G], [Fraction(x) for x in P.b], [list(map(Fraction, v)) for v in P.vertices]
+
+
+def test_the_taylor2_valid_set_of_the_diamond_has_a_gap(forced):
+    V = ei.valid_steplengths(SPIN, DIAMOND, M.taylor(2))
+    assert [(iv.lo, iv.hi) for iv in V] == [(0, 0), (Fraction(594, 1019), Fraction(2194, 1769))]
+    assert V.pruning.applied and check(V.certificate).ok
+
+
+@pytest.mark.parametrize("S, P", INSTANCES)
+@pytest.mark.parametrize("method", METHODS, ids=lambda m: m.name)
+def test_pruned_and_unpruned_routes_agree(forced, S, P, method):
+    V_on, V_off = ei.valid_steplengths(S, P, method), ei.valid_steplengths(S, P, method, prune=False)
+    assert list(V_on) == list(V_off) and [(i.lo_closed, i.hi_closed) for i in V_on] == [(i.lo_closed, i.hi_closed) for i in V_off]
+    L_on, L_off = ei.largest_threshold(S, P, method), ei.largest_threshold(S, P, method, prune=False)
+    assert L_on.value == L_off.value and L_on.attained == L_off.attained
+    assert V_off.pruning is None and "pruning" not in V_off.claims()[0]
+    assert check(V_on.certificate).ok and check(L_on.certificate).ok and check(V_off.certificate).ok
+
+
+def test_a_shared_condition_set_builds_each_pair_once(forced):
+    cs = ConditionSet(SPIN, DIAMOND, M.taylor(2))
+    V = ei.valid_steplengths(SPIN, DIAMOND, M.taylor(2), conditions=cs)
+    built = len(cs._built)
+    L = ei.largest_threshold(SPIN, DIAMOND, M.taylor(2), conditions=cs)
+    assert len(cs._built) <= built  # the largest threshold's horizon is smaller: nothing new to build
+    assert L.value == 0 and V.intervals[0].hi == 0
+    with pytest.raises(ei.ExactinvError, match="conditions"):
+        ei.valid_steplengths(SPIN, BOX, M.taylor(2), conditions=cs)
+
+
+def test_the_kernel_prunes_pairs_and_keeps_the_binding_one():
+    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    _, N = method_matrices(A, [Fraction(1), Fraction(1)], [Fraction(1)])
+    near = pruning.survivors(G, b, verts, N, Fraction(0), list(range(len(verts))))
+    kept = sum(len(f) for f in near.values())
+    assert kept < len(verts) * len(G)  # at T = 0 only the pairs with zero slack can bind
+    # the pairs with zero slack (v on facet j) are exactly the ones that must be kept at T = 0
+    tight = {(i, j) for i, v in enumerate(verts) for j in range(len(G)) if sum(g * x for g, x in zip(G[j], v)) == b[j]}
+    assert tight <= {(i, j) for i, f in near.items() for j in f}
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(1, 4), st.fractions(0, 3).filter(lambda t: t >= 0), st.lists(st.fractions(0, 1), min_size=3, max_size=3))
+def test_a_pruned_pair_holds_strictly_on_the_whole_horizon(p, T, hs):
+    """Theorem of the module: every pair the kernel (or the engine) prunes on [0, T] has
+    b_j - g_j A_d(h) v > 0 for h in [0, T]."""
+    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    method = M.taylor(p)
+    _, N = method_matrices(A, list(method.numerator), list(method.denominator))
+    near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
+    cs = ConditionSet(SPIN, DIAMOND, method)
+    facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], cs.N, T)
+    engine_kept = set(zip(vertices.tolist(), facets.tolist()))
+    for h in [T * x for x in hs] + [T]:
+        Ad = [[sum(h**k * N[k][i][l] for k in range(len(N))) for l in range(2)] for i in range(2)]
+        for i, v in enumerate(verts):
+            image = [sum(Ad[r][l] * v[l] for l in range(2)) for r in range(2)]
+            for j in set(range(len(G))) - set(near[i]):
+                assert b[j] - sum(g * x for g, x in zip(G[j], image)) > 0
+            for j in range(len(G)):
+                if (i, j) not in engine_kept:
+                    assert b[j] - sum(g * x for g, x in zip(G[j], image)) > 0
+
+
+def _cert(result):
+    return result.certificate
+
+
+def test_forged_horizon_below_the_vertex_bound_is_rejected(forced):
+    cert = _cert(ei.valid_steplengths(SPIN, DIAMOND, M.taylor(2)))
+    cert["claims"][0]["pruning"]["horizon"] = "1"  # vertex 0's own valid set reaches past 1
+    report = check(cert)
+    assert not report.ok and "does not bound" in str(report)
+
+
+def test_forged_valid_set_with_pruning_is_rejected(forced):
+    """A claim that would be right only if a binding pair were pruned: the kernel
+    decides the survivors itself and finds the true end."""
+    cert = _cert(ei.largest_threshold(ROT, BOX, M.taylor(2)))
+    true = ei.largest_threshold(ROT, BOX, M.taylor(2)).upper
+    cert["claims"][0]["value"] = str(true + 1)
+    cert["claims"][0]["binding"] = None
+    assert not check(cert).ok
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("order", [0, 0, 1, 2, 3, 4, 5, 6], "permutation"),
+    ("order", [0, 1], "permutation"),
+    ("horizon", "-1", "negative"),
+    ("vertex", 8, "out of range"),
+    ("extra", 1, "keys"),
+])
+def test_malformed_pruning_records_are_rejected(forced, field, value, message):
+    cert = _cert(ei.valid_steplengths(SPIN, DIAMOND, M.taylor(2)))
+    cert["claims"][0]["pruning"][field] = value
+    report = check(cert)
+    assert not report.ok and message in str(report)
+
+
+def test_pruning_on_a_rational_method_is_rejected(forced):
+    cert = _cert(ei.valid_steplengths(SPIN, DIAMOND, M.taylor(2)))
+    cert["problem"]["method"] = {"name": "be", "numerator": ["1"], "denominator": ["1", "-1"]}
+    cert["claims"][0].pop("determinant")
+    report = check(cert)
+    assert not report.ok and "polynomial methods only" in str(report)
+
+
+def test_the_engine_grid_test_is_conservative():
+    """Every pair the engine prunes is pruned by the kernel's own test too (and at least as
+    much is pruned as by nothing): both are sound, the engine's grid is coarser."""
+    cs = ConditionSet(SPIN, DIAMOND, M.taylor(2))
+    T = Fraction(1, 8)
+    facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], cs.N, T)
+    kept = set(zip(vertices.tolist(), facets.tolist()))
+    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    _, N = method_matrices(A, [Fraction(1), Fraction(1), Fraction(1, 2)], [Fraction(1)])
+    near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
+    assert {(i, j) for i, f in near.items() for j in f} <= kept < {(i, j) for i in range(8) for j in range(len(G))}
+
+
+@pytest.mark.parametrize("method", [M.backward_euler(), M.trapezoid(), M.pade(2, 2), M.theta("1/3"), M.pade(1, 3)],
+                         ids=lambda m: m.name)
+@pytest.mark.parametrize("S, P", [(SPIN, DIAMOND), (ei.LinearSystem([[1, 2], [-3, -1]]), BOX)])
+def test_rational_valid_sets_agree_with_direct_checks(S, P, method):
+    """N(h) = D(h) r(hA) from the n x n interpolation and the Descartes pre-filter:
+    membership of rational steps agrees with A_d(h) v in P checked vertex by vertex."""
+    V = ei.valid_steplengths(S, P, method)
+    A, G, b, verts = _fractions(S, P)
+    for k in range(0, 40):
+        h = Fraction(k, 9)
+        try:
+            Ad = method.matrix(S, h)
+        except ei.ExactinvError:  # h(hA) singular: h is no valid steplength
+            assert h not in V
+            continue
+        inside = all(sum(g * sum(a * x for a, x in zip(row, v)) for g, row in zip(G[j], Ad)) <= b[j]
+                     for v in verts for j in range(len(G)))
+        assert (h in V) == inside, h
