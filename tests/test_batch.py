@@ -141,6 +141,17 @@ def test_resumed_run_skips_finished_work(scheduler, tmp_path):
     assert (third.skipped, third.ran) == (8, 0) and "nothing left to run" in third.table()
 
 
+def _slow() -> dict:
+    """A problem that takes tens of seconds (about 16 s here, measured; far above the 3 s limit):
+    Taylor-30 on a dense 4 x 4 system and 24 random facets -- valid sets of degree-30 conditions on every
+    vertex-facet pair that survives pruning, then the kernel's own recomputation."""
+    rng = random.Random(3)
+    A = [[-30 if i == j else rng.randint(-9, 9) for j in range(4)] for i in range(4)]
+    G = [[rng.randint(-9, 9) for _ in range(4)] for _ in range(24)]
+    return {"name": "slow", "system": {"A": A}, "polyhedron": {"G": G, "b": [rng.randint(5, 20) for _ in G]},
+            "method": {"taylor": 30}}
+
+
 def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_path):
     good = [_decay(c, 2) for c in (1, 2, 3)]
     lines = [json.dumps(p) for p in good] + [
@@ -148,7 +159,7 @@ def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_pa
         "this is not JSON",
         json.dumps({"name": "typo", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "methd": {"taylor": 1}}),
         json.dumps({"name": "ragged", "system": {"A": [[-1, 0], [0]]}, "polyhedron": SEGMENT}),
-        json.dumps({"name": "slow", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "method": {"pade": [40, 40]}}),
+        json.dumps(_slow()),
         json.dumps({"name": "hog", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "method": {"taylor": 1000}}),
     ]
     corpus = tmp_path / "poisoned.jsonl"
