@@ -206,3 +206,17 @@ def test_bad_input_is_named():
         ei.valid_steplengths(_rotation(1, 1), DISC, "taylor")
     with pytest.raises(ei.ExactinvError, match="system/ellipsoid"):
         ei.largest_threshold(ei.LinearSystem([[1]]), DISC, ei.methods.taylor(1))
+
+
+def test_result_fields_land_where_they_belong():
+    """Regression (a merge added ``pruning`` to the polyhedral result types, which shifted positional
+    arguments): on the unit disc with A = -I and Taylor-2, q_1 = 2 c(h), q_2 = c(h)^2 with
+    c = (1 - h/2)(2 - h + h^2/2); q_1 changes sign at h = 2 and binds, q_2 only touches 0."""
+    from exactinv import Ellipsoid, LinearSystem, methods
+    from exactinv.beyond.ellipsoid_thresholds import ellipsoid_largest_threshold, ellipsoid_valid_steplengths
+    S, E = LinearSystem([[-1, 0], [0, -1]]), Ellipsoid([[1, 0], [0, 1]])
+    L = ellipsoid_largest_threshold(S, E, methods.taylor(2))
+    assert (L.value, L.coefficient, L.pruning) == (2, 1, None)
+    V = ellipsoid_valid_steplengths(S, E, methods.taylor(2))
+    assert V.pruning is None and len(V.polynomials) == 2
+    assert V.polynomials[0] == (4, -4, 2, Fraction(-1, 2))

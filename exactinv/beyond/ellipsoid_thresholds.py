@@ -165,9 +165,9 @@ def ellipsoid_valid_steplengths(system: LinearSystem, ellipsoid: Ellipsoid, meth
     """
     S, E, m, qs, D = _problem(system, ellipsoid, method)
     union, singular, _ = _valid_set(qs, D)
-    return EllipsoidValidSteplengths(union, m, tuple(singular), len(qs), len(qs), S, E,
-                                     tuple(fraction_of(c) for c in D.coeffs()),
-                                     tuple(tuple(fraction_of(c) for c in q.coeffs()) for q in qs))
+    return EllipsoidValidSteplengths(union, m, tuple(singular), len(qs), len(qs), system=S, polyhedron=E,
+                                     determinant=tuple(fraction_of(c) for c in D.coeffs()),
+                                     polynomials=tuple(tuple(fraction_of(c) for c in q.coeffs()) for q in qs))
 
 
 def _valid_set(qs: list[flint.fmpq_poly], D: flint.fmpq_poly):
@@ -211,8 +211,9 @@ def ellipsoid_largest_threshold(system: LinearSystem, ellipsoid: Ellipsoid, meth
     binding = next((k for a, k in owner if not isinstance(best, Infinity) and exact_eq(a, best)), None)
     if not attained:
         binding = None
-    return EllipsoidLargestThreshold(best, attained, m, None, singular[0] if singular else None, S, E, (),
-                                     tuple(fraction_of(c) for c in D.coeffs()), binding)
+    return EllipsoidLargestThreshold(best, attained, m, None, singular[0] if singular else None, system=S,
+                                     polyhedron=E, determinant=tuple(fraction_of(c) for c in D.coeffs()),
+                                     coefficient=binding)
 
 
 def ellipsoid_forward_euler_threshold(system: LinearSystem, ellipsoid: Ellipsoid) -> EllipsoidForwardEulerThreshold:
