@@ -26,11 +26,12 @@ from typing import Any
 from ..core.encode import mat, vec
 from ..core.latex import LatexMixin, latex_column
 from ..core.psd import LDLT, psd_decision, quadratic_form
-from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, to_matrix, to_rational, vector_text
+from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, vector_text
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem
 from ..model.ellipsoid import lyapunov_matrix
 from ..model.record import certificate as make_certificate
+from ..model.validate import discrete_map
 
 __all__ = ["QuadraticWitness", "EllipsoidInvariance", "ellipsoid_continuous_invariance",
            "ellipsoid_discrete_invariance", "check_ellipsoid_pair"]
@@ -179,21 +180,9 @@ def ellipsoid_discrete_invariance(Ad: Any, ellipsoid: Ellipsoid, method: Any = N
     """
     if not isinstance(ellipsoid, Ellipsoid):
         raise InvalidInput(f"ellipsoid: expected an exactinv.Ellipsoid, got {type(ellipsoid).__name__}")
-    origin: dict = {}
     if isinstance(Ad, LinearSystem):
-        if method is None or dt is None:
-            raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
         check_ellipsoid_pair(Ad, ellipsoid)
-        dt = to_rational(dt, "dt", allow_float=allow_float)
-        if dt < 0:
-            raise InvalidInput(f"dt: must be >= 0, got {dt}")
-        origin = {"system": Ad, "method": method, "dt": dt}
-        Ad = method.matrix(Ad, dt)
-    elif method is not None or dt is not None:
-        raise InvalidInput("discrete_invariance: method= and dt= need a LinearSystem as first argument")
-    Adm = to_matrix(Ad, "Ad", square=True, allow_float=allow_float)
-    if len(Adm) != ellipsoid.n:
-        raise InvalidInput(f"Ad: is {len(Adm)}x{len(Adm)} but E lives in dimension {ellipsoid.n}")
+    Adm, origin = discrete_map(Ad, method, dt, ellipsoid.n, "E", allow_float)
     A = fmpq_matrix(Adm)
     M = matrix_of(ellipsoid.Q_flint - A.transpose() * ellipsoid.Q_flint * A)
     d = psd_decision(M)

@@ -31,6 +31,7 @@ from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
 from .batch import run_batch
 from .explain import explain
+from .files import check_writable
 from .oracle import judge_batch
 from .pipeline import certify, stages
 from .problem import load_problem, method_from_text
@@ -80,17 +81,6 @@ class _Progress:
             print("\r" + " " * (self.total + 45) + "\r", end="", file=sys.stderr, flush=True)
 
 
-def _check_output(path: str) -> None:
-    """Refuse an -o path that cannot be written, before any computation."""
-    if os.path.isdir(path):
-        raise InvalidInput(f"-o {path}: is a directory; give a file name such as {os.path.join(path, 'cert.json')}")
-    parent = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(parent):
-        raise InvalidInput(f"-o {path}: the directory {parent} does not exist")
-    if not os.access(parent, os.W_OK | os.X_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
-        raise InvalidInput(f"-o {path}: not writable")
-
-
 def _input_file(path: str, what: str) -> None:
     if os.path.isdir(path):
         raise InvalidInput(f"{path}: is a directory, not a {what}")
@@ -100,7 +90,7 @@ def _input_file(path: str, what: str) -> None:
 
 def _certify(args) -> int:
     if args.output:
-        _check_output(args.output)
+        check_writable(args.output, "-o", "cert.json")
     _input_file(args.problem, "problem file")
     problem = load_problem(args.problem)
     method = method_from_text(args.method) if args.method else None

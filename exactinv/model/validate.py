@@ -6,13 +6,14 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..core.scalars import Matrix, to_matrix, to_rational
 from ..errors import EmptyPolyhedron, InvalidInput
 from .ellipsoid import Ellipsoid
 from .methods import Method
 from .polyhedron import Polyhedron
 from .system import LinearSystem
 
-__all__ = ["check_polyhedron", "check_pair", "check_method", "check_problem"]
+__all__ = ["check_polyhedron", "check_pair", "check_method", "check_problem", "discrete_map"]
 
 
 _FOR_ELLIPSOIDS = ("; gamma* and the paper's thresholds are about polyhedra -- on an Ellipsoid use "
@@ -77,3 +78,30 @@ def check_problem(S: Any, P: Any, method: Any) -> tuple[LinearSystem, Polyhedron
     """
     S, P = check_pair(S, P)
     return S, P, check_method(method)
+
+
+def discrete_map(Ad: Any, method: Any, dt: Any, n: int, where: str, allow_float: bool = False) -> tuple[Matrix, dict]:
+    """The exact matrix A_d of ``discrete_invariance`` and its origin: ``Ad`` itself
+    (a square matrix), or, for a :class:`LinearSystem` with ``method`` and a rational
+    ``dt >= 0``, A_d = r(dt A) built exactly (origin names system, method and dt).
+    ``n`` is the dimension of the set ``where`` (P or E) lives in.
+
+    >>> from exactinv.model import methods
+    >>> discrete_map(LinearSystem([[-1]]), methods.forward_euler(), "1/2", 1, "P")[0]
+    ((Fraction(1, 2),),)
+    """
+    origin: dict = {}
+    if isinstance(Ad, LinearSystem):
+        if method is None or dt is None:
+            raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
+        dt = to_rational(dt, "dt", allow_float=allow_float)
+        if dt < 0:
+            raise InvalidInput(f"dt: must be >= 0, got {dt}")
+        origin = {"system": Ad, "method": method, "dt": dt}
+        Ad = method.matrix(Ad, dt)
+    elif method is not None or dt is not None:
+        raise InvalidInput("discrete_invariance: method= and dt= need a LinearSystem as first argument")
+    Adm = to_matrix(Ad, "Ad", square=True, allow_float=allow_float)
+    if len(Adm) != n:
+        raise InvalidInput(f"Ad: is {len(Adm)}x{len(Adm)} but {where} lives in dimension {n}")
+    return Adm, origin

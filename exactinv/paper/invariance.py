@@ -34,15 +34,13 @@ from ..core.scalars import (
     fraction_of,
     matrix_of,
     matrix_text,
-    to_matrix,
-    to_rational,
     vector_text,
 )
-from ..errors import EmptyPolyhedron, InvalidInput, VerificationFailed
+from ..errors import EmptyPolyhedron, VerificationFailed
 from ..lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
-from ..model.validate import check_pair, check_polyhedron
+from ..model.validate import check_pair, check_polyhedron, discrete_map
 
 __all__ = [
     "FacetWitness",
@@ -408,18 +406,7 @@ def discrete_invariance(
     FacetWitness(x=[-1], facet=0, value=2)
     """
     P = check_polyhedron(polyhedron)
-    origin: dict = {}
-    if isinstance(Ad, LinearSystem):
-        if method is None or dt is None:
-            raise InvalidInput("discrete_invariance: with a LinearSystem, pass method= and dt= too")
-        dt = to_rational(dt, "dt", allow_float=allow_float)
-        origin = {"system": Ad, "method": method, "dt": dt}
-        Ad = method.matrix(Ad, dt)
-    elif method is not None or dt is not None:
-        raise InvalidInput("discrete_invariance: method= and dt= need a LinearSystem as first argument")
-    Adm = to_matrix(Ad, "Ad", square=True, allow_float=allow_float)
-    if len(Adm) != P.n:
-        raise InvalidInput(f"Ad: is {len(Adm)}x{len(Adm)} but P lives in dimension {P.n}")
+    Adm, origin = discrete_map(Ad, method, dt, P.n, "P", allow_float)
     m, n = P.m, P.n
     GAd = P.G_flint * fmpq_matrix(Adm)
     solver = ExactLPSolver(P.G_flint, [False] * m)

@@ -30,6 +30,7 @@ from typing import Any, Sequence, TextIO
 
 from ...core.scalars import to_rational
 from ...errors import InvalidInput
+from ..files import check_writable
 from .corpus import Task, done_ids, read_corpus
 from .summary import BatchSummary, Tally
 from .task import Limits, engine_version, run_task
@@ -110,13 +111,7 @@ def _workers(workers: Any, scheduler: Any) -> int | None:
 def _check_out(out: Any) -> None:
     if not isinstance(out, str) or not out:
         raise InvalidInput(f"out: expected a file name for the results (JSON lines), got {out!r}")
-    if os.path.isdir(out):
-        raise InvalidInput(f"out: {out} is a directory; give a file name such as {os.path.join(out, 'results.jsonl')}")
-    parent = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(parent):
-        raise InvalidInput(f"out: the directory {parent} does not exist")
-    if not os.access(parent, os.W_OK | os.X_OK) or (os.path.exists(out) and not os.access(out, os.W_OK)):
-        raise InvalidInput(f"out: {out} is not writable")
+    check_writable(out, "out", "results.jsonl")
 
 
 def _end_torn_line(path: str, sink: TextIO) -> None:
