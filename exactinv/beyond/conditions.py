@@ -141,7 +141,13 @@ class ConditionSet:
         self._all: tuple[list[Condition], list[Condition]] | None = None
 
     def count(self, kind: Kind) -> int:
-        """How many generators of this kind P has."""
+        """How many generators of this kind P has.
+
+        >>> from exactinv.model import methods
+        >>> cs = ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())
+        >>> cs.count(Kind.VERTEX), cs.count(Kind.RAY)   # [-1, 1]: the vertices -1 and 1, no ray
+        (2, 0)
+        """
         W = self.W[kind]
         return 0 if W is None else W.ncols()
 
@@ -157,7 +163,17 @@ class ConditionSet:
         return None if _never_binds(c.coeffs()) else Condition(kind, i, j, c)
 
     def pairs(self, kind: Kind, pairs: Iterable[tuple[int, int]]) -> list[Condition]:
-        """The nontrivial conditions of the (generator, facet) pairs given, each built once."""
+        """The nontrivial conditions of the (generator, facet) pairs given, each built once.
+
+        x' = -x on [-1, 1] = {x <= 1, -x <= 1} (vertices -1, 1), forward Euler, N(dt) = 1 - dt:
+        vertex -1, facet x <= 1 gives c = 1 + (1 - dt) = 2 - dt; vertex -1, facet -x <= 1
+        gives c = 1 - (1 - dt) = dt, which never binds (Descartes) and is skipped.
+
+        >>> from exactinv.model import methods
+        >>> cs = ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())
+        >>> [c.poly for c in cs.pairs(Kind.VERTEX, [(0, 0), (0, 1)])]
+        [(Fraction(2, 1), Fraction(-1, 1))]
+        """
         pairs = list(pairs)
         if not pairs:
             return []
@@ -185,7 +201,17 @@ class ConditionSet:
         return out
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
-        """(inequalities, equalities) over every generator-facet pair (built once)."""
+        """(inequalities, equalities) over every generator-facet pair (built once).
+
+        x' = -x on [-1, 1], forward Euler: each vertex v = +-1 gives 1 + v(1 - dt) >= 0 on the
+        facet it does not lie on, 2 - dt >= 0 (the threshold 2); the other two are dt >= 0, skipped.
+
+        >>> from exactinv.model import methods
+        >>> cs = ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())
+        >>> inequalities, equalities = cs.all()
+        >>> [(c.generator, c.facet, c.poly) for c in inequalities], equalities
+        ([(0, 0, (Fraction(2, 1), Fraction(-1, 1))), (1, 1, (Fraction(2, 1), Fraction(-1, 1)))], [])
+        """
         if self._all is None:
             conditions: list[Condition] = []
             equalities: list[Condition] = []
@@ -219,14 +245,32 @@ class ConditionSet:
 
 
 def conditions_of(system: LinearSystem, P: Polyhedron, method: Method):
-    """All vertex/ray inequality conditions c >= 0, line equalities e = 0, D and its coefficients."""
+    """All vertex/ray inequality conditions c >= 0, line equalities e = 0, D and its coefficients.
+
+    Backward Euler on x' = -x over [-1, 1]: D(dt) = 1 + dt and N(dt) = 1, so vertex -1 on the
+    facet x <= 1 gives c = (D + 1) D = 2 + 3 dt + dt^2 > 0 -- no condition binds.
+
+    >>> from exactinv.model import methods
+    >>> inequalities, equalities, D, Dcoeffs = conditions_of(LinearSystem([[-1]]), Polyhedron.box([-1], [1]),
+    ...                                                      methods.backward_euler())
+    >>> inequalities, equalities, Dcoeffs
+    ([], [], [Fraction(1, 1), Fraction(1, 1)])
+    """
     cs = ConditionSet(system, P, method)
     conditions, equalities = cs.all()
     return conditions, equalities, cs.D, cs.Dcoeffs
 
 
 def distinct_conditions(conditions: list[Condition]) -> dict[tuple, Condition]:
-    """The conditions with distinct polynomials (up to a positive factor), first kept."""
+    """The conditions with distinct polynomials (up to a positive factor), first kept.
+
+    Forward Euler on x' = -x over [-1, 1]: both vertices give c = 2 - dt, kept once.
+
+    >>> from exactinv.model import methods
+    >>> inequalities, _, _, _ = conditions_of(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())
+    >>> distinct_conditions(inequalities)
+    {(2, -1): Condition(kind=<Kind.VERTEX: 'vertex'>, generator=0, facet=0)}
+    """
     seen: dict[tuple, Condition] = {}
     for c in conditions:
         key = tuple(int(x) for x in integer_part(c.p).coeffs())

@@ -66,6 +66,15 @@ class ValidSteplengths:
         return len(self.intervals)
 
     def claims(self) -> list[dict]:
+        """The certificate's claim: the intervals and the generators they were decided on.
+
+        x' = -x on [-1, 1], forward Euler: 1 - dt in [-1, 1] iff dt in [0, 2].
+
+        >>> import exactinv as ei
+        >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> [(c["intervals"], c["vertices"]) for c in V.claims()]
+        [([{'lo': '0', 'hi': '2', 'lo_closed': True, 'hi_closed': True}], [['-1'], ['1']])]
+        """
         return [{
             "type": "valid_steplengths",
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
@@ -90,6 +99,13 @@ class ValidSteplengths:
         return self.intervals._repr_latex_()
 
     def to_latex(self) -> str:
+        """The intervals in LaTeX (x' = -x on [-1, 1], forward Euler: [0, 2]).
+
+        >>> import exactinv as ei
+        >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> V.to_latex()
+        '[0, 2]'
+        """
         return self.intervals._repr_latex_().strip("$")
 
 
@@ -112,6 +128,17 @@ class LargestThreshold(ExactValueMixin):
     pruning: Pruning | None = field(default=None, repr=False)
 
     def claims(self) -> list[dict]:
+        """The certificate's claim: the value, whether attained, and the binding condition.
+
+        x' = -x on [-1, 1], Taylor(2): r(dt) = 1 - dt + dt^2/2 >= 1/2 > -1, and r <= 1 iff
+        dt - dt^2/2 >= 0 (vertex 1 on the facet x <= 1) iff dt <= 2: tau = 2, attained.
+
+        >>> import exactinv as ei
+        >>> L = largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2))
+        >>> claim = L.claims()[0]
+        >>> claim["value"], claim["attained"], claim["binding"]["generator"], claim["binding"]["poly"]
+        ('2', True, 1, ['0', '1', '-1/2'])
+        """
         return [{
             "type": "largest_threshold",
             "value": encode_real(self.value),
@@ -130,6 +157,13 @@ class LargestThreshold(ExactValueMixin):
         return make_certificate(self.system, self.polyhedron, self.method, [self])
 
     def to_latex(self) -> str:
+        """tau_max in LaTeX with whether it is attained (Taylor(2), x' = -x on [-1, 1]: 2, attained).
+
+        >>> import exactinv as ei
+        >>> L = largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2))
+        >>> print(L.to_latex())
+        \\tau_{\\max} = 2\\ (\\text{attained})
+        """
         return rf"\tau_{{\max}} = {latex_real(self.value)}\ (\text{{{'attained' if self.attained else 'not attained'}}})"
 
     def __repr__(self) -> str:

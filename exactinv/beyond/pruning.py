@@ -248,13 +248,24 @@ class Pruning:
     applied: bool = True
 
     def record(self) -> dict | None:
-        """The certificate's pruning record: the kernel recomputes the rest."""
+        """The certificate's pruning record: the kernel recomputes the rest.
+
+        >>> Pruning(Fraction(2), 0, 4, 3, (1, 0)).record()      # x' = -x on [-1, 1]: T = 2
+        {'horizon': '2', 'vertex': 0, 'order': [1, 0]}
+        >>> Pruning(Fraction(2), 0, 4, 4, (1, 0), applied=False).record() is None
+        True
+        """
         if not self.applied:
             return None
         return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
 
     def finished(self, total: float) -> "Pruning":
-        """With the remaining time (roots and intervals) as the last stage."""
+        """With the remaining time (roots and intervals) as the last stage.
+
+        >>> p = Pruning(Fraction(2), 0, 4, 3, (0, 1), (("bounding vertex", 0.25), ("bounds and slacks", 0.5)))
+        >>> p.finished(1.0).seconds[-1]                          # 1 - 0.25 - 0.5 (binary fractions: exact)
+        ('roots and intervals', 0.25)
+        """
         rest = total - sum(s for _, s in self.seconds)
         return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
 

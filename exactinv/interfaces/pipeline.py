@@ -60,7 +60,14 @@ class Report:
 
 
 def stages(method: Method | None, check: bool) -> int:
-    """How many progress steps :func:`certify` reports (the same on an ellipsoid)."""
+    """How many progress steps :func:`certify` reports (the same on an ellipsoid).
+
+    >>> stages(None, True), stages(None, False)   # gamma*, forward Euler, the check
+    (3, 2)
+    >>> from exactinv.model import methods
+    >>> stages(methods.trapezoid(), True)          # + the paper's threshold, the valid set
+    5
+    """
     return (5 if method is not None else 3) - (not check)
 
 
@@ -103,7 +110,25 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
             progress: Callable[[str], None] | None = None) -> Report:
     """Compute and certify everything that applies to ``problem`` (``method``
     overrides the problem's own) and, if ``check``, run the trusted kernel on
-    the certificate.  ``progress(stage)`` is called before each stage."""
+    the certificate.  ``progress(stage)`` is called before each stage.
+
+    x' = -x on [-1, 1] = {x <= 1, -x <= 1}: H = [[-1/2, 1/2], [1/2, -1/2]] gives gamma* = 1/2,
+    so forward Euler (1 - dt in [-1, 1] iff dt <= 2) has the threshold 1/gamma* = 2.
+
+    >>> import exactinv as ei
+    >>> from exactinv.interfaces.problem import Problem
+    >>> decay = Problem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), name="decay")
+    >>> report = certify(decay, ei.methods.forward_euler())
+    >>> for line in report.lines[3:]:
+    ...     print(line)
+    largest forward-Euler step: 2  (1/gamma* and the vertex ratio tests agree)
+    paper's threshold for forward_euler (Theorem 3.4 (polynomial methods)): 2
+    exact valid steplengths for forward_euler: [0, 2]
+    exact largest threshold: 2
+    independent check: VERIFIED (5 claims)
+    >>> report.ok, certify(decay, check=False).ok  # unchecked: not ok
+    (True, False)
+    """
     method = method if method is not None else problem.method
     step = progress or (lambda what: None)
     S, P = problem.system, problem.polyhedron

@@ -100,7 +100,13 @@ class Method:
 
     def matrix(self, system: Any, dt: Fraction) -> Matrix:
         """A_d = r(dt A) = h(dt A)^{-1} g(dt A), exactly; an error if h(dt A)
-        is singular (dt A has an eigenvalue at a pole of r)."""
+        is singular (dt A has an eigenvalue at a pole of r).
+
+        >>> forward_euler().matrix([[-1]], Fraction(1, 2))   # 1 + (1/2)(-1)
+        ((Fraction(1, 2),),)
+        >>> backward_euler().matrix([[-1]], Fraction(1))     # 1/(1 - (-1))
+        ((Fraction(1, 2),),)
+        """
         A = system.A_flint if isinstance(system, LinearSystem) else fmpq_matrix(to_matrix(system, "A", square=True))
         M = A * fmpq_of(to_rational(dt, "dt"))
         G = matrix_polynomial(self.numerator, M)
@@ -113,6 +119,11 @@ class Method:
             raise InvalidInput(f"method {self.name}: h(dt A) is singular at dt = {dt}; r(dt A) is undefined") from None
 
     def to_sympy(self, z=None):
+        """r(z) = g(z)/h(z) as a sympy expression (in the symbol z unless given).
+
+        >>> backward_euler().to_sympy()
+        1/(1 - z)
+        """
         import sympy
 
         z = z if z is not None else sympy.Symbol("z")
@@ -121,7 +132,11 @@ class Method:
         return g / h
 
     def to_latex(self) -> str:
-        """LaTeX: r(z) = g(z)/h(z) and the method's name."""
+        """LaTeX: r(z) = g(z)/h(z) and the method's name.
+
+        >>> print(backward_euler().to_latex())
+        r(z) = \\frac{1}{1 - z} \\quad (\\text{backward}\\_\\text{euler})
+        """
         import sympy
 
         return rf"r(z) = {sympy.latex(self.to_sympy())} \quad ({latex_text(self.name)})"
@@ -134,7 +149,13 @@ class Method:
 
 
 def matrix_polynomial(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fmpq_mat:
-    """sum_k coeffs[k] M^k, exactly (Horner)."""
+    """sum_k coeffs[k] M^k, exactly (Horner).
+
+    >>> M = flint.fmpq_mat(2, 2, [0, 1, 0, 0])     # nilpotent: M^2 = 0
+    >>> matrix_polynomial([Fraction(1), Fraction(2), Fraction(5)], M)   # I + 2M
+    [1, 2]
+    [0, 1]
+    """
     n = M.nrows()
     out = flint.fmpq_mat(n, n)
     for c in reversed(coeffs):  # Horner
@@ -173,7 +194,11 @@ def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=N
 
 # ------------------------------------------------------------ polynomial methods
 def polynomial(sigmas: Sequence[Any], name: str | None = None) -> Method:
-    """r(z) = sigma_0 + sigma_1 z + ... + sigma_p z^p with sigma_0 = 1 (Section 3.1)."""
+    """r(z) = sigma_0 + sigma_1 z + ... + sigma_p z^p with sigma_0 = 1 (Section 3.1).
+
+    >>> polynomial([1, 1, "1/2", 0]).sigmas        # trailing zeros dropped: Heun's r
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 2))
+    """
     s = list(to_vector(sigmas, "sigmas"))
     if s[0] != 1:
         raise InvalidInput(f"sigmas: sigma_0 must be 1 (A_d = I at dt = 0), got sigma_0 = {s[0]}")
@@ -181,28 +206,46 @@ def polynomial(sigmas: Sequence[Any], name: str | None = None) -> Method:
 
 
 def taylor(p: int) -> Method:
-    """The p-th order Taylor method, sigma_k = 1/k! (paper, eq. (13))."""
+    """The p-th order Taylor method, sigma_k = 1/k! (paper, eq. (13)).
+
+    >>> taylor(3).numerator                       # 1, 1, 1/2!, 1/3!
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 2), Fraction(1, 6))
+    """
     if not isinstance(p, int) or isinstance(p, bool) or p < 1:
         raise InvalidInput(f"p: the Taylor order must be an int >= 1, got {p!r}")
     return Method(f"taylor({p})", tuple(Fraction(1, factorial(k)) for k in range(p + 1)), (Fraction(1),))
 
 
 def forward_euler() -> Method:
-    """r(z) = 1 + z."""
+    """r(z) = 1 + z.
+
+    >>> forward_euler()(-2)                       # 1 + (-2)
+    Fraction(-1, 1)
+    """
     return Method("forward_euler", (Fraction(1), Fraction(1)), (Fraction(1),))
 
 
 # -------------------------------------------------------------- rational methods
 def rational(num: Sequence[Any], den: Sequence[Any], name: str = "rational") -> Method:
     """r = g/h from coefficient lists (constant term first); r(0) = 1 is checked
-    and common factors of g and h are cancelled."""
+    and common factors of g and h are cancelled.
+
+    >>> rational([1, -1], [1, -2, 1]).denominator  # (1 - z)/(1 - z)^2 = 1/(1 - z)
+    (Fraction(1, 1), Fraction(-1, 1))
+    """
     g = to_vector(num, "num")
     h = to_vector(den, "den")
     return _make(name, g, h)
 
 
 def theta(theta_value: Any) -> Method:
-    """The theta-method: r(z) = (1 + (1 - theta) z)/(1 - theta z)."""
+    """The theta-method: r(z) = (1 + (1 - theta) z)/(1 - theta z).
+
+    >>> theta("1/2")(-2)                          # (1 - 1)/(1 + 1)
+    Fraction(0, 1)
+    >>> theta(0).denominator                      # theta = 0 is forward Euler
+    (Fraction(1, 1),)
+    """
     t = to_rational(theta_value, "theta")
     if not 0 <= t <= 1:
         raise InvalidInput(f"theta: must lie in [0, 1], got {t}")
@@ -210,23 +253,45 @@ def theta(theta_value: Any) -> Method:
 
 
 def backward_euler() -> Method:
-    """r(z) = 1/(1 - z)."""
+    """r(z) = 1/(1 - z).
+
+    >>> backward_euler()(-1)                      # 1/(1 + 1)
+    Fraction(1, 2)
+    """
     return _make("backward_euler", [Fraction(1)], [Fraction(1), Fraction(-1)])
 
 
 def trapezoid() -> Method:
-    """Crank-Nicolson: r(z) = (1 + z/2)/(1 - z/2)."""
+    """Crank-Nicolson: r(z) = (1 + z/2)/(1 - z/2).
+
+    >>> trapezoid()(-2)                           # (1 - 1)/(1 + 1)
+    Fraction(0, 1)
+    >>> trapezoid()(-6)                           # (1 - 3)/(1 + 3)
+    Fraction(-1, 2)
+    """
     return _make("trapezoid", [Fraction(1), Fraction(1, 2)], [Fraction(1), Fraction(-1, 2)])
 
 
 def implicit_midpoint() -> Method:
-    """The implicit midpoint rule; for linear systems its r equals the trapezoid's."""
+    """The implicit midpoint rule; for linear systems its r equals the trapezoid's.
+
+    >>> implicit_midpoint().denominator == trapezoid().denominator
+    True
+    >>> implicit_midpoint()(-6)                   # (1 - 3)/(1 + 3)
+    Fraction(-1, 2)
+    """
     m = trapezoid()
     return Method("implicit_midpoint", m.numerator, m.denominator, ((( Fraction(1, 2),),), (Fraction(1),)))
 
 
 def pade(k: int, l: int) -> Method:
-    """The (k, l) Pade approximant of exp(z): numerator degree k, denominator degree l."""
+    """The (k, l) Pade approximant of exp(z): numerator degree k, denominator degree l.
+
+    >>> pade(1, 1).numerator, pade(1, 1).denominator   # the trapezoid (1 + z/2)/(1 - z/2)
+    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(1, 1), Fraction(-1, 2)))
+    >>> pade(0, 2).denominator                    # 1/(1 - z + z^2/2)
+    (Fraction(1, 1), Fraction(-1, 1), Fraction(1, 2))
+    """
     for name, v in (("k", k), ("l", l)):
         if not isinstance(v, int) or isinstance(v, bool) or v < 0:
             raise InvalidInput(f"{name}: must be an int >= 0, got {v!r}")
@@ -240,7 +305,13 @@ def from_butcher(A: Any, b: Any, name: str = "butcher", c: Any = None) -> Method
     """The stability function R(z) = det(I - zA + z e b^T)/det(I - zA) of a
     rational Butcher tableau, by exact interpolation of both determinants
     at s + 1 rational points (both have degree <= s).  The nodes ``c`` do not
-    enter R; if given they are checked: c = A 1 exactly (the row-sum condition)."""
+    enter R; if given they are checked: c = A 1 exactly (the row-sum condition).
+
+    >>> from_butcher([[1]], [1]).denominator      # backward Euler: det(1 - z) = 1 - z
+    (Fraction(1, 1), Fraction(-1, 1))
+    >>> from_butcher([["1/2"]], [1])(-2)          # midpoint: (1 - 1)/(1 + 1)
+    Fraction(0, 1)
+    """
     Am = to_matrix(A, "A", square=True)
     s = len(Am)
     bv = to_vector(b, "b", length=s)
@@ -264,22 +335,38 @@ def from_butcher(A: Any, b: Any, name: str = "butcher", c: Any = None) -> Method
 
 # ---------------------------------------------------------------- RK presets
 def heun() -> Method:
-    """Heun's method (explicit trapezoid), R(z) = 1 + z + z^2/2."""
+    """Heun's method (explicit trapezoid), R(z) = 1 + z + z^2/2.
+
+    >>> heun().numerator
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 2))
+    """
     return from_butcher([[0, 0], [1, 0]], ["1/2", "1/2"], name="heun")
 
 
 def ssprk22() -> Method:
-    """SSPRK(2,2) of Shu and Osher (the same tableau as Heun's method)."""
+    """SSPRK(2,2) of Shu and Osher (the same tableau as Heun's method).
+
+    >>> ssprk22()(-2)                             # 1 - 2 + 4/2
+    Fraction(1, 1)
+    """
     return from_butcher([[0, 0], [1, 0]], ["1/2", "1/2"], name="ssprk22")
 
 
 def ssprk33() -> Method:
-    """SSPRK(3,3) of Shu and Osher, R(z) = 1 + z + z^2/2 + z^3/6."""
+    """SSPRK(3,3) of Shu and Osher, R(z) = 1 + z + z^2/2 + z^3/6.
+
+    >>> ssprk33().numerator == taylor(3).numerator
+    True
+    """
     return from_butcher([[0, 0, 0], [1, 0, 0], ["1/4", "1/4", 0]], ["1/6", "1/6", "2/3"], name="ssprk33")
 
 
 def rk4() -> Method:
-    """The classical fourth-order Runge-Kutta method."""
+    """The classical fourth-order Runge-Kutta method.
+
+    >>> rk4().numerator == taylor(4).numerator    # R(z) = 1 + z + ... + z^4/24
+    True
+    """
     return from_butcher(
         [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]],
         ["1/6", "1/3", "1/3", "1/6"],
@@ -288,7 +375,11 @@ def rk4() -> Method:
 
 
 def ssprk_s1(s: int) -> Method:
-    """SSPRK(s,1): s forward-Euler stages of step dt/s, R(z) = (1 + z/s)^s."""
+    """SSPRK(s,1): s forward-Euler stages of step dt/s, R(z) = (1 + z/s)^s.
+
+    >>> ssprk_s1(2).numerator                     # (1 + z/2)^2 = 1 + z + z^2/4
+    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 4))
+    """
     if not isinstance(s, int) or isinstance(s, bool) or s < 1:
         raise InvalidInput(f"s: the number of stages must be an int >= 1, got {s!r}")
     A = [[Fraction(1, s) if j < i else Fraction(0) for j in range(s)] for i in range(s)]
@@ -296,18 +387,30 @@ def ssprk_s1(s: int) -> Method:
 
 
 def radau_iia2() -> Method:
-    """The 2-stage Radau IIA method (order 3), R = (1 + z/3)/(1 - 2z/3 + z^2/6)."""
+    """The 2-stage Radau IIA method (order 3), R = (1 + z/3)/(1 - 2z/3 + z^2/6).
+
+    >>> radau_iia2().denominator
+    (Fraction(1, 1), Fraction(-2, 3), Fraction(1, 6))
+    """
     return from_butcher([["5/12", "-1/12"], ["3/4", "1/4"]], ["3/4", "1/4"], name="radau_iia2")
 
 
 def lobatto_iiic2() -> Method:
-    """The 2-stage Lobatto IIIC method, R = 1/(1 - z + z^2/2)."""
+    """The 2-stage Lobatto IIIC method, R = 1/(1 - z + z^2/2).
+
+    >>> lobatto_iiic2().denominator == pade(0, 2).denominator
+    True
+    """
     return from_butcher([["1/2", "-1/2"], ["1/2", "1/2"]], ["1/2", "1/2"], name="lobatto_iiic2")
 
 
 def gauss2() -> Method:
     """The 2-stage Gauss method.  Its tableau is irrational (it has sqrt(3)),
-    but its stability function is the (2,2) Pade approximant, which is rational."""
+    but its stability function is the (2,2) Pade approximant, which is rational.
+
+    >>> gauss2().numerator                        # 1 + z/2 + z^2/12
+    (Fraction(1, 1), Fraction(1, 2), Fraction(1, 12))
+    """
     m = pade(2, 2)
     return Method("gauss2", m.numerator, m.denominator)
 
@@ -414,7 +517,11 @@ PRESETS = {
 
 
 def preset(name: str) -> Method:
-    """A named method from :data:`PRESETS`."""
+    """A named method from :data:`PRESETS`.
+
+    >>> preset("crank_nicolson")(-2)              # the trapezoid: (1 - 1)/(1 + 1)
+    Fraction(0, 1)
+    """
     try:
         return PRESETS[name]()
     except KeyError:

@@ -114,9 +114,24 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         return envelope({"method": method_record(self.method)}, [self])
 
     def to_latex(self) -> str:
+        """rho and its reason in LaTeX (the trapezoid: rho = 2).
+
+        >>> from exactinv.model import methods
+        >>> print(absolute_monotonicity_radius(methods.trapezoid()).to_latex())
+        \\rho = 2\\ (\\text{coefficient})
+        """
         return rf"\rho = {latex_real(self.value)}\ ({latex_text(self.reason)})"
 
     def claims(self) -> list[dict]:
+        """The certificate's claim: rho, its reason and the coefficient polynomials d_j.
+
+        Taylor(2): c_0 = 1 - k + k^2/2 > 0, c_1 = 1 - k >= 0 iff k <= 1, c_2 = 1/2: rho = 1 (binding j = 1).
+
+        >>> from exactinv.model import methods
+        >>> claim = absolute_monotonicity_radius(methods.taylor(2)).claims()[0]
+        >>> claim["value"], claim["binding"], claim["d"]
+        ('1', 1, [['1', '-1', '1/2'], ['1', '-1'], ['1/2']])
+        """
         claim = {"type": "absolute_monotonicity_radius", "value": encode_real(self.value), "reason": self.reason,
                  "attained": self.attained}
         if self.binding is not None:
@@ -134,7 +149,15 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
 
 def taylor_coefficient_polynomials(method: Method, count: int) -> list[flint.fmpq_poly]:
     """d_0 .. d_{count-1}: polynomials in kappa with d_j = c_j(kappa) h(-kappa)^(j+1),
-    c_j(kappa) = r^(j)(-kappa)/j! (for a polynomial method h = 1 and d_j = c_j)."""
+    c_j(kappa) = r^(j)(-kappa)/j! (for a polynomial method h = 1 and d_j = c_j).
+
+    The trapezoid r = -1 + 2/(1 - z/2), h(-k) = 1 + k/2: d_0 = g(-k) = 1 - k/2 and, for j >= 1,
+    c_j = 2^(1-j) (1 + k/2)^-(j+1), so d_j = 2^(1-j).
+
+    >>> from exactinv.model import methods
+    >>> [[str(c) for c in d.coeffs()] for d in taylor_coefficient_polynomials(methods.trapezoid(), 3)]
+    [['1', '-1/2'], ['1'], ['1/2']]
+    """
     kappa = flint.fmpq_poly([0, 1])
 
     def shifted(coeffs):  # [w^i] p(w - kappa) as polynomials in kappa
@@ -157,7 +180,20 @@ def taylor_coefficient_polynomials(method: Method, count: int) -> list[flint.fmp
 
 
 def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
-    """The exact radius of absolute monotonicity (with j = 0, erratum E1)."""
+    """The exact radius of absolute monotonicity (with j = 0, erratum E1).
+
+    Forward Euler: c_0 = 1 - k, c_1 = 1, so rho = 1.  The trapezoid: d_0 = 1 - k/2, rho = 2.
+    Backward Euler: 1/(1 - z) is absolutely monotonic on (-oo, 0], rho = oo.
+
+    >>> from exactinv.model import methods
+    >>> absolute_monotonicity_radius(methods.forward_euler()).value
+    Fraction(1, 1)
+    >>> absolute_monotonicity_radius(methods.trapezoid()).value
+    Fraction(2, 1)
+    >>> r = absolute_monotonicity_radius(methods.backward_euler())
+    >>> r.value, r.reason
+    (INF, 'product')
+    """
     check_method(method)
     if method.is_polynomial:
         return _polynomial_radius(method)

@@ -46,13 +46,26 @@ __all__ = ["rational_threshold", "spectral_abscissa", "smallest_positive_pole"]
 def spectral_abscissa(H: flint.fmpq_mat) -> Fraction | RealAlgebraic:
     """alpha(H) = max Re(lambda) over the eigenvalues of a Metzler matrix H
     (off-diagonal >= 0).  By Perron-Frobenius applied to H + cI >= 0 it is the
-    largest real eigenvalue: the largest real root of the characteristic polynomial, exact."""
+    largest real eigenvalue: the largest real root of the characteristic polynomial, exact.
+
+    >>> spectral_abscissa(flint.fmpq_mat([[-2, 1], [1, -2]]))   # eigenvalues -1 and -3
+    Fraction(-1, 1)
+    >>> spectral_abscissa(flint.fmpq_mat([[0, 1], [2, 0]])).poly  # +-sqrt(2): the root of x^2 - 2
+    x^2 + (-2)
+    """
     roots = real_roots(H.charpoly())
     return roots[-1][0]
 
 
 def smallest_positive_pole(method: Method) -> Fraction | RealAlgebraic | None:
-    """z_p: the smallest positive real root of the denominator h (None if none)."""
+    """z_p: the smallest positive real root of the denominator h (None if none).
+
+    >>> from exactinv.model import methods
+    >>> smallest_positive_pole(methods.trapezoid()), smallest_positive_pole(methods.theta("1/4"))  # 1 - z/2, 1 - z/4
+    (Fraction(2, 1), Fraction(4, 1))
+    >>> smallest_positive_pole(methods.radau_iia2()) is None   # 1 - 2z/3 + z^2/6: discriminant 4/9 - 4/6 < 0
+    True
+    """
     if method.is_polynomial:
         return None
     positive = [z for z, _ in real_roots(method.h) if z > 0]
@@ -85,7 +98,14 @@ def _quotient(a, b):
 
 def first_singular_steplength(A: flint.fmpq_mat, method: Method):
     """The first h > 0 at which h_r(hA) is singular (erratum E2'), or None:
-    the least positive root of D(h) = det h_r(hA), a polynomial of degree <= n deg h_r."""
+    the least positive root of D(h) = det h_r(hA), a polynomial of degree <= n deg h_r.
+
+    >>> from exactinv.model import methods
+    >>> first_singular_steplength(flint.fmpq_mat([[2, 0], [0, 1]]), methods.trapezoid())  # (1 - h)(1 - h/2)
+    Fraction(1, 1)
+    >>> first_singular_steplength(flint.fmpq_mat([[-1]]), methods.backward_euler()) is None  # 1 + h > 0
+    True
+    """
     if method.is_polynomial:
         return None
     points = list(range(A.nrows() * (len(method.denominator) - 1) + 1))
@@ -106,7 +126,23 @@ def _certificate_candidates(gamma: OptimalGamma):
 
 
 def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
-    """tau = min(rho/gamma_H, z_p/alpha(H)) for the best certificate H tried (module docstring)."""
+    """tau = min(rho/gamma_H, z_p/alpha(H)) for the best certificate H tried (module docstring).
+
+    x' = -x on [-1, 1]: gamma* = 1/2 with alpha(H) = 0, so the trapezoid (rho = 2) gets
+    rho/gamma* = 4, attained.  x' = x on {x >= 0}: H = (1), gamma* = -1 (the paper: oo), but
+    r(dt) = (1 + dt/2)/(1 - dt/2) has its pole at z_p/alpha(H) = 2 (erratum E2): tau = 2, not attained.
+
+    >>> import exactinv as ei
+    >>> from exactinv.paper.invariance import optimal_gamma
+    >>> decay = optimal_gamma(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]))
+    >>> t = rational_threshold(ei.methods.trapezoid(), decay)
+    >>> t.value, t.attained
+    (Fraction(4, 1), True)
+    >>> growth = optimal_gamma(ei.LinearSystem([[1]]), ei.Polyhedron([[-1]], [0]))
+    >>> t = rational_threshold(ei.methods.trapezoid(), growth)
+    >>> t.value, t.attained, t.paper_value
+    (Fraction(2, 1), False, INF)
+    """
     radius = absolute_monotonicity_radius(method)
     rho, g = radius.value, gamma.value
     if rho == 0:
