@@ -23,7 +23,7 @@ from math import comb
 
 from . import polys
 from .claims_thresholds import smallest_positive_root
-from .rationals import integer, require, vector
+from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
 from .reals import Real
 from .tail import prove_tail
 from .validset import first_end
@@ -34,9 +34,20 @@ REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positiv
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
+def scan_cost(num, den, count):
+    """Estimated word operations of d_0 .. d_{count-1}: d_j has degree about (j + 1) deg h and numbers of
+    about j (deg h) (bits of g, h) bits, and costs about j (deg h)^3 Fraction products whose gcds grow with
+    those numbers (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work)."""
+    dh = max(len(den) - 1, len(num) - 1, 1)
+    bits = max(abs(c).bit_length() for c in polys.integer_coefficients(num) + polys.integer_coefficients(den))
+    return count * count * dh ** 3 * (FRACTION_WEIGHT + count * dh * bits // 8) // 2
+
+
 def d_polynomials(num, den, count):
-    """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa."""
+    """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa;
+    priced first (a certificate's tail_index or d list must not make the kernel work for minutes)."""
     require(count <= MAX_COEFFICIENTS, f"more than {MAX_COEFFICIENTS} coefficients requested")
+    within_budget(scan_cost(num, den, count), f"the coefficient polynomials d_0 .. d_{count - 1}")
 
     G = [_shift(num, i) for i in range(max(len(num), count))]
     H = [_shift(den, i) for i in range(len(den))]
@@ -117,6 +128,22 @@ def recompute(num, den, count, K_is_infinite, K=None):
     return rho, attained, d
 
 
+def _tie(num, den, value, claim):
+    """(rho, attained, d, N, count) for a tie claim: kappa* = value > 0 (rho is a sup over kappa >= 0, and
+    rho = 0 has its own reasons), proved a tie (tail.prove_tail(tie=...)), the tail positive on [0, kappa*],
+    no c_j (j < count) ending and no pole on the negative axis before kappa*: rho = kappa*, attained unless a
+    pole sits at -kappa*."""
+    require(not value.inf and value.compare(Real.rational(0)) > 0,
+            "a tie radius is a positive kappa* (rho = 0 is certified by a witness c_j(0) < 0)")
+    hint = claim.get("tail_index")
+    hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
+    N = prove_tail(num, den, None, hint, tie=value)
+    count = max(N, len(num), len(den), 1)
+    first, attained, d = recompute(num, den, count, False, value.bounds()[1])
+    require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {value}")
+    return value, attained if first.compare(value) == 0 else True, d, N, count
+
+
 def absolute_monotonicity_radius(problem, claim, context):
     method = problem.method
     require(method is not None, "a method is needed")
@@ -143,15 +170,7 @@ def absolute_monotonicity_radius(problem, claim, context):
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
     elif reason == "tie":
-        require(not value.inf, "a tie radius is finite")
-        hint = claim.get("tail_index")
-        hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
-        N = prove_tail(num, den, None, hint, tie=Real.parse(claim["value"], "rho"))
-        K = value.bounds()[1]
-        count = max(N, len(num), len(den), 1)
-        first, _, d = recompute(num, den, count, False, K)
-        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) ends before the tie {value}")
-        rho, rho_attained = value, True
+        rho, rho_attained, d, N, count = _tie(num, den, value, claim)
         how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
                f"the tail j >= {N} is proved positive on [0, kappa*] with the tied poles at ratio 1, "
                f"c_0 .. c_{count - 1} recomputed")

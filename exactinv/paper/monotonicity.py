@@ -303,6 +303,8 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     N = None
     if positive_tie:
         exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        if not ExactKey(Fraction(0)) < ExactKey(exact_bound):  # kappa_A <= 0: kappa = 0 decides, not a tie
+            return _zero_radius(method, "dominance-at-0", p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
     value, binding, ds = None, None, []
