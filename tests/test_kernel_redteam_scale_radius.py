@@ -1,9 +1,11 @@
 """Red team against the kernel's new pruning check (exactinv_check/pruning.py, claims_sets._pruned) and the
 radius 'tie' reason (exactinv_check/tie.py, tail.prove_tail(tie=...), claims_radius 'tie' branch).
 
-Tests marked ``xfail(strict=True)`` document holes: they assert the CORRECT behaviour (reject the false claim,
-or reject the input quickly) and fail until the kernel is fixed.  The other tests are attacks the kernel
-resists, kept as regression guards.  Slow exact references (sympy Taylor coefficients) decide the truth.
+The HOLE sections documented holes (first as ``xfail(strict=True)``); they are fixed and the tests now guard the
+fixes: a tie radius must be positive (a tie at kappa* <= 0 is refused, rho = 0 has its own reasons), the tie
+polynomial and the d_j scan are priced against the kernel's work budget, the pruning horizon has at most 64-bit
+numerator and denominator, and the engine certifies rho = 0 by a witness for both tie functions.  The other
+tests are attacks the kernel resists, kept as regression guards.  Slow exact references (sympy Taylor coefficients) decide the truth.
 """
 
 import copy
@@ -380,3 +382,38 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
                 else:
                     t2 = first_end(D2, i2, e2)
                     assert t2[0].compare(tau[0]) == 0 and t2[1] == tau[1]
+
+
+# ------------------------------------------------------------------------------------------------
+# After the fixes: the engine's answers for both red-team functions, re-proved by the kernel, and the
+# kernel's budgets reject the DoS inputs by name (before the work, not after).
+
+@pytest.mark.parametrize("method, witness", [(NEG, 11), (ZERO, 1)])
+def test_the_engine_certifies_rho_zero_not_attained_for_both_tie_functions(method, witness):
+    """Truth from the sympy reference: c_j(0) >= 0 below the witness and c_witness(0) < 0."""
+    import exactinv as ei
+    g, h = (sp.Add(*[sp.Rational(c) * z**k for k, c in enumerate(p)]) for p in method)
+    c = _coefficients(g / h, witness + 1)
+    assert c[witness] < 0 and all(x >= 0 for x in c[:witness])
+    res = ei.absolute_monotonicity_radius(ei.methods.rational(*method))
+    assert (res.value, res.attained, res.reason, res.witness_j) == (0, False, "dominance-at-0", witness)
+    assert check(json.loads(json.dumps(res.certificate))).ok
+
+
+def _reason(cert):
+    return str(check(json.loads(json.dumps(cert))))
+
+
+def test_the_dos_inputs_are_rejected_by_the_work_budget():
+    assert "over the kernel's work budget: the tie polynomial" in _reason(_tie_dos_cert())
+    assert "over the kernel's work budget: the pruning horizon" in _reason(_horizon_dos_cert())
+    huge = _radius(*PADE23, value=PADE23_TIE, reason="tie", attained=True, tail_index=4095)
+    assert "over the kernel's work budget: the coefficient polynomials" in _reason(huge)
+
+
+def test_a_positive_tie_and_a_64_bit_horizon_still_verify():
+    """The bounds are not too tight: a tail_index of 60 (the engine writes 1) and the pruned valid set with
+    its horizon rewritten as an equal 64-bit fraction still verify."""
+    assert _accepted(_radius(*PADE23, value=PADE23_TIE, reason="tie", attained=True, tail_index=60))
+    assert _accepted(_valid(horizon=f"{1314003 * 2**43 + 1}/{2**63}"))  # 64 bits each (in lowest terms)
+    assert not _accepted(_valid(horizon=f"{1314003 * 2**44 + 1}/{2**64}"))  # a 65-bit denominator
