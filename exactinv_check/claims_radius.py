@@ -19,7 +19,7 @@ at -rho or rho = 0 is itself inadmissible.
 """
 
 from fractions import Fraction
-from math import comb
+from math import comb, gcd
 
 from . import polys
 from .claims_thresholds import smallest_positive_root
@@ -71,14 +71,25 @@ def _shift(p, i):
     return polys.trim(out)
 
 
-def series_at_zero(num, den, count):
-    c = []
-    for j in range(count):
-        v = num[j] if j < len(num) else Fraction(0)
-        for i in range(1, min(j, len(den) - 1) + 1):
-            v -= den[i] * c[j - i]
-        c.append(v / den[0])
-    return c
+def sign_at_zero(num, den, j):
+    """The exact sign of c_j(0) = [z^j] g/h, in integers (no Fraction gcds: a witness index up to
+    MAX_COEFFICIENTS costs well under a second).  With G = L g, H = L h integral, c_k = u_k / H_0^(k+1) where
+    u_k = G_k H_0^k - sum_{i=1..k} H_i u_{k-i} H_0^(i-1)  (multiply H_0 c_k = G_k - sum H_i c_{k-i} by H_0^k).
+    Priced first: (j + 1)^2 deg h (bits of G, H) / 128 word operations."""
+    L = 1
+    for x in [*num, *den]:
+        L = L * x.denominator // gcd(L, x.denominator)
+    G, H = [int(x * L) for x in num], [int(x * L) for x in den]
+    bits = max(abs(c).bit_length() for c in G + H) + len(H).bit_length()  # u_k has about k bits bits
+    within_budget((j + 1) ** 2 * len(H) * bits // 128, f"the series coefficients c_0(0) .. c_{j}(0)")
+    H0 = [H[0] ** i for i in range(len(H))]
+    u = []
+    for k in range(j + 1):
+        v = G[k] * H[0] ** k if k < len(G) else 0
+        for i in range(1, min(k, len(H) - 1) + 1):
+            v -= H[i] * u[k - i] * H0[i - 1]
+        u.append(v)
+    return polys.sign(u[j]) * polys.sign(H[0]) ** (j + 1)
 
 
 def _all_roots_real_positive(h):
@@ -161,7 +172,7 @@ def absolute_monotonicity_radius(problem, claim, context):
         how = f"recomputed from c_0 .. c_{len(num) - 1}"
     elif reason in ZERO_REASONS:
         j = integer(claim["witness_j"], "witness_j", 0, MAX_COEFFICIENTS)
-        require(series_at_zero(num, den, j + 1)[j] < 0, f"c_{j}(0) is not negative")
+        require(sign_at_zero(num, den, j) < 0, f"c_{j}(0) is not negative")
         rho, rho_attained, d = Real.rational(0), False, []
         how = f"c_{j}(0) < 0, so r is not absolutely monotonic at 0"
     elif reason == "product":

@@ -419,3 +419,21 @@ def test_a_positive_tie_and_a_64_bit_horizon_still_verify():
     assert _accepted(_radius(*PADE23, value=PADE23_TIE, reason="tie", attained=True, tail_index=60))
     assert _accepted(_valid(horizon=f"{1314003 * 2**43 + 1}/{2**63}"))  # 64 bits each (in lowest terms)
     assert not _accepted(_valid(horizon=f"{1314003 * 2**44 + 1}/{2**64}"))  # a 65-bit denominator
+
+
+# ------------------------------------------------------------------------------------------------
+# Found while fixing hole 5: witness_j (rho = 0 reasons) up to 4095 ran the Fraction series of g/h at 0 --
+# 118 s for a degree-6 h with 10-bit denominators (a TRUE claim).  The kernel now runs the series in integers
+# (c_k = u_k / H_0^(k+1)), about 1 s there, and prices it first.
+
+def test_a_late_witness_is_decided_exactly():
+    """r = 1/(1 + z): c_j(0) = (-1)^j exactly, so index 4095 is a witness and 4094 is not."""
+    for j, ok in ((4095, True), (4094, False), (1, True), (0, False)):
+        assert _accepted(_radius(["1"], ["1", "1"], value="0", reason="no-positive-pole", attained=False,
+                                 witness_j=j)) is ok
+
+
+def test_a_late_witness_with_long_coefficients_is_rejected_by_the_budget():
+    den = ["1", "-1/" + "7" * 300, "1/" + "3" * 300]
+    cert = _radius(["1", "1/2", "1/3"], den, value="0", reason="dominance-at-0", attained=False, witness_j=4095)
+    assert "over the kernel's work budget: the series coefficients" in _reason(cert)
