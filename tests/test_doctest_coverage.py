@@ -28,8 +28,6 @@ NOT_YET: set[str] = {
     "exactinv.beyond.largest.LargestThreshold.to_latex",
     "exactinv.beyond.largest.ValidSteplengths.claims",
     "exactinv.beyond.largest.ValidSteplengths.to_latex",
-    "exactinv.beyond.largest.largest_threshold",
-    "exactinv.beyond.largest.valid_steplengths",
     "exactinv.interfaces.pipeline.certify",
     "exactinv.interfaces.pipeline.stages",
     "exactinv.model.methods.Method.matrix",

@@ -141,7 +141,13 @@ class ConditionSet:
         self._all: tuple[list[Condition], list[Condition]] | None = None
 
     def count(self, kind: Kind) -> int:
-        """How many generators of this kind P has."""
+        """How many generators of this kind P has.
+
+        >>> import exactinv as ei
+        >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> cs.count(Kind.VERTEX), cs.count(Kind.RAY)
+        (2, 0)
+        """
         W = self.W[kind]
         return 0 if W is None else W.ncols()
 
@@ -157,7 +163,13 @@ class ConditionSet:
         return None if _never_binds(c.coeffs()) else Condition(kind, i, j, c)
 
     def pairs(self, kind: Kind, pairs: Iterable[tuple[int, int]]) -> list[Condition]:
-        """The nontrivial conditions of the (generator, facet) pairs given, each built once."""
+        """The nontrivial conditions of the (generator, facet) pairs given, each built once.
+
+        >>> import exactinv as ei
+        >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> [str(c.p) for c in cs.pairs(Kind.VERTEX, [(0, 0), (0, 1)])]   # vertex 1: h >= 0 is trivial, 2 - h >= 0
+        ['(-1)*x + 2']
+        """
         pairs = list(pairs)
         if not pairs:
             return []
@@ -185,7 +197,14 @@ class ConditionSet:
         return out
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
-        """(inequalities, equalities) over every generator-facet pair (built once)."""
+        """(inequalities, equalities) over every generator-facet pair (built once).
+
+        >>> import exactinv as ei
+        >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> inequalities, equalities = cs.all()
+        >>> len(inequalities), len(equalities)   # x' = -x on [-1, 1]: 1 - (1 - h) v >= 0, nontrivial only 2 - h
+        (2, 0)
+        """
         if self._all is None:
             conditions: list[Condition] = []
             equalities: list[Condition] = []

@@ -250,13 +250,23 @@ class Pruning:
     applied: bool = True
 
     def record(self) -> dict | None:
-        """The certificate's pruning record: the kernel recomputes the rest."""
+        """The certificate's pruning record: the kernel recomputes the rest.
+
+        >>> Pruning(Fraction(2), 0, 8, 5, (0, 2, 1, 3)).record()
+        {'horizon': '2', 'vertex': 0, 'order': [0, 2, 1, 3]}
+        >>> Pruning(Fraction(2), 0, 8, 8, (0, 1), applied=False).record() is None
+        True
+        """
         if not self.applied:
             return None
         return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
 
     def finished(self, total: float) -> "Pruning":
-        """With the remaining time (roots and intervals) as the last stage."""
+        """With the remaining time (roots and intervals) as the last stage.
+
+        >>> Pruning(Fraction(2), 0, 8, 5, (0, 1), (("bounds", 0.25),)).finished(1.0).seconds
+        (('bounds', 0.25), ('roots and intervals', 0.75))
+        """
         rest = total - sum(s for _, s in self.seconds)
         return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
 
