@@ -18,13 +18,10 @@ from fractions import Fraction
 from . import polys
 from .claims_invariance import _discrete_matrix
 from .ellipsoids import condition_polynomials, psd
-from .rationals import (boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational, require, transpose,
-                        vector, within_budget)
+from .rationals import (FRACTION_WEIGHT, boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational,
+                        require, transpose, vector, within_budget)
 from .reals import Real
 from .validset import first_end, valid_set
-
-
-FRACTION_WEIGHT = 100  # word operations per Fraction operation, for the work budget
 
 
 def _witness(problem, claim, form, what):

@@ -19,11 +19,11 @@ at -rho or rho = 0 is itself inadmissible.
 """
 
 from fractions import Fraction
-from math import comb
+from math import comb, gcd
 
 from . import polys
 from .claims_thresholds import smallest_positive_root
-from .rationals import integer, require, vector
+from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
 from .reals import Real
 from .tail import prove_tail
 from .validset import first_end
@@ -34,9 +34,20 @@ REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positiv
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
+def scan_cost(num, den, count):
+    """Estimated word operations of d_0 .. d_{count-1}: d_j has degree about (j + 1) deg h and numbers of
+    about j (deg h) (bits of g, h) bits, and costs about j (deg h)^3 Fraction products whose gcds grow with
+    those numbers (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work)."""
+    dh = max(len(den) - 1, len(num) - 1, 1)
+    bits = max(abs(c).bit_length() for c in polys.integer_coefficients(num) + polys.integer_coefficients(den))
+    return count * count * dh ** 3 * (FRACTION_WEIGHT + count * dh * bits // 8) // 2
+
+
 def d_polynomials(num, den, count):
-    """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa."""
+    """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa;
+    priced first (a certificate's tail_index or d list must not make the kernel work for minutes)."""
     require(count <= MAX_COEFFICIENTS, f"more than {MAX_COEFFICIENTS} coefficients requested")
+    within_budget(scan_cost(num, den, count), f"the coefficient polynomials d_0 .. d_{count - 1}")
 
     G = [_shift(num, i) for i in range(max(len(num), count))]
     H = [_shift(den, i) for i in range(len(den))]
@@ -60,14 +71,25 @@ def _shift(p, i):
     return polys.trim(out)
 
 
-def series_at_zero(num, den, count):
-    c = []
-    for j in range(count):
-        v = num[j] if j < len(num) else Fraction(0)
-        for i in range(1, min(j, len(den) - 1) + 1):
-            v -= den[i] * c[j - i]
-        c.append(v / den[0])
-    return c
+def sign_at_zero(num, den, j):
+    """The exact sign of c_j(0) = [z^j] g/h, in integers (no Fraction gcds: a witness index up to
+    MAX_COEFFICIENTS costs well under a second).  With G = L g, H = L h integral, c_k = u_k / H_0^(k+1) where
+    u_k = G_k H_0^k - sum_{i=1..k} H_i u_{k-i} H_0^(i-1)  (multiply H_0 c_k = G_k - sum H_i c_{k-i} by H_0^k).
+    Priced first: (j + 1)^2 deg h (bits of G, H) / 128 word operations."""
+    L = 1
+    for x in [*num, *den]:
+        L = L * x.denominator // gcd(L, x.denominator)
+    G, H = [int(x * L) for x in num], [int(x * L) for x in den]
+    bits = max(abs(c).bit_length() for c in G + H) + len(H).bit_length()  # u_k has about k bits bits
+    within_budget((j + 1) ** 2 * len(H) * bits // 128, f"the series coefficients c_0(0) .. c_{j}(0)")
+    H0 = [H[0] ** i for i in range(len(H))]
+    u = []
+    for k in range(j + 1):
+        v = G[k] * H[0] ** k if k < len(G) else 0
+        for i in range(1, min(k, len(H) - 1) + 1):
+            v -= H[i] * u[k - i] * H0[i - 1]
+        u.append(v)
+    return polys.sign(u[j]) * polys.sign(H[0]) ** (j + 1)
 
 
 def _all_roots_real_positive(h):
@@ -117,6 +139,22 @@ def recompute(num, den, count, K_is_infinite, K=None):
     return rho, attained, d
 
 
+def _tie(num, den, value, claim):
+    """(rho, attained, d, N, count) for a tie claim: kappa* = value > 0 (rho is a sup over kappa >= 0, and
+    rho = 0 has its own reasons), proved a tie (tail.prove_tail(tie=...)), the tail positive on [0, kappa*],
+    no c_j (j < count) ending and no pole on the negative axis before kappa*: rho = kappa*, attained unless a
+    pole sits at -kappa*."""
+    require(not value.inf and value.compare(Real.rational(0)) > 0,
+            "a tie radius is a positive kappa* (rho = 0 is certified by a witness c_j(0) < 0)")
+    hint = claim.get("tail_index")
+    hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
+    N = prove_tail(num, den, None, hint, tie=value)
+    count = max(N, len(num), len(den), 1)
+    first, attained, d = recompute(num, den, count, False, value.bounds()[1])
+    require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {value}")
+    return value, attained if first.compare(value) == 0 else True, d, N, count
+
+
 def absolute_monotonicity_radius(problem, claim, context):
     method = problem.method
     require(method is not None, "a method is needed")
@@ -134,7 +172,7 @@ def absolute_monotonicity_radius(problem, claim, context):
         how = f"recomputed from c_0 .. c_{len(num) - 1}"
     elif reason in ZERO_REASONS:
         j = integer(claim["witness_j"], "witness_j", 0, MAX_COEFFICIENTS)
-        require(series_at_zero(num, den, j + 1)[j] < 0, f"c_{j}(0) is not negative")
+        require(sign_at_zero(num, den, j) < 0, f"c_{j}(0) is not negative")
         rho, rho_attained, d = Real.rational(0), False, []
         how = f"c_{j}(0) < 0, so r is not absolutely monotonic at 0"
     elif reason == "product":
@@ -143,15 +181,7 @@ def absolute_monotonicity_radius(problem, claim, context):
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
     elif reason == "tie":
-        require(not value.inf, "a tie radius is finite")
-        hint = claim.get("tail_index")
-        hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
-        N = prove_tail(num, den, None, hint, tie=Real.parse(claim["value"], "rho"))
-        K = value.bounds()[1]
-        count = max(N, len(num), len(den), 1)
-        first, _, d = recompute(num, den, count, False, K)
-        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) ends before the tie {value}")
-        rho, rho_attained = value, True
+        rho, rho_attained, d, N, count = _tie(num, den, value, claim)
         how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
                f"the tail j >= {N} is proved positive on [0, kappa*] with the tied poles at ratio 1, "
                f"c_0 .. c_{count - 1} recomputed")

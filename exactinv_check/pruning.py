@@ -24,6 +24,8 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    pieces at once, then piece by piece, and only then vertex by vertex.
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
+The horizon is short (numerator and denominator of at most 64 bits): the pieces' exact powers t^i then stay
+small; a longer one is rejected before any piece is built.
 """
 
 from fractions import Fraction
@@ -32,6 +34,7 @@ from math import comb, gcd, isqrt
 from .rationals import integer, rational, require
 
 K = 1 << 40  # the integer grid
+HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers t^i stay short (work budget)
 
 
 def _ceil(x):
@@ -48,6 +51,9 @@ def parse(record, vertex_count):
             "pruning has the keys horizon, vertex, order")
     T = rational(record["horizon"], "pruning horizon")
     require(T >= 0, "the pruning horizon is negative")
+    require(max(T.numerator.bit_length(), T.denominator.bit_length()) <= HORIZON_BITS,
+            f"over the kernel's work budget: the pruning horizon needs a numerator and denominator of at most "
+            f"{HORIZON_BITS} bits (a short upper bound of the set's end)")
     k = integer(record["vertex"], "pruning vertex", 0, vertex_count)
     order = record["order"]
     require(isinstance(order, list) and len(order) == vertex_count

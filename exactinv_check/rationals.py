@@ -13,6 +13,7 @@ from math import gcd
 MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
 MAX_DIMENSION = 2000  # bound on every vector and matrix dimension
 WORK_BUDGET = 10**8  # estimated word operations of one exact computation: about seconds of work
+FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers, for the work budget
 SHOWN_DIGITS = 60  # longer numbers are described by their size in messages
 
 _NUMBER = re.compile(r"[+-]?[0-9]+(?:/[0-9]+|\.[0-9]+)?")

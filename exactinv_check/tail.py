@@ -23,6 +23,9 @@ Certificates, tried in this order (p* = the smallest positive pole, mu its multi
    inclusion disk |z_k - c| <= rho; this quadratic in kappa is concave (leading coefficient Q^2 - 1 < 0), hence
    >= 0 on [0, K], and then P_hi + kappa <= Q (|c + kappa| - rho) <= Q |z_k + kappa|.
 
+Tie (``tie`` = kappa*): before the tie polynomial is built, kappa* must meet some pole's rational enclosure of
+kappa_z (a cheap necessary condition); then module tie proves it a root and isolates it.
+
 Rigour.  Exact: Yun's squarefree decomposition h = lc(h) prod_M f_M^M (checked by multiplying back, with each f_M
 squarefree and the f_M pairwise coprime, so every root of f_M is a pole of multiplicity M), Sturm counts, and
 signs of polynomials at isolated real poles (bisection until the polynomial has no root left beside the pole).
@@ -79,9 +82,8 @@ def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
     require(signs[mu - 1] > 0, f"tail: the principal part at the smallest positive pole p* has the wrong sign "
                                f"(b_mu = (-1)^mu a_mu < 0, mu = {mu})")
     first = max(len(g) - len(h) + 1, 0)  # (E) holds for j > deg q = deg g - deg h
-    if tie is not None:
-        lo, hi = tie_interval(h, tie)
-        return _dominance(g, h, factors, f_star, mu, poles[0], hi, max(N_hint, first), (lo, hi))
+    if tie is not None:  # K is set by _dominance: the upper end of kappa*'s isolating interval
+        return _dominance(g, h, factors, f_star, mu, poles[0], None, max(N_hint, first), tie)
     if len(poles) == len(squarefree(h)) - 1:  # every pole is real and positive
         if len(g) == 1:
             return max(N_hint, 0)  # product certificate
@@ -356,6 +358,16 @@ def _ratio_bound(z, P, K):
     raise CheckFailure(f"tail: could not certify that p* dominates the pole near {complex(float(a), float(b)):.6g}")
 
 
+def _tie_located(h, value, disks, P_lo, P_hi):
+    """(lo, hi) isolating kappa* = value among the roots of the tie polynomial (tie.tie_interval), after a
+    cheap necessary test: kappa* = kappa_z for some pole z, so value meets some pole's kappa_z enclosure."""
+    v_lo, v_hi = value.bounds()
+    near = [kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) for zs in disks.values() for z in zs]
+    require(any(e and e[0] <= v_hi and v_lo <= e[1] for e in near),
+            "tie: the claimed kappa* meets no pole's enclosure of kappa_z (no pole ties with p* there)")
+    return tie_interval(h, value)
+
+
 def _pow_up(Q, n):
     """A dyadic upper bound of Q^n (0 < Q < 1), by squaring with upward rounding."""
     result, base = Fraction(1), Q
@@ -368,7 +380,8 @@ def _pow_up(Q, n):
 
 def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
     """The least N >= first with B(N) < b_{*,mu} (module docstring, dominance), or CheckFailure.
-    ``tie`` = (lo, hi) isolating kappa* among the roots of the tie polynomial (K = hi): a pole whose
+    ``tie`` = kappa* (a Real; K is then hi), located by _tie_located as (lo, hi) isolating kappa* among the
+    roots of the tie polynomial: a pole whose
     kappa_z enclosure lies in (lo, hi) has kappa_z = kappa*, so p* + kappa <= |z + kappa| on [0, kappa*]
     and it enters with Q = 1 (multiplicity <= mu required); at least one pole must be tied."""
     disks = {id(f): _disks(f) for f, _ in factors}
@@ -390,6 +403,9 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
     star = _b_balls(g, h, mu, ((P_lo + P_hi) / 2, Fraction(0), (P_hi - P_lo) / 2))
     b_mu = star[mu - 1][0] - star[mu - 1][2]  # b_{*,mu} is real: a lower bound
     require(b_mu > 0, "tail: the dominant principal part could not be bounded away from 0")
+    if tie is not None:
+        tie = _tie_located(h, tie, disks, P_lo, P_hi)
+        K = tie[1]
     D_hi = P_hi + K
     others, tied = [], 0
     for f, M in factors:

@@ -10,14 +10,18 @@ w_z^2 = w*^2 is a double root of G).  T is not identically 0 (that would force t
 T is computed by interpolation at integer kappa: at each point the power sums of the w_l (Newton's identities)
 give G and P2 exactly, and the resultants are Euclid's (polys.resultant).
 
-``tie_predicate(h, value)`` proves that ``value`` is a root of T and isolates it: (lo, hi) holding exactly one
+Work budget: T is priced before it is interpolated (``interpolation_cost``): deg T + 1 values, each from
+resultants whose numbers grow to about deg T (bits of h + log deg T) bits, and a Newton interpolation with
+(deg T + 1)^2 Fraction operations on numbers of that size; over the budget the claim is rejected.
+
+``tie_interval(h, value)`` proves that ``value`` is a root of T and isolates it: (lo, hi) holding exactly one
 root of T.  A pole whose rational enclosure of kappa_z lies in (lo, hi) then has kappa_z = value exactly.
 """
 
 from fractions import Fraction
 
 from . import polys
-from .rationals import require
+from .rationals import FRACTION_WEIGHT, require, within_budget
 from .reals import Real
 
 MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate
@@ -63,13 +67,22 @@ def _value(h, t):
     return polys.resultant(P2, G) * polys.resultant(G, polys.derivative(G))
 
 
+def interpolation_cost(degree, bits):
+    """Estimated word operations of building T of formal degree ``degree`` for an h with ``bits``-bit
+    integer coefficients (calibrated: about a second of work per 10^8 on the kernel's Fractions)."""
+    return (degree + 1) ** 2 * (3 * FRACTION_WEIGHT + degree * (bits + degree.bit_length()) // 2)
+
+
 def tie_polynomial(h):
-    """T for the squarefree part of h (degree >= 2), by interpolation."""
+    """T for the squarefree part of h (degree >= 2), by interpolation; priced first (work budget)."""
     sq = polys.monic(polys.squarefree(h))
     d = len(sq) - 1
     require(d >= 2, "tie: r needs two poles for a tie")
     degree = d * d * (d - 1) + 2 * d * (d - 1)
     require(degree <= MAX_TIE_DEGREE, f"tie: the tie polynomial would exceed degree {MAX_TIE_DEGREE}")
+    bits = max(abs(c).bit_length() for c in polys.integer_coefficients(sq))
+    within_budget(interpolation_cost(degree, bits), f"the tie polynomial of degree {degree} for {d} poles "
+                                                    f"with {bits}-bit coefficients")
     points = [Fraction(t) for t in range(degree + 1)]
     T = polys.interpolate(points, [_value(sq, t) for t in points])
     require(len(T) > 1 or (T and T[0] != 0), "tie: the tie polynomial vanishes identically")

@@ -52,6 +52,18 @@ def test_engine_and_kernel_tie_polynomials_agree():
 def test_a_rational_near_the_tie_is_rejected():
     cert = _cert(M.radau_iia3())
     cert["claims"][0]["value"] = "17/10"  # rho = 1.7034...: 17/10 is admissible but not a tie
+    _rejected(cert, "meets no pole's enclosure of kappa_z")  # the cheap test, before the tie polynomial
+
+
+def test_a_rational_within_2_to_the_minus_200_of_the_tie_is_rejected():
+    """Inside every pole's kappa_z enclosure, so the cheap test passes: the tie polynomial rejects it."""
+    from exactinv_check.reals import Real
+    cert = _cert(M.radau_iia3())
+    v = Real.parse(cert["claims"][0]["value"], "rho")
+    for _ in range(200):
+        v.bisect()
+    q = (v.lo + v.hi) / 2  # kappa* is irrational (a root of 2k^3 + 9k^2 - 36), so q != kappa*
+    cert["claims"][0]["value"] = f"{q.numerator}/{q.denominator}"
     _rejected(cert, "not a root of the tie polynomial")
 
 

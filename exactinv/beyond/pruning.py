@@ -53,6 +53,8 @@ from ..core.roots import negative_segments, nonnegative_until
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 
+HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
+
 __all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
 
 _BITS = 24  # the grid: K = 2^24
@@ -288,8 +290,22 @@ def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
         bad = [seg for c in first for seg in negative_segments(c.p)]
         union = complement_of_open(bad, [])
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
-    T = None if isinstance(end, Infinity) else coarse_above(upper_bound(end), 20)  # short: cheap pieces
+    T = None if isinstance(end, Infinity) else _short_horizon(upper_bound(end))
     return T, first, [("bounding vertex", time.perf_counter() - t0)]
+
+
+def _short_horizon(x: Fraction) -> Fraction | None:
+    """A dyadic T >= x with numerator and denominator of at most HORIZON_BITS bits (the kernel's bound: cheap
+    pieces), or None when x is too large for one (then nothing is pruned).
+
+    >>> _short_horizon(Fraction(1, 3)), _short_horizon(Fraction(3, 2**80)), _short_horizon(Fraction(2**70))
+    (Fraction(699051, 2097152), Fraction(1, 9223372036854775808), None)
+    """
+    T = coarse_above(x, 20)
+    if T.denominator.bit_length() > HORIZON_BITS:  # x < 2^-43: round up on the grid 2^-63 instead
+        scale = 1 << (HORIZON_BITS - 1)
+        T = Fraction(-(-x.numerator * scale // x.denominator), scale)
+    return T if T.numerator.bit_length() <= HORIZON_BITS else None
 
 
 def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Pruning]:

@@ -326,7 +326,9 @@ def _tie_positive(s, tie) -> bool | None:
 
 def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     """Scan d_0, d_1, ... for the first end of nonnegativity below the current bound K (Descartes on
-    [0, K] first, exact location only when it fails), with the tail index N bounded before the scan."""
+    [0, K] first, exact location only when it fails), with the tail index N bounded before the scan.
+    An exact kappa_A <= 0 is no tie (rho is a sup over kappa >= 0): rho = 0, not attained, by a witness
+    c_j(0) < 0 (Undecided without one)."""
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
     if tie is not None and positive_tie is None:
@@ -339,6 +341,8 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     N = None
     if positive_tie:
         exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        if not ExactKey(Fraction(0)) < ExactKey(exact_bound):  # kappa_A <= 0: kappa = 0 decides, not a tie
+            return _zero_radius(method, "dominance-at-0", p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
     value, binding, ds = None, None, []
