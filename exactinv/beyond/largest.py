@@ -32,7 +32,7 @@ from ..core.latex import latex_real
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.results import ExactValueMixin
 from ..core.roots import negative_segments, nonnegative_until, positive_roots
-from ..core.scalars import INF, Infinity, fraction_of
+from ..core.scalars import INF, Infinity
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput

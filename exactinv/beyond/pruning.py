@@ -30,9 +30,11 @@ the first end of S, hence at most T.  The kernel repeats the test exactly
 
 The engine's test is vectorised and exact: every quantity is rounded to an
 integer grid of step 2^-24 (relative to the points' size; each gridded
-coordinate within 2 steps of the exact one, the error E below accounts for it), the slacks of all pairs are products of int64 matrices (numpy,
-bounded magnitudes: no overflow), and a pair survives unless its rounded
-slack provably exceeds its rounded bound.  Rounding only lets more pairs
+coordinate within 2 steps of the exact one, an error the slack test
+subtracts), the slacks are products of int64 matrices (numpy, bounded
+magnitudes: no overflow) -- first for boxes around blocks of 64 vertices,
+then vertex by vertex for the facets a block's box does not clear -- and a
+pair survives unless its rounded slack provably exceeds its rounded bound.  Rounding only lets more pairs
 survive, never fewer.
 """
 
