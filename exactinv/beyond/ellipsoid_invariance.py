@@ -27,6 +27,7 @@ from ..core.encode import mat, vec
 from ..core.latex import LatexMixin, latex_column
 from ..core.psd import LDLT, psd_decision, quadratic_form
 from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, vector_text
+from ..core.tags import ClaimType
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem
 from ..model.ellipsoid import lyapunov_matrix
@@ -89,7 +90,7 @@ class EllipsoidInvariance(LatexMixin):
         >>> ellipsoid_discrete_invariance([["1/2", 0], [0, -1]], E).claims()
         [{'type': 'ellipsoid_discrete_invariance', 'holds': True, 'Ad': [['1/2', '0'], ['0', '-1']]}]
         """
-        claim: dict = {"type": f"ellipsoid_{self.kind}_invariance", "holds": self.holds}
+        claim: dict = {"type": ClaimType(f"ellipsoid_{self.kind}_invariance"), "holds": self.holds}
         if self.kind == "discrete":
             claim["Ad"] = mat(self.Ad)
             if self.dt is not None:

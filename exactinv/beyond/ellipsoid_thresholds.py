@@ -32,6 +32,7 @@ from ..core.results import ExactValueMixin
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.roots import negative_segments, positive_roots, real_roots
 from ..core.scalars import INF, Infinity, fraction_of, matrix_of
+from ..core.tags import ClaimType
 from ..errors import VerificationFailed
 from ..model import Ellipsoid, LinearSystem, Method
 from ..model.methods import forward_euler
@@ -67,7 +68,7 @@ class EllipsoidValidSteplengths(ValidSteplengths):
         [{'type': 'ellipsoid_valid_steplengths', 'intervals': [{'lo': '0', 'hi': '2/5', 'lo_closed': True, 'hi_closed': True}], 'determinant': ['1']}]
         """
         return [{
-            "type": "ellipsoid_valid_steplengths",
+            "type": ClaimType.ELLIPSOID_VALID_STEPLENGTHS,
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
             "determinant": vec(self.determinant),
@@ -101,7 +102,7 @@ class EllipsoidLargestThreshold(LargestThreshold):
         >>> ellipsoid_largest_threshold(LinearSystem([[-1, 0], [0, -1]]), E, methods.taylor(2)).claims()
         [{'type': 'ellipsoid_largest_threshold', 'value': '2', 'attained': True, 'determinant': ['1'], 'binding': 1}]
         """
-        return [{"type": "ellipsoid_largest_threshold", "value": encode_real(self.value), "attained": self.attained,
+        return [{"type": ClaimType.ELLIPSOID_LARGEST_THRESHOLD, "value": encode_real(self.value), "attained": self.attained,
                  "determinant": vec(self.determinant), "binding": self.coefficient}]
 
     def __repr__(self) -> str:
@@ -131,7 +132,7 @@ class EllipsoidForwardEulerThreshold(ExactValueMixin):
         >>> ellipsoid_forward_euler_threshold(LinearSystem([[-1, -2], [2, -1]]), E).claims()
         [{'type': 'ellipsoid_forward_euler_threshold', 'value': '2/5'}]
         """
-        return [{"type": "ellipsoid_forward_euler_threshold", "value": encode_real(self.value)}]
+        return [{"type": ClaimType.ELLIPSOID_FORWARD_EULER_THRESHOLD, "value": encode_real(self.value)}]
 
     @property
     def certificate(self) -> dict:

@@ -33,6 +33,7 @@ from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.results import ExactValueMixin
 from ..core.roots import negative_segments, nonnegative_until, positive_roots
 from ..core.scalars import INF, Infinity
+from ..core.tags import ClaimType
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
@@ -76,7 +77,7 @@ class ValidSteplengths:
         [([{'lo': '0', 'hi': '2', 'lo_closed': True, 'hi_closed': True}], [['-1'], ['1']])]
         """
         return [{
-            "type": "valid_steplengths",
+            "type": ClaimType.VALID_STEPLENGTHS,
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
             **generator_record(self.polyhedron),
@@ -140,7 +141,7 @@ class LargestThreshold(ExactValueMixin):
         ('2', True, 1, ['0', '1', '-1/2'])
         """
         return [{
-            "type": "largest_threshold",
+            "type": ClaimType.LARGEST_THRESHOLD,
             "value": encode_real(self.value),
             "attained": self.attained,
             **generator_record(self.polyhedron),

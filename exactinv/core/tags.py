@@ -17,10 +17,22 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["ClaimType", "RadiusReason", "BisectionStep", "CounterexampleKind"]
+__all__ = ["Tag", "ClaimType", "RadiusReason", "BisectionStep", "CounterexampleKind"]
 
 
-class ClaimType(StrEnum):
+class Tag(StrEnum):
+    """A tag that also *prints* as its string, so that claims and result reprs
+    read as the certificate does.
+
+    >>> repr(ClaimType.GAMMA_STAR), {"type": ClaimType.GAMMA_STAR}
+    ("'gamma_star'", {'type': 'gamma_star'})
+    """
+
+    def __repr__(self) -> str:
+        return repr(self.value)
+
+
+class ClaimType(Tag):
     """The ``"type"`` of a claim in a certificate (docs/certificate-format.md)."""
 
     GAMMA_STAR = "gamma_star"
@@ -32,9 +44,14 @@ class ClaimType(StrEnum):
     ABSOLUTE_MONOTONICITY_RADIUS = "absolute_monotonicity_radius"
     VALID_STEPLENGTHS = "valid_steplengths"
     LARGEST_THRESHOLD = "largest_threshold"
+    ELLIPSOID_CONTINUOUS_INVARIANCE = "ellipsoid_continuous_invariance"
+    ELLIPSOID_DISCRETE_INVARIANCE = "ellipsoid_discrete_invariance"
+    ELLIPSOID_VALID_STEPLENGTHS = "ellipsoid_valid_steplengths"
+    ELLIPSOID_LARGEST_THRESHOLD = "ellipsoid_largest_threshold"
+    ELLIPSOID_FORWARD_EULER_THRESHOLD = "ellipsoid_forward_euler_threshold"
 
 
-class RadiusReason(StrEnum):
+class RadiusReason(Tag):
     """Why the absolute monotonicity radius rho (Def. 3.11) has its value."""
 
     COEFFICIENT = "coefficient"  # c_binding changes sign at rho
@@ -42,9 +59,12 @@ class RadiusReason(StrEnum):
     NO_POSITIVE_POLE = "no-positive-pole"
     PRINCIPAL_PART_SIGN = "principal-part-sign"
     DOMINANCE_AT_0 = "dominance-at-0"
+    TIE = "tie"  # p* wins the equal-modulus tie at rho = kappa_A (exact root of the tie polynomial)
+    PRODUCT = "product"  # rho = INF: r is a product of absolutely monotonic factors
+    TERMWISE = "termwise"  # rho = INF: every partial-fraction term is absolutely monotonic
 
 
-class BisectionStep(StrEnum):
+class BisectionStep(Tag):
     """The step of the paper's bisection (Section 3.1.2) that returned."""
 
     STEP_2 = "step 2"
@@ -53,7 +73,7 @@ class BisectionStep(StrEnum):
     STEP_5 = "step 5"
 
 
-class CounterexampleKind(StrEnum):
+class CounterexampleKind(Tag):
     """The ``"kind"`` of an oracle counterexample to a claimed LP value."""
 
     INFEASIBLE = "infeasible"  # a Farkas vector: the exact LP has no feasible point

@@ -73,7 +73,7 @@ def paper_bisection(alphas: Sequence[Any], epsilon: Any = Fraction(1, 2**30), re
 
     >>> res = paper_bisection([1, -3, 2])   # 1 - 3t + 2t^2 = (1 - t)(1 - 2t): first root 1/2
     >>> res.tau < Fraction(1, 2) <= res.tau + Fraction(1, 2**30), res.terminated_by   # Step 5 returns t_l
-    (True, <BisectionStep.STEP_5: 'step 5'>)
+    (True, 'step 5')
     """
     a = _normalised(alphas)
     eps = to_rational(epsilon, "epsilon")
@@ -101,7 +101,7 @@ def paper_bisection_float(alphas: Sequence[Any], epsilon: float = 2.0**-30, repa
 
     >>> res = paper_bisection_float([1, -3, 2])
     >>> abs(res.tau - 0.5) < 1e-8, res.terminated_by
-    (True, <BisectionStep.STEP_5: 'step 5'>)
+    (True, 'step 5')
     """
     a = [float(x) for x in _normalised(alphas)]
     f = np.polynomial.Polynomial(a)

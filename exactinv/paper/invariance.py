@@ -36,6 +36,7 @@ from ..core.scalars import (
     matrix_text,
     vector_text,
 )
+from ..core.tags import ClaimType
 from ..errors import EmptyPolyhedron, VerificationFailed
 from ..lp import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from ..model import LinearSystem, Polyhedron
@@ -127,7 +128,7 @@ class ContinuousInvariance(_Invariance):
     witness: FacetWitness | None
     system: LinearSystem = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
-    _kind = "continuous_invariance"
+    _kind = ClaimType.CONTINUOUS_INVARIANCE
 
     @property
     def certificate_json(self) -> dict:
@@ -164,7 +165,7 @@ class DiscreteInvariance(_Invariance):
     system: LinearSystem | None = field(default=None, repr=False)
     method: Any = field(default=None, repr=False)
     dt: Fraction | None = None
-    _kind = "discrete_invariance"
+    _kind = ClaimType.DISCRETE_INVARIANCE
     _H_name = r"\tilde H"
     _H_text = "H~"
 
@@ -283,7 +284,7 @@ class OptimalGamma(LatexMixin):
         >>> optimal_gamma(LinearSystem([[1]]), P).claims()[0]["witness"]
         {'x': ['1'], 'facet': 0, 'value': '1'}
         """
-        claim = {"type": "gamma_star", "value": encode_real(self.value), "paths": self.paths}
+        claim = {"type": ClaimType.GAMMA_STAR, "value": encode_real(self.value), "paths": self.paths}
         if self.witness is not None:
             claim["witness"] = self.witness.record()
         elif isinstance(self.value, Infinity):  # -oo: a point and a ray per row

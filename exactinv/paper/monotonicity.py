@@ -67,6 +67,7 @@ from ..core.polys import count_real_roots, integer_part, no_root_between, sign_a
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until, real_roots
 from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
+from ..core.tags import ClaimType, RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from ..model.record import method_record
@@ -98,7 +99,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
 
     value: Real
     attained: bool
-    reason: str
+    reason: RadiusReason
     method: Method = field(repr=False)
     binding: int | None = None
     witness_j: int | None = None
@@ -132,7 +133,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         >>> claim["value"], claim["binding"], claim["d"]
         ('1', 1, [['1', '-1', '1/2'], ['1', '-1'], ['1/2']])
         """
-        claim = {"type": "absolute_monotonicity_radius", "value": encode_real(self.value), "reason": self.reason,
+        claim = {"type": ClaimType.ABSOLUTE_MONOTONICITY_RADIUS, "value": encode_real(self.value), "reason": self.reason,
                  "attained": self.attained}
         if self.binding is not None:
             claim["binding"] = self.binding
@@ -206,7 +207,7 @@ def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
     binding = min(range(len(ends)), key=lambda j: ExactKey(ends[j]))
     value = ends[binding]
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d)
-    reason = "all-coefficients" if value == INF else "coefficient"
+    reason = RadiusReason.ALL_COEFFICIENTS if value == INF else RadiusReason.COEFFICIENT
     attained = value != 0 or all(c[0] >= 0 if c else True for c in coeffs)  # rho = 0 may fail at kappa = 0 itself
     return AbsoluteMonotonicityRadius(value, attained, reason, method, None if value == INF else binding,
                                       coefficients=coeffs)
@@ -227,7 +228,7 @@ def _negative_coefficient_at_zero(method: Method) -> int | None:
     return None
 
 
-def _zero_radius(method: Method, reason: str, pole=None) -> AbsoluteMonotonicityRadius:
+def _zero_radius(method: Method, reason: RadiusReason, pole=None) -> AbsoluteMonotonicityRadius:
     j = _negative_coefficient_at_zero(method)
     if j is None:
         raise Undecided(f"absolute monotonicity of {method.name}: {reason} implies rho = 0, "
@@ -296,18 +297,18 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
     h = method.h
     positive = [(z, m) for z, m in real_roots(h) if z > 0]
     if not positive:
-        return _zero_radius(method, "no-positive-pole")
+        return _zero_radius(method, RadiusReason.NO_POSITIVE_POLE)
     p_star, mu = positive[0]
     h_mu = h
     for _ in range(mu):
         h_mu = h_mu.derivative()
     if _sign_at_real(method.g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu <= 0:
-        return _zero_radius(method, "principal-part-sign", p_star)
+        return _zero_radius(method, RadiusReason.PRINCIPAL_PART_SIGN, p_star)
     with precision(_BITS):
         s = pole_structure(method.numerator, method.denominator, p_star)
         tie = dominance_tie(s, h, exact=False)
         if tie is not None and tie.kappa < 0:
-            return _zero_radius(method, "dominance-at-0", p_star)
+            return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         return _decide(method, s, tie, p_star)
 
 
@@ -342,7 +343,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     if positive_tie:
         exact_bound = dominance_tie(s, method.h, exact=True).kappa
         if not ExactKey(Fraction(0)) < ExactKey(exact_bound):  # kappa_A <= 0: kappa = 0 decides, not a tie
-            return _zero_radius(method, "dominance-at-0", p_star)
+            return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
     value, binding, ds = None, None, []
@@ -400,10 +401,10 @@ def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
 
 def _finish(method, kappa_A, p_star, value, binding, ds, N) -> AbsoluteMonotonicityRadius:
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
-        return AbsoluteMonotonicityRadius(kappa_A, True, "tie", method, tail_index=N, pole=p_star)
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
-    return AbsoluteMonotonicityRadius(value, attained, "coefficient", method, binding, tail_index=N, pole=p_star,
+    return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)
 
 
@@ -429,7 +430,7 @@ def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
     if not all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls):
         return None
     if len(method.numerator) == 1:
-        return "product"
+        return RadiusReason.PRODUCT
     if len(method.numerator) <= len(method.denominator) and all(v.real > 0 for _, _, b in balls for v in b):
-        return "termwise"
+        return RadiusReason.TERMWISE
     return None
