@@ -21,7 +21,7 @@ from .ellipsoids import condition_polynomials, psd
 from .rationals import (FRACTION_WEIGHT, boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational,
                         require, transpose, vector, within_budget)
 from .reals import Real
-from .validset import first_end, valid_set
+from .validset import first_end, require_intervals, valid_set
 
 
 def _witness(problem, claim, form, what):
@@ -110,16 +110,7 @@ def _conditions(problem, claim, context, numerator=None, denominator=None):
 def valid_steplengths(problem, claim, context):
     D, conditions, _ = _conditions(problem, claim, context)
     truth = valid_set(D, conditions, [], conditions[:1])  # c_1 (the trace) first: exact pruning
-    claimed = claim["intervals"]
-    require(isinstance(claimed, list), "intervals is a list")
-    require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")
-    for k, (iv, true) in enumerate(zip(claimed, truth)):
-        require(isinstance(iv, dict) and set(iv) == {"lo", "hi", "lo_closed", "hi_closed"},
-                f"interval {k}: keys lo, hi, lo_closed, hi_closed")
-        require(Real.parse(iv["lo"], "lo").compare(true.lo) == 0, f"interval {k} starts at {true.lo}")
-        require(Real.parse(iv["hi"], "hi").compare(true.hi) == 0, f"interval {k} ends at {true.hi}")
-        require(boolean(iv["lo_closed"], "lo_closed") == true.lo_closed, f"interval {k}: wrong lo_closed")
-        require(boolean(iv["hi_closed"], "hi_closed") == true.hi_closed, f"interval {k}: wrong hi_closed")
+    require_intervals(claim["intervals"], truth)
     return (f"the valid set {truth} on E recomputed from {len(conditions)} coefficient conditions of "
             f"H^T Q H - G^T Q G and det h(hA)")
 

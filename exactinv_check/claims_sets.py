@@ -15,7 +15,7 @@ from .conditions import condition_polynomials, method_matrices
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
 from .reals import Real
-from .validset import first_end, valid_set
+from .validset import first_end, require_intervals, valid_set
 
 
 def _conditions(problem, claim, context, first_end_claim=False):
@@ -105,15 +105,6 @@ def largest_threshold(problem, claim, context):
 def valid_steplengths(problem, claim, context):
     gens, D, inequalities, equalities = _conditions(problem, claim, context)
     truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities))
-    claimed = claim["intervals"]
-    require(isinstance(claimed, list), "intervals is a list")
-    require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")
-    for k, (iv, true) in enumerate(zip(claimed, truth)):
-        require(isinstance(iv, dict) and set(iv) == {"lo", "hi", "lo_closed", "hi_closed"},
-                f"interval {k}: keys lo, hi, lo_closed, hi_closed")
-        require(Real.parse(iv["lo"], "lo").compare(true.lo) == 0, f"interval {k} starts at {true.lo}")
-        require(Real.parse(iv["hi"], "hi").compare(true.hi) == 0, f"interval {k} ends at {true.hi}")
-        require(boolean(iv["lo_closed"], "lo_closed") == true.lo_closed, f"interval {k}: wrong lo_closed")
-        require(boolean(iv["hi_closed"], "hi_closed") == true.hi_closed, f"interval {k}: wrong hi_closed")
+    require_intervals(claim["intervals"], truth)
     return (f"the valid set {truth} recomputed: every positive root of {len(inequalities) + len(equalities)} "
             f"distinct conditions and of det h(hA) isolated, every cell and root decided exactly")

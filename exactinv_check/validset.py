@@ -13,6 +13,7 @@ from fractions import Fraction
 from functools import cmp_to_key
 
 from . import polys
+from .rationals import boolean, require
 from .reals import Real, separate
 
 
@@ -202,3 +203,17 @@ def first_end(D, inequalities, equalities, first=()):
             if c <= 0:
                 best, attained = pole, False
     return best, attained
+
+
+def require_intervals(claimed, truth):
+    """The claim's intervals are exactly the recomputed ones: the same number,
+    each end equal as a real number, each closed/open flag equal."""
+    require(isinstance(claimed, list), "intervals is a list")
+    require(len(claimed) == len(truth), f"the valid set has {len(truth)} intervals, the claim {len(claimed)}: {truth}")
+    for k, (iv, true) in enumerate(zip(claimed, truth)):
+        require(isinstance(iv, dict) and set(iv) == {"lo", "hi", "lo_closed", "hi_closed"},
+                f"interval {k}: keys lo, hi, lo_closed, hi_closed")
+        require(Real.parse(iv["lo"], "lo").compare(true.lo) == 0, f"interval {k} starts at {true.lo}")
+        require(Real.parse(iv["hi"], "hi").compare(true.hi) == 0, f"interval {k} ends at {true.hi}")
+        require(boolean(iv["lo_closed"], "lo_closed") == true.lo_closed, f"interval {k}: wrong lo_closed")
+        require(boolean(iv["hi_closed"], "hi_closed") == true.hi_closed, f"interval {k}: wrong hi_closed")

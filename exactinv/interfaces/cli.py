@@ -201,16 +201,14 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", help="write the certificate to this JSON file (only if the kernel verifies it)")
     p.add_argument("--no-check", action="store_true", help="skip the built-in run of the trusted kernel")
     p.set_defaults(run=_certify)
-    c = sub.add_parser("check", help="re-verify a certificate with the trusted kernel (exactinv_check)",
-                       epilog=EXIT_CODES, formatter_class=fmt)
-    c.add_argument("certificate", help="certificate JSON file")
-    c.set_defaults(run=_check)
-    e = sub.add_parser("explain", help="check a certificate, then print its argument in words",
-                       description="Run the trusted kernel on a certificate and, if it verifies, explain every "
-                                   "claim in words.  A rejected certificate is not explained (exit 1).",
-                       epilog=EXIT_CODES, formatter_class=fmt)
-    e.add_argument("certificate", help="certificate JSON file")
-    e.set_defaults(run=_explain)
+    for name, run, what, description in (
+            ("check", _check, "re-verify a certificate with the trusted kernel (exactinv_check)", None),
+            ("explain", _explain, "check a certificate, then print its argument in words",
+             "Run the trusted kernel on a certificate and, if it verifies, explain every claim in words.  "
+             "A rejected certificate is not explained (exit 1).")):
+        c = sub.add_parser(name, help=what, description=description, epilog=EXIT_CODES, formatter_class=fmt)
+        c.add_argument("certificate", help="certificate JSON file")
+        c.set_defaults(run=run)
     o = sub.add_parser("oracle", help="judge float results (CSV: problem,quantity,method,claimed; or .jsonl)",
                        description="Judge claimed float results against the exact values.  Each row is judged on "
                                    "its own; a row that cannot be judged is reported with its row number.",
