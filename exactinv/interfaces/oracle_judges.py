@@ -19,7 +19,7 @@ from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput
 from ..model import LinearSystem, Polyhedron
 from ..model.methods import Method, forward_euler
-from ..paper.invariance import optimal_gamma
+from ..paper.gamma_star import optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
 from .dispatch import discrete_invariance, largest_threshold, valid_steplengths
 

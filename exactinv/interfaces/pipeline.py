@@ -26,7 +26,7 @@ from ..core.polys import poly_text
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import forward_euler_threshold
-from ..paper.invariance import optimal_gamma
+from ..paper.gamma_star import optimal_gamma
 from ..paper.threshold import steplength_threshold
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem

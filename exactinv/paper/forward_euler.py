@@ -18,7 +18,7 @@ from ..model import LinearSystem, Polyhedron
 from ..model.methods import forward_euler
 from ..model.record import certificate as make_certificate, generator_record
 from ..model.validate import check_problem
-from .invariance import OptimalGamma, optimal_gamma
+from .gamma_star import OptimalGamma, optimal_gamma
 
 __all__ = ["ForwardEulerThreshold", "forward_euler_threshold"]
 

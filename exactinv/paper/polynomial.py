@@ -33,7 +33,7 @@ from ..core.scalars import INF, Infinity
 from ..core.tags import ClaimType
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from .invariance import OptimalGamma
+from .gamma_star import OptimalGamma
 from .monotonicity import AbsoluteMonotonicityRadius
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "polynomial_threshold"]

@@ -36,7 +36,7 @@ from ..core.polys import interpolate
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fraction_of
 from ..model.methods import Method, matrix_polynomial
-from .invariance import OptimalGamma
+from .gamma_star import OptimalGamma
 from .monotonicity import absolute_monotonicity_radius
 from .polynomial import SteplengthThreshold
 
@@ -133,7 +133,7 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
     r(dt) = (1 + dt/2)/(1 - dt/2) has its pole at z_p/alpha(H) = 2 (erratum E2): tau = 2, not attained.
 
     >>> import exactinv as ei
-    >>> from exactinv.paper.invariance import optimal_gamma
+    >>> from exactinv.paper.gamma_star import optimal_gamma
     >>> decay = optimal_gamma(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]))
     >>> t = rational_threshold(ei.methods.trapezoid(), decay)
     >>> t.value, t.attained

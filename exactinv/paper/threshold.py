@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..errors import NotInvariant
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method
-from .invariance import optimal_gamma
+from .gamma_star import optimal_gamma
 from .polynomial import SteplengthThreshold, polynomial_threshold
 from .rational import rational_threshold
 

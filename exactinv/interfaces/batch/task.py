@@ -29,7 +29,7 @@ from ...core.encode import encode_real
 from ...core.scalars import Infinity
 from ...errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
 from ...paper.forward_euler import ForwardEulerThreshold
-from ...paper.invariance import OptimalGamma
+from ...paper.gamma_star import OptimalGamma
 from ...paper.polynomial import SteplengthThreshold
 from ..oracle import judge_row
 from ..pipeline import certify
