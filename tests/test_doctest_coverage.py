@@ -59,6 +59,6 @@ def test_every_public_function_has_a_doctest():
 def test_the_scan_sees_the_public_api():
     # guards against a scan that finds nothing (and so cannot fail)
     found = _public_callables()
-    for name in ("exactinv.model.methods.taylor", "exactinv.model.methods.Method.matrix",
+    for name in ("exactinv.model.families.taylor", "exactinv.model.method.Method.matrix",
                  "exactinv.beyond.conditions.ConditionSet.all", "exactinv.paper.rational.rational_threshold"):
         assert name in found, name
