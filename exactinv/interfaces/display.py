@@ -211,26 +211,40 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     >>> plt.close(fig)
     """
     plt = _plt()
-    if isinstance(polyhedron, Ellipsoid):  # the paper is about polyhedra: no paper threshold on E
-        V = ellipsoid_valid_steplengths(system, polyhedron, method)
-        L = ellipsoid_largest_threshold(system, polyhedron, method)
-        paper = corrected = None
-        why_not = "the paper's theorems are about polyhedra"
-    else:
-        V = valid_steplengths(system, polyhedron, method)
-        L = largest_threshold(system, polyhedron, method)
-        try:
-            t = steplength_threshold(system, polyhedron, method)
-            paper, corrected, why_not = t.paper, t.value, None
-        except (NotInvariant, Undecided) as exc:
-            paper = corrected = None
-            why_not = "P is not invariant for x' = Ax" if isinstance(exc, NotInvariant) else "undecided"
+    V, L, paper, corrected, why_not = _thresholds(system, polyhedron, method)
     marks = [(paper, "paper", "gray", 0.45), (corrected, "corrected", "royalblue", 0.25),
              (L.value, "largest", "crimson", -0.35)]
     ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if _finite(x)]
     ends += [_f(v) for v, *_ in marks if v is not None and _finite(v)]
     top = float(upto) if upto else 1.25 * max(ends + [1.0])
     fig, ax = plt.subplots(figsize=(7, 1.9))
+    _draw_intervals(ax, V, top)
+    _draw_marks(ax, marks, why_not, top)
+    ax.set_xlim(0, top)
+    ax.set_ylim(-0.6, 0.7)
+    ax.set_yticks([])
+    ax.set_xlabel(r"$\Delta t$")
+    ax.set_title(f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ "), fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def _thresholds(system, polyhedron, method):
+    """(valid set, largest threshold, the paper's and the corrected threshold or None, why none)."""
+    if isinstance(polyhedron, Ellipsoid):  # the paper is about polyhedra: no paper threshold on E
+        V = ellipsoid_valid_steplengths(system, polyhedron, method)
+        return V, ellipsoid_largest_threshold(system, polyhedron, method), None, None, \
+            "the paper's theorems are about polyhedra"
+    V, L = valid_steplengths(system, polyhedron, method), largest_threshold(system, polyhedron, method)
+    try:
+        t = steplength_threshold(system, polyhedron, method)
+        return V, L, t.paper, t.value, None
+    except (NotInvariant, Undecided) as exc:
+        return V, L, None, None, "P is not invariant for x' = Ax" if isinstance(exc, NotInvariant) else "undecided"
+
+
+def _draw_intervals(ax, V, top: float) -> None:
+    """The valid intervals as thick green segments (open ends hollow, infinite ends an arrow)."""
     for iv in V:
         if _f(iv.lo) > top:
             continue
@@ -241,25 +255,20 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
             ax.plot([top], [0], ">", color="seagreen", ms=10, clip_on=False, zorder=5)  # goes on to infinity
         elif _f(iv.hi) <= top:
             ax.plot([hi], [0], "o", color="seagreen", mfc="seagreen" if iv.hi_closed else "white", zorder=5)
+
+
+def _draw_marks(ax, marks, why_not: str | None, top: float) -> None:
+    """Dashed lines at the finite thresholds; infinite ones and a missing paper threshold as a note."""
     for value, label, color, y in marks:
         if value is not None and _finite(value):
             ax.axvline(_f(value), color=color, ls="--", lw=1)
             ax.text(_f(value), y, f" {label} ${_short(value)}$", color=color, fontsize=7)
     infinite = [label for value, label, *_ in marks if value is not None and not _finite(value)]
-    notes = []
-    if infinite:
-        notes.append(" = ".join(infinite) + r" $=\infty$")
+    notes = [" = ".join(infinite) + r" $=\infty$"] if infinite else []
     if why_not:
         notes.append(f"no paper threshold: {why_not}")
     if notes:
         ax.text(top, 0.5, "; ".join(notes) + " ", ha="right", fontsize=7, color="gray")
-    ax.set_xlim(0, top)
-    ax.set_ylim(-0.6, 0.7)
-    ax.set_yticks([])
-    ax.set_xlabel(r"$\Delta t$")
-    ax.set_title(f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ "), fontsize=9)
-    fig.tight_layout()
-    return fig
 
 
 def plot_images(system, polyhedron, method, dts: Sequence[Any]):
