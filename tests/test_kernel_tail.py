@@ -10,13 +10,13 @@ import re
 import sys
 import time
 from fractions import Fraction as F
-from math import comb
 from pathlib import Path
 
 import pytest
 
 from exactinv_check.rationals import CheckFailure
 from exactinv_check.tail import prove_tail
+from radius_reference import coefficients_at
 
 
 def P(*cs):
@@ -31,21 +31,9 @@ def pmul(p, q):
     return out
 
 
-def shifted(p, kappa):
-    """Coefficients in w of p(w - kappa)."""
-    return [sum(p[k] * comb(k, i) * (-kappa) ** (k - i) for k in range(i, len(p))) for i in range(len(p))]
-
-
 def coefficients(g, h, kappa, n):
-    """c_0(kappa) .. c_{n-1}(kappa), exactly."""
-    G, H = shifted(g, kappa), shifted(h, kappa)
-    c = []
-    for j in range(n):
-        v = G[j] if j < len(G) else F(0)
-        for i in range(1, min(j, len(H) - 1) + 1):
-            v -= H[i] * c[j - i]
-        c.append(v / H[0])
-    return c
+    """c_0(kappa) .. c_{n-1}(kappa), exactly (the slow reference of tests/radius_reference.py)."""
+    return coefficients_at(g, h, kappa, n)
 
 
 def timed(g, h, K, N_hint=0):

@@ -180,3 +180,18 @@ def test_any_vertex_order_gives_the_same_verdict(forced):
     assert "pruning" in cert["claims"][0] and check(cert).ok
     cert["claims"][0]["pruning"]["order"] = list(reversed(cert["claims"][0]["pruning"]["order"]))
     assert check(cert).ok
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda S, P, m: ei.ConditionSet("A", P, m), "system: expected"),
+    (lambda S, P, m: ei.ConditionSet(S, "P", m), "polyhedron: expected"),
+    (lambda S, P, m: ei.ConditionSet(S, P, "taylor"), "method: expected"),
+    (lambda S, P, m: ei.valid_steplengths(S, P, m, conditions="cached"), "conditions: expected a ConditionSet"),
+    (lambda S, P, m: ei.largest_threshold(S, P, m, conditions={}), "conditions: expected a ConditionSet"),
+    (lambda S, P, m: ei.valid_steplengths(S, P, m, prune="yes"), "prune: expected True or False"),
+    (lambda S, P, m: ei.largest_threshold(S, P, m, prune=1), "prune: expected True or False"),
+])
+def test_bad_pruning_and_condition_arguments_are_named(call, message):
+    S, P, m = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(2)
+    with pytest.raises(ei.ExactinvError, match=message):
+        call(S, P, m)

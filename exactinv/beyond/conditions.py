@@ -34,6 +34,7 @@ from ..core.polys import integer_part, sign_variations
 from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
+from ..model.validate import check_problem
 
 __all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "conditions_of", "distinct_conditions"]
 
@@ -128,6 +129,7 @@ class ConditionSet:
     G N_k W), :meth:`pairs` only selected ones; both cache what they built."""
 
     def __init__(self, system: LinearSystem, polyhedron: Polyhedron, method: Method):
+        system, polyhedron, method = check_problem(system, polyhedron, method)
         self.system, self.polyhedron, self.method = system, polyhedron, method
         self.D, self.N = method_matrices(method, system.A_flint)
         self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]

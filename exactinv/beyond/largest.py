@@ -37,7 +37,6 @@ from ..core.tags import ClaimType
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
-from ..model.validate import check_problem
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
 from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 
@@ -184,10 +183,13 @@ def _conditions(cs: ConditionSet, first_end: bool, allow: bool) -> tuple[list, l
     return conditions, equalities, None
 
 
-def _problem(system, polyhedron, method, conditions):
+def _problem(system, polyhedron, method, conditions, prune):
+    if not isinstance(prune, bool):
+        raise InvalidInput(f"prune: expected True or False, got {prune!r}")
     if conditions is None:
-        check_problem(system, polyhedron, method)
-        return ConditionSet(system, polyhedron, method)
+        return ConditionSet(system, polyhedron, method)  # checks the three arguments
+    if not isinstance(conditions, ConditionSet):
+        raise InvalidInput(f"conditions: expected a ConditionSet or None, got {type(conditions).__name__}")
     if not all(a is b or a == b for a, b in ((conditions.system, system), (conditions.polyhedron, polyhedron),
                                                (conditions.method, method))):
         raise InvalidInput("conditions: a ConditionSet of another (system, polyhedron, method)")
@@ -206,7 +208,7 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     >>> V.intervals
     [0, 2]
     """
-    cs = _problem(system, polyhedron, method, conditions)
+    cs = _problem(system, polyhedron, method, conditions, prune)
     t0 = time.perf_counter()
     inequalities, equalities, pruning = _conditions(cs, False, prune)
     D = cs.D
@@ -252,7 +254,7 @@ def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     >>> largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2)).value
     Fraction(2, 1)
     """
-    cs = _problem(system, polyhedron, method, conditions)
+    cs = _problem(system, polyhedron, method, conditions, prune)
     t0 = time.perf_counter()
     inequalities, equalities, pruning = _conditions(cs, True, prune)
     distinct = list(distinct_conditions(inequalities).values())
