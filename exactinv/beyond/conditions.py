@@ -189,18 +189,36 @@ class ConditionSet:
         for i, j in pairs:
             if (kind, i, j) not in self._built:
                 by_generator.setdefault(i, []).append(j)
+        L = len(NW)
         for i, facets in by_generator.items():  # one small FLINT product per generator: rows g_j, columns N_k w
             Gi = flint.fmpq_mat(len(facets), n, [x for j in facets for x in Grows[j]])
-            Ni = flint.fmpq_mat(n, len(NW), [E[l * cols + i] for l in range(n) for E in NW])
-            coeffs = (Gi * Ni).entries()
+            Ni = flint.fmpq_mat(n, L, [E[l * cols + i] for l in range(n) for E in NW])
+            product = Gi * Ni
+            coeffs = product.entries()
+            clear = self._clear_rows(kind, facets, product)
             for r, j in enumerate(facets):
-                self._built[kind, i, j] = self._condition(kind, i, j, coeffs[r * len(NW):(r + 1) * len(NW)])
+                self._built[kind, i, j] = None if clear[r] else self._condition(kind, i, j, coeffs[r * L:(r + 1) * L])
         out = []
         for i, j in pairs:
             c = self._built[kind, i, j]
             if c is not None:
                 out.append(c)
         return out
+
+    def _clear_rows(self, kind: Kind, facets: list[int], product: flint.fmpq_mat) -> list[bool]:
+        """Per row of ``product`` (g_j N_k w, k = 0, 1, ...): True when every coefficient of
+        q = b_j D - g_j N w (vertices; -g_j N w for rays) is >= 0 and so are D's -- then c = q D
+        has no negative coefficient and never binds (Descartes), decided on integer numerators."""
+        Dc = self.D.coeffs()
+        if kind == Kind.LINE or any(c < 0 for c in Dc):
+            return [False] * len(facets)
+        width = max(len(Dc), product.ncols())
+        bcol = flint.fmpq_mat(len(facets), 1, [self.b[j] if kind == Kind.VERTEX else 0 for j in facets])
+        Drow = flint.fmpq_mat(1, width, Dc + [0] * (width - len(Dc)))
+        padded = product if width == product.ncols() else flint.fmpq_mat(
+            len(facets), width, [x for r in product.tolist() for x in r + [0] * (width - product.ncols())])
+        q = (bcol * Drow - padded).numer_denom()[0].entries()
+        return [all(x >= 0 for x in q[r * width:(r + 1) * width]) for r in range(len(facets))]
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
         """(inequalities, equalities) over every generator-facet pair (built once).

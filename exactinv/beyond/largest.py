@@ -9,10 +9,11 @@ negative; dt must avoid the roots of D (where r(dt A) is singular).  A
 polynomial that Descartes' rule shows nonnegative up to the current bound is
 skipped, so only pairs that can actually bind reach root isolation.
 
-For polynomial methods the pairs are first pruned (:mod:`.pruning`): the
-conditions of vertex 0 bound the valid set (or the first interval) by a
-horizon T, and only the pairs whose slack does not provably exceed the
-change of A_d(h)v on [0, T] are built at all.  ``prune=False`` builds every
+The pairs are first pruned (:mod:`.pruning`): the conditions of vertex 0
+bound the valid set (or the first interval) by a horizon T, and only the
+pairs whose slack does not provably exceed the change of A_d(h)v on [0, T]
+are built at all.  Rational methods are pruned in u = h/(s + h) on [0, U],
+U = 1 when the valid set is unbounded (:mod:`.pruning_rational`).  ``prune=False`` builds every
 pair (the unpruned route: the same exact answer).  Pass one
 :class:`ConditionSet` as ``conditions=`` to share the built conditions
 between the valid set, the largest threshold and the certificate.
@@ -39,6 +40,7 @@ from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
 from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
+from .pruning_rational import prune_rational
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet"]
 
@@ -175,10 +177,15 @@ def _conditions(cs: ConditionSet, first_end: bool, allow: bool) -> tuple[list, l
     whose vertex 0 bounds the set (or its first interval) by a horizon T -- vertex
     0's conditions, the surviving vertex pairs and every ray and line pair."""
     P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
-    if allow and cs.method.is_polynomial and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
-        T, first, seconds = bounding_horizon(cs, first_end)
-        if T is not None:
-            return prune_pairs(cs, T, first, seconds)
+    if allow and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
+        if not cs.method.is_polynomial:  # in u = h/(s + h): [0, oo) becomes [0, 1]
+            pruned = prune_rational(cs, first_end)
+            if pruned is not None:
+                return pruned
+        else:
+            T, first, seconds = bounding_horizon(cs, first_end)
+            if T is not None:
+                return prune_pairs(cs, T, first, seconds)
     conditions, equalities = cs.all()
     return conditions, equalities, None
 

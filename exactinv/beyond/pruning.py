@@ -57,7 +57,7 @@ from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
 
-__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "coarse_above", "vertex_order", "bounding_horizon", "prune"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
 
 _BITS = 24  # the grid: K = 2^24
 _BLOCK = 64  # vertices per block of the box test
@@ -119,10 +119,16 @@ def piece(N: list[flint.fmpq_mat], t: Fraction, d: Fraction):
     return D[0], (D[1] * dq if len(D) > 1 else D[0] * 0), M
 
 
-def _grid(Q: flint.fmpq_mat, Wf: flint.fmpz_mat, f: int, e: int) -> np.ndarray:
-    """floor(2^(e-f) Q Wf) entrywise as int64, Wf = floor(2^f W): within 1 + 2^(e-f) ||Q||_oo of 2^e Q W."""
+def _grid(Q: flint.fmpq_mat, Wf: flint.fmpz_mat, f: int, e: int, Wn: np.ndarray | None = None) -> np.ndarray:
+    """floor(2^(e-f) Q Wf) entrywise as int64, Wf = floor(2^f W): within 1 + 2^(e-f) ||Q||_oo of 2^e Q W.
+    ``Wn``: Wf as an int64 array; the product is then taken in int64 whenever every partial sum provably stays below 2^62."""
     Qz, dQ = Q.numer_denom()
     d = int(dQ) << (f - e)
+    if Wn is not None:
+        Qi = [int(x) for x in Qz.entries()]
+        wmax = int(np.abs(Wn).max()) if Wn.size else 0
+        if max(map(abs, Qi), default=0) * wmax * Q.ncols() < 2**62 and d < 2**62:
+            return np.array(Qi, dtype=np.int64).reshape(Q.nrows(), Q.ncols()) @ Wn // d
     return np.array([int(x) // d for x in (Qz * Wf).entries()], dtype=np.int64).reshape(Q.nrows(), Wf.ncols())
 
 
@@ -151,11 +157,24 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
     >>> sorted(zip(v.tolist(), f.tolist()))   # x' = -x, forward Euler: the far facet of each vertex is pruned
     [(0, 0), (1, 1)]
     """
+    ends = nodes(T)
+    return pieces_test(G, b, W, [piece(N, t, u - t) for t, u in zip(ends, ends[1:])], vertex_order(W))
+
+
+def pieces_test(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, pieces: list, order: list[int]
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """(facets, vertices) that survive the chord test on the given pieces: each piece is
+    (X, Y, M), the path of a point w on it lies in the box of X w and (X + Y) w widened
+    by max_i (M |w|)_i.  ``order`` groups the points into blocks (any permutation).
+
+    >>> G, W = flint.fmpq_mat([[1], [-1]]), flint.fmpq_mat([[1, -1]])   # one piece: w -> w/2 exactly
+    >>> f, v = pieces_test(G, [1, 1], W, [(flint.fmpq_mat([[1]]), flint.fmpq_mat([[-1, ]]) / 2, [[0]])], [0, 1])
+    >>> sorted(zip(v.tolist(), f.tolist()))
+    [(0, 0), (1, 1)]
+    """
     n, m, V = W.nrows(), G.nrows(), W.ncols()
     K = 1 << _BITS
-    ends = nodes(T)
-    pieces = [piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
-    maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [N[0] ** 0]  # the chord ends, then v itself
+    maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [pieces[0][0] ** 0]  # the chord ends, then w itself
     Wz, dW = W.numer_denom()
     vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), int(dW))
     qmax = max(_norm(Q) for Q in maps)
@@ -165,7 +184,9 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
     e = _BITS - r
     f = max(e, 0) + math.ceil(qmax).bit_length() + 1  # 2^(f-e) >= ||Q||_oo: grid error <= 2
     Wf = flint.fmpz_mat(W.nrows(), W.ncols(), [(x * 2**f).floor() for x in W.entries()])
-    grids = [_grid(Q, Wf, f, e) for Q in maps]
+    big = max((abs(int(x)) for x in Wf.entries()), default=0) >= 2**62
+    Wn = None if big else np.array([int(x) for x in Wf.entries()], dtype=np.int64).reshape(n, V)
+    grids = [_grid(Q, Wf, f, e, Wn) for Q in maps]
     a = np.abs(grids.pop()) + 2  # >= |v| K / R
     cap = Fraction(2**62, n * (K + 1) * K)
     if n > 64 or any(x > cap for _, _, M in pieces for row in M for x in row):
@@ -181,7 +202,7 @@ def surviving_pairs(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, N: list[flint
         bt.append(math.floor(bbar * K * K))
     Gt = np.array(Gt, dtype=np.int64)
     bt = (np.array(bt, dtype=np.int64) - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
-    return _blocked_test(Gt, bt, grids, rho, np.array(vertex_order(W), dtype=np.int64))
+    return _blocked_test(Gt, bt, grids, rho, np.array(order, dtype=np.int64))
 
 
 def _blocked_test(Gt, bt, grids, rho, order):
@@ -250,18 +271,22 @@ class Pruning:
     order: tuple[int, ...] = field(repr=False)
     seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
     applied: bool = True
+    variable: dict = field(default_factory=dict)  # rational methods: {"variable", "scale", "pieces"}
 
     def record(self) -> dict | None:
-        """The certificate's pruning record: the kernel recomputes the rest.
+        """The certificate's pruning record: the kernel recomputes the rest.  For a
+        rational method the horizon is in the variable u = h/(s + h) (:mod:`.pruning_rational`).
 
         >>> Pruning(Fraction(2), 0, 4, 3, (1, 0)).record()      # x' = -x on [-1, 1]: T = 2
         {'horizon': '2', 'vertex': 0, 'order': [1, 0]}
+        >>> Pruning(Fraction(1), 0, 4, 2, (0, 1), variable={"variable": "h/(s+h)", "scale": "1", "pieces": 8}).record()
+        {'horizon': '1', 'vertex': 0, 'order': [0, 1], 'variable': 'h/(s+h)', 'scale': '1', 'pieces': 8}
         >>> Pruning(Fraction(2), 0, 4, 4, (1, 0), applied=False).record() is None
         True
         """
         if not self.applied:
             return None
-        return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order)}
+        return {"horizon": str(self.horizon), "vertex": self.vertex, "order": list(self.order), **self.variable}
 
     def finished(self, total: float) -> "Pruning":
         """With the remaining time (roots and intervals) as the last stage.
@@ -322,19 +347,38 @@ def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Prun
     3
     """
     t0 = time.perf_counter()
+    facets, vertices = surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], cs.N, T)
+    return build_survivors(cs, facets, vertices, first, tuple(seconds) + (("bounds and slacks", time.perf_counter() - t0),),
+                           Pruning(T, 0, 0, 0, ()))
+
+
+def build_survivors(cs, facets: np.ndarray, vertices: np.ndarray, first: list, seconds: tuple,
+                    template: Pruning) -> tuple[list, list, Pruning]:
+    """(inequalities, equalities, record): vertex 0's conditions ``first``, the surviving
+    pairs (``facets``, ``vertices``), every ray and line pair; ``template`` gives the
+    horizon and the variable, ``seconds`` the stages so far.  If more than
+    :data:`WORTHWHILE` of the pairs survive, every pair is built instead (not applied).
+
+    >>> import exactinv as ei
+    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> first = cs.pairs(Kind.VERTEX, [(0, 0), (0, 1)])
+    >>> build_survivors(cs, np.array([1]), np.array([1]), first, (), Pruning(Fraction(1), 0, 0, 0, ()))[2].survivors
+    3
+    """
+    t1 = time.perf_counter()
     W, m, V = cs.W[Kind.VERTEX], cs.polyhedron.m, cs.count(Kind.VERTEX)
-    facets, vertices = surviving_pairs(cs.G, cs.b, W, cs.N, T)
     keep = vertices != 0
     pairs = list(zip(vertices[keep].tolist(), facets[keep].tolist()))
     order = tuple(vertex_order(W))
-    t1 = time.perf_counter()
     if len(pairs) > WORTHWHILE * m * V:  # the all-pairs FLINT products are cheaper
         inequalities, equalities = cs.all()
-        stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("all polynomials", time.perf_counter() - t1))
-        return inequalities, equalities, Pruning(T, 0, m * V, m * V, order, stages, applied=False)
+        stages = seconds + (("all polynomials", time.perf_counter() - t1),)
+        return inequalities, equalities, replace(template, pairs=m * V, survivors=m * V, order=order, seconds=stages,
+                                                 applied=False)
     inequalities = first + cs.pairs(Kind.VERTEX, pairs)
     inequalities += cs.pairs(Kind.RAY, [(i, j) for i in range(cs.count(Kind.RAY)) for j in range(m)])
     equalities = cs.pairs(Kind.LINE, [(i, j) for i in range(cs.count(Kind.LINE)) for j in range(m)])
-    t2 = time.perf_counter()
-    stages = tuple(seconds) + (("bounds and slacks", t1 - t0), ("survivor polynomials", t2 - t1))
-    return inequalities, equalities, Pruning(T, 0, m * V, len(pairs) + m, order, stages)
+    stages = seconds + (("survivor polynomials", time.perf_counter() - t1),)
+    return inequalities, equalities, replace(template, pairs=m * V, survivors=len(pairs) + m, order=order,
+                                             seconds=stages)
