@@ -10,7 +10,7 @@ the claim must equal the recomputation, end by end and flag by flag.
 
 from types import SimpleNamespace
 
-from . import polys, pruning
+from . import polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
@@ -47,9 +47,30 @@ def _conditions(problem, claim, context, first_end_claim=False):
 def _pruned(problem, gens, record, first_end_claim):
     """The conditions of vertex k, the surviving pairs, every ray and line pair."""
     method = problem.method
-    require(method.is_polynomial, "pruning is defined for polynomial methods only")
-    T, k, order = pruning.parse(record, len(gens.vertices))
+    rational = pruning_rational.is_rational_record(record)
+    require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
+            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
+    if rational:
+        s, U, count, k, order = pruning_rational.parse(record, len(gens.vertices), problem.n)
+        T = pruning_rational.horizon(s, U)
+    else:
+        T, k, order = pruning.parse(record, len(gens.vertices))
     args = (problem.A, problem.G, problem.b, method.numerator, method.denominator)
+    if T is not None:
+        _require_bound(problem, gens, args, k, T, first_end_claim)
+    D, N = method_matrices(problem.A, method.numerator, method.denominator)
+    everything = range(problem.m)
+    if not rational:
+        near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T, order)
+        return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]))
+    pruning_rational.require_positive_determinant(D, T)
+    near = pruning_rational.survivors(problem.G, problem.b, gens.vertices, D, N, s, U, count, order)
+    return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]),
+                                 lambda kind, i: kind == "vertex" and (T is None or i != k))
+
+
+def _require_bound(problem, gens, args, k, T, first_end_claim):
+    """Vertex k's own valid set (first interval) ends by the horizon T."""
     alone = SimpleNamespace(vertices=[gens.vertices[k]], rays=[], lines=[])
     D, own, _ = condition_polynomials(*args, alone)
     if first_end_claim:
@@ -60,10 +81,6 @@ def _pruned(problem, gens, record, first_end_claim):
     require(not end.inf and end.compare(Real.rational(T)) <= 0,
             f"vertex {k} does not bound the {'first interval' if first_end_claim else 'valid set'} by the "
             f"horizon {T}: its own ends at {end}")
-    _, N = method_matrices(problem.A, method.numerator, method.denominator)
-    near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T, order)
-    everything = range(problem.m)
-    return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]))
 
 
 def _first_vertex(inequalities):

@@ -84,13 +84,15 @@ def _integer_polynomial_product(p, q):
     return out
 
 
-def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of=None):
+def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of=None, without_D=None):
     """(D, inequalities, equalities): the distinct nonzero condition polynomials
     (each inequality must be >= 0, each equality = 0), as tuples of coprime
     integers (a positive multiple of the condition, so with its signs), keyed to
     where they come from ((kind, index, facet) of one generator-facet pair).
     ``facets_of(kind, index)``, if given, names the facets to build for that
-    generator (None: all of them)."""
+    generator (None: all of them).  ``without_D(kind, index)``, if given and true,
+    builds q instead of c = q D for that generator: the caller has proved D > 0 on
+    the range where the sign of that condition matters."""
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
     facet_lists = {}
@@ -127,7 +129,8 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
                          for i in range(width)]
                 else:
                     q = [-c for c in e]
-                c = polys.trim(_integer_polynomial_product(q, D_int) if len(D_int) > 1 else q)
+                plain = len(D_int) == 1 or (without_D is not None and without_D(kind, index))
+                c = polys.trim(q if plain else _integer_polynomial_product(q, D_int))
                 if c:
                     inequalities.setdefault(tuple(polys.integer_coefficients(c)), (kind, index, j))
     return D, inequalities, equalities

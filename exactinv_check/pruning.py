@@ -104,15 +104,20 @@ def _integer_matrix(Q):
     return [[int(x * d) for x in row] for row in Q], d
 
 
-def _boxes(vertices, N, T):
-    """boxes[i][a] = hi + lo + [B]: integer box around the chord of vertex i on piece a
-    (scaled by K, rounded outwards), widened by B / K >= rho; integer arithmetic only."""
+def chord_pieces(N, T):
+    """(X, Z, M) per piece of [0, T]: the chord ends X = A_d(t), Z = A_d(t + d) and the remainder M."""
     ends = nodes(T)
-    maps = []
+    out = []
     for t, u in zip(ends, ends[1:]):
         X, Y, M = _piece(N, t, u - t)
-        Z = [[x + y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)]
-        maps.append((_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)))
+        out.append((X, [[x + y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)], M))
+    return out
+
+
+def _boxes(vertices, pieces):
+    """boxes[i][a] = hi + lo + [B]: integer box around the chord of vertex i on piece a
+    (scaled by K, rounded outwards), widened by B / K >= rho; integer arithmetic only."""
+    maps = [(_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)) for X, Z, M in pieces]
     out = []
     for v in vertices:
         q = 1
@@ -148,8 +153,15 @@ def _outside(row, box):
 
 def survivors(G, b, vertices, N, T, order):
     """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune."""
+    return survivors_of_pieces(G, b, vertices, chord_pieces(N, T), order)
+
+
+def survivors_of_pieces(G, b, vertices, pieces, order):
+    """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces
+    given as (X, Z, M): the path of v on a piece lies in the box of X v and Z v widened
+    by max_i (M |v|)_i."""
     rows = _integer_rows(G, b)
-    boxes = _boxes(vertices, N, T)
+    boxes = _boxes(vertices, pieces)
     out = {i: [] for i in range(len(vertices))}
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
