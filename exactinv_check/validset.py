@@ -75,8 +75,10 @@ def valid_set(D, inequalities, equalities, first=()):
     Pruning, exact: the valid set lies inside the valid set V_S of any subset
     S of the conditions -- here ``first`` (e.g. the conditions of one vertex).
     If V_S lies in [0, T], every other inequality proved positive on (0, T)
-    is dropped, and the rest need their roots only up to T."""
-    subset = [list(p) for p in first]
+    is dropped, and the rest need their roots only up to T.  An inequality with no
+    negative coefficient is >= 0 on [0, oo) and is dropped first."""
+    inequalities = [p for p in inequalities if any(c < 0 for c in p)]
+    subset = [list(p) for p in first if any(c < 0 for c in p)]
     rest = [list(p) for p in inequalities if tuple(p) not in set(map(tuple, subset))]
     if subset and rest:
         V_S = _valid_set(D, subset, equalities, len(subset), None)

@@ -137,9 +137,9 @@ class ConditionSet:
         self.b = [fmpq_of(x) for x in polyhedron.b]
         self.W = {Kind.VERTEX: _generator_matrix(polyhedron.vertices), Kind.RAY: _generator_matrix(polyhedron.rays),
                   Kind.LINE: _generator_matrix(polyhedron.lines)}
-        self._NW: dict[Kind, list[list]] = {}
+        self._generator_rows: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
-        self._Grows: list[list] | None = None
+        self._Grows: list[flint.fmpq_mat] | None = None
         self._all: tuple[list[Condition], list[Condition]] | None = None
 
     def count(self, kind: Kind) -> int:
@@ -179,24 +179,24 @@ class ConditionSet:
         pairs = list(pairs)
         if not pairs:
             return []
-        if kind not in self._NW:
-            self._NW[kind] = [(Nk * self.W[kind]).entries() for Nk in self.N]
-        NW, cols, n = self._NW[kind], self.count(kind), self.polyhedron.n
-        if self._Grows is None:
-            self._Grows = [[self.G[j, l] for l in range(n)] for j in range(self.G.nrows())]
-        Grows = self._Grows
-        by_generator: dict[int, list[int]] = {}
+        n, L = self.polyhedron.n, len(self.N)
+        if kind not in self._generator_rows:  # the generators as rows of n entries
+            self._generator_rows[kind] = self.W[kind].transpose().tolist()
+        if self._Grows is None:  # per facet j: the n x L matrix with columns (g_j N_k)^T
+            GN = [(self.G * Nk).tolist() for Nk in self.N]
+            self._Grows = [flint.fmpq_mat(n, L, [GN[k][j][l] for l in range(n) for k in range(L)])
+                           for j in range(self.G.nrows())]
+        rows = self._generator_rows[kind]
+        by_facet: dict[int, list[int]] = {}
         for i, j in pairs:
             if (kind, i, j) not in self._built:
-                by_generator.setdefault(i, []).append(j)
-        L = len(NW)
-        for i, facets in by_generator.items():  # one small FLINT product per generator: rows g_j, columns N_k w
-            Gi = flint.fmpq_mat(len(facets), n, [x for j in facets for x in Grows[j]])
-            Ni = flint.fmpq_mat(n, L, [E[l * cols + i] for l in range(n) for E in NW])
-            product = Gi * Ni
+                by_facet.setdefault(j, []).append(i)
+        for j, generators in by_facet.items():  # one FLINT product per facet: rows w_i, columns (g_j N_k)^T
+            Wj = flint.fmpq_mat(len(generators), n, [x for i in generators for x in rows[i]])
+            product = Wj * self._Grows[j]
             coeffs = product.entries()
-            clear = self._clear_rows(kind, facets, product)
-            for r, j in enumerate(facets):
+            clear = self._clear_rows(kind, [j] * len(generators), product)
+            for r, i in enumerate(generators):
                 self._built[kind, i, j] = None if clear[r] else self._condition(kind, i, j, coeffs[r * L:(r + 1) * L])
         out = []
         for i, j in pairs:

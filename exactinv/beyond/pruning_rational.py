@@ -226,7 +226,8 @@ def prune_rational(cs, first_end: bool):
 
 
 def _piece_count(cs) -> int:
-    """Uniform pieces on [0, U]: about twice the degree E of P(u) (a Bernstein deviation of
-    a degree-E piece of length d is about (Ed)^2/8 of its size)."""
+    """Uniform pieces on [0, U]: about 4E/3 for P(u) of degree E (a Bernstein deviation of a
+    degree-E piece of length d is about (Ed)^2/8 of its size; on the R^6 family, Pade(6,6),
+    E = 36: 24 pieces leave 71% of the pairs, 36 pieces 9%, 48 pieces 6.2%, 72 pieces 6.0%)."""
     E = max(cs.D.degree(), len(cs.N) - 1, 1)
-    return max(8, 2 * E)
+    return max(8, E + E // 3)
