@@ -23,6 +23,8 @@ threshold and the certificate.
 
 from __future__ import annotations
 
+import functools
+import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
@@ -115,6 +117,12 @@ def _generator_matrix(rows) -> flint.fmpq_mat | None:
     return flint.fmpq_mat(n, count, [fmpq_of(rows[i][k]) for k in range(n) for i in range(count)])
 
 
+def _integer_row(row: list) -> tuple[list[int], int]:
+    """(d w, d) with d > 0 the least common denominator of the rationals w."""
+    d = math.lcm(*(int(x.q) for x in row))
+    return [int(x.p) * (d // int(x.q)) for x in row], d
+
+
 def _never_binds(coeffs) -> bool:
     """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes)."""
     nonzero = [c for c in coeffs if c != 0]
@@ -139,7 +147,7 @@ class ConditionSet:
                   Kind.LINE: _generator_matrix(polyhedron.lines)}
         self._generator_rows: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
-        self._Grows: list[flint.fmpq_mat] | None = None
+        self._facet_matrices: dict[int, tuple[flint.fmpz_mat, list[int]]] = {}
         self._all: tuple[list[Condition], list[Condition]] | None = None
 
     def count(self, kind: Kind) -> int:
@@ -179,25 +187,24 @@ class ConditionSet:
         pairs = list(pairs)
         if not pairs:
             return []
-        n, L = self.polyhedron.n, len(self.N)
-        if kind not in self._generator_rows:  # the generators as rows of n entries
-            self._generator_rows[kind] = self.W[kind].transpose().tolist()
-        if self._Grows is None:  # per facet j: the n x L matrix with columns (g_j N_k)^T
-            GN = [(self.G * Nk).tolist() for Nk in self.N]
-            self._Grows = [flint.fmpq_mat(n, L, [GN[k][j][l] for l in range(n) for k in range(L)])
-                           for j in range(self.G.nrows())]
+        n = self.polyhedron.n
+        if kind not in self._generator_rows:  # each generator as integers d_i w_i, with d_i > 0
+            self._generator_rows[kind] = [_integer_row(r) for r in self.W[kind].transpose().tolist()]
         rows = self._generator_rows[kind]
         by_facet: dict[int, list[int]] = {}
         for i, j in pairs:
             if (kind, i, j) not in self._built:
                 by_facet.setdefault(j, []).append(i)
-        for j, generators in by_facet.items():  # one FLINT product per facet: rows w_i, columns (g_j N_k)^T
-            Wj = flint.fmpq_mat(len(generators), n, [x for i in generators for x in rows[i]])
-            product = Wj * self._Grows[j]
+        for j, generators in by_facet.items():  # one FLINT product per facet: rows d_i w_i, columns e_k (g_j N_k)^T
+            Gz, e = self._facet_matrix(j)
+            Wz = flint.fmpz_mat(len(generators), n, [x for i in generators for x in rows[i][0]])
+            product = Wz * Gz
+            width = product.ncols()
+            clear = self._clear_rows(kind, j, [rows[i][1] for i in generators], product, e)
             coeffs = product.entries()
-            clear = self._clear_rows(kind, [j] * len(generators), product)
             for r, i in enumerate(generators):
-                self._built[kind, i, j] = None if clear[r] else self._condition(kind, i, j, coeffs[r * L:(r + 1) * L])
+                self._built[kind, i, j] = None if clear[r] else self._condition(
+                    kind, i, j, [flint.fmpq(coeffs[r * width + k], rows[i][1] * e[k]) for k in range(width)])
         out = []
         for i, j in pairs:
             c = self._built[kind, i, j]
@@ -205,20 +212,43 @@ class ConditionSet:
                 out.append(c)
         return out
 
-    def _clear_rows(self, kind: Kind, facets: list[int], product: flint.fmpq_mat) -> list[bool]:
-        """Per row of ``product`` (g_j N_k w, k = 0, 1, ...): True when every coefficient of
-        q = b_j D - g_j N w (vertices; -g_j N w for rays) is >= 0 and so are D's -- then c = q D
-        has no negative coefficient and never binds (Descartes), decided on integer numerators."""
+    def _facet_matrix(self, j: int) -> tuple[flint.fmpz_mat, list[int]]:
+        """(Gz, e): the n x L' integer matrix with columns e_k (g_j N_k)^T, e_k > 0 clearing the
+        denominators of that column and of b_j D_k (L' = max(len N, len D)); cached per facet."""
+        if j not in self._facet_matrices:
+            n, Dc = self.polyhedron.n, self.D.coeffs()
+            width = max(len(self.N), len(Dc))
+            cols = [[self.GN[k][j][l] for l in range(n)] if k < len(self.N) else [flint.fmpq(0)] * n
+                    for k in range(width)]
+            e = [math.lcm(*(int(x.q) for x in col), int((self.b[j] * Dc[k]).q) if k < len(Dc) else 1)
+                 for k, col in enumerate(cols)]
+            Gz = flint.fmpz_mat(n, width, [int(cols[k][l].p) * (e[k] // int(cols[k][l].q))
+                                          for l in range(n) for k in range(width)])
+            self._facet_matrices[j] = (Gz, e)
+        return self._facet_matrices[j]
+
+    @functools.cached_property
+    def GN(self) -> list[list[list[flint.fmpq]]]:
+        """The products G N_k as nested lists (row j of G N_k: g_j N_k).
+
+        >>> from exactinv.model import methods
+        >>> ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler()).GN
+        [[[1], [-1]], [[-1], [1]]]
+        """
+        return [(self.G * Nk).tolist() for Nk in self.N]
+
+    def _clear_rows(self, kind: Kind, j: int, d: list[int], product: flint.fmpz_mat, e: list[int]) -> list[bool]:
+        """Per row r of ``product`` (d_r e_k g_j N_k w_r, k = 0, 1, ...): True when every coefficient
+        of q = b_j D - g_j N w (vertices; -g_j N w for rays) is >= 0 and so are D's -- then c = q D has
+        no negative coefficient and never binds (Descartes).  Decided on the integers d_r e_k q_k."""
         Dc = self.D.coeffs()
         if kind == Kind.LINE or any(c < 0 for c in Dc):
-            return [False] * len(facets)
-        width = max(len(Dc), product.ncols())
-        bcol = flint.fmpq_mat(len(facets), 1, [self.b[j] if kind == Kind.VERTEX else 0 for j in facets])
-        Drow = flint.fmpq_mat(1, width, Dc + [0] * (width - len(Dc)))
-        padded = product if width == product.ncols() else flint.fmpq_mat(
-            len(facets), width, [x for r in product.tolist() for x in r + [0] * (width - product.ncols())])
-        q = (bcol * Drow - padded).numer_denom()[0].entries()
-        return [all(x >= 0 for x in q[r * width:(r + 1) * width]) for r in range(len(facets))]
+            return [False] * len(d)
+        width = product.ncols()
+        bj = self.b[j] if kind == Kind.VERTEX else 0
+        brow = flint.fmpz_mat(1, width, [int(bj * Dc[k] * e[k]) if k < len(Dc) else 0 for k in range(width)])
+        q = (flint.fmpz_mat(len(d), 1, d) * brow - product).entries()
+        return [all(x >= 0 for x in q[r * width:(r + 1) * width]) for r in range(len(d))]
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
         """(inequalities, equalities) over every generator-facet pair (built once).
