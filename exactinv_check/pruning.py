@@ -13,10 +13,11 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
        A_d(t + s) = sum_k s^k D_k,  D_k = sum_{i>=k} C(i, k) t^(i-k) N_i,
        A_d(t + s) v = X + s Y + R(s),  X = D_0 v,  Y = D_1 v,
        |R(s)| <= M |v| entrywise,  M = sum_{k>=2} d^k |D_k|,
-   so on the piece A_d(h) v lies in the box spanned by X and Z = X + d Y,
-   widened by rho_v = max_i (M |v|)_i in every coordinate.  A box inside
-   the open half-space g_j x < b_j on every piece proves the condition
-   positive on [0, T].  The kernel decides this itself for every pair, in
+   so on the piece A_d(h) v lies within rho_v = max_i (M |v|)_i (in every
+   coordinate) of the chord from X to Z = X + d Y.  A linear function is
+   largest on the chord at an end: both ends, widened by rho_v, inside the
+   open half-space g_j x < b_j on every piece prove the condition positive
+   on [0, T].  The kernel decides this itself for every pair, in
    integers: coordinates are rounded outwards to a grid of step 1/K, so it
    may keep more pairs than needed, never fewer.  To stay cheap it tests
    boxes around blocks of consecutive vertices along ``order`` (any
@@ -115,8 +116,11 @@ def chord_pieces(N, T):
 
 
 def _boxes(vertices, pieces):
-    """boxes[i][a] = hi + lo + [B]: integer box around the chord of vertex i on piece a
-    (scaled by K, rounded outwards), widened by B / K >= rho; integer arithmetic only."""
+    """boxes[i][a] = (end X, end Z), each hi + lo + [B]: the integer box around one chord end
+    of vertex i on piece a (scaled by K, rounded outwards, so at most one grid step wide),
+    widened by B / K >= rho; integer arithmetic only.  The chord's box is their union; a
+    linear function is largest on the chord at one of its ends, so a half-space holding
+    both widened end boxes holds the whole path on the piece."""
     maps = [(_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)) for X, Z, M in pieces]
     out = []
     for v in vertices:
@@ -131,9 +135,9 @@ def _boxes(vertices, pieces):
             z = [sum(map(int.__mul__, row, p)) for row in Zi]
             rho = max(sum(map(int.__mul__, row, ap)) for row in Mi)  # dM q rho
             dx, dz = dX * q, dZ * q
-            lo = [min((K * a) // dx, (K * c) // dz) for a, c in zip(x, z)]
-            hi = [max(-((-K * a) // dx), -((-K * c) // dz)) for a, c in zip(x, z)]
-            mine.append(hi + lo + [-((-K * rho) // (dM * q))])
+            B = [-((-K * rho) // (dM * q))]
+            mine.append(([-((-K * a) // dx) for a in x] + [(K * a) // dx for a in x] + B,
+                         [-((-K * c) // dz) for c in z] + [(K * c) // dz for c in z] + B))
         out.append(mine)
     return out
 
@@ -166,11 +170,12 @@ def survivors_of_pieces(G, b, vertices, pieces, order):
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
         block = order[start:start + size]
-        per_piece = [_union([boxes[i][a] for i in block]) for a in range(len(boxes[block[0]]))]
+        per_piece = [_union([end for i in block for end in boxes[i][a]]) for a in range(len(boxes[block[0]]))]
         whole = _union(per_piece)
         near = [j for j, row in enumerate(rows) if _outside(row, whole)]
         for a, box in enumerate(per_piece):
             hits = [j for j in near if _outside(rows[j], box)]
             for i in block:
-                out[i].extend(j for j in hits if _outside(rows[j], boxes[i][a]))
+                x, z = boxes[i][a]
+                out[i].extend(j for j in hits if _outside(rows[j], x) or _outside(rows[j], z))
     return {i: sorted(set(f)) for i, f in out.items()}
