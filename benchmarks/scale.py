@@ -6,7 +6,8 @@ For each instance the same computation runs twice:
             methods interpolated at m x V level), in a subprocess from a
             temporary git worktree, stopped after ``--cap`` seconds;
 * after  -- this tree: certified pruning on graded pieces of [0, T]
-            (polynomial methods), N(h) = D(h) r(hA) on the n x n matrices.
+            (polynomial methods) or of [0, U] in u = h/(s + h) (rational
+            methods), N(h) = D(h) r(hA) on the n x n matrices.
 
 and, where asked, the trusted kernel checks the "after" certificate (its
 time / the engine's).  Pruning statistics: pairs, survivors (built as
