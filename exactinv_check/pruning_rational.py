@@ -146,6 +146,8 @@ def nodes(U, count):
 
 def survivors(G, b, vertices, D, N, s, U, count, order):
     """{vertex index: [facets]} of the pairs the lifted test on [0, U] cannot prune."""
+    E = max(len(D) - 1, len(N) - 1, 1)
+    within_budget((count + 26) * (len(N[0]) + 1) ** 2 * (E + 1) ** 2, "the Bernstein pieces of the pruning test in u")
     P = lifted(D, N, s)
     ends = nodes(U, count)
     pieces = [_piece(P, t, u - t) for t, u in zip(ends, ends[1:])]

@@ -16,6 +16,7 @@ from exactinv.beyond.conditions import ConditionSet
 from exactinv_check import check
 from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
+from exactinv_check.rationals import CheckFailure
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
@@ -234,3 +235,15 @@ def test_the_lifted_path_is_the_condition_up_to_a_positive_factor():
                 lhs = sum(gp * sum(Pu[r][c] * w[c] for c in range(3)) for r, gp in enumerate([-beta] + g))
                 q = beta * Dh - sum(g[r] * sum(Nh[r][c] * v[c] for c in range(2)) for r in range(2))
                 assert lhs == -(1 - u) ** E * q
+
+
+def test_a_record_that_would_cost_minutes_is_priced_and_rejected_first():
+    """pieces = 512 on 5000 vertices in R^6: about 5000 * 538 * 3 * 49 box products, over the
+    kernel's work budget -- rejected by the parser before any piece is built."""
+
+    record = {"horizon": "1", "vertex": 0, "order": list(range(5000)), "variable": "h/(s+h)", "scale": "8",
+              "pieces": 512}
+    with pytest.raises(CheckFailure, match="work budget"):
+        kernel_rational.parse(record, 5000, 6)
+    record["pieces"] = 48
+    assert kernel_rational.parse(record, 5000, 6)[:3] == (Fraction(8), Fraction(1), 48)
