@@ -35,7 +35,7 @@ def _no_positive_root(p):
     return all(s == signs[0] for s in signs)
 
 
-def _breakpoints(named, bounds):
+def breakpoints(named, bounds):
     """Sorted distinct positive roots of the named polynomials (those of a name
     with a bound only up to that bound), each with the set of names vanishing there."""
     roots = []
@@ -100,7 +100,7 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
     polys_by_name = dict(named)
     points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
     bounds = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
-    points += _breakpoints(named, bounds)
+    points += breakpoints(named, bounds)
 
     def cell_sample(k):
         if k + 1 < len(points):

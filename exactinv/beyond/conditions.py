@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
+from functools import cached_property
 from typing import Iterable
 
 import flint
@@ -36,7 +37,7 @@ from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 from ..model.validate import check_problem
 
-__all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "conditions_of", "distinct_conditions"]
+__all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "never_binds", "conditions_of", "distinct_conditions"]
 
 
 class Kind(StrEnum):
@@ -115,8 +116,12 @@ def _generator_matrix(rows) -> flint.fmpq_mat | None:
     return flint.fmpq_mat(n, count, [fmpq_of(rows[i][k]) for k in range(n) for i in range(count)])
 
 
-def _never_binds(coeffs) -> bool:
-    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes)."""
+def never_binds(coeffs) -> bool:
+    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes).
+
+    >>> never_binds([0, 1, 2]), never_binds([1, -1])
+    (True, False)
+    """
     nonzero = [c for c in coeffs if c != 0]
     return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
 
@@ -135,12 +140,18 @@ class ConditionSet:
         self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]
         self.G = polyhedron.G_flint
         self.b = [fmpq_of(x) for x in polyhedron.b]
-        self.W = {Kind.VERTEX: _generator_matrix(polyhedron.vertices), Kind.RAY: _generator_matrix(polyhedron.rays),
-                  Kind.LINE: _generator_matrix(polyhedron.lines)}
+        self.derived: dict[str, object] = {}  # what other routes derive once per problem (the box route)
         self._NW: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
         self._Grows: list[list] | None = None
         self._all: tuple[list[Condition], list[Condition]] | None = None
+
+    @cached_property
+    def W(self) -> dict[Kind, flint.fmpq_mat | None]:
+        """The generators of each kind as matrix columns (vertex enumeration on first use only)."""
+        P = self.polyhedron
+        return {Kind.VERTEX: _generator_matrix(P.vertices), Kind.RAY: _generator_matrix(P.rays),
+                Kind.LINE: _generator_matrix(P.lines)}
 
     def count(self, kind: Kind) -> int:
         """How many generators of this kind P has.
@@ -162,7 +173,7 @@ class ConditionSet:
         if kind == Kind.VERTEX:
             q += self.D * self.b[j]
         c = q * self.D
-        return None if _never_binds(c.coeffs()) else Condition(kind, i, j, c)
+        return None if never_binds(c.coeffs()) else Condition(kind, i, j, c)
 
     def pairs(self, kind: Kind, pairs: Iterable[tuple[int, int]]) -> list[Condition]:
         """The nontrivial conditions of the (generator, facet) pairs given, each built once.
