@@ -40,7 +40,7 @@ right of 0).  If D(h) < 0 the largest q_s(h) is at -s, also recorded.  So
 every condition holds at h, and V_S = V: the recomputed set is exact.
 """
 
-from fractions import Fraction
+from math import gcd
 
 from . import polys
 from .conditions import method_matrices
@@ -51,7 +51,7 @@ from .validset import breakpoints
 
 def prove_box(G, b):
     """(lo, hi, facets): P = {Gx <= b} is exactly the box [lo, hi] (see (a));
-    facets[l] = ((row, |a|) of hi_l, (row, |a|) of lo_l).  Rejects anything else."""
+    facets[l] = ((row, |a|) of hi_l, (row, |a|) of lo_l) (|a| > 0 scales a condition, no sign).  Rejects anything else."""
     n = len(G[0])
     best = {}
     for k, (row, beta) in enumerate(zip(G, b)):
@@ -114,11 +114,31 @@ def _samples(row):
 def _patterns(row, negate):
     """The sign patterns of the row at its cell samples (and their negations)."""
     out = set()
+    ints = [polys.integer_coefficients(p) for p in row]  # positive multiples: the same signs
     for t in _samples(row):
-        s = tuple(-1 if polys.evaluate(p, t) < 0 else 1 for p in row)
+        s = tuple(-1 if polys.sign_at(q, t) < 0 else 1 for q in ints)
         out.add(s)
         if negate:
             out.add(tuple(-x for x in s))
+    return out
+
+
+def _integer_row(row):
+    """(L, [L p for p in row]) with L > 0 clearing every denominator, each padded to one length."""
+    L, width = 1, max(len(p) for p in row)
+    for p in row:
+        for x in p:
+            L = L * x.denominator // gcd(L, x.denominator)
+    return L, [[int(x * L) for x in p] + [0] * (width - len(p)) for p in row]
+
+
+def _times(p, q):
+    """The product of two integer polynomials."""
+    out = [0] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for k, b in enumerate(q):
+                out[i + k] += a * b
     return out
 
 
@@ -135,15 +155,18 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
     D, N = method_matrices(A, numerator, denominator)
     rows, w = _entries(D, N, lo, hi)
     negate = not all(c >= 0 for c in D) and not all(c <= 0 for c in D)  # D may change sign on (0, oo)
+    D_int = polys.integer_coefficients(D)  # a positive multiple of D: the same signs
     inequalities = {}
     for j, row in enumerate(rows):
+        scale, ints = _integer_row([polys.scale(D, w[j])] + row)  # scale * (w_j D, v_j0, .., v_jn), scale > 0
         for s in sorted(_patterns(row, negate)):
-            q = polys.scale(D, w[j])
-            for sign, p in zip(s, row):
-                q = polys.sub(q, p) if sign > 0 else polys.add(q, p)
-            (facet, a) = facets[j][0] if s[0] > 0 else facets[j][1]
-            c = polys.scale(polys.mul(q, D), a) if len(D) > 1 else polys.scale(q, a)
+            q = list(ints[0])
+            for sign, p in zip(s, ints[1:]):
+                for k, x in enumerate(p):
+                    q[k] -= sign * x
+            c = polys.trim(_times(q, D_int) if len(D_int) > 1 else q)  # a positive multiple of (w_j D - s.v_j) D
             if c:
+                facet = facets[j][0 if s[0] > 0 else 1][0]
                 index = int("".join("1" if s[0] * x > 0 else "0" for x in s[1:]), 2)
                 inequalities.setdefault(tuple(polys.integer_coefficients(c)), ("vertex", index, facet))
     return D, inequalities, (lo, hi)

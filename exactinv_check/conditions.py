@@ -18,7 +18,7 @@ from fractions import Fraction
 from math import gcd
 
 from . import polys
-from .rationals import determinant, identity, matmul, require, solve
+from .rationals import determinant, integer_matrix, matmul, require, solve
 
 MAX_CONDITIONS = 20_000_000
 
@@ -37,12 +37,16 @@ def _matrix_polynomial(coeffs, M):
 def method_matrices(A, numerator, denominator):
     """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k."""
     n = len(A)
-    if len(denominator) == 1:
+    if len(denominator) == 1:  # A = Ai / L with Ai integral: A^k = Ai^k / L^k, products over Z
         d0 = denominator[0]
-        power, out = identity(n), []
-        for s in numerator:
-            out.append([[s / d0 * v for v in row] for row in power])
-            power = matmul(power, A)
+        L, Ai = integer_matrix(A)
+        columns = list(zip(*Ai))
+        power, out = [[int(i == j) for j in range(n)] for i in range(n)], []
+        for k, s in enumerate(numerator):
+            factor = s / d0 / L**k
+            out.append([[factor * v if v else Fraction(0) for v in row] for row in power])
+            if k + 1 < len(numerator):
+                power = [[sum(map(int.__mul__, row, col)) for col in columns] for row in power]
         return [Fraction(1)], out
     dh, dg = len(denominator) - 1, len(numerator) - 1
     count = max(n * dh, (n - 1) * dh + dg) + 1
