@@ -44,7 +44,7 @@ from math import gcd
 
 from . import polys
 from .conditions import method_matrices
-from .rationals import FRACTION_WEIGHT, require, vector, within_budget
+from .rationals import integer_matrix, require, vector, within_budget
 from .reals import Real, separate
 from .validset import breakpoints
 
@@ -78,14 +78,38 @@ def vertex_of(index, lo, hi):
 
 
 def _price(A, numerator, denominator):
-    """Reject, before any work, a rebuild over the kernel's budget (D, N, entries, conditions)."""
+    """Reject, before any work, a rebuild of D, N and the conditions over the kernel's work budget.
+    Word operations, with A = Ai / L (Ai integral, entries of b bits): polynomial methods
+    n^3 deg g products of numbers of about k b bits (the powers Ai^k); rational ones one
+    fraction-free elimination of about n^3 w^2 per interpolation point (w words: the minors of
+    c h(tA) have about n (s b + s log t) bits) and n^2 count^2 w for the interpolation; then
+    about 2 n^3 d^2 w for the conditions (n rows, up to (n + 1) d + 1 sign patterns each, n + 1
+    entries of degree d; twice that with a sign-changing D)."""
     n = len(A)
+    L, Ai = integer_matrix(A)
+    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), 1])
     dh, dg = len(denominator) - 1, len(numerator) - 1
-    d = dg if dh == 0 else max(n * dh, (n - 1) * dh + dg)  # degree of N's entries
-    steps = dg + 1 if dh == 0 else (d + 1 + n * dh) * (dg + dh + 2)  # matrix products and solves
-    bits = max((max(x.numerator.bit_length(), x.denominator.bit_length()) for row in A for x in row), default=1)
-    cost = FRACTION_WEIGHT * (n ** 3 * steps + 2 * n ** 3 * (d + 1) ** 2 * (2 * dh + 1)) * (1 + bits * max(d, 1) // 64)
+    if dh == 0:
+        d, w = dg, 1 + dg * b // 64
+        cost = n ** 3 * dg * w
+    else:
+        s, d = max(dg, dh), max(n * dh, (n - 1) * dh + dg)
+        count = d + 1
+        w = 1 + n * s * (b + (count + n * dh).bit_length()) // 64
+        cost = (count + n * dh) * n ** 3 * w * w + n * n * count * count * w
+    cost += 2 * n ** 3 * (d + 1) ** 2 * w * (2 if dh else 1)
     within_budget(cost, f"the box route of a {n} x {n} problem with entries of degree {d}")
+
+
+def _price_roots(rows):
+    """Reject, before any Sturm sequence, entries whose root isolation together exceeds the Sturm
+    budget (degree^4 bits^2 summed over the distinct entries: about half a minute of work)."""
+    total = 0
+    for p in {tuple(p) for row in rows for p in row if len(p) > 1}:
+        ints = polys.integer_coefficients(list(p))
+        total += (len(ints) - 1) ** 4 * max(abs(c).bit_length() for c in ints) ** 2
+    require(total <= polys.STURM_BUDGET, f"over the kernel's work budget: root isolation of the box route's entry "
+            f"polynomials (degree^4 bits^2 summed: {total:.1e} > {polys.STURM_BUDGET:.0e})")
 
 
 def _entries(D, N, lo, hi):
@@ -154,6 +178,7 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
     _price(A, numerator, denominator)
     D, N = method_matrices(A, numerator, denominator)
     rows, w = _entries(D, N, lo, hi)
+    _price_roots(rows)
     negate = not all(c >= 0 for c in D) and not all(c <= 0 for c in D)  # D may change sign on (0, oo)
     D_int = polys.integer_coefficients(D)  # a positive multiple of D: the same signs
     inequalities = {}

@@ -18,58 +18,102 @@ from fractions import Fraction
 from math import gcd
 
 from . import polys
-from .rationals import determinant, integer_matrix, matmul, require, solve
+from .linalg import integer_solve
+from .rationals import integer_matrix, matmul, require
 
 MAX_CONDITIONS = 20_000_000
 
 
-def _matrix_polynomial(coeffs, M):
-    """sum_k coeffs[k] M^k (Horner)."""
-    n = len(M)
-    out = [[Fraction(0)] * n for _ in range(n)]
-    for c in reversed(coeffs):
-        out = matmul(out, M)
-        for i in range(n):
-            out[i][i] += c
+def _integer_powers(Ai, top):
+    """[Ai^0, .., Ai^top] for an integer matrix Ai, products over Z."""
+    n = len(Ai)
+    columns = list(zip(*Ai))
+    out = [[[int(i == j) for j in range(n)] for i in range(n)]]
+    for _ in range(top):
+        out.append([[sum(map(int.__mul__, row, col)) for col in columns] for row in out[-1]])
     return out
 
 
 def method_matrices(A, numerator, denominator):
-    """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k."""
+    """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k.
+
+    Integers throughout: A = Ai / L (Ai integral); with c = den L^s (den clearing the
+    coefficients of g and h_r, s = max(deg g, deg h_r)), c h_r(tA) and c g(tA) are integer
+    matrices at integer t, so D(t) c^n and N(t) c^n = adj(c h_r(tA)) c g(tA) come from one
+    fraction-free elimination (linalg.integer_solve) per point; polynomial methods need
+    only the powers of Ai."""
     n = len(A)
-    if len(denominator) == 1:  # A = Ai / L with Ai integral: A^k = Ai^k / L^k, products over Z
+    L, Ai = integer_matrix(A)
+    if len(denominator) == 1:
         d0 = denominator[0]
-        L, Ai = integer_matrix(A)
-        columns = list(zip(*Ai))
-        power, out = [[int(i == j) for j in range(n)] for i in range(n)], []
-        for k, s in enumerate(numerator):
-            factor = s / d0 / L**k
-            out.append([[factor * v if v else Fraction(0) for v in row] for row in power])
-            if k + 1 < len(numerator):
-                power = [[sum(map(int.__mul__, row, col)) for col in columns] for row in power]
-        return [Fraction(1)], out
+        powers = _integer_powers(Ai, len(numerator) - 1)
+        return [Fraction(1)], [[[s / d0 / L**k * v if v else Fraction(0) for v in row] for row in powers[k]]
+                               for k, s in enumerate(numerator)]
     dh, dg = len(denominator) - 1, len(numerator) - 1
+    s = max(dh, dg)
+    den = _common_denominator(list(numerator) + list(denominator))
+    hs = [int(x * den) * L ** (s - k) for k, x in enumerate(denominator)]
+    gs = [int(x * den) * L ** (s - k) for k, x in enumerate(numerator)]
+    powers = _integer_powers(Ai, s)
     count = max(n * dh, (n - 1) * dh + dg) + 1
     points, dets, mats = [], [], []
-    t = Fraction(0)
-    for _ in range(count + n * dh + 1):  # at most n*dh points are singular
+    for t in range(count + n * dh + 1):  # at most n*dh points are singular
         if len(points) == count:
             break
-        tA = [[t * a for a in row] for row in A]
-        H = _matrix_polynomial(denominator, tA)
-        d = determinant(H)
+        Hi, Gi = (_combination(coeffs, powers, t) for coeffs in (hs, gs))
+        d, X = integer_solve(Hi, Gi)
         if d != 0:
-            X = solve(H, _matrix_polynomial(numerator, tA))
             points.append(t)
             dets.append(d)
-            mats.append([[d * v for v in row] for row in X])
-        t += 1
+            mats.append(X)
     require(len(points) == count, "internal: too few regular interpolation points")
-    D = polys.interpolate(points, dets)
-    entries = [[polys.interpolate(points, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]
-    degree = max([len(e) for row in entries for e in row] + [1])
-    N = [[[e[k] if k < len(e) else Fraction(0) for e in row] for row in entries] for k in range(degree)]
+    scale = Fraction(1, (den * L**s) ** n)  # 1 / c^n
+    basis, delta = _lagrange_basis(points)
+    D = polys.trim([Fraction(x, delta) * scale for x in _interpolate_integers(basis, dets)])
+    entries = [[_interpolate_integers(basis, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]
+    degree = max([len(polys.trim(e)) for row in entries for e in row] + [1])
+    N = [[[Fraction(e[k], delta) * scale if e[k] else Fraction(0) for e in row] for row in entries] for k in range(degree)]
     return D, N
+
+
+def _combination(coeffs, powers, t):
+    """sum_k coeffs[k] t^k powers[k], an integer matrix."""
+    n = len(powers[0])
+    out = [[0] * n for _ in range(n)]
+    for k, c in enumerate(coeffs):
+        if c:
+            f = c * t**k
+            out = [[x + f * p for x, p in zip(row, prow)] for row, prow in zip(out, powers[k])]
+    return out
+
+
+def _lagrange_basis(points):
+    """(basis, delta): integer polynomials with delta * l_i = basis[i] for the Lagrange basis l_i
+    of the integer points (delta > 0), so p = sum_i p(t_i) l_i = (sum_i p(t_i) basis[i]) / delta."""
+    k = len(points)
+    numerators, denominators = [], []
+    for i, t in enumerate(points):
+        poly, d = [1], 1
+        for j, u in enumerate(points):
+            if j != i:
+                poly = [(poly[m - 1] if m else 0) - u * (poly[m] if m < len(poly) else 0) for m in range(len(poly) + 1)]
+                d *= t - u
+        numerators.append(poly)
+        denominators.append(d)
+    delta = 1
+    for d in denominators:
+        delta = delta * abs(d) // gcd(delta, abs(d))
+    return [[c * (delta // d) for c in poly] for poly, d in zip(numerators, denominators)], delta
+
+
+def _interpolate_integers(basis, values):
+    """sum_i values[i] basis[i], coefficient by coefficient (integers)."""
+    out = [0] * len(basis[0])
+    for v, b in zip(values, basis):
+        if v:
+            for m, c in enumerate(b):
+                out[m] += v * c
+    return out
 
 
 def _common_denominator(values):
