@@ -1,4 +1,4 @@
-"""Characteristic polynomials and the largest real eigenvalue, exactly."""
+"""Characteristic polynomials, the largest real eigenvalue, fraction-free determinants and solves, exactly."""
 
 from fractions import Fraction
 

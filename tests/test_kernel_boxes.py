@@ -12,7 +12,9 @@ import exactinv as ei
 from exactinv.certificates import certificate
 from exactinv_check import check
 from exactinv_check.boxes import prove_box, vertex_of
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.conditions import method_matrices
+from exactinv_check.linalg import integer_solve
+from exactinv_check.rationals import CheckFailure, determinant, solve
 
 M = ei.methods
 F = Fraction
@@ -186,3 +188,42 @@ def test_huge_numbers_in_a_box_problem_are_priced():
                                                                        for k in range(9)], "denominator": ["1"]}},
             "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
     _rejected(cert, "work budget")
+
+
+# ----------------------------------------------------------------------------- the kernel's integer linear algebra
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 5), st.randoms(use_true_random=False))
+def test_integer_solve_is_the_adjugate_times_b(n, rng):
+    """det M and adj(M) B = det M * M^-1 B, against Gauss-Jordan over Q (rationals.solve, determinant)."""
+    M = [[rng.randint(-3, 3) * (rng.random() < 0.8) for _ in range(n)] for _ in range(n)]
+    B = [[rng.randint(-4, 4) for _ in range(2)] for _ in range(n)]
+    d, X = integer_solve(M, B)
+    assert d == determinant([[F(x) for x in r] for r in M])
+    if d:
+        assert X == [[d * x for x in r] for r in solve([[F(x) for x in r] for r in M], [[F(x) for x in r] for r in B])]
+    else:
+        assert X is None
+
+
+@pytest.mark.parametrize("m", [M.backward_euler(), M.pade(2, 2), M.theta("1/3"), M.rational([2, 1], [2, -3, 1])],
+                         ids=lambda m: m.name)
+def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(m):
+    """D(t) = det h(tA) and N(t) = D(t) h(tA)^-1 g(tA) at t = 1/3 (no interpolation point), in Fractions."""
+    A = [[F(-1), F(1, 2), F(0)], [F(1, 3), F(-2), F(1)], [F(0), F(-1, 4), F(-1)]]
+    num, den = [F(x) for x in m.numerator], [F(x) for x in m.denominator]
+    D, N = method_matrices(A, num, den)
+    t = F(1, 3)
+
+    def poly_of(coeffs):
+        out = [[F(0)] * 3 for _ in range(3)]
+        for c in reversed(coeffs):
+            out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)]
+                   for i in range(3)]
+        return out
+
+    H, Gm = poly_of(den), poly_of(num)
+    d = determinant(H)
+    assert sum(c * t**k for k, c in enumerate(D)) == d
+    X = solve(H, Gm)
+    assert [[sum(Nk[i][j] * t**k for k, Nk in enumerate(N)) for j in range(3)] for i in range(3)] == \
+        [[d * x for x in r] for r in X]
