@@ -165,7 +165,7 @@ def row(name, tree, args):
         t0 = time.perf_counter()
         ok = ei.check(result.certificate).ok
         tk = time.perf_counter() - t0
-        kernel = f"kernel {tk:.1f} s ({tk / ta:.2f}x engine, {'VERIFIED' if ok else 'REJECTED'})"
+        kernel = f"kernel {tk:.2f} s ({tk / ta:.2f}x engine, {'VERIFIED' if ok else 'REJECTED'})"
     stats = _statistics(result)
     tb_text = f"> {args.cap:.0f}" if tb is None and not args.no_before else ("-" if tb is None else f"{tb:.2f}")
     ratio = f"{tb / ta:.1f}x" if tb else "-"
