@@ -25,6 +25,9 @@ from the box route.  The kernel trusts none of it:
         a (w_j D - s . v_j) D = (b_k D - g_k N x) D >= 0
     is exactly that vertex-facet condition.  The valid set (or first end) of
     these conditions is recomputed by :mod:`exactinv_check.validset`.
+Pricing: the rebuild of D, N and the conditions against the work budget before
+it starts; the root isolation of the entries, then of the conditions, against
+the Sturm budget (degree^4 bits^2 summed) before any Sturm sequence.
 
 Why these conditions give the valid set of all 2n 2^n vertex-facet pairs.
 Each is one of those pairs, so the set V_S they cut out contains the true
@@ -101,15 +104,16 @@ def _price(A, numerator, denominator):
     within_budget(cost, f"the box route of a {n} x {n} problem with entries of degree {d}")
 
 
-def _price_roots(rows):
-    """Reject, before any Sturm sequence, entries whose root isolation together exceeds the Sturm
-    budget (degree^4 bits^2 summed over the distinct entries: about half a minute of work)."""
+def _price_roots(polynomials, what):
+    """Reject, before any Sturm sequence, polynomials whose root isolation together exceeds the Sturm
+    budget (degree^4 bits^2 summed over those with a sign variation: about half a minute of work)."""
     total = 0
-    for p in {tuple(p) for row in rows for p in row if len(p) > 1}:
+    for p in {tuple(p) for p in polynomials if len(p) > 1}:
         ints = polys.integer_coefficients(list(p))
-        total += (len(ints) - 1) ** 4 * max(abs(c).bit_length() for c in ints) ** 2
-    require(total <= polys.STURM_BUDGET, f"over the kernel's work budget: root isolation of the box route's entry "
-            f"polynomials (degree^4 bits^2 summed: {total:.1e} > {polys.STURM_BUDGET:.0e})")
+        if len({c > 0 for c in ints if c}) > 1:  # no sign variation: no positive root, no isolation (Descartes)
+            total += (len(ints) - 1) ** 4 * max(abs(c).bit_length() for c in ints) ** 2
+    require(total <= polys.STURM_BUDGET, f"over the kernel's work budget: root isolation of {what} "
+            f"(degree^4 bits^2 summed: {total:.1e} > {polys.STURM_BUDGET:.0e})")
 
 
 def _entries(D, N, lo, hi):
@@ -178,7 +182,7 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
     _price(A, numerator, denominator)
     D, N = method_matrices(A, numerator, denominator)
     rows, w = _entries(D, N, lo, hi)
-    _price_roots(rows)
+    _price_roots([p for row in rows for p in row], "the box route's entry polynomials")
     negate = not all(c >= 0 for c in D) and not all(c <= 0 for c in D)  # D may change sign on (0, oo)
     D_int = polys.integer_coefficients(D)  # a positive multiple of D: the same signs
     inequalities = {}
@@ -194,4 +198,5 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
                 facet = facets[j][0 if s[0] > 0 else 1][0]
                 index = int("".join("1" if s[0] * x > 0 else "0" for x in s[1:]), 2)
                 inequalities.setdefault(tuple(polys.integer_coefficients(c)), ("vertex", index, facet))
+    _price_roots(inequalities, "the box route's conditions")
     return D, inequalities, (lo, hi)

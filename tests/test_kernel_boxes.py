@@ -2,6 +2,7 @@
 forged or unprovable one -- wrong intervals, a box claimed for a non-box, a missing bound,
 tampered numbers, an input too large to rebuild -- is rejected with a reason."""
 
+import random
 from fractions import Fraction
 from math import factorial
 
@@ -227,3 +228,16 @@ def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(
     X = solve(H, Gm)
     assert [[sum(Nk[i][j] * t**k for k, Nk in enumerate(N)) for j in range(3)] for i in range(3)] == \
         [[d * x for x in r] for r in X]
+
+
+def test_the_entries_root_isolation_is_priced_before_any_sturm_sequence():
+    """Pade(2,2) on a 10-dimensional box with 15-digit entries: D and N are cheap to rebuild, but the
+    110 entry polynomials (degree 20, coefficients of about a thousand bits) would need minutes of Sturm work."""
+    n, rng = 10, random.Random(7)
+    A = [[str(rng.randint(-10**15, 10**15)) for _ in range(n)] for _ in range(n)]
+    G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
+    cert = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
+                        "method": {"name": "pade(2,2)", "numerator": ["1", "1/2", "1/12"], "denominator": ["1", "-1/2", "1/12"]}},
+            "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
+    _rejected(cert, "root isolation of the box route's entry polynomials")
