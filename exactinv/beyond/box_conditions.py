@@ -75,7 +75,7 @@ class Box:
 
 
 def detect_box(G, b) -> Box | None:
-    """The box P = {Gx <= b} is, or None: every row has one nonzero entry, every
+    """The box that P = {Gx <= b} is, or None: every row has one nonzero entry, every
     coordinate a lower and an upper bound (the tightest ones count), lo < hi.
 
     >>> detect_box([[1], [-1], [3]], [1, 0, 6])            # x <= 1, x >= 0, x <= 2 (implied)
