@@ -11,9 +11,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, partial
+from typing import Callable
 
 import flint
+import numpy as np
 
 from ..core.algebraic import ExactKey
 from ..core.encode import encode_real, mat, vec
@@ -21,10 +23,12 @@ from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
 from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed
-from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
+from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
+from .gamma_batch import RowBatch, batch_rows
 from .witness import FacetWitness, push_along_ray
 
 __all__ = ["GammaRow", "OptimalGamma", "optimal_gamma"]
@@ -37,14 +41,23 @@ class GammaRow:
     row LP is unbounded, ``INF`` when it is infeasible).  For an optimal row,
     ``dual = (y, lam)`` proves the bound:  g_k.y + lam b_k >= 0 (k != j),
     g_j.y + lam b_j = 1, lam >= 0 and (A^T g_j).y = max h_j.  For an
-    unbounded row, ``h`` is feasible and ``ray`` increases h_j."""
+    unbounded row, ``h`` is feasible and ``ray`` increases h_j.  ``lp_of``
+    returns the verified :class:`~exactinv.lp.LPResult` (built on first use
+    when the row was proved in a batch of integers)."""
 
     gamma: Fraction | Infinity
-    lp: LPResult = field(repr=False)
+    path: str
+    lp_of: Callable[[], LPResult] = field(repr=False, compare=False)
 
-    @property
-    def path(self) -> str:
-        return self.lp.path
+    @cached_property
+    def lp(self) -> LPResult:
+        """The verified row LP.
+
+        >>> row = optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).rows[0]
+        >>> row.gamma, row.lp.value, row.h, row.dual
+        (Fraction(1, 2), Fraction(-1, 2), (Fraction(-1, 2), Fraction(1, 2)), ((Fraction(1, 2),), Fraction(1, 2)))
+        """
+        return self.lp_of()
 
     @property
     def h(self) -> Vector | None:
@@ -75,12 +88,22 @@ class OptimalGamma(LatexMixin):
     """
 
     value: Fraction | Infinity
-    H_flint: flint.fmpq_mat | None = field(repr=False)
+    H_of: Callable[[], flint.fmpq_mat | None] = field(repr=False, compare=False)
     binding_row: int | None
     rows: tuple[GammaRow, ...] = field(repr=False)
     witness: FacetWitness | None
     system: LinearSystem = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
+
+    @cached_property
+    def H_flint(self) -> flint.fmpq_mat | None:
+        """The exact certificate H (an fmpq matrix; built on first use from the proved rows).
+
+        >>> optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).H_flint
+        [-1/2,  1/2]
+        [ 1/2, -1/2]
+        """
+        return self.H_of()
 
     @cached_property
     def H(self) -> Matrix | None:
@@ -181,30 +204,65 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     OptimalGamma(value=INF, not invariant, witness=FacetWitness(x=[1], facet=0, value=1))
     """
     S, P = check_pair(system, polyhedron)
-    m, n = P.m, P.n
-    GA = P.G_flint * S.A_flint
-    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
-    solver = ExactLPSolver(constraint, [True] * n + [False])
-    costs = flint.fmpq_mat(m, m)  # column j: e_j
-    for j in range(m):
-        costs[j, j] = 1
-    rhss = flint.fmpq_mat(n + 1, m, GA.transpose().entries() + [0] * m)  # column j: (A^T g_j, 0)
-    signs = [[k != j for k in range(m)] for j in range(m)]
-    rows = [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
+    batch = batch_rows(S, P) if isinstance(get_hint_backend(), HighsHint) else None
+    if batch is not None and batch.ok.all():
+        return _from_batch(S, P, batch)
+    proved = {} if batch is None else {j: _batch_row(batch, j) for j in np.flatnonzero(batch.ok).tolist()}
+    rows = _solve_rows(S, P, [j for j in range(P.m) if j not in proved])
+    rows = [proved[j] if j in proved else rows.pop(0) for j in range(P.m)]
     if any(row.gamma == INF for row in rows):
         witness = _continuous_witness(S, P, first=[j for j, r in enumerate(rows) if r.gamma == INF])
-        return OptimalGamma(INF, None, None, tuple(rows), witness, S, P)
+        return OptimalGamma(INF, _none, None, tuple(rows), witness, S, P)
     value = max((row.gamma for row in rows), key=ExactKey)
     binding = None if value == -INF else next(j for j, r in enumerate(rows) if r.gamma == value)
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
-    return OptimalGamma(value, H, binding, tuple(rows), None, S, P)
+    return OptimalGamma(value, partial(_identity, H), binding, tuple(rows), None, S, P)
+
+
+def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
+    """The row LPs ``which`` through the general engine (warm-started, verified as one batch)."""
+    if not which:
+        return []
+    m, n = P.m, P.n
+    GA = P.G_flint * S.A_flint
+    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
+    solver = ExactLPSolver(constraint, [True] * n + [False])
+    costs = flint.fmpq_mat(m, len(which))  # column t: e_j for j = which[t]
+    for t, j in enumerate(which):
+        costs[j, t] = 1
+    GA_rows = GA.entries()  # row j: A^T g_j
+    rhss = flint.fmpq_mat(len(which), n + 1, [v for j in which for v in GA_rows[j * n:(j + 1) * n] + [0]]).transpose()
+    signs = [[k != j for k in range(m)] for j in which]
+    return [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
+
+
+def _from_batch(S: LinearSystem, P: Polyhedron, batch: RowBatch) -> OptimalGamma:
+    """gamma* from a batch in which every row is proved optimal: H = Hn/D has
+    every row checked (primal feasible, H_jj = -gamma_j >= -gamma*), and the
+    binding row's dual proves the value; nothing is re-checked."""
+    diagonal = np.diagonal(batch.Hn)
+    binding = int(np.argmin(diagonal))  # gamma_j = -H_jj / D: the largest one
+    rows = tuple(_batch_row(batch, j) for j in range(P.m))
+    return OptimalGamma(rows[binding].gamma, batch.H_flint, binding, rows, None, S, P)
+
+
+def _batch_row(batch: RowBatch, j: int) -> GammaRow:
+    return GammaRow(batch.gamma(j), LPPath.ROUNDED, partial(batch.result, j))
 
 
 def _gamma_row(res: LPResult) -> GammaRow:
     if res.status == OPTIMAL:
-        return GammaRow(-res.value, res)
-    return GammaRow(-INF if res.status == UNBOUNDED else INF, res)
+        return GammaRow(-res.value, res.path, partial(_identity, res))
+    return GammaRow(-INF if res.status == UNBOUNDED else INF, res.path, partial(_identity, res))
+
+
+def _identity(value):
+    return value
+
+
+def _none() -> None:
+    return None
 
 
 def _assemble_H(rows: list[GammaRow], gamma) -> flint.fmpq_mat:
