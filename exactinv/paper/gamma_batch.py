@@ -37,7 +37,7 @@ from ..lp.reconstruct import COMMON_DENOMINATOR
 from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 
-__all__ = ["IntegerData", "RowBatch", "batch_rows", "verify_rows"]
+__all__ = ["IntegerData", "RowBatch", "is_sparse", "batch_rows", "verify_rows"]
 
 _EXACT = 2 ** 53
 _TOLERANCE = 1e-9  # a simplex vertex: within 1e-9 (relative) of a multiple of 1/D
@@ -93,6 +93,14 @@ class RowBatch:
         """
         return Fraction(-int(self.Hn[j, j]), self.D)
 
+    def path(self, j: int) -> LPPath:
+        """Every row of the batch is a rounded float hint.
+
+        >>> RowBatch(np.array([[-3.0]]), np.zeros((1, 1)), np.zeros(1), 2, np.array([True])).path(0)
+        <LPPath.ROUNDED: 'float-rounded'>
+        """
+        return LPPath.ROUNDED
+
     def result(self, j: int) -> LPResult:
         """Row j as a verified :class:`~exactinv.lp.LPResult` (x = h_j, y = (y_j, lam_j)).
 
@@ -115,6 +123,15 @@ class RowBatch:
         return flint.fmpq_mat(flint.fmpz_mat(m, m, self.Hn.astype(np.int64).ravel().tolist())) / self.D
 
 
+def is_sparse(polyhedron: Polyhedron) -> bool:
+    """G has at most two nonzeros per row on average (then :func:`batch_rows` applies).
+
+    >>> is_sparse(Polyhedron.box([-1, -1], [1, 1])), is_sparse(Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, -1]], [1, 1, 1]))
+    (True, False)
+    """
+    return sum(1 for row in polyhedron.G for v in row if v) <= 2 * polyhedron.m
+
+
 def batch_rows(system: LinearSystem, polyhedron: Polyhedron) -> RowBatch | None:
     """All m row LPs from one block-diagonal float solve, rounded and verified
     (:func:`verify_rows`); None when the route does not apply (G not sparse,
@@ -127,8 +144,8 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron) -> RowBatch | None:
     ([True, True], Fraction(1, 2), (Fraction(-1, 2), Fraction(1, 2)))
     """
     m, n = polyhedron.m, polyhedron.n
-    data = IntegerData.of(system, polyhedron) if m and n else None
-    if data is None or np.count_nonzero(data.Gn) > 2 * m:
+    data = IntegerData.of(system, polyhedron) if m and n and is_sparse(polyhedron) else None
+    if data is None:
         return None
     scale_G, scale_b = data.Gn / data.dG, data.bn / data.db
     constraint = np.vstack([scale_G.T, scale_b[None, :]])  # [G^T; b^T]: (n + 1) x m

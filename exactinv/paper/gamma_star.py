@@ -28,7 +28,8 @@ from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
-from .gamma_batch import RowBatch, batch_rows
+from .gamma_batch import RowBatch, batch_rows, is_sparse
+from .gamma_dense import DenseRows, dense_rows
 from .witness import FacetWitness, push_along_ray
 
 __all__ = ["GammaRow", "OptimalGamma", "optimal_gamma"]
@@ -204,7 +205,7 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     OptimalGamma(value=INF, not invariant, witness=FacetWitness(x=[1], facet=0, value=1))
     """
     S, P = check_pair(system, polyhedron)
-    batch = batch_rows(S, P) if isinstance(get_hint_backend(), HighsHint) else None
+    batch = _row_batch(S, P)
     if batch is not None and batch.ok.all():
         return _from_batch(S, P, batch)
     proved = {} if batch is None else {j: _batch_row(batch, j) for j in np.flatnonzero(batch.ok).tolist()}
@@ -218,6 +219,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
     return OptimalGamma(value, partial(_identity, H), binding, tuple(rows), None, S, P)
+
+
+def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:
+    """Every row LP solved in float and proved in one batch: one block-diagonal
+    float LP for a sparse G, warm-started row solves otherwise (HiGHS hints only)."""
+    if not isinstance(get_hint_backend(), HighsHint) or not P.m or not P.n:
+        return None
+    return batch_rows(S, P) if is_sparse(P) else dense_rows(S, P)
 
 
 def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
@@ -237,18 +246,18 @@ def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaR
     return [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
 
 
-def _from_batch(S: LinearSystem, P: Polyhedron, batch: RowBatch) -> OptimalGamma:
+def _from_batch(S: LinearSystem, P: Polyhedron, batch: RowBatch | DenseRows) -> OptimalGamma:
     """gamma* from a batch in which every row is proved optimal: H = Hn/D has
     every row checked (primal feasible, H_jj = -gamma_j >= -gamma*), and the
     binding row's dual proves the value; nothing is re-checked."""
-    diagonal = np.diagonal(batch.Hn)
-    binding = int(np.argmin(diagonal))  # gamma_j = -H_jj / D: the largest one
     rows = tuple(_batch_row(batch, j) for j in range(P.m))
-    return OptimalGamma(rows[binding].gamma, batch.H_flint, binding, rows, None, S, P)
+    value = max(row.gamma for row in rows)
+    binding = next(j for j, row in enumerate(rows) if row.gamma == value)
+    return OptimalGamma(value, batch.H_flint, binding, rows, None, S, P)
 
 
-def _batch_row(batch: RowBatch, j: int) -> GammaRow:
-    return GammaRow(batch.gamma(j), LPPath.ROUNDED, partial(batch.result, j))
+def _batch_row(batch: RowBatch | DenseRows, j: int) -> GammaRow:
+    return GammaRow(batch.gamma(j), batch.path(j), partial(batch.result, j))
 
 
 def _gamma_row(res: LPResult) -> GammaRow:
