@@ -148,10 +148,14 @@ def _proposal(data: LPData, j: int, rhs: flint.fmpq_mat, hint) -> SparseRow:
         support = tuple(np.flatnonzero(x).tolist())
         return SparseRow(support, tuple(x[k] for k in support), COMMON_DENOMINATOR, tuple(w), COMMON_DENOMINATOR,
                          LPPath.ROUNDED)
-    basis = hint.fetch_basis()
     cost = flint.fmpq_mat(data.N, 1)
     cost[j, 0] = 1
-    pair = None if basis is None else basis_solution(data, cost, rhs, basis)
+    pair, basis = None, _support_basis(data, j, hint, tol)
+    if basis is not None:
+        pair = basis_solution(data, cost, rhs, basis)
+    if pair is None:
+        basis = hint.fetch_basis()
+        pair = None if basis is None else basis_solution(data, cost, rhs, basis)
     if pair is None:
         return SparseRow((), (), 1, (0,) * data.R, 1, LPPath.BASIS)
     xq, yq = pair
@@ -159,6 +163,18 @@ def _proposal(data: LPData, j: int, rhs: flint.fmpq_mat, hint) -> SparseRow:
     h, d = flint.fmpq_mat(len(support), 1, [xq[k, 0] for k in support]).numer_denom()
     w, e = yq.numer_denom()
     return SparseRow(support, tuple(map(int, h.entries())), int(d), tuple(map(int, w.entries())), int(e), LPPath.BASIS)
+
+
+def _support_basis(data: LPData, j: int, hint, tol: float):
+    """The basis read off the float point when it is not degenerate: the
+    columns off zero (and the free column j) against the tight rows; None if
+    they are not as many (then HiGHS' own basis is fetched).  A guess: solved and verified."""
+    scale = max(1.0, float(np.abs(hint.x).max()))
+    cols = set(np.flatnonzero(np.abs(hint.x) > tol * scale).tolist()) | {j}
+    rows = list(data.eq_rows)
+    if hint.y[-1] != 0:  # the row b^T h <= 0 carries a dual: tight
+        rows.append(data.R - 1)
+    return (tuple(sorted(cols)), tuple(rows)) if len(cols) == len(rows) else None
 
 
 def _verify(system: LinearSystem, polyhedron: Polyhedron, GA: flint.fmpq_mat, rows: list[SparseRow]) -> np.ndarray:
