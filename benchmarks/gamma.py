@@ -177,6 +177,16 @@ def best_of(repeat, fn, *args):
     return min(runs, key=lambda r: r[0])
 
 
+def interleaved_best(repeat, fns, *args):
+    """For each fn, the fastest of ``repeat`` runs, the fns taking turns (round r runs every fn
+    once), so that a change of machine load hits all columns alike."""
+    runs = [[] for _ in fns]
+    for _ in range(repeat):
+        for fn, out in zip(fns, runs):
+            out.append(fn(*args))
+    return [min(out, key=lambda r: r[0]) for out in runs]
+
+
 def float_only_table(instances, repeat):
     """The certified gamma* against the float-only solves, best of ``repeat`` runs each."""
     header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
@@ -184,10 +194,8 @@ def float_only_table(instances, repeat):
     print(header)
     print("-" * len(header))
     for name, S, P in instances:
-        te, g = best_of(repeat, time_exact, S, P)
-        tc, vc = best_of(repeat, time_cvxpy, S, P)
-        th, vh = best_of(repeat, time_highs, S, P)
-        tr, vr = best_of(repeat, time_highs_rows, S, P)
+        (te, g), (tc, vc), (th, vh), (tr, vr) = interleaved_best(
+            repeat, (time_exact, time_cvxpy, time_highs, time_highs_rows), S, P)
         for v in (vc, vh, vr):
             assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
         best = min(tc, th)

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.paper import gamma_star
-from exactinv.paper.gamma_batch import IntegerData, batch_rows, is_sparse, verify_rows
+from exactinv.paper.gamma_batch import IntegerData, batch_rows, integer_G, is_sparse, verify_rows
 from exactinv.paper.gamma_dense import _verify, dense_rows
 from exactinv_check import check
 
@@ -96,8 +96,9 @@ def test_data_beyond_exact_doubles_skip_the_integer_batch():
 
 
 def test_sparsity_decides_the_route():
-    assert is_sparse(ei.Polyhedron.box([-1] * 3, [1] * 3))
-    assert not is_sparse(ei.Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, 1], [-1, -1, -1]], [1] * 4))
+    assert is_sparse(integer_G(ei.Polyhedron.box([-1] * 3, [1] * 3)))
+    assert not is_sparse(integer_G(ei.Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, 1], [-1, -1, -1]], [1] * 4)))
+    assert not is_sparse(integer_G(ei.Polyhedron([[2 ** 60]], [1])))  # beyond exact doubles: the dense route
 
 
 # ------------------------------------------------------------- forged rows

@@ -30,6 +30,7 @@ from typing import Sequence
 
 import flint
 import numpy as np
+import scipy.sparse as sp
 
 from ..lp import OPTIMAL, LPResult
 from ..lp.block import block_hints
@@ -37,7 +38,7 @@ from ..lp.reconstruct import COMMON_DENOMINATOR
 from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 
-__all__ = ["IntegerData", "RowBatch", "is_sparse", "batch_rows", "verify_rows"]
+__all__ = ["IntegerData", "RowBatch", "integer_G", "is_sparse", "batch_rows", "verify_rows"]
 
 _EXACT = 2 ** 53
 _TOLERANCE = 1e-9  # a simplex vertex: within 1e-9 (relative) of a multiple of 1/D
@@ -64,14 +65,23 @@ class IntegerData:
         >>> d.An.tolist(), d.dA, d.GAn.tolist()
         ([[-2.0, 1.0], [0.0, -2.0]], 2, [[-2.0, 1.0], [0.0, -2.0], [2.0, -1.0], [0.0, 2.0]])
         """
-        parts = [_integers(polyhedron.G), _integers([polyhedron.b]), _integers(system.A)]
+        return cls.from_G(_integers(polyhedron.G), system, polyhedron)
+
+    @classmethod
+    def from_G(cls, G: tuple[np.ndarray, int] | None, system: LinearSystem, polyhedron: Polyhedron) -> IntegerData | None:
+        """:meth:`of`, with G's integer image ``(Gn, dG)`` already read (None: too large).
+
+        >>> IntegerData.from_G((np.array([[2.0]]), 1), LinearSystem([[3]]), Polyhedron([[2]], [1])).GAn.tolist()
+        [[6.0]]
+        """
+        parts = [G, _integers([polyhedron.b]), _integers(system.A)]
         if any(p is None for p in parts):
             return None
         (Gn, dG), (bn, db), (An, dA) = parts
         n = Gn.shape[1]
         if n * _max(Gn) * _max(An) >= _EXACT:
             return None
-        return cls(Gn, dG, bn[0], db, An, dA, Gn @ An + 0.0)  # + 0.0: no -0.0 entries
+        return cls(Gn, dG, bn[0], db, An, dA, sp.csr_matrix(Gn) @ An + 0.0)  # + 0.0: no -0.0 entries
 
 
 @dataclass(frozen=True)
@@ -123,19 +133,34 @@ class RowBatch:
         return flint.fmpq_mat(flint.fmpz_mat(m, m, self.Hn.astype(np.int64).ravel().tolist())) / self.D
 
 
-def is_sparse(polyhedron: Polyhedron) -> bool:
-    """G has at most two nonzeros per row on average (then :func:`batch_rows` applies).
+def is_sparse(G: tuple[np.ndarray, int] | None) -> bool:
+    """G's integer image (see :func:`integer_G`) has at most two nonzeros per
+    row on average (then :func:`batch_rows` applies; a G beyond doubles is not sparse).
 
-    >>> is_sparse(Polyhedron.box([-1, -1], [1, 1])), is_sparse(Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, -1]], [1, 1, 1]))
-    (True, False)
+    >>> is_sparse(integer_G(Polyhedron.box([-1, -1], [1, 1])))
+    True
+    >>> is_sparse(integer_G(Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, -1]], [1, 1, 1])))
+    False
     """
-    return sum(1 for row in polyhedron.G for v in row if v) <= 2 * polyhedron.m
+    return G is not None and int(np.count_nonzero(G[0])) <= 2 * len(G[0])
 
 
-def batch_rows(system: LinearSystem, polyhedron: Polyhedron) -> RowBatch | None:
+def integer_G(polyhedron: Polyhedron) -> tuple[np.ndarray, int] | None:
+    """(Gn, dG) with G = Gn/dG, Gn integer-valued float64 (|entries| < 2^53); None if too large.
+
+    >>> Gn, dG = integer_G(Polyhedron([[1, Fraction(1, 2)]], [1]))
+    >>> Gn.tolist(), dG
+    ([[2.0, 1.0]], 2)
+    """
+    return _integers(polyhedron.G)
+
+
+def batch_rows(system: LinearSystem, polyhedron: Polyhedron,
+               G: tuple[np.ndarray, int] | None = None) -> RowBatch | None:
     """All m row LPs from one block-diagonal float solve, rounded and verified
     (:func:`verify_rows`); None when the route does not apply (G not sparse,
-    data too large, or the float solve not optimal for every row).
+    data too large, or the float solve not optimal for every row).  ``G``:
+    G's integer image if already read (:func:`integer_G`).
 
     x' = -x on [-1, 1]: each row LP has h = (-1/2, 1/2), y = 1/2, lam = 1/2.
 
@@ -144,7 +169,8 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron) -> RowBatch | None:
     ([True, True], Fraction(1, 2), (Fraction(-1, 2), Fraction(1, 2)))
     """
     m, n = polyhedron.m, polyhedron.n
-    data = IntegerData.of(system, polyhedron) if m and n and is_sparse(polyhedron) else None
+    G = integer_G(polyhedron) if G is None else G
+    data = IntegerData.from_G(G, system, polyhedron) if m and n and is_sparse(G) else None
     if data is None:
         return None
     scale_G, scale_b = data.Gn / data.dG, data.bn / data.db
@@ -185,10 +211,10 @@ def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarra
               n * mGA * mY + mH * dG * dA)  # the objectives
     if max(bounds) >= _EXACT:
         return None
-    off = ~np.eye(m, dtype=bool)
-    ok = ~((Hn @ Gn) * dA != D * GAn).any(axis=1)
+    off, Gs = ~np.eye(m, dtype=bool), sp.csr_matrix(Gn)  # sparse products: fewer, equally exact sums
+    ok = ~((Gs.T @ Hn.T).T * dA != D * GAn).any(axis=1)
     ok &= (Hn @ bn <= 0) & ~((Hn < 0) & off).any(axis=1)
-    K = (Gn @ Yn.T) * db + np.outer(bn, Ln) * dG  # column j: (g_k.y_j + lam_j b_k) dG db D
+    K = (Gs @ Yn.T) * db + np.outer(bn, Ln) * dG  # column j: (g_k.y_j + lam_j b_k) dG db D
     ok &= (Ln >= 0) & (np.diagonal(K) == dG * db * D) & ~((K < 0) & off).any(axis=0)
     ok &= (GAn * Yn).sum(axis=1) == np.diagonal(Hn) * (dG * dA)
     return ok

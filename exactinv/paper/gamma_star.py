@@ -28,7 +28,7 @@ from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
-from .gamma_batch import RowBatch, batch_rows, is_sparse
+from .gamma_batch import RowBatch, batch_rows, integer_G, is_sparse
 from .gamma_dense import DenseRows, dense_rows
 from .witness import FacetWitness, push_along_ray
 
@@ -226,7 +226,8 @@ def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:
     float LP for a sparse G, warm-started row solves otherwise (HiGHS hints only)."""
     if not isinstance(get_hint_backend(), HighsHint) or not P.m or not P.n:
         return None
-    return batch_rows(S, P) if is_sparse(P) else dense_rows(S, P)
+    G = integer_G(P)
+    return batch_rows(S, P, G) if is_sparse(G) else dense_rows(S, P)
 
 
 def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
