@@ -2,25 +2,42 @@
 
 On the same instances, in one run:
 
-* exactinv   -- ``optimal_gamma``: m row LPs in HiGHS (warm-started), exact
-                reconstruction and verification in Q (the certified answer);
+* exactinv   -- ``optimal_gamma``: every row LP solved in float by HiGHS, rounded
+                (or solved exactly on its basis) and proved optimal in one exact
+                integer batch (the certified answer: value, H, the binding row's
+                dual).  For a sparse G (at most two nonzeros per row on average,
+                e.g. the boxes) all m row LPs are ONE block-diagonal HiGHS LP
+                (presolve on); otherwise they are m warm-started HiGHS solves;
 * cvxpy hint -- the same certified pipeline with the cvxpy hint backend
                 (``exactinv.lp.hint_backend("cvxpy", solver=...)``: each row LP
                 a parametrised cvxpy problem, solver ``--hint-solver``, default
                 cvxpy's own choice); same exact value, checked;
 * cvxpy      -- the whole LP  min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}
                 as one cvxpy problem solved by HiGHS in floating point (no guarantee);
-* highs      -- the same whole LP handed to HiGHS directly (highspy, sparse
-                column-wise data, no modelling layer): the fastest float-only solve;
+* highs      -- the same whole LP handed to HiGHS directly (highspy, column-wise
+                arrays built with numpy and passed as arrays, no modelling layer):
+                the fastest float-only solve of gamma*;
 * highs rows -- the m row LPs alone, in HiGHS (warm-started, as the engine's
-                float step poses them): the float part of the certified route;
+                float step poses them for a dense G): nothing verified;
 * pplpy      -- the m row LPs solved by PPL's exact simplex (MIP_Problem), row by row.
+
+Fairness (``--float-only``): every column solves gamma* of the same instance
+with HiGHS at its default tolerances (primal/dual feasibility 1e-7); the float
+columns start from numpy copies of G, A, b made outside the timing, while the
+certified column starts from the exact data (reading it is part of its cost).
+Each column is the best of ``--repeat`` runs (default 5), the columns taking
+turns run by run (so a change of machine load hits all alike); ``median`` is
+the median over the runs of the paired ratio exact/highs (same round).  Every float value is
+asserted equal to the exact gamma* within 1e-6.  The certified time includes
+the exact proof of every row but not the conversion of H to an fmpq matrix or
+to JSON (``H_flint``/``certificate`` build it on first use); the column
+``+H`` adds that conversion.
 
 Instances: boxes [-1,1]^n (m = 2n) with row-diagonally-dominant A, and random
 polytopes {x : Gx <= 1} inside [-1,1]^n with up to 500 facets and
 A = -I/2 + R, R small enough that P is invariant.
 
-Run:  python benchmarks/gamma.py [--quick] [--hint-solver CLARABEL]
+Run:  python benchmarks/gamma.py [--quick] [--hint-solver CLARABEL] [--float-only [--repeat 5]]
 """
 
 from __future__ import annotations
@@ -66,6 +83,14 @@ def polytope_instance(n: int, m: int, rng: random.Random):
 def time_exact(S, P):
     t = time.perf_counter()
     g = ei.optimal_gamma(S, P)
+    return time.perf_counter() - t, g
+
+
+def time_exact_with_H(S, P):
+    """optimal_gamma and its H as an fmpq matrix (built on first use)."""
+    t = time.perf_counter()
+    g = ei.optimal_gamma(S, P)
+    assert g.H_flint is not None
     return time.perf_counter() - t, g
 
 
@@ -171,36 +196,40 @@ def paths_text(paths):
     return {str(path): count for path, count in paths.items()}
 
 
-def best_of(repeat, fn, *args):
-    """The fastest of ``repeat`` runs (the machine is shared: the minimum is the least noisy)."""
-    runs = [fn(*args) for _ in range(repeat)]
-    return min(runs, key=lambda r: r[0])
-
-
-def interleaved_best(repeat, fns, *args):
-    """For each fn, the fastest of ``repeat`` runs, the fns taking turns (round r runs every fn
+def interleaved_runs(repeat, fns, *args):
+    """For each fn, ``repeat`` runs (time, value), the fns taking turns (round r runs every fn
     once), so that a change of machine load hits all columns alike."""
     runs = [[] for _ in fns]
     for _ in range(repeat):
         for fn, out in zip(fns, runs):
             out.append(fn(*args))
-    return [min(out, key=lambda r: r[0]) for out in runs]
+    return runs
+
+
+def fastest(runs):
+    """The fastest run (the machine is shared: the minimum is the least noisy time)."""
+    return min(runs, key=lambda r: r[0])
+
+
+def paired_median(runs, base):
+    """The median over rounds of time(run) / time(base run of the same round)."""
+    return float(np.median([r[0] / b[0] for r, b in zip(runs, base)]))
 
 
 def float_only_table(instances, repeat):
-    """The certified gamma* against the float-only solves, best of ``repeat`` runs each."""
-    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
-              f"{'exact/cvxpy':>13}{'exact/highs':>13}{'exact/rows':>12}  route")
+    """The certified gamma* against the float-only solves: best of ``repeat`` interleaved runs
+    each, and the median over rounds of the paired ratio exact/highs (same round)."""
+    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'+H s':>8}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
+              f"{'exact/cvxpy':>13}{'exact/highs':>13}{'median':>8}{'+H/highs':>10}{'exact/rows':>12}  route")
     print(header)
     print("-" * len(header))
     for name, S, P in instances:
-        (te, g), (tc, vc), (th, vh), (tr, vr) = interleaved_best(
-            repeat, (time_exact, time_cvxpy, time_highs, time_highs_rows), S, P)
+        runs = interleaved_runs(repeat, (time_exact, time_exact_with_H, time_cvxpy, time_highs, time_highs_rows), S, P)
+        (te, g), (tH, _), (tc, vc), (th, vh), (tr, vr) = (fastest(r) for r in runs)
         for v in (vc, vh, vr):
             assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
-        best = min(tc, th)
-        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
-              f"{te / tr:>12.2f}  {paths_text(g.paths)}  (best float {te / best:.2f}x)")
+        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tH:>8.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
+              f"{paired_median(runs[0], runs[3]):>8.2f}{tH / th:>10.2f}{te / tr:>12.2f}  {paths_text(g.paths)}")
         sys.stdout.flush()
 
 
@@ -211,7 +240,7 @@ def main(argv=None):
     parser.add_argument("--no-ppl", action="store_true", help="skip the pplpy column")
     parser.add_argument("--float-only", action="store_true",
                         help="only the certified route against the float-only solves (cvxpy, HiGHS whole LP, HiGHS rows)")
-    parser.add_argument("--repeat", type=int, default=3, help="--float-only: best of this many runs (default 3)")
+    parser.add_argument("--repeat", type=int, default=5, help="--float-only: best of this many runs (default 5)")
     args = parser.parse_args(argv)
     rng = random.Random(20261122)
     instances = []

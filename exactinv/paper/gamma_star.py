@@ -1,7 +1,8 @@
 """The optimal gamma* (paper, Section 2 and Lemma 3.14).
 
 gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, answered row by row
-with the exact LP engine (:mod:`exactinv.lp`): row j of H is the optimal dual of
+(one float solve and one exact integer check for all rows, the exact LP engine
+:mod:`exactinv.lp` for the rest): row j of H is the optimal dual of
 the LP max{g_j^T A x : x in P, g_j^T x = b_j}.  Every returned H has been
 re-checked in Q; when continuous invariance fails the result carries an exact
 :class:`~exactinv.paper.witness.FacetWitness` instead.
@@ -190,9 +191,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
 
     Row j of H only meets row j of the constraints, so
     gamma* = max_j ( -max{h_j : h^T G = g_j^T A, h^T b <= 0, h_k >= 0 (k != j)} ).
-    The m row LPs share their constraint matrix [G^T; b^T], so one float model
-    is warm-started from row to row.  Exact: every row value is verified by
-    primal and dual certificates in Q (see :mod:`exactinv.lp`).
+    The m row LPs share their constraint matrix [G^T; b^T]: for a sparse G
+    they are solved in float as ONE block-diagonal LP
+    (:mod:`~exactinv.paper.gamma_batch`), otherwise by one HiGHS model
+    warm-started from row to row (:mod:`~exactinv.paper.gamma_dense`); either
+    way all rows are then proved optimal in one exact integer check.  Rows
+    that check fails, other hint backends, and infeasible or unbounded rows go
+    through the general engine (:mod:`exactinv.lp`).  Exact: every row value
+    is verified by primal and dual certificates in Q.
 
     x' = -x on [-1, 1]: gamma* = 1/2, so forward Euler keeps P for h <= 2
     (1 - h >= -1); x' = x is not invariant (gamma* = oo, witness x = 1).
