@@ -99,6 +99,7 @@ def test_sparsity_decides_the_route():
     assert is_sparse(integer_G(ei.Polyhedron.box([-1] * 3, [1] * 3)))
     assert not is_sparse(integer_G(ei.Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, 1], [-1, -1, -1]], [1] * 4)))
     assert not is_sparse(integer_G(ei.Polyhedron([[2 ** 60]], [1])))  # beyond exact doubles: the dense route
+    assert not is_sparse((np.eye(1001), 1))  # the block LP would have 1001^2 columns
 
 
 # ------------------------------------------------------------- forged rows

@@ -41,6 +41,7 @@ from ..model import LinearSystem, Polyhedron
 __all__ = ["IntegerData", "RowBatch", "integer_G", "is_sparse", "batch_rows", "verify_rows"]
 
 _EXACT = 2 ** 53
+MAX_BLOCK_ROWS = 1000  # the block LP has m^2 columns: beyond this many facets, row by row (gamma_dense)
 _TOLERANCE = 1e-9  # a simplex vertex: within 1e-9 (relative) of a multiple of 1/D
 
 
@@ -135,14 +136,15 @@ class RowBatch:
 
 def is_sparse(G: tuple[np.ndarray, int] | None) -> bool:
     """G's integer image (see :func:`integer_G`) has at most two nonzeros per
-    row on average (then :func:`batch_rows` applies; a G beyond doubles is not sparse).
+    row on average and at most ``MAX_BLOCK_ROWS`` rows (then :func:`batch_rows`
+    applies; a G beyond doubles is not sparse).
 
     >>> is_sparse(integer_G(Polyhedron.box([-1, -1], [1, 1])))
     True
     >>> is_sparse(integer_G(Polyhedron([[1, 1, 1], [1, -1, 1], [-1, 1, -1]], [1, 1, 1])))
     False
     """
-    return G is not None and int(np.count_nonzero(G[0])) <= 2 * len(G[0])
+    return G is not None and len(G[0]) <= MAX_BLOCK_ROWS and int(np.count_nonzero(G[0])) <= 2 * len(G[0])
 
 
 def integer_G(polyhedron: Polyhedron) -> tuple[np.ndarray, int] | None:
