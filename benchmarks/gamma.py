@@ -27,7 +27,9 @@ columns start from numpy copies of G, A, b made outside the timing, while the
 certified column starts from the exact data (reading it is part of its cost).
 Each column is the best of ``--repeat`` runs (default 5), the columns taking
 turns run by run (so a change of machine load hits all alike); ``median`` is
-the median over the runs of the paired ratio exact/highs (same round).  Every float value is
+the median over the runs of the paired ratio exact/highs (same round); the ``cpu`` columns give the same
+two ratios in process CPU time (all threads), which does not count the waits
+for a core on a shared machine.  Every float value is
 asserted equal to the exact gamma* within 1e-6.  The certified time includes
 the exact proof of every row but not the conversion of H to an fmpq matrix or
 to JSON (``H_flint``/``certificate`` build it on first use); the column
@@ -80,25 +82,44 @@ def polytope_instance(n: int, m: int, rng: random.Random):
     return ei.LinearSystem(A), ei.Polyhedron(G, [1] * len(G))
 
 
+class Elapsed(float):
+    """Wall-clock seconds (the float value), with the process's CPU seconds (all threads) as ``cpu``:
+    on a shared machine CPU time does not count the waits for a core."""
+
+    cpu: float
+
+
+def clock():
+    """A start mark for :func:`elapsed`."""
+    return time.perf_counter(), time.process_time()
+
+
+def elapsed(start):
+    """Elapsed since ``start``: wall seconds, ``.cpu`` the CPU seconds."""
+    out = Elapsed(time.perf_counter() - start[0])
+    out.cpu = time.process_time() - start[1]
+    return out
+
+
 def time_exact(S, P):
-    t = time.perf_counter()
+    t = clock()
     g = ei.optimal_gamma(S, P)
-    return time.perf_counter() - t, g
+    return elapsed(t), g
 
 
 def time_exact_with_H(S, P):
     """optimal_gamma and its H as an fmpq matrix (built on first use)."""
-    t = time.perf_counter()
+    t = clock()
     g = ei.optimal_gamma(S, P)
     assert g.H_flint is not None
-    return time.perf_counter() - t, g
+    return elapsed(t), g
 
 
 def time_exact_cvxpy_hint(S, P, solver):
-    t = time.perf_counter()
+    t = clock()
     with ei.lp.hint_backend("cvxpy", solver=solver):
         g = ei.optimal_gamma(S, P)
-    return time.perf_counter() - t, g
+    return elapsed(t), g
 
 
 def time_cvxpy(S, P):
@@ -106,12 +127,12 @@ def time_cvxpy(S, P):
     A = np.array([[float(v) for v in r] for r in S.A])
     b = np.array([float(v) for v in P.b])
     m = P.m
-    t = time.perf_counter()
+    t = clock()
     H = cp.Variable((m, m))
     gamma = cp.Variable()
     problem = cp.Problem(cp.Minimize(gamma), [H + gamma * np.eye(m) >= 0, H @ G == G @ A, H @ b <= 0])
     problem.solve(solver=cp.HIGHS)
-    return time.perf_counter() - t, problem.value
+    return elapsed(t), problem.value
 
 
 def time_highs(S, P):
@@ -122,7 +143,7 @@ def time_highs(S, P):
     A = np.array([[float(v) for v in r] for r in S.A])
     b = np.array([float(v) for v in P.b])
     m, n = G.shape
-    t = time.perf_counter()
+    t = clock()
     # variables: H row-major (column j*m + k is h_jk), then gamma; rows: (HG)_ji at j*n + i,
     # (Hb)_j at m*n + j, h_jj + gamma >= 0 at m*n + m + j
     Bt = np.vstack([G.T, b[None, :]])  # column k of [G^T; b^T]: the entries of h_jk in block j
@@ -151,7 +172,7 @@ def time_highs(S, P):
                 np.concatenate([GA, np.full(m, -inf), np.zeros(m)]), np.concatenate([GA, np.zeros(m), np.full(m, inf)]),
                 start, row[order].astype(np.int32), val[order], np.zeros(m * m + 1, np.int32))
     h.run()
-    return time.perf_counter() - t, h.getInfo().objective_function_value
+    return elapsed(t), h.getInfo().objective_function_value
 
 
 def time_highs_rows(S, P):
@@ -159,7 +180,7 @@ def time_highs_rows(S, P):
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     GA = np.array([[float(v) for v in r] for r in P.G]) @ np.array([[float(v) for v in r] for r in S.A])
-    t = time.perf_counter()
+    t = clock()
     float_lp = FloatLP(constraint, [True] * n + [False], HighsHint())
     model = float_lp.backend.model(float_lp.A, float_lp.equality)
     best = -np.inf
@@ -168,14 +189,14 @@ def time_highs_rows(S, P):
         cost[j] = 1.0
         hint = model.solve(cost, np.concatenate([GA[j], [0.0]]) * float_lp.row_scale, [k != j for k in range(m)])
         best = max(best, -hint.x[j] if hint.status == "optimal" else np.inf)
-    return time.perf_counter() - t, best
+    return elapsed(t), best
 
 
 def time_ppl(S, P):
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     GA = P.G_flint * S.A_flint
-    t = time.perf_counter()
+    t = clock()
     best = None
     done = 0
     for j in range(m):
@@ -185,10 +206,10 @@ def time_ppl(S, P):
         value = -Fraction(int(x[j, 0].p), int(x[j, 0].q)) if status == "optimal" else None
         best = value if best is None or (value is not None and value > best) else best
         done += 1
-        if time.perf_counter() - t > PPL_BUDGET:
+        if time.perf_counter() - t[0] > PPL_BUDGET:
             break
-    elapsed = time.perf_counter() - t
-    return elapsed * m / done, done < m, best
+    spent = time.perf_counter() - t[0]
+    return spent * m / done, done < m, best
 
 
 def paths_text(paths):
@@ -218,9 +239,11 @@ def paired_median(runs, base):
 
 def float_only_table(instances, repeat):
     """The certified gamma* against the float-only solves: best of ``repeat`` interleaved runs
-    each, and the median over rounds of the paired ratio exact/highs (same round)."""
-    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'+H s':>8}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
-              f"{'exact/cvxpy':>13}{'exact/highs':>13}{'median':>8}{'+H/highs':>10}{'exact/rows':>12}  route")
+    each (wall clock), the median over rounds of the paired ratio exact/highs (same round),
+    and the same two ratios in CPU time (not counting the waits for a core of a shared machine)."""
+    header = (f"{'instance':<16}{'m':>5}{'exact s':>9}{'+H s':>7}{'cvxpy s':>9}{'highs s':>9}{'rows s':>8}"
+              f"{'ex/cvxpy':>9}{'ex/highs':>9}{'median':>7}{'+H/highs':>9}{'ex/rows':>8}"
+              f"{'cpu ex/highs':>13}{'cpu median':>11}  route")
     print(header)
     print("-" * len(header))
     for name, S, P in instances:
@@ -228,8 +251,11 @@ def float_only_table(instances, repeat):
         (te, g), (tH, _), (tc, vc), (th, vh), (tr, vr) = (fastest(r) for r in runs)
         for v in (vc, vh, vr):
             assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
-        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tH:>8.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
-              f"{paired_median(runs[0], runs[3]):>8.2f}{tH / th:>10.2f}{te / tr:>12.2f}  {paths_text(g.paths)}")
+        cpu_e, cpu_h = (min(r[0].cpu for r in runs[k]) for k in (0, 3))
+        cpu_median = float(np.median([e[0].cpu / h[0].cpu for e, h in zip(runs[0], runs[3])]))
+        print(f"{name:<16}{P.m:>5}{te:>9.3f}{tH:>7.3f}{tc:>9.3f}{th:>9.3f}{tr:>8.3f}{te / tc:>9.2f}{te / th:>9.2f}"
+              f"{paired_median(runs[0], runs[3]):>7.2f}{tH / th:>9.2f}{te / tr:>8.2f}{cpu_e / cpu_h:>13.2f}"
+              f"{cpu_median:>11.2f}  {paths_text(g.paths)}")
         sys.stdout.flush()
 
 

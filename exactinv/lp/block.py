@@ -46,7 +46,8 @@ def block_hints(A: np.ndarray, equality: np.ndarray, costs: np.ndarray, rhss: np
     ...                    np.ones((2, 2), dtype=bool))
     >>> hint.status, hint.X.tolist(), hint.Y.tolist()
     (<LPStatus.OPTIMAL: 'optimal'>, [[3.0, 0.0], [0.0, 4.0]], [[1.0], [2.0]])
-    >>> block_hints(A, np.array([False]), np.array([[-1.0, -1.0]]), np.array([[-1.0]]), np.ones((1, 2), dtype=bool)).status
+    >>> empty = block_hints(A, np.array([False]), np.array([[-1.0, -1.0]]), np.array([[-1.0]]), np.ones((1, 2), bool))
+    >>> empty.status   # x1 + x2 <= -1 with x >= 0 is empty: no answer, the LPs go one by one
     <LPStatus.UNKNOWN: 'unknown'>
     """
     (R, N), K = A.shape, len(costs)
@@ -63,9 +64,10 @@ def block_hints(A: np.ndarray, equality: np.ndarray, costs: np.ndarray, rhss: np
     h = highspy.Highs()
     h.setOptionValue("output_flag", False)
     h.setOptionValue("presolve", "on" if presolve else "off")
-    status = h.passModel(K * N, K * R, len(index), int(highspy.MatrixFormat.kColwise), int(highspy.ObjSense.kMinimize), 0.0,
-                -costs.ravel().astype(float), np.where(nonneg.ravel(), 0.0, -inf), np.full(K * N, inf),
-                row_lower, rhs, start, index, np.tile(values, K).astype(float), np.zeros(K * N, np.int32))
+    status = h.passModel(K * N, K * R, len(index), int(highspy.MatrixFormat.kColwise),
+                         int(highspy.ObjSense.kMinimize), 0.0, -costs.ravel().astype(float),
+                         np.where(nonneg.ravel(), 0.0, -inf), np.full(K * N, inf),
+                         row_lower, rhs, start, index, np.tile(values, K).astype(float), np.zeros(K * N, np.int32))
     if status == highspy.HighsStatus.kError:
         return BlockHint(LPStatus.UNKNOWN)
     h.run()

@@ -69,7 +69,8 @@ class IntegerData:
         return cls.from_G(_integers(polyhedron.G), system, polyhedron)
 
     @classmethod
-    def from_G(cls, G: tuple[np.ndarray, int] | None, system: LinearSystem, polyhedron: Polyhedron) -> IntegerData | None:
+    def from_G(cls, G: tuple[np.ndarray, int] | None, system: LinearSystem,
+               polyhedron: Polyhedron) -> IntegerData | None:
         """:meth:`of`, with G's integer image ``(Gn, dG)`` already read (None: too large).
 
         >>> IntegerData.from_G((np.array([[2.0]]), 1), LinearSystem([[3]]), Polyhedron([[2]], [1])).GAn.tolist()
@@ -201,8 +202,10 @@ def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarra
 
     >>> data = IntegerData.of(LinearSystem([[-1]]), Polyhedron.box([-1], [1]))
     >>> H, Y = np.array([[-1.0, 1.0], [1.0, -1.0]]), np.array([[1.0], [-1.0]])
-    >>> verify_rows(data, H, Y, np.array([1.0, 1.0]), 2).tolist(), verify_rows(data, H, Y, np.array([1.0, 2.0]), 2).tolist()
-    ([True, True], [True, False])
+    >>> verify_rows(data, H, Y, np.array([1.0, 1.0]), 2).tolist()
+    [True, True]
+    >>> verify_rows(data, H, Y, np.array([1.0, 2.0]), 2).tolist()
+    [True, False]
     """
     Gn, bn, GAn = data.Gn, data.bn, data.GAn
     (m, n), dG, db, dA = Gn.shape, data.dG, data.db, data.dA
