@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
+from exactinv.lp.block import block_hints
 from exactinv.paper import gamma_star
 from exactinv.paper.gamma_batch import IntegerData, batch_rows, integer_G, is_sparse, verify_rows
 from exactinv.paper.gamma_dense import _verify, dense_rows
@@ -151,3 +152,30 @@ def test_dense_check_rejects_forged_rows(field, forge):
         forged[j] = replace(forged[j], **{field: forge(forged[j])})
         ok = _verify(S, P, GA, forged)
         assert not ok[j] and ok[[k for k in range(P.m) if k != j]].all()
+
+
+# ------------------------------------------------------------- the block LP
+@settings(max_examples=30, deadline=None)
+@given(st.integers(1, 4), st.integers(1, 4), st.integers(1, 4), st.randoms(use_true_random=False))
+def test_block_lp_answers_each_member_lp(R, N, K, rnd):
+    """The K LPs  max c_k.x  s.t.  A x <= r_k, 0 <= x (bounded: A has a row of ones) in one block
+    LP: each member's point is feasible and its objective is the member's own float optimum."""
+    A = np.array([[rnd.randint(-3, 3) for _ in range(N)] for _ in range(R)] + [[1.0] * N])
+    costs = np.array([[rnd.randint(-3, 3) for _ in range(N)] for _ in range(K)], dtype=float)
+    rhss = np.array([[rnd.randint(0, 5) for _ in range(R + 1)] for _ in range(K)], dtype=float)
+    nonneg = np.ones((K, N), dtype=bool)
+    equality = np.zeros(R + 1, dtype=bool)
+    hint = block_hints(A, equality, costs, rhss, nonneg)
+    assert hint.status == "optimal"
+    for k in range(K):
+        alone = block_hints(A, equality, costs[k:k + 1], rhss[k:k + 1], nonneg[k:k + 1])
+        x, y = hint.X[k], hint.Y[k]
+        assert np.all(A @ x <= rhss[k] + 1e-7) and np.all(x >= -1e-9) and np.all(y >= -1e-9)
+        assert abs(costs[k] @ x - costs[k] @ alone.X[0]) <= 1e-7 * (1 + abs(costs[k] @ x))
+        assert abs(costs[k] @ x - rhss[k] @ y) <= 1e-7 * (1 + abs(costs[k] @ x))  # strong duality
+
+
+def test_block_lp_with_an_infeasible_member_gives_no_answer():
+    A, equality = np.array([[1.0], [-1.0]]), np.zeros(2, dtype=bool)
+    rhss = np.array([[1.0, 0.0], [1.0, -2.0]])  # member 1: x <= 1 and x >= 2
+    assert block_hints(A, equality, np.ones((2, 1)), rhss, np.ones((2, 1), dtype=bool)).status == "unknown"
