@@ -82,8 +82,14 @@ def descartes_variations(ints, a, b):
 def no_root_in(p, T, depth=4):
     """True proves that p has no root in the open (0, T): Descartes' rule on (0, T),
     on halves where it is inconclusive, up to depth times.  False says nothing."""
+    return no_root_between(p, Fraction(0), Fraction(T), depth)
+
+
+def no_root_between(p, a, b, depth=4):
+    """True proves that p has no root in the open (a, b), a < b: Descartes' rule on (a, b),
+    on halves where it is inconclusive, up to depth times.  False says nothing."""
     ints = integer_coefficients(p)
-    stack = [(Fraction(0), Fraction(T), depth)]
+    stack = [(Fraction(a), Fraction(b), depth)]
     while stack:
         a, b, left = stack.pop()
         if descartes_variations(ints, a, b) == 0:

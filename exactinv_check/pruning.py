@@ -146,19 +146,83 @@ def _outside(row, box):
     return row[1] <= sum(map(int.__mul__, row[0], box))
 
 
+def _slot_bytes(rows, boxes):
+    """Bytes per slot of a :class:`_Packed` test: |g . box - K b| < 2^(8 W - 2) for every
+    row and every box (or union of boxes: the same entries), and K b as well."""
+    coefficient = max(abs(x) for row in rows for x in row[0])
+    entry = max(abs(x) for per_vertex in boxes for box in per_vertex for x in box)
+    threshold = max(abs(row[1]) for row in rows)
+    bound = len(rows[0][0]) * coefficient * entry + threshold
+    return (bound.bit_length() + 2 + 7) // 8
+
+
+class _Packed:
+    """The test :func:`_outside` of one box against many rows at once, in one integer.
+
+    Slot t of width S = 8 W bits holds row J_t.  With the columns
+    C_c = sum_t |a_{J_t c}| 2^(S t) (a column of the rows has one sign s_c: g+ and
+    ||g||_1 are >= 0, g- <= 0) and E = sum_t (2^(S-1) - K b_{J_t}) 2^(S t),
+
+        X = E + sum_c s_c box_c C_c = sum_t (2^(S-1) + v_t) 2^(S t),
+        v_t = a_{J_t} . box - K b_{J_t},
+
+    an identity of integers.  |v_t| < 2^(S-2) (:func:`_slot_bytes`), so each
+    2^(S-1) + v_t is a digit in [0, 2^S) of X in base 2^S, and its top bit is set
+    iff v_t >= 0, i.e. iff :func:`_outside` holds for row J_t: those slots are read
+    off X masked to the top bits (bytes 0x80 of its little-endian bytes)."""
+
+    def __init__(self, rows, J, width):
+        self.J, self.width, self.size = J, width, width * len(J)
+        columns = len(rows[0][0])
+        n = (columns - 1) // 2
+        self.signs = [1] * n + [-1] * n + [1]
+        self.columns = [int.from_bytes(b"".join(abs(rows[j][0][c]).to_bytes(width, "little") for j in J), "little")
+                        for c in range(columns)]
+        half = 1 << (8 * width - 1)
+        self.base = int.from_bytes(b"".join((half - rows[j][1]).to_bytes(width, "little") for j in J), "little")
+        self.mask = int.from_bytes((bytes(width - 1) + b"\x80") * len(J), "little")
+
+    def outside(self, box):
+        """The rows J_t for which :func:`_outside` holds (in the order of J)."""
+        X = self.base
+        for C, s, x in zip(self.columns, self.signs, box):
+            if x:
+                X += C * (x if s > 0 else -x)
+        Y = X & self.mask
+        if not Y:
+            return []
+        data, out = Y.to_bytes(self.size, "little"), []
+        at = data.find(0x80)
+        while at >= 0:
+            out.append(self.J[at // self.width])
+            at = data.find(0x80, at + 1)
+        return out
+
+
 def survivors(G, b, vertices, N, T, order):
-    """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune."""
+    """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune:
+    exactly the pairs (i, j) with :func:`_outside` for row j and the box of vertex i on
+    some piece (a box around boxes is outside whenever one of them is, so the blocks only
+    skip work), each test done by :class:`_Packed`."""
     rows = _integer_rows(G, b)
     boxes = _boxes(vertices, N, T)
     out = {i: [] for i in range(len(vertices))}
+    if not rows:
+        return out
+    width = _slot_bytes(rows, boxes)
+    everything = _Packed(rows, list(range(len(rows))), width)
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
         block = order[start:start + size]
         per_piece = [_union([boxes[i][a] for i in block]) for a in range(len(boxes[block[0]]))]
-        whole = _union(per_piece)
-        near = [j for j, row in enumerate(rows) if _outside(row, whole)]
+        near = everything.outside(_union(per_piece))
+        if not near:
+            continue
+        near_rows = _Packed(rows, near, width)
         for a, box in enumerate(per_piece):
-            hits = [j for j in near if _outside(rows[j], box)]
-            for i in block:
-                out[i].extend(j for j in hits if _outside(rows[j], boxes[i][a]))
+            hits = near_rows.outside(box)
+            if hits:
+                hit_rows = _Packed(rows, hits, width)
+                for i in block:
+                    out[i].extend(hit_rows.outside(boxes[i][a]))
     return {i: sorted(set(f)) for i, f in out.items()}

@@ -62,29 +62,66 @@ def _tightness(p):
     return Fraction(abs(p[0]), max(abs(c) for c in p)) if p else Fraction(0)
 
 
-def _drop_positive_on(inequalities, T):
-    """The inequalities that may be negative somewhere in (0, T): those proved
-    positive there (positive right of 0 and no root in (0, T) by Descartes' rule)
-    cannot change a valid set that lies in [0, T]."""
-    return [p for p in inequalities if polys.sign_right_of(p, Fraction(0)) < 0 or not polys.no_root_in(p, T)]
-
-
 def valid_set(D, inequalities, equalities, first=()):
     """The maximal intervals of valid h >= 0 (see the module docstring).
 
-    Pruning, exact: the valid set lies inside the valid set V_S of any subset
-    S of the conditions -- here ``first`` (e.g. the conditions of one vertex).
-    If V_S lies in [0, T], every other inequality proved positive on (0, T)
-    is dropped, and the rest need their roots only up to T."""
-    subset = [list(p) for p in first]
-    rest = [list(p) for p in inequalities if tuple(p) not in set(map(tuple, subset))]
-    if subset and rest:
-        V_S = _valid_set(D, subset, equalities, len(subset), None)
-        if V_S and not V_S[-1].hi.inf:
-            top = _coarse_above(V_S[-1].hi.bounds()[1])
-            return _valid_set(D, subset + _drop_positive_on(rest, top), equalities, len(subset), top)
-    everything = subset + rest
-    return _valid_set(D, everything, equalities, len(everything), None)
+    Condition by condition: V starts as {h >= 0 : D(h) != 0, every equality = 0}
+    (:func:`_valid_set`), and each inequality p -- those of ``first`` first (e.g.
+    the conditions of one vertex, which bound V early), then the others by
+    :func:`_tightness` -- replaces V by V n {p >= 0} (:func:`_restrict`), an exact
+    identity, so the last V is the valid set whatever the order.  The order only
+    makes it cheap: once V is bounded, most p are proved positive on V by
+    Descartes' rule, without a Sturm sequence."""
+    early = [list(p) for p in first]
+    seen = set(map(tuple, early))
+    rest = sorted((list(p) for p in inequalities if tuple(p) not in seen), key=_tightness)
+    V = _valid_set(D, [], equalities, 0, None)
+    for p in early + rest:
+        if not V:
+            break
+        V = _restrict(V, p)
+    return V
+
+
+def _restrict(V, p):
+    """V n {h >= 0 : p(h) >= 0} for a list V of maximal intervals in [0, oo): V itself if
+    p is proved positive on the open hull (a, b) of V's rational enclosure (then p >= 0
+    on [a, b] by continuity), else the exact intersection with p's own valid set."""
+    if not V[-1].hi.inf:
+        a, b = V[0].lo.bounds()[0], _coarse_above(V[-1].hi.bounds()[1])
+        if a == b:
+            if polys.evaluate(p, a) >= 0:
+                return V
+        elif polys.sign_right_of(p, a) > 0 and polys.no_root_between(p, a, b):
+            return V
+    out = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None))
+    if out and out[-1].hi.poly is not None:  # a tight enclosure of the end: later tests need no Sturm sequence
+        end = out[-1].hi
+        end.refine_below(end.hi / 2**64)
+    return out
+
+
+def _later_start(a, b):
+    c = a.lo.compare(b.lo)
+    return (a.lo, a.lo_closed) if c > 0 else (b.lo, b.lo_closed) if c < 0 else (a.lo, a.lo_closed and b.lo_closed)
+
+
+def _intersect(A, B):
+    """The intersection of two lists of maximal intervals (ordered, disjoint), as one:
+    pairwise intersections, exact comparisons of the ends.  (Maximal again: two pieces
+    that touched would lie in one interval of A and one of B.)"""
+    out, i, j = [], 0, 0
+    while i < len(A) and j < len(B):
+        a, b = A[i], B[j]
+        lo, lo_closed = _later_start(a, b)
+        c = a.hi.compare(b.hi)
+        hi, hi_closed = ((a.hi, a.hi_closed) if c < 0 else (b.hi, b.hi_closed) if c > 0
+                         else (a.hi, a.hi_closed and b.hi_closed))
+        k = lo.compare(hi)
+        if k < 0 or (k == 0 and lo_closed and hi_closed):
+            out.append(Interval(lo, hi, lo_closed, hi_closed))
+        i, j = i + (c <= 0), j + (c >= 0)
+    return out
 
 
 def _valid_set(D, inequalities, equalities, exact_count, top):

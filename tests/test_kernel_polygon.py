@@ -70,7 +70,7 @@ coordinate = st.fractions(min_value=-5, max_value=5, max_denominator=7)
 point_sets = st.lists(st.tuples(coordinate, coordinate), min_size=3, max_size=14)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(point_sets, st.randoms(use_true_random=False))
 def test_random_polygons_agree_with_the_edge_walk(points, rng):
     corners = hull(points)
