@@ -251,13 +251,16 @@ def strip_zero_roots(p):
 
 
 def sign_right_of(p, x):
-    """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0)."""
-    q = trim(p)
+    """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0): the sign of
+    the first nonzero derivative at x (at x = 0, of the lowest nonzero coefficient), in integers."""
+    q = integer_coefficients(p)
+    if x == 0:
+        return next((sign(c) for c in q if c), 0)
     while q:
-        s = sign(evaluate(q, x))
+        s = sign_at(q, Fraction(x))
         if s:
             return s
-        q = derivative(q)
+        q = _integer_derivative(q)
     return 0
 
 

@@ -112,7 +112,9 @@ def _boxes(vertices, N, T):
     for t, u in zip(ends, ends[1:]):
         X, Y, M = _piece(N, t, u - t)
         Z = [[x + y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)]
-        maps.append((_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)))
+        (Xi, dX), (Zi, dZ), (Mi, dM) = (_integer_matrix(Q) for Q in (X, Z, M))
+        maps.append(([[K * x for x in row] for row in Xi], dX, [[K * x for x in row] for row in Zi], dZ,
+                     [[K * x for x in row] for row in Mi], dM))
     out = []
     for v in vertices:
         q = 1
@@ -121,14 +123,16 @@ def _boxes(vertices, N, T):
         p = [int(x * q) for x in v]
         ap = [abs(x) for x in p]
         mine = []
-        for (Xi, dX), (Zi, dZ), (Mi, dM) in maps:
-            x = [sum(map(int.__mul__, row, p)) for row in Xi]  # dX q (X v)
-            z = [sum(map(int.__mul__, row, p)) for row in Zi]
-            rho = max(sum(map(int.__mul__, row, ap)) for row in Mi)  # dM q rho
+        for KX, dX, KZ, dZ, KM, dM in maps:
             dx, dz = dX * q, dZ * q
-            lo = [min((K * a) // dx, (K * c) // dz) for a, c in zip(x, z)]
-            hi = [max(-((-K * a) // dx), -((-K * c) // dz)) for a, c in zip(x, z)]
-            mine.append(hi + lo + [-((-K * rho) // (dM * q))])
+            hi, lo = [], []
+            for row_x, row_z in zip(KX, KZ):  # K (X v) = (K dX q X v) / (dX q), likewise Z
+                fx, rx = divmod(sum(map(int.__mul__, row_x, p)), dx)
+                fz, rz = divmod(sum(map(int.__mul__, row_z, p)), dz)
+                lo.append(min(fx, fz))
+                hi.append(max(fx + (rx > 0), fz + (rz > 0)))  # ceilings
+            rho = max(sum(map(int.__mul__, row, ap)) for row in KM)  # K dM q rho
+            mine.append(hi + lo + [-(-rho // (dM * q))])
         out.append(mine)
     return out
 

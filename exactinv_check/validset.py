@@ -231,6 +231,8 @@ def first_end(D, inequalities, equalities, first=()):
         tau = _first_sign_change(p, upper)
         if tau is not None and tau.compare(best) < 0:
             best = tau
+            if best.poly is not None:  # a tight enclosure: later conditions are cleared by Descartes' rule
+                best.refine_below(best.hi / 2**64)
     D = polys.trim(D)
     if len(D) > 1:
         roots = polys.positive_roots(D)
