@@ -16,7 +16,13 @@ set), hypercubes (Taylor-4), and the R^6 family: 100 random facets
 matrix (P invariant), with the Taylor-6 valid set, the Taylor-12 largest
 threshold, the backward-Euler and the Pade(6,6) valid sets.
 
+With ``--kernel-before REV`` the kernel of git revision REV (from a temporary
+worktree) and this tree's kernel also check the same certificate file, each
+in a fresh ``python -S -m exactinv_check`` subprocess (the kernel's
+before/after, in the same run; stopped after ``--cap`` seconds).
+
 Run:  python benchmarks/scale.py [--quick] [--cap SECONDS] [--only NAME ...] [--no-before] [--no-kernel]
+                                 [--kernel-before REV]
 """
 
 from __future__ import annotations
@@ -99,6 +105,19 @@ def before(name, tree, cap):
     return data["seconds"], data["value"]
 
 
+def kernel_seconds(path, tree, cap):
+    """Wall seconds of ``python -S -m exactinv_check -q path`` with the kernel of ``tree``,
+    and whether it verified; (None, None) past the cap."""
+    cmd = [sys.executable, "-S", "-m", "exactinv_check", "-q", path]
+    t0 = time.perf_counter()
+    try:
+        out = subprocess.run(cmd, env=dict(os.environ, PYTHONPATH=tree), capture_output=True, text=True,
+                             timeout=cap, cwd=tree)
+    except subprocess.TimeoutExpired:
+        return None, None
+    return time.perf_counter() - t0, out.returncode == 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true")
@@ -106,6 +125,7 @@ def main(argv=None):
     parser.add_argument("--only", nargs="*")
     parser.add_argument("--no-before", action="store_true")
     parser.add_argument("--no-kernel", action="store_true")
+    parser.add_argument("--kernel-before")
     parser.add_argument("--child")
     args = parser.parse_args(argv)
     if args.child:
@@ -114,16 +134,18 @@ def main(argv=None):
         return
     names = args.only or (QUICK if args.quick else list(INSTANCES))
     with tempfile.TemporaryDirectory() as tmp:
-        tree = os.path.join(tmp, "before")
-        if not args.no_before:
-            subprocess.run(["git", "-C", str(HERE.parent), "worktree", "add", "--detach", tree, BEFORE],
+        tree, args.kernel_tree, args.tmp = os.path.join(tmp, "before"), os.path.join(tmp, "kernel-before"), tmp
+        made = ([(tree, BEFORE)] if not args.no_before else []) + (
+            [(args.kernel_tree, args.kernel_before)] if args.kernel_before else [])
+        for path, rev in made:
+            subprocess.run(["git", "-C", str(HERE.parent), "worktree", "add", "--detach", path, rev],
                            check=True, capture_output=True)
         try:
             for name in names:
                 row(name, tree, args)
         finally:
-            if not args.no_before:
-                subprocess.run(["git", "-C", str(HERE.parent), "worktree", "remove", "--force", tree], capture_output=True)
+            for path, _ in made:
+                subprocess.run(["git", "-C", str(HERE.parent), "worktree", "remove", "--force", path], capture_output=True)
 
 
 def row(name, tree, args):
@@ -137,6 +159,14 @@ def row(name, tree, args):
         ok = ei.check(result.certificate).ok
         tk = time.perf_counter() - t0
         kernel = f"kernel {tk:.1f} s ({tk / ta:.2f}x engine, {'VERIFIED' if ok else 'REJECTED'})"
+    if args.kernel_before and INSTANCES[name][3]:
+        path = os.path.join(args.tmp, "certificate.json")
+        with open(path, "w", encoding="utf-8") as fh:
+            json.dump(result.certificate, fh)
+        (t_old, ok_old), (t_new, ok_new) = (kernel_seconds(path, t, args.cap) for t in (args.kernel_tree, str(HERE.parent)))
+        text = lambda t, ok: f"> {args.cap:.0f}" if t is None else f"{t:.2f} s ({'VERIFIED' if ok else 'REJECTED'})"
+        ratio = f"{t_old / t_new:.1f}x" if t_old and t_new else "-"
+        kernel += f"\n    kernel by file: before ({args.kernel_before}) {text(t_old, ok_old)}, after {text(t_new, ok_new)}, {ratio}"
     p = result.pruning
     stats = "no pruning" if p is None else (
         f"pairs {p.pairs:,}, built {p.survivors:,}{'' if p.applied else ' (all: too many survived)'}; "

@@ -175,16 +175,23 @@ class _Packed:
     iff v_t >= 0, i.e. iff :func:`_outside` holds for row J_t: those slots are read
     off X masked to the top bits (bytes 0x80 of its little-endian bytes)."""
 
-    def __init__(self, rows, J, width):
-        self.J, self.width, self.size = J, width, width * len(J)
+    def __init__(self, table, J):
+        width, signs, cells = table
+        self.J, self.width, self.size, self.signs = J, width, width * len(J), signs
+        self.columns = [int.from_bytes(b"".join([column[j] for j in J]), "little") for column in cells[:-1]]
+        self.base = int.from_bytes(b"".join([cells[-1][j] for j in J]), "little")
+        self.mask = int.from_bytes((bytes(width - 1) + b"\x80") * len(J), "little")
+
+    @staticmethod
+    def table(rows, width):
+        """(width, signs s_c, cells): each |a_jc| and 2^(S-1) - K b_j as W little-endian bytes,
+        column by column, once; a :class:`_Packed` joins the cells of its rows."""
         columns = len(rows[0][0])
         n = (columns - 1) // 2
-        self.signs = [1] * n + [-1] * n + [1]
-        self.columns = [int.from_bytes(b"".join(abs(rows[j][0][c]).to_bytes(width, "little") for j in J), "little")
-                        for c in range(columns)]
         half = 1 << (8 * width - 1)
-        self.base = int.from_bytes(b"".join((half - rows[j][1]).to_bytes(width, "little") for j in J), "little")
-        self.mask = int.from_bytes((bytes(width - 1) + b"\x80") * len(J), "little")
+        cells = [[abs(row[0][c]).to_bytes(width, "little") for row in rows] for c in range(columns)]
+        cells.append([(half - row[1]).to_bytes(width, "little") for row in rows])
+        return width, [1] * n + [-1] * n + [1], cells
 
     def outside(self, box):
         """The rows J_t for which :func:`_outside` holds (in the order of J)."""
@@ -206,27 +213,40 @@ class _Packed:
 def survivors(G, b, vertices, N, T, order):
     """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune:
     exactly the pairs (i, j) with :func:`_outside` for row j and the box of vertex i on
-    some piece (a box around boxes is outside whenever one of them is, so the blocks only
-    skip work), each test done by :class:`_Packed`."""
+    some piece (a box around boxes is outside whenever one of them is, so the blocks of
+    vertices along ``order`` and their chunks only skip work), each test done by
+    :class:`_Packed`."""
     rows = _integer_rows(G, b)
     boxes = _boxes(vertices, N, T)
     out = {i: [] for i in range(len(vertices))}
     if not rows:
         return out
-    width = _slot_bytes(rows, boxes)
-    everything = _Packed(rows, list(range(len(rows))), width)
+    table = _Packed.table(rows, _slot_bytes(rows, boxes))
+    everything = _Packed(table, list(range(len(rows))))
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
         block = order[start:start + size]
-        per_piece = [_union([boxes[i][a] for i in block]) for a in range(len(boxes[block[0]]))]
+        chunks = [block[k:k + isqrt(size)] for k in range(0, len(block), isqrt(size))]
+        per_chunk = [[_union([boxes[i][a] for i in chunk]) for a in range(len(boxes[block[0]]))] for chunk in chunks]
+        per_piece = [_union(list(boxes_a)) for boxes_a in zip(*per_chunk)]
         near = everything.outside(_union(per_piece))
-        if not near:
-            continue
-        near_rows = _Packed(rows, near, width)
-        for a, box in enumerate(per_piece):
-            hits = near_rows.outside(box)
-            if hits:
-                hit_rows = _Packed(rows, hits, width)
-                for i in block:
-                    out[i].extend(hit_rows.outside(boxes[i][a]))
+        if near:
+            near_rows = _Packed(table, near)
+            for a, box in enumerate(per_piece):
+                _descend(table, near_rows.outside(box), [(chunk, c[a]) for chunk, c in zip(chunks, per_chunk)],
+                         boxes, a, out)
     return {i: sorted(set(f)) for i, f in out.items()}
+
+
+def _descend(table, hits, chunks, boxes, a, out):
+    """Piece a of one block: the rows ``hits`` its box does not clear, tested on each
+    chunk's box, then on the boxes of the chunk's vertices."""
+    if not hits:
+        return
+    hit_rows = _Packed(table, hits)
+    for chunk, box in chunks:
+        close = hit_rows.outside(box)
+        if close:
+            close_rows = _Packed(table, close)
+            for i in chunk:
+                out[i].extend(close_rows.outside(boxes[i][a]))

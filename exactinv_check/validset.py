@@ -1,12 +1,16 @@
 """The exact set {h >= 0 : every inequality >= 0, every equality = 0, D(h) != 0}.
 
-Recomputed from scratch, trusting no claimed end: every positive root of
-every condition and of D is isolated (Sturm), the roots are merged in exact
-order, the sign of each condition on each open cell is decided at a rational
-sample point and tracked across the roots, and each root itself is decided
-exactly (a condition vanishes there iff the root is one of its own).  The
-result is the list of maximal intervals, each end exact and marked closed or
-open -- what a valid-set claim must equal.
+Recomputed from scratch, trusting no claimed end.  The sweep
+(:func:`_valid_set`): every positive root of the given conditions and of D
+is isolated (Sturm), the roots are merged in exact order, the sign of each
+condition on each open cell is decided at a rational sample point and
+tracked across the roots, and each root itself is decided exactly (a
+condition vanishes there iff the root is one of its own).  :func:`valid_set`
+runs it on D and the equalities, and on each inequality alone, and
+intersects the results one inequality at a time -- skipping an inequality
+proved >= 0 around the current set by Descartes' rule, which leaves the set
+unchanged.  The result is the list of maximal intervals, each end exact and
+marked closed or open -- what a valid-set claim must equal.
 """
 
 from fractions import Fraction
@@ -68,37 +72,45 @@ def valid_set(D, inequalities, equalities, first=()):
     Condition by condition: V starts as {h >= 0 : D(h) != 0, every equality = 0}
     (:func:`_valid_set`), and each inequality p -- those of ``first`` first (e.g.
     the conditions of one vertex, which bound V early), then the others by
-    :func:`_tightness` -- replaces V by V n {p >= 0} (:func:`_restrict`), an exact
-    identity, so the last V is the valid set whatever the order.  The order only
-    makes it cheap: once V is bounded, most p are proved positive on V by
+    :func:`_tightness` -- replaces V by V n {p >= 0}, an exact
+    identity, so the last V is the valid set whatever the order.  Each step is
+    exact: V is kept when p is proved >= 0 on an interval [a, b] around V
+    (:func:`_nonnegative_on`), and otherwise intersected (:func:`_intersect`) with
+    p's own valid set (every positive root of p isolated).  The order only makes
+    it cheap: once V is bounded, most p are proved positive around V by
     Descartes' rule, without a Sturm sequence."""
     early = [list(p) for p in first]
     seen = set(map(tuple, early))
     rest = sorted((list(p) for p in inequalities if tuple(p) not in seen), key=_tightness)
-    V = _valid_set(D, [], equalities, 0, None)
+    V, hull = _valid_set(D, [], equalities, 0, None), None
     for p in early + rest:
         if not V:
             break
-        V = _restrict(V, p)
+        hull = hull or _hull(V)
+        if hull is not None and _nonnegative_on(polys.integer_coefficients(p), *hull):
+            continue  # V n {p >= 0} = V
+        V, hull = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None)), None
     return V
 
 
-def _restrict(V, p):
-    """V n {h >= 0 : p(h) >= 0} for a list V of maximal intervals in [0, oo): V itself if
-    p is proved positive on the open hull (a, b) of V's rational enclosure (then p >= 0
-    on [a, b] by continuity), else the exact intersection with p's own valid set."""
-    if not V[-1].hi.inf:
-        a, b = V[0].lo.bounds()[0], _coarse_above(V[-1].hi.bounds()[1])
-        if a == b:
-            if polys.evaluate(p, a) >= 0:
-                return V
-        elif polys.sign_right_of(p, a) > 0 and polys.no_root_between(p, a, b):
-            return V
-    out = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None))
-    if out and out[-1].hi.poly is not None:  # a tight enclosure of the end: later tests need no Sturm sequence
-        end = out[-1].hi
+def _hull(V):
+    """Rationals a <= b with V inside [a, b] (b short and close above V's end), or None
+    if V is unbounded."""
+    end = V[-1].hi
+    if end.inf:
+        return None
+    if end.poly is not None:  # a tight enclosure of the end: most tests then need no Sturm sequence
         end.refine_below(end.hi / 2**64)
-    return out
+    return V[0].lo.bounds()[0], _coarse_above(end.bounds()[1])
+
+
+def _nonnegative_on(ints, a, b):
+    """True proves p >= 0 on [a, b] (p as integer coefficients): p(a) >= 0 if a = b; else p
+    positive just right of a with no root in the open (a, b) by Descartes' rule (then p > 0
+    on (a, b), and p >= 0 at the ends by continuity).  False says nothing."""
+    if a == b:
+        return polys.sign_at(ints, a) >= 0
+    return polys.sign_right_of(ints, a) > 0 and polys.no_root_between(ints, a, b)
 
 
 def _later_start(a, b):

@@ -30,9 +30,9 @@ def test_the_packed_test_is_the_row_by_row_test(data, n):
         rows.append(([max(x, 0) for x in g] + [min(x, 0) for x in g] + [sum(map(abs, g))], data.draw(entries)))
     boxes = [[[data.draw(entries) for _ in range(2 * n)] + [abs(data.draw(entries))] for _ in range(3)]
              for _ in range(data.draw(st.integers(1, 4)))]
-    width = pruning._slot_bytes(rows, boxes)
+    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, boxes))
     J = data.draw(st.lists(st.integers(0, m - 1), min_size=1, max_size=m, unique=True))
-    packed = pruning._Packed(rows, J, width)
+    packed = pruning._Packed(table, J)
     for per_vertex in boxes:
         for box in per_vertex:
             assert packed.outside(box) == [j for j in J if pruning._outside(rows[j], box)]
