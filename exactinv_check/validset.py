@@ -87,27 +87,31 @@ def valid_set(D, inequalities, equalities, first=()):
         if not V:
             break
         hull = hull or _hull(V)
-        if hull is not None and _nonnegative_on(polys.integer_coefficients(p), *hull):
+        if _nonnegative_on(polys.integer_coefficients(p), *hull):
             continue  # V n {p >= 0} = V
         V, hull = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None)), None
     return V
 
 
 def _hull(V):
-    """Rationals a <= b with V inside [a, b] (b short and close above V's end), or None
+    """Rationals a <= b with V inside [a, b] (b short and close above V's end); b is None
     if V is unbounded."""
     end = V[-1].hi
     if end.inf:
-        return None
+        return V[0].lo.bounds()[0], None
     if end.poly is not None:  # a tight enclosure of the end: most tests then need no Sturm sequence
         end.refine_below(end.hi / 2**64)
     return V[0].lo.bounds()[0], _coarse_above(end.bounds()[1])
 
 
 def _nonnegative_on(ints, a, b):
-    """True proves p >= 0 on [a, b] (p as integer coefficients): p(a) >= 0 if a = b; else p
-    positive just right of a with no root in the open (a, b) by Descartes' rule (then p > 0
-    on (a, b), and p >= 0 at the ends by continuity).  False says nothing."""
+    """True proves p >= 0 on [a, b] (p as integer coefficients; b = None: on [a, oo)): p(a) >= 0
+    if a = b; else p positive just right of a with no root in the open (a, b) by Descartes'
+    rule (then p > 0 on (a, b), and p >= 0 at the ends by continuity); for b = None, p
+    positive right of 0 with no positive root at all (coefficients of one sign).  False
+    says nothing."""
+    if b is None:
+        return polys.sign_right_of(ints, 0) > 0 and _no_positive_root(ints)
     if a == b:
         return polys.sign_at(ints, a) >= 0
     return polys.sign_right_of(ints, a) > 0 and polys.no_root_between(ints, a, b)

@@ -114,6 +114,9 @@ def test_tangent_conditions_by_hand():
     # an equality and a pole: {h : h (h - 1) = 0, 3 - h != 0} under 2 - h >= 0
     V = validset.valid_set([F(3), F(-1)], [(2, -1)], [(0, -1, 1)], [])
     assert [(str(i.lo), str(i.hi)) for i in V] == [("0", "0"), ("1", "1")]
+    # conditions with no positive root keep an unbounded set: (1 + h)^2 > 0, h >= 0, 1 - h + h^2 > 0
+    V = validset.valid_set(one, [(1, 2, 1), (0, 1), (1, -1, 1)], [], [(1, 2, 1)])
+    assert [(str(i.lo), str(i.hi), i.lo_closed, i.hi_closed) for i in V] == [("0", "oo", True, False)]
     # a pole where a condition starts: h - 1 >= 0 and D = 1 - h != 0 leave (1, oo), open at 1
     V = validset.valid_set([F(1), F(-1)], [(-1, 1)], [], [])
     assert [(str(i.lo), str(i.hi), i.lo_closed, i.hi_closed) for i in V] == [("1", "oo", False, False)]
