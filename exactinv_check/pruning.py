@@ -21,7 +21,11 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    may keep more pairs than needed, never fewer.  To stay cheap it tests
    boxes around blocks of consecutive vertices along ``order`` (any
    permutation; a good one keeps near vertices together) first over all
-   pieces at once, then piece by piece, and only then vertex by vertex.
+   pieces at once, then piece by piece, then around chunks of each block,
+   and only then vertex by vertex; each box against many facets at once
+   (:class:`_Packed`: one integer, one facet per fixed-width slot).  The
+   kept pairs are exactly those of the vertex-by-vertex test: a box around
+   boxes clears a facet only if each of them does.
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
 The horizon is short (numerator and denominator of at most 64 bits): the pieces' exact powers t^i then stay
