@@ -1,6 +1,7 @@
 """The kernel's O(m log m) proof of a bounded convex polygon (exactinv_check.polygon),
 against the general edge walk and against forged generator lists."""
 
+import copy
 import random
 from fractions import Fraction as F
 
@@ -8,7 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv_check import polyhedra
+import exactinv as ei
+from exactinv_check import check, polyhedra
 from exactinv_check.polygon import prove_polygon
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.rationals import CheckFailure
@@ -183,3 +185,33 @@ def test_fuzzed_small_polygons_never_disagree():
         assert isinstance(f, str) == isinstance(g, str), (G, b, listed, f, g)
         if not isinstance(f, str):
             assert f == g
+
+
+def test_forged_polygon_certificates():
+    """A valid-set certificate of the engine on a 12-gon, then forged generator lists and rows."""
+    pts = [[F(x), F(y)] for x, y in hull(
+        [((1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)) for t in (F(k, 5) for k in range(-6, 7))] + [(F(-1), F(0))])]
+    V = ei.valid_steplengths(ei.LinearSystem([[-1, "1/2"], ["-1/2", -1]]), ei.Polyhedron.from_vertices(pts),
+                             ei.methods.taylor(2), prune=False)
+    cert = V.certificate
+    assert check(cert).ok
+
+    def forged(change):
+        c = copy.deepcopy(cert)
+        change(c["problem"], c["claims"][0])
+        return check(c)
+
+    dropped = forged(lambda p, c: c["vertices"].pop(3))
+    assert not dropped.ok and "not listed" in str(dropped)
+    outside = forged(lambda p, c: c["vertices"].append(["2", "0"]))
+    assert not outside.ok and "not in P" in str(outside)
+    assert forged(lambda p, c: c["vertices"].reverse()).ok  # any order of the corners
+    assert forged(lambda p, c: c["vertices"].append(["0", "0"])).ok  # an interior point is harmless
+
+    def add_row(g, beta):
+        return lambda p, c: (p["G"].append(g), p["b"].append(beta))
+
+    assert forged(add_row(["1", "1"], "10")).ok  # a redundant facet: P and the valid set unchanged
+    assert forged(add_row([str(2 * F(x)) for x in cert["problem"]["G"][0]], str(2 * F(cert["problem"]["b"][0])))).ok
+    tighter = forged(add_row(cert["problem"]["G"][0], str(F(cert["problem"]["b"][0]) / 2)))
+    assert not tighter.ok and "not listed" in str(tighter)
