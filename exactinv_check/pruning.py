@@ -156,11 +156,12 @@ def _outside(row, box):
 
 def _slot_bytes(rows, boxes):
     """Bytes per slot of a :class:`_Packed` test: |g . box - K b| < 2^(8 W - 2) for every
-    row and every box (or union of boxes: the same entries), and K b as well."""
+    row and every box (or union of boxes: the same entries), and every |row entry| and
+    |K b| as well."""
     coefficient = max(abs(x) for row in rows for x in row[0])
     entry = max(abs(x) for per_vertex in boxes for box in per_vertex for x in box)
     threshold = max(abs(row[1]) for row in rows)
-    bound = len(rows[0][0]) * coefficient * entry + threshold
+    bound = len(rows[0][0]) * coefficient * entry + threshold + coefficient
     return (bound.bit_length() + 2 + 7) // 8
 
 

@@ -38,6 +38,14 @@ def test_the_packed_test_is_the_row_by_row_test(data, n):
             assert packed.outside(box) == [j for j in J if pruning._outside(rows[j], box)]
 
 
+def test_the_slots_hold_the_rows_even_when_every_box_is_zero():
+    """Regression (found by hypothesis): the slot width must cover the row entries
+    themselves, not only |g . box - K b|."""
+    rows = [([2**130, 0, 2**130], 1), ([0, -5, 5], -3)]
+    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, [[[0, 0, 0]]]))
+    assert pruning._Packed(table, [0, 1]).outside([0, 0, 0]) == [1]
+
+
 def _reference_survivors(G, b, verts, N, T):
     """Every pair tested row by row on every piece: the set the kernel must keep."""
     rows, boxes = pruning._integer_rows(G, b), pruning._boxes(verts, N, T)
@@ -153,3 +161,32 @@ def test_a_valid_set_wrong_only_at_a_tangency_is_rejected(numerator, truth, forg
     assert check(_certificate(numerator, truth)).ok
     for forged in forgeries:
         assert not check(_certificate(numerator, forged)).ok
+
+
+def _ceil(q):
+    return -((-q.numerator) // q.denominator)
+
+
+def _floor(q):
+    return q.numerator // q.denominator
+
+
+def test_boxes_are_the_outward_rounded_chords():
+    """_boxes against its definition in Fractions: for each piece, hi/lo = the K-scaled
+    coordinates of X v and Z v = (X + Y) v rounded up/down, B = K rho rounded up."""
+    rng = random.Random(3)
+    n = 3
+    A = [[F(rng.randint(-3, 3), 4) - (i == j) for j in range(n)] for i in range(n)]
+    verts = [[F(rng.randint(-20, 20), rng.randint(1, 20)) for _ in range(n)] for _ in range(6)]
+    _, N = method_matrices(A, [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)], [F(1)])
+    T = F(7, 5)
+    ends = pruning.nodes(T)
+    K = pruning.K
+    for v, mine in zip(verts, pruning._boxes(verts, N, T)):
+        for (t, u), box in zip(zip(ends, ends[1:]), mine):
+            X, Y, M = pruning._piece(N, t, u - t)
+            x = [sum(a * c for a, c in zip(row, v)) * K for row in X]
+            z = [sum((a + b) * c for a, b, c in zip(rx, ry, v)) * K for rx, ry in zip(X, Y)]
+            rho = max(sum(a * abs(c) for a, c in zip(row, v)) for row in M) * K
+            assert box == ([max(_ceil(a), _ceil(c)) for a, c in zip(x, z)]
+                           + [min(_floor(a), _floor(c)) for a, c in zip(x, z)] + [_ceil(rho)])
