@@ -20,7 +20,13 @@ Hypercubes take the box route (exactinv/beyond/box_conditions.py: the sign patte
 the rows of N(h), no vertex enumeration); ``--general`` measures the general route
 (``box=False``) on them instead, for the same-run ratio.
 
+With ``--kernel-before REV`` the kernel of git revision REV (from a temporary
+worktree) and this tree's kernel also check the same certificate file, each
+in a fresh ``python -S -m exactinv_check`` subprocess (the kernel's
+before/after, in the same run; stopped after ``--cap`` seconds).
+
 Run:  python benchmarks/scale.py [--quick] [--cap SECONDS] [--only NAME ...] [--no-before] [--no-kernel] [--general]
+                                 [--kernel-before REV]
 """
 
 from __future__ import annotations
@@ -112,6 +118,19 @@ def before(name, tree, cap):
     return data["seconds"], data["value"]
 
 
+def kernel_seconds(path, tree, cap):
+    """Wall seconds of ``python -S -m exactinv_check -q path`` with the kernel of ``tree``,
+    and whether it verified; (None, None) past the cap."""
+    cmd = [sys.executable, "-S", "-m", "exactinv_check", "-q", path]
+    t0 = time.perf_counter()
+    try:
+        out = subprocess.run(cmd, env=dict(os.environ, PYTHONPATH=tree), capture_output=True, text=True,
+                             timeout=cap, cwd=tree)
+    except subprocess.TimeoutExpired:
+        return None, None
+    return time.perf_counter() - t0, out.returncode == 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true")
@@ -120,6 +139,7 @@ def main(argv=None):
     parser.add_argument("--no-before", action="store_true")
     parser.add_argument("--no-kernel", action="store_true")
     parser.add_argument("--general", action="store_true", help="also time the general route (box=False) on cubes")
+    parser.add_argument("--kernel-before")
     parser.add_argument("--child")
     args = parser.parse_args(argv)
     if args.child:
@@ -128,16 +148,18 @@ def main(argv=None):
         return
     names = args.only or (QUICK if args.quick else list(INSTANCES))
     with tempfile.TemporaryDirectory() as tmp:
-        tree = os.path.join(tmp, "before")
-        if not args.no_before:
-            subprocess.run(["git", "-C", str(HERE.parent), "worktree", "add", "--detach", tree, BEFORE],
+        tree, args.kernel_tree, args.tmp = os.path.join(tmp, "before"), os.path.join(tmp, "kernel-before"), tmp
+        made = ([(tree, BEFORE)] if not args.no_before else []) + (
+            [(args.kernel_tree, args.kernel_before)] if args.kernel_before else [])
+        for path, rev in made:
+            subprocess.run(["git", "-C", str(HERE.parent), "worktree", "add", "--detach", path, rev],
                            check=True, capture_output=True)
         try:
             for name in names:
                 row(name, tree, args)
         finally:
-            if not args.no_before:
-                subprocess.run(["git", "-C", str(HERE.parent), "worktree", "remove", "--force", tree], capture_output=True)
+            for path, _ in made:
+                subprocess.run(["git", "-C", str(HERE.parent), "worktree", "remove", "--force", path], capture_output=True)
 
 
 def _statistics(result):
@@ -166,6 +188,14 @@ def row(name, tree, args):
         ok = ei.check(result.certificate).ok
         tk = time.perf_counter() - t0
         kernel = f"kernel {tk:.2f} s ({tk / ta:.2f}x engine, {'VERIFIED' if ok else 'REJECTED'})"
+    if args.kernel_before and INSTANCES[name][3]:
+        path = os.path.join(args.tmp, "certificate.json")
+        with open(path, "w", encoding="utf-8") as fh:
+            json.dump(result.certificate, fh)
+        (t_old, ok_old), (t_new, ok_new) = (kernel_seconds(path, t, args.cap) for t in (args.kernel_tree, str(HERE.parent)))
+        text = lambda t, ok: f"> {args.cap:.0f}" if t is None else f"{t:.2f} s ({'VERIFIED' if ok else 'REJECTED'})"
+        ratio = f"{t_old / t_new:.1f}x" if t_old and t_new else "-"
+        kernel += f"\n    kernel by file: before ({args.kernel_before}) {text(t_old, ok_old)}, after {text(t_new, ok_new)}, {ratio}"
     stats = _statistics(result)
     tb_text = f"> {args.cap:.0f}" if tb is None and not args.no_before else ("-" if tb is None else f"{tb:.2f}")
     ratio = f"{tb / ta:.1f}x" if tb else "-"

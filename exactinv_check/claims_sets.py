@@ -157,5 +157,6 @@ def valid_steplengths(problem, claim, context):
     gens, D, inequalities, equalities = _conditions(problem, claim, context)
     truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities, claim, problem.n))
     require_intervals(claim["intervals"], truth)
-    return (f"the valid set {truth} recomputed: every positive root of {len(inequalities) + len(equalities)} "
-            f"distinct conditions and of det h(hA) isolated, every cell and root decided exactly, over {_over(claim, gens)}")
+    return (f"the valid set {truth} recomputed from {len(inequalities) + len(equalities)} distinct conditions and "
+            f"det h(hA): each condition proved >= 0 around the set by Descartes' rule or intersected exactly, "
+            f"over {_over(claim, gens)}")
