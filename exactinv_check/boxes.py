@@ -46,8 +46,8 @@ every condition holds at h, and V_S = V: the recomputed set is exact.
 from math import gcd
 
 from . import polys
-from .conditions import method_matrices
-from .rationals import integer_matrix, require, vector, within_budget
+from .conditions import method_matrices, rebuild_size
+from .rationals import require, vector, within_budget
 from .reals import Real, separate
 from .validset import breakpoints
 
@@ -81,26 +81,13 @@ def vertex_of(index, lo, hi):
 
 
 def _price(A, numerator, denominator):
-    """Reject, before any work, a rebuild of D, N and the conditions over the kernel's work budget.
-    Word operations, with A = Ai / L (Ai integral, entries of b bits): polynomial methods
-    n^3 deg g products of numbers of about k b bits (the powers Ai^k); rational ones one
-    fraction-free elimination of about n^3 w^2 per interpolation point (w words: the minors of
-    c h(tA) have about n (s b + s log t) bits) and n^2 count^2 w for the interpolation; then
-    about 2 n^3 d^2 w for the conditions (n rows, up to (n + 1) d + 1 sign patterns each, n + 1
+    """Reject, before any work, a rebuild of D, N and the conditions over the kernel's work budget:
+    the rebuild as priced by :func:`exactinv_check.conditions.rebuild_size`, then about 2 n^3 d^2 w
+    word operations for the conditions (n rows, up to (n + 1) d + 1 sign patterns each, n + 1
     entries of degree d; twice that with a sign-changing D)."""
     n = len(A)
-    L, Ai = integer_matrix(A)
-    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), 1])
-    dh, dg = len(denominator) - 1, len(numerator) - 1
-    if dh == 0:
-        d, w = dg, 1 + dg * b // 64
-        cost = n ** 3 * dg * w
-    else:
-        s, d = max(dg, dh), max(n * dh, (n - 1) * dh + dg)
-        count = d + 1
-        w = 1 + n * s * (b + (count + n * dh).bit_length()) // 64
-        cost = (count + n * dh) * n ** 3 * w * w + n * n * count * count * w
-    cost += 2 * n ** 3 * (d + 1) ** 2 * w * (2 if dh else 1)
+    cost, d, w = rebuild_size(A, numerator, denominator)
+    cost += 2 * n ** 3 * (d + 1) ** 2 * w * (2 if len(denominator) > 1 else 1)
     within_budget(cost, f"the box route of a {n} x {n} problem with entries of degree {d}")
 
 

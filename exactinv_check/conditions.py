@@ -19,9 +19,28 @@ from math import gcd
 
 from . import polys
 from .linalg import integer_solve
-from .rationals import integer_matrix, matmul, require
+from .rationals import integer_matrix, matmul, require, within_budget
 
 MAX_CONDITIONS = 20_000_000
+
+
+def rebuild_size(A, numerator, denominator):
+    """(cost, d, w) of rebuilding D and N (:func:`method_matrices`): d = deg N (and so of D up to n deg h_r),
+    w the words of an entry, cost in word operations.  With A = Ai / L (Ai integral, entries of b bits):
+    polynomial methods n^3 deg g products of numbers of about k b bits (the powers Ai^k); rational ones
+    one fraction-free elimination of about n^3 w^2 per interpolation point (the minors of c h_r(tA) have
+    about n (s b + s log t) bits) and n^2 count^2 w for the interpolation."""
+    n = len(A)
+    L, Ai = integer_matrix(A)
+    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), 1])
+    dh, dg = len(denominator) - 1, len(numerator) - 1
+    if dh == 0:
+        w = 1 + dg * b // 64
+        return n ** 3 * dg * w, dg, w
+    s, d = max(dg, dh), max(n * dh, (n - 1) * dh + dg)
+    count = d + 1
+    w = 1 + n * s * (b + (count + n * dh).bit_length()) // 64
+    return (count + n * dh) * n ** 3 * w * w + n * n * count * count * w, d, w
 
 
 def _integer_powers(Ai, top):
@@ -41,7 +60,8 @@ def method_matrices(A, numerator, denominator):
     coefficients of g and h_r, s = max(deg g, deg h_r)), c h_r(tA) and c g(tA) are integer
     matrices at integer t, so D(t) c^n and N(t) c^n = adj(c h_r(tA)) c g(tA) come from one
     fraction-free elimination (linalg.integer_solve) per point; polynomial methods need
-    only the powers of Ai."""
+    only the powers of Ai.  Priced first (:func:`rebuild_size`): over the work budget, nothing runs."""
+    within_budget(rebuild_size(A, numerator, denominator)[0], f"D(h) and N(h) of a {len(A)} x {len(A)} problem")
     n = len(A)
     L, Ai = integer_matrix(A)
     if len(denominator) == 1:
@@ -76,6 +96,25 @@ def method_matrices(A, numerator, denominator):
     return D, N
 
 
+def method_matrix_at(A, numerator, denominator, dt):
+    """r(dt A) at one rational dt >= 0, or None where h_r(dt A) is singular: one fraction-free solve
+    h_r(dt A) X = g(dt A) over the integers (with dt A = p Ai / (q L), both sides scaled by
+    den (q L)^s), priced first like one interpolation point of :func:`method_matrices`."""
+    n = len(A)
+    L, Ai = integer_matrix(A)
+    p, q = dt.numerator, dt.denominator
+    s = max(len(numerator), len(denominator)) - 1
+    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), p.bit_length(), q.bit_length(), 1])
+    w = 1 + n * s * 2 * b // 64
+    within_budget(n ** 3 * w * w + s * n ** 3 * w, f"r(dt A) for a {n} x {n} matrix A at dt = a {b}-bit rational")
+    den = _common_denominator(list(numerator) + list(denominator))
+    powers = _integer_powers(Ai, s)
+    scaled = lambda coeffs: [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+    Hi, Gi = (_combination(scaled(c), powers, 1) for c in (denominator, numerator))
+    d, X = integer_solve(Hi, Gi)
+    return None if d == 0 else [[Fraction(x, d) for x in row] for row in X]
+
+
 def _combination(coeffs, powers, t):
     """sum_k coeffs[k] t^k powers[k], an integer matrix."""
     n = len(powers[0])
@@ -90,7 +129,6 @@ def _combination(coeffs, powers, t):
 def _lagrange_basis(points):
     """(basis, delta): integer polynomials with delta * l_i = basis[i] for the Lagrange basis l_i
     of the integer points (delta > 0), so p = sum_i p(t_i) l_i = (sum_i p(t_i) basis[i]) / delta."""
-    k = len(points)
     numerators, denominators = [], []
     for i, t in enumerate(points):
         poly, d = [1], 1
@@ -138,7 +176,9 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
     integers (a positive multiple of the condition, so with its signs), keyed to
     where they come from ((kind, index, facet) of one generator-facet pair).
     ``facets_of(kind, index)``, if given, names the facets to build for that
-    generator (None: all of them)."""
+    generator (None: all of them).  The conditions' degree 2 deg N is bounded before anything is built."""
+    degree = 2 * rebuild_size(A, numerator, denominator)[1]
+    require(degree <= polys.MAX_DEGREE, f"the conditions have degree {degree}, over the kernel's bound {polys.MAX_DEGREE}")
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
     facet_lists = {}

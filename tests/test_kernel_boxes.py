@@ -13,7 +13,7 @@ import exactinv as ei
 from exactinv.certificates import certificate
 from exactinv_check import check
 from exactinv_check.boxes import prove_box, vertex_of
-from exactinv_check.conditions import method_matrices
+from exactinv_check.conditions import method_matrices, method_matrix_at
 from exactinv_check.linalg import integer_solve
 from exactinv_check.rationals import CheckFailure, determinant, solve
 
@@ -228,6 +228,32 @@ def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(
     X = solve(H, Gm)
     assert [[sum(Nk[i][j] * t**k for k, Nk in enumerate(N)) for j in range(3)] for i in range(3)] == \
         [[d * x for x in r] for r in X]
+
+
+@pytest.mark.parametrize("m", [M.backward_euler(), M.pade(2, 2), M.pade(1, 2), M.theta(F(1, 3)), M.taylor(3)],
+                         ids=lambda m: m.name)
+@pytest.mark.parametrize("t", [F(0), F(1, 3), F(7, 2), F(-5, 9)])
+def test_method_matrix_at_is_r_of_dt_A_by_one_solve(m, t):
+    """r(tA) = h(tA)^-1 g(tA) in Fractions (a direct Gauss solve) equals the kernel's one fraction-free solve."""
+    A = [[F(-1), F(1, 2), F(0)], [F(1, 3), F(-2), F(1)], [F(0), F(-1, 4), F(-1)]]
+    num, den = [F(x) for x in m.numerator], [F(x) for x in m.denominator]
+
+    def poly_of(coeffs):
+        out = [[F(0)] * 3 for _ in range(3)]
+        for c in reversed(coeffs):
+            out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)]
+                   for i in range(3)]
+        return out
+
+    H = poly_of(den)
+    expected = solve(H, poly_of(num)) if determinant(H) != 0 else None
+    assert method_matrix_at(A, num, den, t) == expected
+
+
+def test_method_matrix_at_is_none_where_r_has_a_pole():
+    """Backward Euler 1/(1 - z) on A = [[1]] at dt = 1: I - A is singular, r(A) does not exist."""
+    assert method_matrix_at([[F(1)]], [F(1)], [F(1), F(-1)], F(1)) is None
+    assert method_matrix_at([[F(1)]], [F(1)], [F(1), F(-1)], F(1, 2)) == [[F(2)]]
 
 
 def test_the_entries_root_isolation_is_priced_before_any_sturm_sequence():
