@@ -2,25 +2,44 @@
 
 On the same instances, in one run:
 
-* exactinv   -- ``optimal_gamma``: m row LPs in HiGHS (warm-started), exact
-                reconstruction and verification in Q (the certified answer);
+* exactinv   -- ``optimal_gamma``: every row LP solved in float by HiGHS, rounded
+                (or solved exactly on its basis) and proved optimal in one exact
+                integer batch (the certified answer: value, H, the binding row's
+                dual).  For a sparse G (at most two nonzeros per row on average,
+                e.g. the boxes) all m row LPs are ONE block-diagonal HiGHS LP
+                (presolve on); otherwise they are m warm-started HiGHS solves;
 * cvxpy hint -- the same certified pipeline with the cvxpy hint backend
                 (``exactinv.lp.hint_backend("cvxpy", solver=...)``: each row LP
                 a parametrised cvxpy problem, solver ``--hint-solver``, default
                 cvxpy's own choice); same exact value, checked;
 * cvxpy      -- the whole LP  min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}
                 as one cvxpy problem solved by HiGHS in floating point (no guarantee);
-* highs      -- the same whole LP handed to HiGHS directly (highspy, sparse
-                column-wise data, no modelling layer): the fastest float-only solve;
+* highs      -- the same whole LP handed to HiGHS directly (highspy, column-wise
+                arrays built with numpy and passed as arrays, no modelling layer):
+                the fastest float-only solve of gamma*;
 * highs rows -- the m row LPs alone, in HiGHS (warm-started, as the engine's
-                float step poses them): the float part of the certified route;
+                float step poses them for a dense G): nothing verified;
 * pplpy      -- the m row LPs solved by PPL's exact simplex (MIP_Problem), row by row.
+
+Fairness (``--float-only``): every column solves gamma* of the same instance
+with HiGHS at its default tolerances (primal/dual feasibility 1e-7); the float
+columns start from numpy copies of G, A, b made outside the timing, while the
+certified column starts from the exact data (reading it is part of its cost).
+Each column is the best of ``--repeat`` runs (default 5), the columns taking
+turns run by run (so a change of machine load hits all alike); ``median`` is
+the median over the runs of the paired ratio exact/highs (same round); the ``cpu`` columns give the same
+two ratios in process CPU time (all threads), which does not count the waits
+for a core on a shared machine.  Every float value is
+asserted equal to the exact gamma* within 1e-6.  The certified time includes
+the exact proof of every row but not the conversion of H to an fmpq matrix or
+to JSON (``H_flint``/``certificate`` build it on first use); the column
+``+H`` adds that conversion.
 
 Instances: boxes [-1,1]^n (m = 2n) with row-diagonally-dominant A, and random
 polytopes {x : Gx <= 1} inside [-1,1]^n with up to 500 facets and
 A = -I/2 + R, R small enough that P is invariant.
 
-Run:  python benchmarks/gamma.py [--quick] [--hint-solver CLARABEL]
+Run:  python benchmarks/gamma.py [--quick] [--hint-solver CLARABEL] [--float-only [--repeat 5]]
 """
 
 from __future__ import annotations
@@ -63,17 +82,44 @@ def polytope_instance(n: int, m: int, rng: random.Random):
     return ei.LinearSystem(A), ei.Polyhedron(G, [1] * len(G))
 
 
+class Elapsed(float):
+    """Wall-clock seconds (the float value), with the process's CPU seconds (all threads) as ``cpu``:
+    on a shared machine CPU time does not count the waits for a core."""
+
+    cpu: float
+
+
+def clock():
+    """A start mark for :func:`elapsed`."""
+    return time.perf_counter(), time.process_time()
+
+
+def elapsed(start):
+    """Elapsed since ``start``: wall seconds, ``.cpu`` the CPU seconds."""
+    out = Elapsed(time.perf_counter() - start[0])
+    out.cpu = time.process_time() - start[1]
+    return out
+
+
 def time_exact(S, P):
-    t = time.perf_counter()
+    t = clock()
     g = ei.optimal_gamma(S, P)
-    return time.perf_counter() - t, g
+    return elapsed(t), g
+
+
+def time_exact_with_H(S, P):
+    """optimal_gamma and its H as an fmpq matrix (built on first use)."""
+    t = clock()
+    g = ei.optimal_gamma(S, P)
+    assert g.H_flint is not None
+    return elapsed(t), g
 
 
 def time_exact_cvxpy_hint(S, P, solver):
-    t = time.perf_counter()
+    t = clock()
     with ei.lp.hint_backend("cvxpy", solver=solver):
         g = ei.optimal_gamma(S, P)
-    return time.perf_counter() - t, g
+    return elapsed(t), g
 
 
 def time_cvxpy(S, P):
@@ -81,45 +127,52 @@ def time_cvxpy(S, P):
     A = np.array([[float(v) for v in r] for r in S.A])
     b = np.array([float(v) for v in P.b])
     m = P.m
-    t = time.perf_counter()
+    t = clock()
     H = cp.Variable((m, m))
     gamma = cp.Variable()
     problem = cp.Problem(cp.Minimize(gamma), [H + gamma * np.eye(m) >= 0, H @ G == G @ A, H @ b <= 0])
     problem.solve(solver=cp.HIGHS)
-    return time.perf_counter() - t, problem.value
+    return elapsed(t), problem.value
 
 
 def time_highs(S, P):
-    """min gamma s.t. H + gamma I >= 0 (entrywise), H G = G A, H b <= 0, by highspy directly."""
+    """min gamma s.t. H + gamma I >= 0 (entrywise), H G = G A, H b <= 0, by highspy directly:
+    column-wise data assembled with numpy and passed as arrays (no modelling layer, no
+    scipy), HiGHS' defaults (presolve on, tolerances 1e-7) -- the fastest float-only solve."""
     G = np.array([[float(v) for v in r] for r in P.G])
     A = np.array([[float(v) for v in r] for r in S.A])
     b = np.array([float(v) for v in P.b])
     m, n = G.shape
-    t = time.perf_counter()
-    I = sp.identity(m, format="csr")  # variables: H row-major (m*m), then gamma
-    rows_HG = sp.hstack([sp.kron(I, sp.csr_matrix(G.T)), sp.csr_matrix((m * n, 1))])  # row j*n+i: (HG)_ji
-    rows_Hb = sp.hstack([sp.kron(I, sp.csr_matrix(b[None, :])), sp.csr_matrix((m, 1))])
-    rows_diag = sp.hstack([sp.csr_matrix((np.ones(m), (np.arange(m), np.arange(m) * (m + 1))), shape=(m, m * m)),
-                           sp.csr_matrix(np.ones((m, 1)))])  # h_jj + gamma >= 0
-    M = sp.vstack([rows_HG, rows_Hb, rows_diag]).tocsc()
+    t = clock()
+    # variables: H row-major (column j*m + k is h_jk), then gamma; rows: (HG)_ji at j*n + i,
+    # (Hb)_j at m*n + j, h_jj + gamma >= 0 at m*n + m + j
+    Bt = np.vstack([G.T, b[None, :]])  # column k of [G^T; b^T]: the entries of h_jk in block j
+    ks, rs = np.nonzero(Bt.T)
+    vals = Bt.T[ks, rs]
+    blocks = np.arange(m)[:, None]
+    col = (blocks * m + ks[None, :]).ravel()
+    row = np.where(rs[None, :] < n, blocks * n + rs[None, :], m * n + blocks).ravel()
+    val = np.tile(vals, m)
+    diag = np.arange(m)
+    col = np.concatenate([col, diag * (m + 1), np.full(m, m * m)])
+    row = np.concatenate([row, m * n + m + diag, m * n + m + diag])
+    val = np.concatenate([val, np.ones(2 * m)])
+    order = np.argsort(col * (m * n + 2 * m) + row, kind="stable")
+    start = np.searchsorted(col[order], np.arange(m * m + 2)).astype(np.int32)
     inf, GA = highspy.kHighsInf, (G @ A).reshape(-1)
     col_lower = np.zeros(m * m + 1)
-    col_lower[np.arange(m) * (m + 1)] = -inf  # diagonal entries and gamma are free
+    col_lower[diag * (m + 1)] = -inf  # diagonal entries and gamma are free
     col_lower[-1] = -inf
-    lp = highspy.HighsLp()
-    lp.num_col_, lp.num_row_ = m * m + 1, M.shape[0]
-    lp.col_cost_ = np.concatenate([np.zeros(m * m), [1.0]])
-    lp.col_lower_, lp.col_upper_ = col_lower, np.full(m * m + 1, inf)
-    lp.row_lower_ = np.concatenate([GA, np.full(m, -inf), np.zeros(m)])
-    lp.row_upper_ = np.concatenate([GA, np.zeros(m), np.full(m, inf)])
-    lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-    lp.a_matrix_.start_, lp.a_matrix_.index_ = M.indptr.astype(np.int32), M.indices.astype(np.int32)
-    lp.a_matrix_.value_ = M.data
+    cost = np.zeros(m * m + 1)
+    cost[-1] = 1.0
     h = highspy.Highs()
     h.setOptionValue("output_flag", False)
-    h.passModel(lp)
+    h.passModel(m * m + 1, m * n + 2 * m, len(order), int(highspy.MatrixFormat.kColwise),
+                int(highspy.ObjSense.kMinimize), 0.0, cost, col_lower, np.full(m * m + 1, inf),
+                np.concatenate([GA, np.full(m, -inf), np.zeros(m)]), np.concatenate([GA, np.zeros(m), np.full(m, inf)]),
+                start, row[order].astype(np.int32), val[order], np.zeros(m * m + 1, np.int32))
     h.run()
-    return time.perf_counter() - t, h.getInfo().objective_function_value
+    return elapsed(t), h.getInfo().objective_function_value
 
 
 def time_highs_rows(S, P):
@@ -127,7 +180,7 @@ def time_highs_rows(S, P):
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     GA = np.array([[float(v) for v in r] for r in P.G]) @ np.array([[float(v) for v in r] for r in S.A])
-    t = time.perf_counter()
+    t = clock()
     float_lp = FloatLP(constraint, [True] * n + [False], HighsHint())
     model = float_lp.backend.model(float_lp.A, float_lp.equality)
     best = -np.inf
@@ -136,14 +189,14 @@ def time_highs_rows(S, P):
         cost[j] = 1.0
         hint = model.solve(cost, np.concatenate([GA[j], [0.0]]) * float_lp.row_scale, [k != j for k in range(m)])
         best = max(best, -hint.x[j] if hint.status == "optimal" else np.inf)
-    return time.perf_counter() - t, best
+    return elapsed(t), best
 
 
 def time_ppl(S, P):
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
     GA = P.G_flint * S.A_flint
-    t = time.perf_counter()
+    t = clock()
     best = None
     done = 0
     for j in range(m):
@@ -153,10 +206,10 @@ def time_ppl(S, P):
         value = -Fraction(int(x[j, 0].p), int(x[j, 0].q)) if status == "optimal" else None
         best = value if best is None or (value is not None and value > best) else best
         done += 1
-        if time.perf_counter() - t > PPL_BUDGET:
+        if time.perf_counter() - t[0] > PPL_BUDGET:
             break
-    elapsed = time.perf_counter() - t
-    return elapsed * m / done, done < m, best
+    spent = time.perf_counter() - t[0]
+    return spent * m / done, done < m, best
 
 
 def paths_text(paths):
@@ -164,28 +217,45 @@ def paths_text(paths):
     return {str(path): count for path, count in paths.items()}
 
 
-def best_of(repeat, fn, *args):
-    """The fastest of ``repeat`` runs (the machine is shared: the minimum is the least noisy)."""
-    runs = [fn(*args) for _ in range(repeat)]
+def interleaved_runs(repeat, fns, *args):
+    """For each fn, ``repeat`` runs (time, value), the fns taking turns (round r runs every fn
+    once), so that a change of machine load hits all columns alike."""
+    runs = [[] for _ in fns]
+    for _ in range(repeat):
+        for fn, out in zip(fns, runs):
+            out.append(fn(*args))
+    return runs
+
+
+def fastest(runs):
+    """The fastest run (the machine is shared: the minimum is the least noisy time)."""
     return min(runs, key=lambda r: r[0])
 
 
+def paired_median(runs, base):
+    """The median over rounds of time(run) / time(base run of the same round)."""
+    return float(np.median([r[0] / b[0] for r, b in zip(runs, base)]))
+
+
 def float_only_table(instances, repeat):
-    """The certified gamma* against the float-only solves, best of ``repeat`` runs each."""
-    header = (f"{'instance':<18}{'m':>5}{'exact s':>10}{'cvxpy s':>10}{'highs s':>10}{'rows s':>9}"
-              f"{'exact/cvxpy':>13}{'exact/highs':>13}{'exact/rows':>12}  route")
+    """The certified gamma* against the float-only solves: best of ``repeat`` interleaved runs
+    each (wall clock), the median over rounds of the paired ratio exact/highs (same round),
+    and the same two ratios in CPU time (not counting the waits for a core of a shared machine)."""
+    header = (f"{'instance':<16}{'m':>5}{'exact s':>9}{'+H s':>7}{'cvxpy s':>9}{'highs s':>9}{'rows s':>8}"
+              f"{'ex/cvxpy':>9}{'ex/highs':>9}{'median':>7}{'+H/highs':>9}{'ex/rows':>8}"
+              f"{'cpu ex/highs':>13}{'cpu median':>11}  route")
     print(header)
     print("-" * len(header))
     for name, S, P in instances:
-        te, g = best_of(repeat, time_exact, S, P)
-        tc, vc = best_of(repeat, time_cvxpy, S, P)
-        th, vh = best_of(repeat, time_highs, S, P)
-        tr, vr = best_of(repeat, time_highs_rows, S, P)
+        runs = interleaved_runs(repeat, (time_exact, time_exact_with_H, time_cvxpy, time_highs, time_highs_rows), S, P)
+        (te, g), (tH, _), (tc, vc), (th, vh), (tr, vr) = (fastest(r) for r in runs)
         for v in (vc, vh, vr):
             assert abs(v - float(g.value)) <= 1e-6 * max(1, abs(float(g.value))), (v, g.value)
-        best = min(tc, th)
-        print(f"{name:<18}{P.m:>5}{te:>10.3f}{tc:>10.3f}{th:>10.3f}{tr:>9.3f}{te / tc:>13.2f}{te / th:>13.2f}"
-              f"{te / tr:>12.2f}  {paths_text(g.paths)}  (best float {te / best:.2f}x)")
+        cpu_e, cpu_h = (min(r[0].cpu for r in runs[k]) for k in (0, 3))
+        cpu_median = float(np.median([e[0].cpu / h[0].cpu for e, h in zip(runs[0], runs[3])]))
+        print(f"{name:<16}{P.m:>5}{te:>9.3f}{tH:>7.3f}{tc:>9.3f}{th:>9.3f}{tr:>8.3f}{te / tc:>9.2f}{te / th:>9.2f}"
+              f"{paired_median(runs[0], runs[3]):>7.2f}{tH / th:>9.2f}{te / tr:>8.2f}{cpu_e / cpu_h:>13.2f}"
+              f"{cpu_median:>11.2f}  {paths_text(g.paths)}")
         sys.stdout.flush()
 
 
@@ -196,7 +266,7 @@ def main(argv=None):
     parser.add_argument("--no-ppl", action="store_true", help="skip the pplpy column")
     parser.add_argument("--float-only", action="store_true",
                         help="only the certified route against the float-only solves (cvxpy, HiGHS whole LP, HiGHS rows)")
-    parser.add_argument("--repeat", type=int, default=3, help="--float-only: best of this many runs (default 3)")
+    parser.add_argument("--repeat", type=int, default=5, help="--float-only: best of this many runs (default 5)")
     args = parser.parse_args(argv)
     rng = random.Random(20261122)
     instances = []

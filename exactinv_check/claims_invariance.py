@@ -11,7 +11,7 @@
 
 from fractions import Fraction
 
-from .conditions import method_matrices
+from .conditions import method_matrix_at
 from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
 
@@ -54,10 +54,8 @@ def _discrete_matrix(problem, claim):
         require(problem.method is not None, "a claim with dt needs the problem's method")
         dt = rational(claim["dt"], "dt")
         require(dt >= 0, "dt must be >= 0")
-        D, N = method_matrices(problem.A, problem.method.numerator, problem.method.denominator)
-        d = sum(c * dt ** k for k, c in enumerate(D))
-        require(d != 0, f"r(dt A) does not exist at dt = {describe(dt)}")
-        Ad = [[sum(Nk[i][j] * dt ** k for k, Nk in enumerate(N)) / d for j in range(problem.n)] for i in range(problem.n)]
+        Ad = method_matrix_at(problem.A, problem.method.numerator, problem.method.denominator, dt)
+        require(Ad is not None, f"r(dt A) does not exist at dt = {describe(dt)}")
         if "Ad" in claim:
             require(matrix(claim["Ad"], "Ad", problem.n, problem.n) == Ad, "Ad is not r(dt A)")
         return Ad, f"A_d = r(dt A) with dt = {describe(dt)}"

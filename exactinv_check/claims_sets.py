@@ -5,12 +5,17 @@ rec(P) and every line into lin(P) -- over a generator system that the kernel
 first proves complete (:mod:`exactinv_check.polyhedra`).  The kernel then
 rebuilds every condition polynomial (:mod:`exactinv_check.conditions`) and
 recomputes the valid set or its first interval (:mod:`exactinv_check.validset`);
-the claim must equal the recomputation, end by end and flag by flag.
+the claim must equal the recomputation, end by end and flag by flag.  A claim
+with a ``box`` record instead of generator lists is about a box; its conditions
+come from :mod:`exactinv_check.boxes` (P proved to be that box from G and b, no
+vertex list: the sign patterns of the rows of N(h) on the cells between their
+entries' roots, each one vertex-facet condition, together exact).
 """
 
+from fractions import Fraction
 from types import SimpleNamespace
 
-from . import polys, pruning, pruning_rational
+from . import boxes, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
@@ -18,16 +23,57 @@ from .reals import Real
 from .validset import first_end, require_intervals, valid_set
 
 
+class _BoxVertices:
+    """The vertices of the box [lo, hi], by index (never listed)."""
+
+    def __init__(self, lo, hi):
+        self.lo, self.hi = lo, hi
+
+    def __getitem__(self, i):
+        return boxes.vertex_of(i, self.lo, self.hi)
+
+
+def _generators(problem, claim):
+    """(count, vectors) per kind of a box claim or of generator lists (shape-checked), and whether a box."""
+    has_box, has_lists = "box" in claim, {"vertices", "rays", "lines"} & set(claim)
+    require(has_box != bool(has_lists), "a claim names either the box or the vertices, rays and lines")
+    if not has_box:
+        require(set(claim) >= {"vertices", "rays", "lines"}, "missing keys: vertices, rays and lines go together")
+        return None, tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
+    require("pruning" not in claim, "a box claim needs no pruning record")
+    return claim["box"], None
+
+
 def _conditions(problem, claim, context, first_end_claim=False):
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
     With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
-    rule out are built, after proving that the record's vertex bounds the set by T."""
+    rule out are built, after proving that the record's vertex bounds the set by T.
+    A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
     require(problem.method is not None, "a method is needed")
-    lists = tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
+    box, lists = _generators(problem, claim)
+    if box is not None:
+        key = ("box", repr(box))
+        if key not in context:
+            D, inequalities, (lo, hi) = boxes.box_conditions(problem.A, problem.G, problem.b, problem.method.numerator,
+                                                             problem.method.denominator, box)
+            gens = SimpleNamespace(vertices=_BoxVertices(lo, hi), rays=[], lines=[], counts=(2 ** len(lo), 0, 0))
+            context[key] = (gens, D, inequalities, {})
+        gens, D, inequalities, equalities = context[key]
+    else:
+        gens, D, inequalities, equalities = _listed(problem, claim, context, lists, first_end_claim)
+    if claim.get("determinant") is not None:
+        claimed = polys.trim(vector(claim["determinant"], "determinant"))
+        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+    return gens, D, inequalities, equalities
+
+
+def _listed(problem, claim, context, lists, first_end_claim):
     gkey = ("generators", repr(lists))
     if gkey not in context:
-        context[gkey] = prove_generators(problem.G, problem.b, *lists)
+        g = prove_generators(problem.G, problem.b, *lists)
+        context[gkey] = SimpleNamespace(vertices=g.vertices, rays=g.rays, lines=g.lines,
+                                        counts=(len(g.vertices), len(g.rays), len(g.lines)))
     gens = context[gkey]
     record = claim.get("pruning")
     key = ("conditions", repr(lists), None if record is None else repr(record), first_end_claim and record is not None)
@@ -37,11 +83,7 @@ def _conditions(problem, claim, context, first_end_claim=False):
                                                  problem.method.denominator, gens)
         else:
             context[key] = _pruned(problem, gens, record, first_end_claim)
-    D, inequalities, equalities = context[key]
-    if claim.get("determinant") is not None:
-        claimed = polys.trim(vector(claim["determinant"], "determinant"))
-        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
-    return gens, D, inequalities, equalities
+    return (gens, *context[key])
 
 
 def _pruned(problem, gens, record, first_end_claim):
@@ -83,15 +125,19 @@ def _require_bound(problem, gens, args, k, T, first_end_claim):
             f"horizon {T}: its own ends at {end}")
 
 
-def _first_vertex(inequalities):
+def _first_vertex(inequalities, claim, n):
     """The conditions of vertex 0: A_d(h)v in P alone already bounds the valid set
-    for a bounded P, which lets the others be pruned (validset.valid_set)."""
+    for a bounded P, which lets the others be pruned (validset.valid_set).  A box claim
+    rarely has vertex 0's conditions: there the n tightest ones (smallest p(0) relative
+    to p's size) serve -- any subset is sound, a bounding one is faster."""
+    if "box" in claim:
+        return sorted(inequalities, key=lambda p: Fraction(abs(p[0]), max(map(abs, p))))[:n]
     return [p for p, origin in inequalities.items() if origin[:2] == ("vertex", 0)]
 
 
 def largest_threshold(problem, claim, context):
     gens, D, inequalities, equalities = _conditions(problem, claim, context, first_end_claim=True)
-    tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities))
+    tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities, claim, problem.n))
     value = Real.parse(claim["value"], "tau")
     require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")
     require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
@@ -103,7 +149,7 @@ def largest_threshold(problem, claim, context):
         require(kind in ("vertex", "ray", "line"), "binding kind is vertex, ray or line")
         field = {"vertex": "vertices", "ray": "rays", "line": "lines"}[kind]
         vectors = getattr(gens, field)
-        i = integer(binding["generator"], "binding generator", 0, len(vectors))
+        i = integer(binding["generator"], "binding generator", 0, gens.counts[("vertex", "ray", "line").index(kind)])
         j = integer(binding["facet"], "binding facet", 0, problem.m)
         one = SimpleNamespace(vertices=[], rays=[], lines=[])
         getattr(one, field).append(vectors[i])
@@ -115,13 +161,19 @@ def largest_threshold(problem, claim, context):
         end, _ = first_end(D, single, single_eq)
         require(end.compare(tau) == 0, "the binding condition does not end the first interval")
     return (f"largest threshold {value} ({'attained' if attained else 'not attained'}): recomputed from "
-            f"{len(inequalities) + len(equalities)} distinct conditions over {len(gens.vertices)} vertices, "
-            f"{len(gens.rays)} rays and {len(gens.lines)} lines proved complete")
+            f"{len(inequalities) + len(equalities)} distinct conditions over {_over(claim, gens)}")
+
+
+def _over(claim, gens):
+    if "box" in claim:
+        return f"the box P proved from G and b (its {gens.counts[0]} vertices covered by the row sign patterns)"
+    return f"{gens.counts[0]} vertices, {gens.counts[1]} rays and {gens.counts[2]} lines proved complete"
 
 
 def valid_steplengths(problem, claim, context):
     gens, D, inequalities, equalities = _conditions(problem, claim, context)
-    truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities))
+    truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities, claim, problem.n))
     require_intervals(claim["intervals"], truth)
-    return (f"the valid set {truth} recomputed: every positive root of {len(inequalities) + len(equalities)} "
-            f"distinct conditions and of det h(hA) isolated, every cell and root decided exactly")
+    return (f"the valid set {truth} recomputed from {len(inequalities) + len(equalities)} distinct conditions and "
+            f"det h(hA): each condition proved >= 0 around the set by Descartes' rule or intersected exactly, "
+            f"over {_over(claim, gens)}")

@@ -18,54 +18,140 @@ from fractions import Fraction
 from math import gcd
 
 from . import polys
-from .rationals import determinant, identity, matmul, require, solve
+from .linalg import integer_solve
+from .rationals import integer_matrix, matmul, require, within_budget
 
 MAX_CONDITIONS = 20_000_000
 
 
-def _matrix_polynomial(coeffs, M):
-    """sum_k coeffs[k] M^k (Horner)."""
-    n = len(M)
-    out = [[Fraction(0)] * n for _ in range(n)]
-    for c in reversed(coeffs):
-        out = matmul(out, M)
-        for i in range(n):
-            out[i][i] += c
+def rebuild_size(A, numerator, denominator):
+    """(cost, d, w) of rebuilding D and N (:func:`method_matrices`): d = deg N (and so of D up to n deg h_r),
+    w the words of an entry, cost in word operations.  With A = Ai / L (Ai integral, entries of b bits):
+    polynomial methods n^3 deg g products of numbers of about k b bits (the powers Ai^k); rational ones
+    one fraction-free elimination of about n^3 w^2 per interpolation point (the minors of c h_r(tA) have
+    about n (s b + s log t) bits) and n^2 count^2 w for the interpolation."""
+    n = len(A)
+    L, Ai = integer_matrix(A)
+    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), 1])
+    dh, dg = len(denominator) - 1, len(numerator) - 1
+    if dh == 0:
+        w = 1 + dg * b // 64
+        return n ** 3 * dg * w, dg, w
+    s, d = max(dg, dh), max(n * dh, (n - 1) * dh + dg)
+    count = d + 1
+    w = 1 + n * s * (b + (count + n * dh).bit_length()) // 64
+    return (count + n * dh) * n ** 3 * w * w + n * n * count * count * w, d, w
+
+
+def _integer_powers(Ai, top):
+    """[Ai^0, .., Ai^top] for an integer matrix Ai, products over Z."""
+    n = len(Ai)
+    columns = list(zip(*Ai))
+    out = [[[int(i == j) for j in range(n)] for i in range(n)]]
+    for _ in range(top):
+        out.append([[sum(map(int.__mul__, row, col)) for col in columns] for row in out[-1]])
     return out
 
 
 def method_matrices(A, numerator, denominator):
-    """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k."""
+    """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k.
+
+    Integers throughout: A = Ai / L (Ai integral); with c = den L^s (den clearing the
+    coefficients of g and h_r, s = max(deg g, deg h_r)), c h_r(tA) and c g(tA) are integer
+    matrices at integer t, so D(t) c^n and N(t) c^n = adj(c h_r(tA)) c g(tA) come from one
+    fraction-free elimination (linalg.integer_solve) per point; polynomial methods need
+    only the powers of Ai.  Priced first (:func:`rebuild_size`): over the work budget, nothing runs."""
+    within_budget(rebuild_size(A, numerator, denominator)[0], f"D(h) and N(h) of a {len(A)} x {len(A)} problem")
     n = len(A)
+    L, Ai = integer_matrix(A)
     if len(denominator) == 1:
         d0 = denominator[0]
-        power, out = identity(n), []
-        for s in numerator:
-            out.append([[s / d0 * v for v in row] for row in power])
-            power = matmul(power, A)
-        return [Fraction(1)], out
+        powers = _integer_powers(Ai, len(numerator) - 1)
+        return [Fraction(1)], [[[s / d0 / L**k * v if v else Fraction(0) for v in row] for row in powers[k]]
+                               for k, s in enumerate(numerator)]
     dh, dg = len(denominator) - 1, len(numerator) - 1
+    s = max(dh, dg)
+    den = _common_denominator(list(numerator) + list(denominator))
+    hs = [int(x * den) * L ** (s - k) for k, x in enumerate(denominator)]
+    gs = [int(x * den) * L ** (s - k) for k, x in enumerate(numerator)]
+    powers = _integer_powers(Ai, s)
     count = max(n * dh, (n - 1) * dh + dg) + 1
     points, dets, mats = [], [], []
-    t = Fraction(0)
-    for _ in range(count + n * dh + 1):  # at most n*dh points are singular
+    for t in range(count + n * dh + 1):  # at most n*dh points are singular
         if len(points) == count:
             break
-        tA = [[t * a for a in row] for row in A]
-        H = _matrix_polynomial(denominator, tA)
-        d = determinant(H)
+        Hi, Gi = (_combination(coeffs, powers, t) for coeffs in (hs, gs))
+        d, X = integer_solve(Hi, Gi)
         if d != 0:
-            X = solve(H, _matrix_polynomial(numerator, tA))
             points.append(t)
             dets.append(d)
-            mats.append([[d * v for v in row] for row in X])
-        t += 1
+            mats.append(X)
     require(len(points) == count, "internal: too few regular interpolation points")
-    D = polys.interpolate(points, dets)
-    entries = [[polys.interpolate(points, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]
-    degree = max([len(e) for row in entries for e in row] + [1])
-    N = [[[e[k] if k < len(e) else Fraction(0) for e in row] for row in entries] for k in range(degree)]
+    scale = Fraction(1, (den * L**s) ** n)  # 1 / c^n
+    basis, delta = _lagrange_basis(points)
+    D = polys.trim([Fraction(x, delta) * scale for x in _interpolate_integers(basis, dets)])
+    entries = [[_interpolate_integers(basis, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]
+    degree = max([len(polys.trim(e)) for row in entries for e in row] + [1])
+    N = [[[Fraction(e[k], delta) * scale if e[k] else Fraction(0) for e in row] for row in entries] for k in range(degree)]
     return D, N
+
+
+def method_matrix_at(A, numerator, denominator, dt):
+    """r(dt A) at one rational dt >= 0, or None where h_r(dt A) is singular: one fraction-free solve
+    h_r(dt A) X = g(dt A) over the integers (with dt A = p Ai / (q L), both sides scaled by
+    den (q L)^s), priced first like one interpolation point of :func:`method_matrices`."""
+    n = len(A)
+    L, Ai = integer_matrix(A)
+    p, q = dt.numerator, dt.denominator
+    s = max(len(numerator), len(denominator)) - 1
+    b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), p.bit_length(), q.bit_length(), 1])
+    w = 1 + n * s * 2 * b // 64
+    within_budget(n ** 3 * w * w + s * n ** 3 * w, f"r(dt A) for a {n} x {n} matrix A at dt = a {b}-bit rational")
+    den = _common_denominator(list(numerator) + list(denominator))
+    powers = _integer_powers(Ai, s)
+    scaled = lambda coeffs: [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+    Hi, Gi = (_combination(scaled(c), powers, 1) for c in (denominator, numerator))
+    d, X = integer_solve(Hi, Gi)
+    return None if d == 0 else [[Fraction(x, d) for x in row] for row in X]
+
+
+def _combination(coeffs, powers, t):
+    """sum_k coeffs[k] t^k powers[k], an integer matrix."""
+    n = len(powers[0])
+    out = [[0] * n for _ in range(n)]
+    for k, c in enumerate(coeffs):
+        if c:
+            f = c * t**k
+            out = [[x + f * p for x, p in zip(row, prow)] for row, prow in zip(out, powers[k])]
+    return out
+
+
+def _lagrange_basis(points):
+    """(basis, delta): integer polynomials with delta * l_i = basis[i] for the Lagrange basis l_i
+    of the integer points (delta > 0), so p = sum_i p(t_i) l_i = (sum_i p(t_i) basis[i]) / delta."""
+    numerators, denominators = [], []
+    for i, t in enumerate(points):
+        poly, d = [1], 1
+        for j, u in enumerate(points):
+            if j != i:
+                poly = [(poly[m - 1] if m else 0) - u * (poly[m] if m < len(poly) else 0) for m in range(len(poly) + 1)]
+                d *= t - u
+        numerators.append(poly)
+        denominators.append(d)
+    delta = 1
+    for d in denominators:
+        delta = delta * abs(d) // gcd(delta, abs(d))
+    return [[c * (delta // d) for c in poly] for poly, d in zip(numerators, denominators)], delta
+
+
+def _interpolate_integers(basis, values):
+    """sum_i values[i] basis[i], coefficient by coefficient (integers)."""
+    out = [0] * len(basis[0])
+    for v, b in zip(values, basis):
+        if v:
+            for m, c in enumerate(b):
+                out[m] += v * c
+    return out
 
 
 def _common_denominator(values):
@@ -92,7 +178,10 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
     ``facets_of(kind, index)``, if given, names the facets to build for that
     generator (None: all of them).  ``without_D(kind, index)``, if given and true,
     builds q instead of c = q D for that generator: the caller has proved D > 0 on
-    the range where the sign of that condition matters."""
+    the range where the sign of that condition matters.  The conditions' degree
+    2 deg N is bounded before anything is built."""
+    degree = 2 * rebuild_size(A, numerator, denominator)[1]
+    require(degree <= polys.MAX_DEGREE, f"the conditions have degree {degree}, over the kernel's bound {polys.MAX_DEGREE}")
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
     facet_lists = {}

@@ -1,4 +1,4 @@
-"""Characteristic polynomials and the largest real eigenvalue, exactly."""
+"""Characteristic polynomials, the largest real eigenvalue, fraction-free determinants and solves, exactly."""
 
 from fractions import Fraction
 
@@ -71,6 +71,33 @@ def integer_determinant(M):
             S[i] = [(S[k][k] * S[i][j] - S[i][k] * S[k][j]) // last if j > k else 0 for j in range(n)]
         last = S[k][k]
     return sign * last if n else 1
+
+
+def integer_solve(M, B):
+    """(d, X) with d = det M and X = d M^-1 B = adj(M) B, for integer matrices M (square)
+    and B: Bareiss's fraction-free elimination on [M | B], then back substitution whose
+    divisions are exact (X is integral); (0, None) if M is singular."""
+    n = len(M)
+    S, sign, last = [list(M[i]) + list(B[i]) for i in range(n)], 1, 1
+    width = len(S[0]) if S else 0
+    for k in range(n):
+        pivot = next((i for i in range(k, n) if S[i][k]), None)
+        if pivot is None:
+            return 0, None
+        if pivot != k:
+            S[k], S[pivot], sign = S[pivot], S[k], -sign
+        for i in range(k + 1, n):
+            a, c = S[k][k], S[i][k]
+            S[i] = [0] * (k + 1) + [(a * S[i][j] - c * S[k][j]) // last for j in range(k + 1, width)]
+        last = S[k][k]
+    d = sign * last if n else 1
+    X = [[0] * (width - n) for _ in range(n)]
+    for i in range(n - 1, -1, -1):  # U x = c with x = X / last: U_ii X_i = last c_i - sum_{k>i} U_ik X_k
+        row = S[i]
+        for j in range(width - n):
+            acc = last * row[n + j] - sum(row[k] * X[k][j] for k in range(i + 1, n))
+            X[i][j] = acc // row[i]
+    return d, [[sign * x for x in r] for r in X]
 
 
 def largest_real_root(p):

@@ -41,6 +41,7 @@ from math import gcd, lcm
 from operator import mul
 from typing import NamedTuple
 
+from .polygon import prove_polygon
 from .rationals import MAX_DIMENSION, CheckFailure, require
 
 __all__ = ["Generators", "prove_generators", "MAX_CONE_PAIRS", "MAX_CONE_RAYS"]
@@ -253,9 +254,21 @@ def prove_generators(G, b, vertices, rays, lines):
     L; the rays lie in rec(P); an edge walk from a listed vertex reaches only
     listed vertices and rays (so the lists are complete: the graph of P/L is
     connected and every extreme ray is an unbounded edge); every listed point
-    lies in P.
+    lies in P.  A bounded polygon (n = 2, no rays, no lines) is proved by
+    :func:`exactinv_check.polygon.prove_polygon` in O(m log m) instead, when that
+    proof applies.
     """
     n = _check_shapes(G, b, vertices, rays, lines)
+    if n == 2 and not rays and not lines:  # a bounded polygon: O(m log m) (exactinv_check.polygon)
+        fast = prove_polygon(G, b, vertices)
+        if fast is not None:
+            corners, extra = fast
+            return Generators(tuple(tuple(v) for v in vertices), (), (), 2, 0, corners, 0, extra, 0)
+    return _general_proof(G, b, vertices, rays, lines, n)
+
+
+def _general_proof(G, b, vertices, rays, lines, n):
+    """The edge walk of the module docstring, for any dimension."""
     P = _IntegerPolyhedron(G, b, n)
     _prove_lines(P, lines)
     ray_index = _index_rays(P, rays)

@@ -82,8 +82,14 @@ def descartes_variations(ints, a, b):
 def no_root_in(p, T, depth=4):
     """True proves that p has no root in the open (0, T): Descartes' rule on (0, T),
     on halves where it is inconclusive, up to depth times.  False says nothing."""
+    return no_root_between(p, Fraction(0), Fraction(T), depth)
+
+
+def no_root_between(p, a, b, depth=4):
+    """True proves that p has no root in the open (a, b), a < b: Descartes' rule on (a, b),
+    on halves where it is inconclusive, up to depth times.  False says nothing."""
     ints = integer_coefficients(p)
-    stack = [(Fraction(0), Fraction(T), depth)]
+    stack = [(Fraction(a), Fraction(b), depth)]
     while stack:
         a, b, left = stack.pop()
         if descartes_variations(ints, a, b) == 0:
@@ -245,13 +251,16 @@ def strip_zero_roots(p):
 
 
 def sign_right_of(p, x):
-    """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0)."""
-    q = trim(p)
+    """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0): the sign of
+    the first nonzero derivative at x (at x = 0, of the lowest nonzero coefficient), in integers."""
+    q = integer_coefficients(p)
+    if x == 0:
+        return next((sign(c) for c in q if c), 0)
     while q:
-        s = sign(evaluate(q, x))
+        s = sign_at(q, Fraction(x))
         if s:
             return s
-        q = derivative(q)
+        q = _integer_derivative(q)
     return 0
 
 

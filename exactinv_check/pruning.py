@@ -22,7 +22,11 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    may keep more pairs than needed, never fewer.  To stay cheap it tests
    boxes around blocks of consecutive vertices along ``order`` (any
    permutation; a good one keeps near vertices together) first over all
-   pieces at once, then piece by piece, and only then vertex by vertex.
+   pieces at once, then piece by piece, then around chunks of each block,
+   and only then vertex by vertex (at both chord ends); each box against many facets at once
+   (:class:`_Packed`: one integer, one facet per fixed-width slot).  The
+   kept pairs are exactly those of the vertex-by-vertex test: a box around
+   boxes clears a facet only if each of them does.
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
 The horizon is short (numerator and denominator of at most 64 bits): the pieces' exact powers t^i then stay
@@ -121,7 +125,11 @@ def _boxes(vertices, pieces):
     widened by B / K >= rho; integer arithmetic only.  The chord's box is their union; a
     linear function is largest on the chord at one of its ends, so a half-space holding
     both widened end boxes holds the whole path on the piece."""
-    maps = [(_integer_matrix(X), _integer_matrix(Z), _integer_matrix(M)) for X, Z, M in pieces]
+    maps = []
+    for X, Z, M in pieces:
+        (Xi, dX), (Zi, dZ), (Mi, dM) = (_integer_matrix(Q) for Q in (X, Z, M))
+        maps.append(([[K * x for x in row] for row in Xi], dX, [[K * x for x in row] for row in Zi], dZ,
+                     [[K * x for x in row] for row in Mi], dM))
     out = []
     for v in vertices:
         q = 1
@@ -130,14 +138,18 @@ def _boxes(vertices, pieces):
         p = [int(x * q) for x in v]
         ap = [abs(x) for x in p]
         mine = []
-        for (Xi, dX), (Zi, dZ), (Mi, dM) in maps:
-            x = [sum(map(int.__mul__, row, p)) for row in Xi]  # dX q (X v)
-            z = [sum(map(int.__mul__, row, p)) for row in Zi]
-            rho = max(sum(map(int.__mul__, row, ap)) for row in Mi)  # dM q rho
+        for KX, dX, KZ, dZ, KM, dM in maps:
             dx, dz = dX * q, dZ * q
-            B = [-((-K * rho) // (dM * q))]
-            mine.append(([-((-K * a) // dx) for a in x] + [(K * a) // dx for a in x] + B,
-                         [-((-K * c) // dz) for c in z] + [(K * c) // dz for c in z] + B))
+            hx, lx, hz, lz = [], [], [], []
+            for row_x, row_z in zip(KX, KZ):  # K (X v) = (K dX q X v) / (dX q), likewise Z
+                fx, rx = divmod(sum(map(int.__mul__, row_x, p)), dx)
+                fz, rz = divmod(sum(map(int.__mul__, row_z, p)), dz)
+                lx.append(fx)
+                hx.append(fx + (rx > 0))  # ceilings
+                lz.append(fz)
+                hz.append(fz + (rz > 0))
+            rho = [-(-max(sum(map(int.__mul__, row, ap)) for row in KM) // (dM * q))]  # K dM q rho / (dM q)
+            mine.append((hx + lx + rho, hz + lz + rho))
         out.append(mine)
     return out
 
@@ -155,27 +167,115 @@ def _outside(row, box):
     return row[1] <= sum(map(int.__mul__, row[0], box))
 
 
+def _slot_bytes(rows, boxes):
+    """Bytes per slot of a :class:`_Packed` test: |g . box - K b| < 2^(8 W - 2) for every
+    row and every box given (or union of them: the same entries), and every |row entry| and
+    |K b| as well."""
+    coefficient = max(abs(x) for row in rows for x in row[0])
+    entry = max(abs(x) for box in boxes for x in box)
+    threshold = max(abs(row[1]) for row in rows)
+    bound = len(rows[0][0]) * coefficient * entry + threshold + coefficient
+    return (bound.bit_length() + 2 + 7) // 8
+
+
+class _Packed:
+    """The test :func:`_outside` of one box against many rows at once, in one integer.
+
+    Slot t of width S = 8 W bits holds row J_t.  With the columns
+    C_c = sum_t |a_{J_t c}| 2^(S t) (a column of the rows has one sign s_c: g+ and
+    ||g||_1 are >= 0, g- <= 0) and E = sum_t (2^(S-1) - K b_{J_t}) 2^(S t),
+
+        X = E + sum_c s_c box_c C_c = sum_t (2^(S-1) + v_t) 2^(S t),
+        v_t = a_{J_t} . box - K b_{J_t},
+
+    an identity of integers.  |v_t| < 2^(S-2) (:func:`_slot_bytes`), so each
+    2^(S-1) + v_t is a digit in [0, 2^S) of X in base 2^S, and its top bit is set
+    iff v_t >= 0, i.e. iff :func:`_outside` holds for row J_t: those slots are read
+    off X masked to the top bits (bytes 0x80 of its little-endian bytes)."""
+
+    def __init__(self, table, J):
+        width, signs, cells = table
+        self.J, self.width, self.size, self.signs = J, width, width * len(J), signs
+        self.columns = [int.from_bytes(b"".join([column[j] for j in J]), "little") for column in cells[:-1]]
+        self.base = int.from_bytes(b"".join([cells[-1][j] for j in J]), "little")
+        self.mask = int.from_bytes((bytes(width - 1) + b"\x80") * len(J), "little")
+
+    @staticmethod
+    def table(rows, width):
+        """(width, signs s_c, cells): each |a_jc| and 2^(S-1) - K b_j as W little-endian bytes,
+        column by column, once; a :class:`_Packed` joins the cells of its rows."""
+        columns = len(rows[0][0])
+        n = (columns - 1) // 2
+        half = 1 << (8 * width - 1)
+        cells = [[abs(row[0][c]).to_bytes(width, "little") for row in rows] for c in range(columns)]
+        cells.append([(half - row[1]).to_bytes(width, "little") for row in rows])
+        return width, [1] * n + [-1] * n + [1], cells
+
+    def outside(self, box):
+        """The rows J_t for which :func:`_outside` holds (in the order of J)."""
+        X = self.base
+        for C, s, x in zip(self.columns, self.signs, box):
+            if x:
+                X += C * (x if s > 0 else -x)
+        Y = X & self.mask
+        if not Y:
+            return []
+        data, out = Y.to_bytes(self.size, "little"), []
+        at = data.find(0x80)
+        while at >= 0:
+            out.append(self.J[at // self.width])
+            at = data.find(0x80, at + 1)
+        return out
+
+
 def survivors(G, b, vertices, N, T, order):
-    """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune."""
+    """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune
+    (:func:`survivors_of_pieces` on the chords and Taylor remainders of A_d(h))."""
     return survivors_of_pieces(G, b, vertices, chord_pieces(N, T), order)
 
 
 def survivors_of_pieces(G, b, vertices, pieces, order):
-    """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces
-    given as (X, Z, M): the path of v on a piece lies in the box of X v and Z v widened
-    by max_i (M |v|)_i."""
+    """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces given
+    as (X, Z, M) (the path of v on a piece within max_i (M |v|)_i of the chord from X v to
+    Z v): exactly the pairs (i, j) with :func:`_outside` for row j and one of the two
+    widened chord-end boxes of vertex i on some piece (a box around boxes is outside
+    whenever one of them is, so the blocks of vertices along ``order`` and their chunks
+    only skip work), each test done by :class:`_Packed`."""
     rows = _integer_rows(G, b)
     boxes = _boxes(vertices, pieces)
     out = {i: [] for i in range(len(vertices))}
+    if not rows:
+        return out
+    every_box = [box for per_vertex in boxes for ends in per_vertex for box in ends]
+    table = _Packed.table(rows, _slot_bytes(rows, every_box))
+    everything = _Packed(table, list(range(len(rows))))
     size = max(1, isqrt(len(vertices)))
     for start in range(0, len(order), size):
         block = order[start:start + size]
-        per_piece = [_union([end for i in block for end in boxes[i][a]]) for a in range(len(boxes[block[0]]))]
-        whole = _union(per_piece)
-        near = [j for j, row in enumerate(rows) if _outside(row, whole)]
-        for a, box in enumerate(per_piece):
-            hits = [j for j in near if _outside(rows[j], box)]
-            for i in block:
-                x, z = boxes[i][a]
-                out[i].extend(j for j in hits if _outside(rows[j], x) or _outside(rows[j], z))
+        chunks = [block[k:k + isqrt(size)] for k in range(0, len(block), isqrt(size))]
+        per_chunk = [[_union([end for i in chunk for end in boxes[i][a]]) for a in range(len(boxes[block[0]]))]
+                     for chunk in chunks]
+        per_piece = [_union(list(boxes_a)) for boxes_a in zip(*per_chunk)]
+        near = everything.outside(_union(per_piece))
+        if near:
+            near_rows = _Packed(table, near)
+            for a, box in enumerate(per_piece):
+                _descend(table, near_rows.outside(box), [(chunk, c[a]) for chunk, c in zip(chunks, per_chunk)],
+                         boxes, a, out)
     return {i: sorted(set(f)) for i, f in out.items()}
+
+
+def _descend(table, hits, chunks, boxes, a, out):
+    """Piece a of one block: the rows ``hits`` its box does not clear, tested on each
+    chunk's box, then on the boxes of the chunk's vertices."""
+    if not hits:
+        return
+    hit_rows = _Packed(table, hits)
+    for chunk, box in chunks:
+        close = hit_rows.outside(box)
+        if close:
+            close_rows = _Packed(table, close)
+            for i in chunk:
+                x, z = boxes[i][a]
+                out[i].extend(close_rows.outside(x))
+                out[i].extend(close_rows.outside(z))

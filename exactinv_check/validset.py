@@ -1,12 +1,16 @@
 """The exact set {h >= 0 : every inequality >= 0, every equality = 0, D(h) != 0}.
 
-Recomputed from scratch, trusting no claimed end: every positive root of
-every condition and of D is isolated (Sturm), the roots are merged in exact
-order, the sign of each condition on each open cell is decided at a rational
-sample point and tracked across the roots, and each root itself is decided
-exactly (a condition vanishes there iff the root is one of its own).  The
-result is the list of maximal intervals, each end exact and marked closed or
-open -- what a valid-set claim must equal.
+Recomputed from scratch, trusting no claimed end.  The sweep
+(:func:`_valid_set`): every positive root of the given conditions and of D
+is isolated (Sturm), the roots are merged in exact order, the sign of each
+condition on each open cell is decided at a rational sample point and
+tracked across the roots, and each root itself is decided exactly (a
+condition vanishes there iff the root is one of its own).  :func:`valid_set`
+runs it on D and the equalities, and on each inequality alone, and
+intersects the results one inequality at a time -- skipping an inequality
+proved >= 0 around the current set by Descartes' rule, which leaves the set
+unchanged.  The result is the list of maximal intervals, each end exact and
+marked closed or open -- what a valid-set claim must equal.
 """
 
 from fractions import Fraction
@@ -35,7 +39,7 @@ def _no_positive_root(p):
     return all(s == signs[0] for s in signs)
 
 
-def _breakpoints(named, bounds):
+def breakpoints(named, bounds):
     """Sorted distinct positive roots of the named polynomials (those of a name
     with a bound only up to that bound), each with the set of names vanishing there."""
     roots = []
@@ -62,31 +66,78 @@ def _tightness(p):
     return Fraction(abs(p[0]), max(abs(c) for c in p)) if p else Fraction(0)
 
 
-def _drop_positive_on(inequalities, T):
-    """The inequalities that may be negative somewhere in (0, T): those proved
-    positive there (positive right of 0 and no root in (0, T) by Descartes' rule)
-    cannot change a valid set that lies in [0, T]."""
-    return [p for p in inequalities if polys.sign_right_of(p, Fraction(0)) < 0 or not polys.no_root_in(p, T)]
-
-
 def valid_set(D, inequalities, equalities, first=()):
     """The maximal intervals of valid h >= 0 (see the module docstring).
 
-    Pruning, exact: the valid set lies inside the valid set V_S of any subset
-    S of the conditions -- here ``first`` (e.g. the conditions of one vertex).
-    If V_S lies in [0, T], every other inequality proved positive on (0, T)
-    is dropped, and the rest need their roots only up to T.  An inequality with no
-    negative coefficient is >= 0 on [0, oo) and is dropped first."""
-    inequalities = [p for p in inequalities if any(c < 0 for c in p)]
-    subset = [list(p) for p in first if any(c < 0 for c in p)]
-    rest = [list(p) for p in inequalities if tuple(p) not in set(map(tuple, subset))]
-    if subset and rest:
-        V_S = _valid_set(D, subset, equalities, len(subset), None)
-        if V_S and not V_S[-1].hi.inf:
-            top = _coarse_above(V_S[-1].hi.bounds()[1])
-            return _valid_set(D, subset + _drop_positive_on(rest, top), equalities, len(subset), top)
-    everything = subset + rest
-    return _valid_set(D, everything, equalities, len(everything), None)
+    Condition by condition: V starts as {h >= 0 : D(h) != 0, every equality = 0}
+    (:func:`_valid_set`), and each inequality p -- those of ``first`` first (e.g.
+    the conditions of one vertex, which bound V early), then the others by
+    :func:`_tightness` -- replaces V by V n {p >= 0}, an exact
+    identity, so the last V is the valid set whatever the order.  Each step is
+    exact: V is kept when p is proved >= 0 on an interval [a, b] around V
+    (:func:`_nonnegative_on`), and otherwise intersected (:func:`_intersect`) with
+    p's own valid set (every positive root of p isolated).  The order only makes
+    it cheap: once V is bounded, most p are proved positive around V by
+    Descartes' rule, without a Sturm sequence."""
+    early = [list(p) for p in first]
+    seen = set(map(tuple, early))
+    rest = sorted((list(p) for p in inequalities if tuple(p) not in seen), key=_tightness)
+    V, hull = _valid_set(D, [], equalities, 0, None), None
+    for p in early + rest:
+        if not V:
+            break
+        hull = hull or _hull(V)
+        if _nonnegative_on(polys.integer_coefficients(p), *hull):
+            continue  # V n {p >= 0} = V
+        V, hull = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None)), None
+    return V
+
+
+def _hull(V):
+    """Rationals a <= b with V inside [a, b] (b short and close above V's end); b is None
+    if V is unbounded."""
+    end = V[-1].hi
+    if end.inf:
+        return V[0].lo.bounds()[0], None
+    if end.poly is not None:  # a tight enclosure of the end: most tests then need no Sturm sequence
+        end.refine_below(end.hi / 2**64)
+    return V[0].lo.bounds()[0], _coarse_above(end.bounds()[1])
+
+
+def _nonnegative_on(ints, a, b):
+    """True proves p >= 0 on [a, b] (p as integer coefficients; b = None: on [a, oo)): p(a) >= 0
+    if a = b; else p positive just right of a with no root in the open (a, b) by Descartes'
+    rule (then p > 0 on (a, b), and p >= 0 at the ends by continuity); for b = None, p
+    positive right of 0 with no positive root at all (coefficients of one sign).  False
+    says nothing."""
+    if b is None:
+        return polys.sign_right_of(ints, 0) > 0 and _no_positive_root(ints)
+    if a == b:
+        return polys.sign_at(ints, a) >= 0
+    return polys.sign_right_of(ints, a) > 0 and polys.no_root_between(ints, a, b)
+
+
+def _later_start(a, b):
+    c = a.lo.compare(b.lo)
+    return (a.lo, a.lo_closed) if c > 0 else (b.lo, b.lo_closed) if c < 0 else (a.lo, a.lo_closed and b.lo_closed)
+
+
+def _intersect(A, B):
+    """The intersection of two lists of maximal intervals (ordered, disjoint), as one:
+    pairwise intersections, exact comparisons of the ends.  (Maximal again: two pieces
+    that touched would lie in one interval of A and one of B.)"""
+    out, i, j = [], 0, 0
+    while i < len(A) and j < len(B):
+        a, b = A[i], B[j]
+        lo, lo_closed = _later_start(a, b)
+        c = a.hi.compare(b.hi)
+        hi, hi_closed = ((a.hi, a.hi_closed) if c < 0 else (b.hi, b.hi_closed) if c > 0
+                         else (a.hi, a.hi_closed and b.hi_closed))
+        k = lo.compare(hi)
+        if k < 0 or (k == 0 and lo_closed and hi_closed):
+            out.append(Interval(lo, hi, lo_closed, hi_closed))
+        i, j = i + (c <= 0), j + (c >= 0)
+    return out
 
 
 def _valid_set(D, inequalities, equalities, exact_count, top):
@@ -102,7 +153,7 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
     polys_by_name = dict(named)
     points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
     bounds = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
-    points += _breakpoints(named, bounds)
+    points += breakpoints(named, bounds)
 
     def cell_sample(k):
         if k + 1 < len(points):
@@ -196,6 +247,8 @@ def first_end(D, inequalities, equalities, first=()):
         tau = _first_sign_change(p, upper)
         if tau is not None and tau.compare(best) < 0:
             best = tau
+            if best.poly is not None:  # a tight enclosure: later conditions are cleared by Descartes' rule
+                best.refine_below(best.hi / 2**64)
     D = polys.trim(D)
     if len(D) > 1:
         roots = polys.positive_roots(D)

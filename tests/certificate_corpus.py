@@ -14,11 +14,12 @@ BOX = ei.Polyhedron.box([-1, -1], [1, 1])
 ROT = ei.LinearSystem([[-1, 1], [-1, -1]])
 
 
-def _full(S, P, m):
+def _full(S, P, m, box=True):
     """What `exactinv certify` puts in one certificate: gamma*, forward Euler,
-    the paper's threshold, the largest threshold and the valid set."""
+    the paper's threshold, the largest threshold and the valid set (on a box:
+    by the box route, unless ``box`` is False -- then with the vertex lists)."""
     results = [ei.optimal_gamma(S, P), ei.forward_euler_threshold(S, P), ei.steplength_threshold(S, P, m),
-               ei.largest_threshold(S, P, m), ei.valid_steplengths(S, P, m)]
+               ei.largest_threshold(S, P, m, box=box), ei.valid_steplengths(S, P, m, box=box)]
     return certificate(S, P, m, results)
 
 
@@ -28,6 +29,7 @@ def corpus():
     M = ei.methods
     out = {
         "box-taylor4": _full(ROT, BOX, M.taylor(4)),
+        "box-taylor4-listed": _full(ROT, BOX, M.taylor(4), box=False),
         "box-taylor2": _full(ROT, BOX, M.taylor(2)),
         "box-backward-euler": _full(ROT, BOX, M.backward_euler()),
         "box-trapezoid": _full(ROT, BOX, M.trapezoid()),

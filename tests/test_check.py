@@ -36,7 +36,7 @@ def _discrete():
 
 def _gap_set():
     S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
-    return ei.valid_steplengths(S, P, ei.methods.polynomial([1, "1/2", "3/4", "1/4"])).certificate
+    return ei.valid_steplengths(S, P, ei.methods.polynomial([1, "1/2", "3/4", "1/4"]), box=False).certificate
 
 
 def _e2_largest():

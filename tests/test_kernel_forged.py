@@ -37,7 +37,7 @@ def _rejected(cert, reason=""):
 # ------------------------------------------------------------------ generators
 @pytest.mark.parametrize("kind", ["largest_threshold", "valid_steplengths", "forward_euler_threshold"])
 def test_an_empty_vertex_list_is_rejected(kind):
-    cert = _genuine("box-taylor4")
+    cert = _genuine("box-taylor4-listed")
     c = _claim(cert, kind)
     c["vertices"] = []
     if kind == "largest_threshold":
@@ -48,21 +48,21 @@ def test_an_empty_vertex_list_is_rejected(kind):
 
 
 def test_an_incomplete_vertex_list_is_rejected():
-    cert = _genuine("box-taylor4")
+    cert = _genuine("box-taylor4-listed")
     c = _claim(cert, "largest_threshold")
     c["vertices"] = [v for v in c["vertices"] if v != ["1", "1"] and v != ["-1", "-1"]]
     _rejected(cert)
 
 
 def test_the_vertices_of_a_smaller_polytope_are_rejected():
-    cert = _genuine("box-taylor4")
+    cert = _genuine("box-taylor4-listed")
     c = _claim(cert, "valid_steplengths")
     c["vertices"] = [[str(x / 2) if False else ("1/2" if x == "1" else "-1/2") for x in v] for v in c["vertices"]]
     _rejected(cert)
 
 
 def test_a_short_vector_is_rejected():
-    cert = _genuine("box-taylor4")
+    cert = _genuine("box-taylor4-listed")
     c = _claim(cert, "largest_threshold")
     c["vertices"] = [["1"]] + c["vertices"]
     _rejected(cert, "length")

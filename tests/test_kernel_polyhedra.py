@@ -209,10 +209,12 @@ def test_missing_vertex():
 
 
 def test_vertices_of_a_smaller_polytope_inside():
-    G, b, V = box(2)
+    G, b, V = box(3)  # the general proof (a polygon is proved by exactinv_check.polygon)
     inner = [[x / 2 for x in v] for v in V]
     msg = rejects(G, b, inner)
     assert "no listed point is a vertex" in msg
+    G, b, V = box(2)
+    rejects(G, b, [[x / 2 for x in v] for v in V], match=r"incomplete generators: the vertex \(1, 1\) of P is not listed")
     # a smaller polytope sharing one vertex with P
     rejects(G, b, [vec(1, 1), vec(0, 1), vec(1, 0), vec(0, 0)], match="incomplete")
 

@@ -23,11 +23,11 @@ threshold and the certificate.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
+from functools import cached_property
 from typing import Iterable
 
 import flint
@@ -38,7 +38,7 @@ from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 from ..model.validate import check_problem
 
-__all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "conditions_of", "distinct_conditions"]
+__all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "never_binds", "conditions_of", "distinct_conditions"]
 
 
 class Kind(StrEnum):
@@ -123,8 +123,12 @@ def _integer_row(row: list) -> tuple[list[int], int]:
     return [int(x.p) * (d // int(x.q)) for x in row], d
 
 
-def _never_binds(coeffs) -> bool:
-    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes)."""
+def never_binds(coeffs) -> bool:
+    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes).
+
+    >>> never_binds([0, 1, 2]), never_binds([1, -1])
+    (True, False)
+    """
     nonzero = [c for c in coeffs if c != 0]
     return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
 
@@ -143,12 +147,18 @@ class ConditionSet:
         self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]
         self.G = polyhedron.G_flint
         self.b = [fmpq_of(x) for x in polyhedron.b]
-        self.W = {Kind.VERTEX: _generator_matrix(polyhedron.vertices), Kind.RAY: _generator_matrix(polyhedron.rays),
-                  Kind.LINE: _generator_matrix(polyhedron.lines)}
+        self.derived: dict[str, object] = {}  # what other routes derive once per problem (the box route)
         self._generator_rows: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
         self._facet_matrices: dict[int, tuple[flint.fmpz_mat, list[int]]] = {}
         self._all: tuple[list[Condition], list[Condition]] | None = None
+
+    @cached_property
+    def W(self) -> dict[Kind, flint.fmpq_mat | None]:
+        """The generators of each kind as matrix columns (vertex enumeration on first use only)."""
+        P = self.polyhedron
+        return {Kind.VERTEX: _generator_matrix(P.vertices), Kind.RAY: _generator_matrix(P.rays),
+                Kind.LINE: _generator_matrix(P.lines)}
 
     def count(self, kind: Kind) -> int:
         """How many generators of this kind P has.
@@ -170,7 +180,7 @@ class ConditionSet:
         if kind == Kind.VERTEX:
             q += self.D * self.b[j]
         c = q * self.D
-        return None if _never_binds(c.coeffs()) else Condition(kind, i, j, c)
+        return None if never_binds(c.coeffs()) else Condition(kind, i, j, c)
 
     def pairs(self, kind: Kind, pairs: Iterable[tuple[int, int]]) -> list[Condition]:
         """The nontrivial conditions of the (generator, facet) pairs given, each built once.
@@ -227,7 +237,7 @@ class ConditionSet:
             self._facet_matrices[j] = (Gz, e)
         return self._facet_matrices[j]
 
-    @functools.cached_property
+    @cached_property
     def GN(self) -> list[list[list[flint.fmpq]]]:
         """The products G N_k as nested lists (row j of G N_k: g_j N_k).
 

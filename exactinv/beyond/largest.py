@@ -13,8 +13,12 @@ The pairs are first pruned (:mod:`.pruning`): the conditions of vertex 0
 bound the valid set (or the first interval) by a horizon T, and only the
 pairs whose slack does not provably exceed the change of A_d(h)v on [0, T]
 are built at all.  Rational methods are pruned in u = h/(s + h) on [0, U],
-U = 1 when the valid set is unbounded (:mod:`.pruning_rational`).  ``prune=False`` builds every
-pair (the unpruned route: the same exact answer).  Pass one
+U = 1 when the valid set is unbounded (:mod:`.pruning_rational`).
+``prune=False`` builds every pair (the unpruned route: the same exact
+answer).  On a box {lo <= x <= hi} the conditions come from the box route
+instead (:mod:`.box_conditions`: the sign patterns of the rows of N(h) on the
+cells between their entries' roots, no vertex enumeration); ``box=False``
+takes the general route.  Pass one
 :class:`ConditionSet` as ``conditions=`` to share the built conditions
 between the valid set, the largest threshold and the certificate.
 """
@@ -38,6 +42,7 @@ from ..core.tags import ClaimType
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
+from .box_conditions import BoxRoute, box_route
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
 from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 from .pruning_rational import prune_rational
@@ -60,6 +65,7 @@ class ValidSteplengths:
     polyhedron: Polyhedron | None = field(default=None, repr=False)
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
     pruning: Pruning | None = field(default=None, repr=False)
+    box: BoxRoute | None = field(default=None, repr=False)
 
     def __iter__(self):
         return iter(self.intervals)
@@ -74,14 +80,18 @@ class ValidSteplengths:
 
         >>> import exactinv as ei
         >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-        >>> [(c["intervals"], c["vertices"]) for c in V.claims()]
-        [([{'lo': '0', 'hi': '2', 'lo_closed': True, 'hi_closed': True}], [['-1'], ['1']])]
+        >>> [(c["intervals"], c["box"]) for c in V.claims()]       # P is a box: no vertex list
+        [([{'lo': '0', 'hi': '2', 'lo_closed': True, 'hi_closed': True}], {'lo': ['-1'], 'hi': ['1']})]
+        >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1),
+        ...                       box=False)
+        >>> V.claims()[0]["vertices"]
+        [['-1'], ['1']]
         """
         return [{
             "type": ClaimType.VALID_STEPLENGTHS,
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
-            **generator_record(self.polyhedron),
+            **_generators(self.polyhedron, self.box),
             "determinant": vec(self.determinant),
             **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
@@ -128,6 +138,7 @@ class LargestThreshold(ExactValueMixin):
     checked: tuple[Condition, ...] = field(default=(), repr=False)
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
     pruning: Pruning | None = field(default=None, repr=False)
+    box: BoxRoute | None = field(default=None, repr=False)
 
     def claims(self) -> list[dict]:
         """The certificate's claim: the value, whether attained, and the binding condition.
@@ -145,7 +156,7 @@ class LargestThreshold(ExactValueMixin):
             "type": ClaimType.LARGEST_THRESHOLD,
             "value": encode_real(self.value),
             "attained": self.attained,
-            **generator_record(self.polyhedron),
+            **_generators(self.polyhedron, self.box),
             "determinant": vec(self.determinant),
             "binding": None if self.binding is None else {
                 "kind": self.binding.kind, "generator": self.binding.generator, "facet": self.binding.facet,
@@ -172,27 +183,38 @@ class LargestThreshold(ExactValueMixin):
         return f"LargestThreshold(value={self.value}, attained={self.attained}, method={self.method.name})"
 
 
-def _conditions(cs: ConditionSet, first_end: bool, allow: bool) -> tuple[list, list, Pruning | None]:
-    """(inequalities, equalities, pruning): every pair, or -- for a polynomial method
-    whose vertex 0 bounds the set (or its first interval) by a horizon T -- vertex
-    0's conditions, the surviving vertex pairs and every ray and line pair."""
+def _generators(polyhedron: Polyhedron, box: BoxRoute | None) -> dict:
+    """The claim's record of P: the box (proved from G, b by the kernel) or the generator lists."""
+    return {"box": box.box.record()} if box is not None else generator_record(polyhedron)
+
+
+def _conditions(cs: ConditionSet, first_end: bool, allow: bool,
+                box: bool) -> tuple[list, list, Pruning | None, BoxRoute | None]:
+    """(inequalities, equalities, pruning, box route): on a box (unless ``box`` is False)
+    the box route's conditions; else every pair, or -- for a polynomial method whose
+    vertex 0 bounds the set (or its first interval) by a horizon T -- vertex 0's
+    conditions, the surviving vertex pairs and every ray and line pair."""
+    route = box_route(cs) if box else None
+    if route is not None:
+        return route[0], [], None, route[1]
     P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
     if allow and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
         if not cs.method.is_polynomial:  # in u = h/(s + h): [0, oo) becomes [0, 1]
             pruned = prune_rational(cs, first_end)
             if pruned is not None:
-                return pruned
+                return (*pruned, None)
         else:
             T, first, seconds = bounding_horizon(cs, first_end)
             if T is not None:
-                return prune_pairs(cs, T, first, seconds)
+                return (*prune_pairs(cs, T, first, seconds), None)
     conditions, equalities = cs.all()
-    return conditions, equalities, None
+    return conditions, equalities, None, None
 
 
-def _problem(system, polyhedron, method, conditions, prune):
-    if not isinstance(prune, bool):
-        raise InvalidInput(f"prune: expected True or False, got {prune!r}")
+def _problem(system, polyhedron, method, conditions, prune, box):
+    for name, flag in (("prune", prune), ("box", box)):
+        if not isinstance(flag, bool):
+            raise InvalidInput(f"{name}: expected True or False, got {flag!r}")
     if conditions is None:
         return ConditionSet(system, polyhedron, method)  # checks the three arguments
     if not isinstance(conditions, ConditionSet):
@@ -204,20 +226,21 @@ def _problem(system, polyhedron, method, conditions, prune):
 
 
 def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
-                      conditions: ConditionSet | None = None) -> ValidSteplengths:
+                      conditions: ConditionSet | None = None, box: bool = True) -> ValidSteplengths:
     """The exact set {dt >= 0 : A_d(dt) P subset of P} as a union of intervals
     with exact ends (open/closed marked); singular points of r(dt A) excluded.
     ``prune``: certified pruning of the vertex-facet pairs (same result);
-    ``conditions``: a shared :class:`ConditionSet` of the same problem.
+    ``conditions``: a shared :class:`ConditionSet` of the same problem;
+    ``box``: the box route on a box (same result; False: every vertex-facet pair).
 
     >>> import exactinv as ei
     >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
     >>> V.intervals
     [0, 2]
     """
-    cs = _problem(system, polyhedron, method, conditions, prune)
+    cs = _problem(system, polyhedron, method, conditions, prune, box)
     t0 = time.perf_counter()
-    inequalities, equalities, pruning = _conditions(cs, False, prune)
+    inequalities, equalities, pruning, route = _conditions(cs, False, prune, box)
     D = cs.D
     distinct = distinct_conditions(inequalities)
     singular = [r for r, _ in positive_roots(D)]
@@ -247,28 +270,28 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     if pruning is not None:
         pruning = pruning.finished(time.perf_counter() - t0)
     return ValidSteplengths(union, method, tuple(singular), len(inequalities), len(distinct), system, polyhedron,
-                            tuple(cs.Dcoeffs), pruning)
+                            tuple(cs.Dcoeffs), pruning, route)
 
 
 def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
-                      conditions: ConditionSet | None = None) -> LargestThreshold:
+                      conditions: ConditionSet | None = None, box: bool = True) -> LargestThreshold:
     """The exact largest threshold sup{T : A_d(dt) P subset of P for all dt in [0, T)}
     -- the end of the first interval of :func:`valid_steplengths` -- computed
     directly from the first sign change of each condition and the first pole.
-    ``prune`` and ``conditions`` as for :func:`valid_steplengths`.
+    ``prune``, ``conditions`` and ``box`` as for :func:`valid_steplengths`.
 
     >>> import exactinv as ei
     >>> largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2)).value
     Fraction(2, 1)
     """
-    cs = _problem(system, polyhedron, method, conditions, prune)
+    cs = _problem(system, polyhedron, method, conditions, prune, box)
     t0 = time.perf_counter()
-    inequalities, equalities, pruning = _conditions(cs, True, prune)
+    inequalities, equalities, pruning, route = _conditions(cs, True, prune, box)
     distinct = list(distinct_conditions(inequalities).values())
     Dcoeffs = tuple(cs.Dcoeffs)
     if equalities:
         return LargestThreshold(Fraction(0), True, method, equalities[0], None, system, polyhedron, tuple(distinct),
-                                Dcoeffs, pruning)
+                                Dcoeffs, pruning, route)
     best: Real = INF
     binding: Condition | None = None
     for c in sorted(distinct, key=lambda c: (c.kind != Kind.VERTEX or c.generator != 0, c.p(0))):
@@ -287,4 +310,4 @@ def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     if pruning is not None:
         pruning = pruning.finished(time.perf_counter() - t0)
     return LargestThreshold(best, attained, method, binding, singular, system, polyhedron, tuple(distinct), Dcoeffs,
-                            pruning)
+                            pruning, route)

@@ -72,10 +72,11 @@ def forward_euler_threshold(system: Any, invariant_set: Any) -> ForwardEulerThre
 
 
 def valid_steplengths(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
-                      conditions: ConditionSet | None = None) -> ValidSteplengths:
+                      conditions: ConditionSet | None = None, box: bool = True) -> ValidSteplengths:
     """The exact set of valid steplengths h >= 0, a union of intervals with exact ends.
-    On a polyhedron, ``prune`` and ``conditions`` (a :class:`ConditionSet` of the
-    same problem, shared with :func:`largest_threshold`) are passed on.
+    On a polyhedron, ``prune``, ``conditions`` (a :class:`ConditionSet` of the
+    same problem, shared with :func:`largest_threshold`) and ``box`` (the box
+    route on a box; False: every vertex-facet pair) are passed on.
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> valid_steplengths(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.taylor(2))
@@ -83,13 +84,13 @@ def valid_steplengths(system: Any, invariant_set: Any, method: Any, *, prune: bo
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_valid_steplengths(system, invariant_set, method)
-    return polyhedral.valid_steplengths(system, invariant_set, method, prune=prune, conditions=conditions)
+    return polyhedral.valid_steplengths(system, invariant_set, method, prune=prune, conditions=conditions, box=box)
 
 
 def largest_threshold(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
-                      conditions: ConditionSet | None = None) -> LargestThreshold:
+                      conditions: ConditionSet | None = None, box: bool = True) -> LargestThreshold:
     """The exact largest threshold: the end of the first interval of the valid set
-    (``prune``, ``conditions`` as for :func:`valid_steplengths`).
+    (``prune``, ``conditions``, ``box`` as for :func:`valid_steplengths`).
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> largest_threshold(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.backward_euler()).value
@@ -97,4 +98,4 @@ def largest_threshold(system: Any, invariant_set: Any, method: Any, *, prune: bo
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_largest_threshold(system, invariant_set, method)
-    return polyhedral.largest_threshold(system, invariant_set, method, prune=prune, conditions=conditions)
+    return polyhedral.largest_threshold(system, invariant_set, method, prune=prune, conditions=conditions, box=box)

@@ -70,6 +70,12 @@ def _count(n: int, word: str) -> str:
 
 
 def _generators(c: dict) -> str:
+    if "box" in c:
+        lo, hi = c["box"]["lo"], c["box"]["hi"]
+        count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"
+        return (f"the {count} vertices of the box {_vec(lo)} <= x <= {_vec(hi)}, never listed: the box route "
+                f"takes, per row of N(dt), one vertex-facet pair per sign pattern of its entries between their roots, "
+                f"which covers them all")
     n_v = len(c["vertices"])
     parts = [f"{n_v} {'vertex' if n_v == 1 else 'vertices'}"]
     if c.get("rays"):

@@ -148,7 +148,7 @@ def basis_solution(data: LPData, c: flint.fmpq_mat, b: flint.fmpq_mat,
     cols, rows = basis
     if len(cols) != len(rows):
         return None
-    A, N = data.A.entries(), data.N
+    A, N = data.entries, data.N
     B = flint.fmpq_mat(len(rows), len(cols), [A[r * N + i] for r in rows for i in cols])
     try:
         xB = B.solve(flint.fmpq_mat(len(rows), 1, [b[r, 0] for r in rows]))
@@ -207,7 +207,7 @@ class _Active:
 
     def __init__(self, data: LPData, b: flint.fmpq_mat):
         self.N, self.R = data.N, data.R
-        self.A, self.b = data.A.entries(), b.entries()
+        self.A, self.b = data.entries, b.entries()
 
     def row(self, k: int) -> list[flint.fmpq]:
         if k < self.R:

@@ -59,6 +59,15 @@ class LPData:
         return self.A.transpose()
 
     @cached_property
+    def entries(self) -> list[flint.fmpq]:
+        """The entries of A, row by row (read out of FLINT once per family).
+
+        >>> LPData(flint.fmpq_mat([[1, 2], [3, 4]]), (False, False)).entries
+        [1, 2, 3, 4]
+        """
+        return self.A.entries()
+
+    @cached_property
     def eq_rows(self) -> tuple[int, ...]:
         return tuple(r for r, e in enumerate(self.equality) if e)
 
@@ -206,15 +215,20 @@ def verify_ray(data: LPData, c: flint.fmpq_mat, nonneg: Sequence[bool], d: flint
 
 # ------------------------------------------------------------------ helpers
 class _IntColumns:
-    """The columns of an fmpq matrix M as integer numerators over one common
-    denominator d > 0 (so every sign and zero test is on fmpz values, ten times
-    faster than on fmpq ones, and exact: M_ik = cols[k][i] / d)."""
+    """The columns of an fmpq matrix M as integer numerators, column k over
+    its own denominator d_k > 0 (so every sign and zero test is on fmpz
+    values, ten times faster than on fmpq ones, and exact: M_ik = cols[k][i] / d_k;
+    per column, because one common denominator of many basis solutions can
+    have thousands of digits)."""
 
     def __init__(self, M: flint.fmpq_mat):
         R, K = M.nrows(), M.ncols()
-        numerators, self.d = M.transpose().numer_denom()
-        T = numerators.entries()
-        self.cols = [T[k * R:(k + 1) * R] for k in range(K)]
+        T = M.transpose().entries()
+        self.cols, self.ds = [], []
+        for k in range(K):
+            numerators, d = flint.fmpq_mat(R, 1, T[k * R:(k + 1) * R]).numer_denom()
+            self.cols.append(numerators.entries())
+            self.ds.append(d)
 
     def nonnegative(self, rows: Sequence[int] | None = None) -> list[bool]:
         """Per column: entries >= 0 (all entries, or those in ``rows``)."""
@@ -227,8 +241,9 @@ class _IntColumns:
 
     def dots(self, other: _IntColumns) -> list[flint.fmpq]:
         """Per column k: the inner product of column k here and in ``other``."""
-        zero, d = flint.fmpz(0), self.d * other.d
-        return [flint.fmpq(sum(map(mul, u, v), zero), d) for u, v in zip(self.cols, other.cols)]
+        zero = flint.fmpz(0)
+        return [flint.fmpq(sum(map(mul, u, v), zero), d * e)
+                for u, v, d, e in zip(self.cols, other.cols, self.ds, other.ds)]
 
 
 def _primal_ok(data: LPData, B: flint.fmpq_mat, free: list[list[int]], X: flint.fmpq_mat,

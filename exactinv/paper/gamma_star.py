@@ -1,7 +1,8 @@
 """The optimal gamma* (paper, Section 2 and Lemma 3.14).
 
 gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, answered row by row
-with the exact LP engine (:mod:`exactinv.lp`): row j of H is the optimal dual of
+(one float solve and one exact integer check for all rows, the exact LP engine
+:mod:`exactinv.lp` for the rest): row j of H is the optimal dual of
 the LP max{g_j^T A x : x in P, g_j^T x = b_j}.  Every returned H has been
 re-checked in Q; when continuous invariance fails the result carries an exact
 :class:`~exactinv.paper.witness.FacetWitness` instead.
@@ -11,9 +12,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, partial
+from typing import Callable
 
 import flint
+import numpy as np
 
 from ..core.algebraic import ExactKey
 from ..core.encode import encode_real, mat, vec
@@ -21,10 +24,13 @@ from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
 from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed
-from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
+from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
+from .gamma_batch import RowBatch, batch_rows, integer_G, is_sparse
+from .gamma_dense import DenseRows, dense_rows
 from .witness import FacetWitness, push_along_ray
 
 __all__ = ["GammaRow", "OptimalGamma", "optimal_gamma"]
@@ -37,14 +43,23 @@ class GammaRow:
     row LP is unbounded, ``INF`` when it is infeasible).  For an optimal row,
     ``dual = (y, lam)`` proves the bound:  g_k.y + lam b_k >= 0 (k != j),
     g_j.y + lam b_j = 1, lam >= 0 and (A^T g_j).y = max h_j.  For an
-    unbounded row, ``h`` is feasible and ``ray`` increases h_j."""
+    unbounded row, ``h`` is feasible and ``ray`` increases h_j.  ``lp_of``
+    returns the verified :class:`~exactinv.lp.LPResult` (built on first use
+    when the row was proved in a batch of integers)."""
 
     gamma: Fraction | Infinity
-    lp: LPResult = field(repr=False)
+    path: str
+    lp_of: Callable[[], LPResult] = field(repr=False, compare=False)
 
-    @property
-    def path(self) -> str:
-        return self.lp.path
+    @cached_property
+    def lp(self) -> LPResult:
+        """The verified row LP.
+
+        >>> row = optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).rows[0]
+        >>> row.gamma, row.lp.value, row.h, row.dual
+        (Fraction(1, 2), Fraction(-1, 2), (Fraction(-1, 2), Fraction(1, 2)), ((Fraction(1, 2),), Fraction(1, 2)))
+        """
+        return self.lp_of()
 
     @property
     def h(self) -> Vector | None:
@@ -75,12 +90,22 @@ class OptimalGamma(LatexMixin):
     """
 
     value: Fraction | Infinity
-    H_flint: flint.fmpq_mat | None = field(repr=False)
+    H_of: Callable[[], flint.fmpq_mat | None] = field(repr=False, compare=False)
     binding_row: int | None
     rows: tuple[GammaRow, ...] = field(repr=False)
     witness: FacetWitness | None
     system: LinearSystem = field(repr=False)
     polyhedron: Polyhedron = field(repr=False)
+
+    @cached_property
+    def H_flint(self) -> flint.fmpq_mat | None:
+        """The exact certificate H (an fmpq matrix; built on first use from the proved rows).
+
+        >>> optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).H_flint
+        [-1/2,  1/2]
+        [ 1/2, -1/2]
+        """
+        return self.H_of()
 
     @cached_property
     def H(self) -> Matrix | None:
@@ -166,9 +191,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
 
     Row j of H only meets row j of the constraints, so
     gamma* = max_j ( -max{h_j : h^T G = g_j^T A, h^T b <= 0, h_k >= 0 (k != j)} ).
-    The m row LPs share their constraint matrix [G^T; b^T], so one float model
-    is warm-started from row to row.  Exact: every row value is verified by
-    primal and dual certificates in Q (see :mod:`exactinv.lp`).
+    The m row LPs share their constraint matrix [G^T; b^T]: for a sparse G
+    they are solved in float as ONE block-diagonal LP
+    (:mod:`~exactinv.paper.gamma_batch`), otherwise by one HiGHS model
+    warm-started from row to row (:mod:`~exactinv.paper.gamma_dense`); either
+    way all rows are then proved optimal in one exact integer check.  Rows
+    that check fails, other hint backends, and infeasible or unbounded rows go
+    through the general engine (:mod:`exactinv.lp`).  Exact: every row value
+    is verified by primal and dual certificates in Q.
 
     x' = -x on [-1, 1]: gamma* = 1/2, so forward Euler keeps P for h <= 2
     (1 - h >= -1); x' = x is not invariant (gamma* = oo, witness x = 1).
@@ -181,30 +211,74 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     OptimalGamma(value=INF, not invariant, witness=FacetWitness(x=[1], facet=0, value=1))
     """
     S, P = check_pair(system, polyhedron)
-    m, n = P.m, P.n
-    GA = P.G_flint * S.A_flint
-    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
-    solver = ExactLPSolver(constraint, [True] * n + [False])
-    costs = flint.fmpq_mat(m, m)  # column j: e_j
-    for j in range(m):
-        costs[j, j] = 1
-    rhss = flint.fmpq_mat(n + 1, m, GA.transpose().entries() + [0] * m)  # column j: (A^T g_j, 0)
-    signs = [[k != j for k in range(m)] for j in range(m)]
-    rows = [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
+    batch = _row_batch(S, P)
+    if batch is not None and batch.ok.all():
+        return _from_batch(S, P, batch)
+    proved = {} if batch is None else {j: _batch_row(batch, j) for j in np.flatnonzero(batch.ok).tolist()}
+    rows = _solve_rows(S, P, [j for j in range(P.m) if j not in proved])
+    rows = [proved[j] if j in proved else rows.pop(0) for j in range(P.m)]
     if any(row.gamma == INF for row in rows):
         witness = _continuous_witness(S, P, first=[j for j, r in enumerate(rows) if r.gamma == INF])
-        return OptimalGamma(INF, None, None, tuple(rows), witness, S, P)
+        return OptimalGamma(INF, _none, None, tuple(rows), witness, S, P)
     value = max((row.gamma for row in rows), key=ExactKey)
     binding = None if value == -INF else next(j for j, r in enumerate(rows) if r.gamma == value)
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
-    return OptimalGamma(value, H, binding, tuple(rows), None, S, P)
+    return OptimalGamma(value, partial(_identity, H), binding, tuple(rows), None, S, P)
+
+
+def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:
+    """Every row LP solved in float and proved in one batch: one block-diagonal
+    float LP for a sparse G, warm-started row solves otherwise (HiGHS hints only)."""
+    if not isinstance(get_hint_backend(), HighsHint) or not P.m or not P.n:
+        return None
+    G = integer_G(P)
+    return batch_rows(S, P, G) if is_sparse(G) else dense_rows(S, P)
+
+
+def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
+    """The row LPs ``which`` through the general engine (warm-started, verified as one batch)."""
+    if not which:
+        return []
+    m, n = P.m, P.n
+    GA = P.G_flint * S.A_flint
+    constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())
+    solver = ExactLPSolver(constraint, [True] * n + [False])
+    costs = flint.fmpq_mat(m, len(which))  # column t: e_j for j = which[t]
+    for t, j in enumerate(which):
+        costs[j, t] = 1
+    GA_rows = GA.entries()  # row j: A^T g_j
+    rhss = flint.fmpq_mat(len(which), n + 1, [v for j in which for v in GA_rows[j * n:(j + 1) * n] + [0]]).transpose()
+    signs = [[k != j for k in range(m)] for j in which]
+    return [_gamma_row(res) for res in solver.solve_many(costs, rhss, signs)]
+
+
+def _from_batch(S: LinearSystem, P: Polyhedron, batch: RowBatch | DenseRows) -> OptimalGamma:
+    """gamma* from a batch in which every row is proved optimal: H = Hn/D has
+    every row checked (primal feasible, H_jj = -gamma_j >= -gamma*), and the
+    binding row's dual proves the value; nothing is re-checked."""
+    rows = tuple(_batch_row(batch, j) for j in range(P.m))
+    value = max(row.gamma for row in rows)
+    binding = next(j for j, row in enumerate(rows) if row.gamma == value)
+    return OptimalGamma(value, batch.H_flint, binding, rows, None, S, P)
+
+
+def _batch_row(batch: RowBatch | DenseRows, j: int) -> GammaRow:
+    return GammaRow(batch.gamma(j), batch.path(j), partial(batch.result, j))
 
 
 def _gamma_row(res: LPResult) -> GammaRow:
     if res.status == OPTIMAL:
-        return GammaRow(-res.value, res)
-    return GammaRow(-INF if res.status == UNBOUNDED else INF, res)
+        return GammaRow(-res.value, res.path, partial(_identity, res))
+    return GammaRow(-INF if res.status == UNBOUNDED else INF, res.path, partial(_identity, res))
+
+
+def _identity(value):
+    return value
+
+
+def _none() -> None:
+    return None
 
 
 def _assemble_H(rows: list[GammaRow], gamma) -> flint.fmpq_mat:
