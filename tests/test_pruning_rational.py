@@ -247,3 +247,20 @@ def test_a_record_that_would_cost_minutes_is_priced_and_rejected_first():
         kernel_rational.parse(record, 5000, 6)
     record["pieces"] = 48
     assert kernel_rational.parse(record, 5000, 6)[:3] == (Fraction(8), Fraction(1), 48)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.fractions(max_denominator=40).filter(lambda x: abs(x) < 100), min_size=2, max_size=9),
+       st.fractions(min_value=Fraction(0), max_value=Fraction(5), max_denominator=30),
+       st.fractions(min_value=Fraction(1, 30), max_value=Fraction(5), max_denominator=30))
+def test_entry_bernstein_in_integers_is_the_bernstein_definition(coeffs, t, d):
+    """X = B_0, Z = B_E, M = max_k |B_k - (1 - k/E) B_0 - (k/E) B_E| with B_k = sum_{i<=k} C(k,i)/C(E,i) c_i,
+    c_i the coefficients of p(t + d x) -- computed here in Fractions from the definition."""
+    E = len(coeffs) - 1
+    shifted = [Fraction(0)] * (E + 1)  # p(t + d x) by expanding each (t + d x)^i
+    for i, a in enumerate(coeffs):
+        for j in range(i + 1):
+            shifted[j] += a * math.comb(i, j) * t ** (i - j) * d ** j
+    B = [sum(Fraction(math.comb(k, i), math.comb(E, i)) * shifted[i] for i in range(k + 1)) for k in range(E + 1)]
+    M = max(abs(B[k] - (1 - Fraction(k, E)) * B[0] - Fraction(k, E) * B[E]) for k in range(E + 1))
+    assert kernel_rational._entry_bernstein(coeffs, t, d) == (B[0], B[E], M)
