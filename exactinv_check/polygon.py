@@ -40,7 +40,7 @@ from fractions import Fraction
 from functools import cmp_to_key
 from math import gcd
 
-from .rationals import CheckFailure
+from .rationals import CheckFailure, within_budget
 
 __all__ = ["prove_polygon"]
 
@@ -180,10 +180,11 @@ def prove_polygon(G, b, vertices):
         if key not in listed:
             raise CheckFailure(f"incomplete generators: the vertex ({key[0]}, {key[1]}) of P is not listed")
         hit.add(listed[key])
-    for i, v in enumerate(vertices):
-        if i not in hit:
-            _require_in(rows, v, i)
-    return len(corners), len(vertices) - len(corners)
+    extra = [i for i in range(len(vertices)) if i not in hit]
+    within_budget(len(extra) * len(rows) * 8, f"{len(extra)} listed points beyond the corners, each against {len(rows)} rows")
+    for i in extra:
+        _require_in(rows, vertices[i], i)
+    return len(corners), len(extra)
 
 
 def _require_in(rows, v, i):

@@ -36,10 +36,12 @@ small; a longer one is rejected before any piece is built.
 from fractions import Fraction
 from math import comb, gcd, isqrt
 
+from . import conditions
 from .rationals import integer, rational, require
 
 K = 1 << 40  # the integer grid
 HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers t^i stay short (work budget)
+MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
 
 
 def _ceil(x):
@@ -243,13 +245,16 @@ def survivors_of_pieces(G, b, vertices, pieces, order):
     only skip work), each test done by :class:`_Packed`."""
     rows = _integer_rows(G, b)
     boxes = _boxes(vertices, pieces)
-    out = {i: [] for i in range(len(vertices))}
+    out = {i: set() for i in range(len(vertices))}
     if not rows:
-        return out
+        return {i: [] for i in out}
     every_box = [box for per_vertex in boxes for ends in per_vertex for box in ends]
-    table = _Packed.table(rows, _slot_bytes(rows, every_box))
+    width = _slot_bytes(rows, every_box)
+    require(width * len(rows) * (len(rows[0][0]) + 1) <= MAX_PACKED_BYTES,
+            f"over the kernel's work budget: {len(rows)} rows packed in slots of {width} bytes")
+    table = _Packed.table(rows, width)
     everything = _Packed(table, list(range(len(rows))))
-    size = max(1, isqrt(len(vertices)))
+    size, total = max(1, isqrt(len(vertices))), [0]
     for start in range(0, len(order), size):
         block = order[start:start + size]
         chunks = [block[k:k + isqrt(size)] for k in range(0, len(block), isqrt(size))]
@@ -261,13 +266,14 @@ def survivors_of_pieces(G, b, vertices, pieces, order):
             near_rows = _Packed(table, near)
             for a, box in enumerate(per_piece):
                 _descend(table, near_rows.outside(box), [(chunk, c[a]) for chunk, c in zip(chunks, per_chunk)],
-                         boxes, a, out)
-    return {i: sorted(set(f)) for i, f in out.items()}
+                         boxes, a, out, total)
+    return {i: sorted(f) for i, f in out.items()}
 
 
-def _descend(table, hits, chunks, boxes, a, out):
+def _descend(table, hits, chunks, boxes, a, out, total):
     """Piece a of one block: the rows ``hits`` its box does not clear, tested on each
-    chunk's box, then on the boxes of the chunk's vertices."""
+    chunk's box, then on the boxes of the chunk's vertices (``total[0]`` counts the
+    distinct pairs found: past the kernel's bound on conditions, reject at once)."""
     if not hits:
         return
     hit_rows = _Packed(table, hits)
@@ -277,5 +283,9 @@ def _descend(table, hits, chunks, boxes, a, out):
             close_rows = _Packed(table, close)
             for i in chunk:
                 x, z = boxes[i][a]
-                out[i].extend(close_rows.outside(x))
-                out[i].extend(close_rows.outside(z))
+                before = len(out[i])
+                out[i].update(close_rows.outside(x))
+                out[i].update(close_rows.outside(z))
+                total[0] += len(out[i]) - before
+                require(total[0] <= conditions.MAX_CONDITIONS,
+                        f"more than {conditions.MAX_CONDITIONS} pairs survive the pruning test: they exceed the kernel's bound")
