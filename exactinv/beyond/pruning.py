@@ -49,15 +49,16 @@ from fractions import Fraction
 import flint
 import numpy as np
 
-from ..core.algebraic import ExactKey, upper_bound
-from ..core.intervals import complement_of_open
-from ..core.roots import negative_segments, nonnegative_until
+from ..core.algebraic import ExactKey, Real, upper_bound
+from ..core.nonnegative import nonnegative_set, tightest_first
+from ..core.polys import positive_below
+from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
 
-__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "first_nonnegative_end", "prune", "build_survivors"]
 
 _BITS = 24  # the grid: K = 2^24
 _BLOCK = 64  # vertices per block of the box test
@@ -207,27 +208,33 @@ def pieces_test(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, pieces: list, ord
 
 def _blocked_test(Gt, bt, grids, rho, order):
     """The surviving (facets, vertices): boxes around blocks of vertices (along ``order``)
-    first, then vertex by vertex for the facets a block's box does not clear."""
+    first, then vertex by vertex for the facets a block's box does not clear -- on each
+    piece only the facets that block's box does not clear on that piece (a box that
+    clears a facet clears it for every vertex of the block: the result is the vertex test)."""
     m, V = Gt.shape[0], grids[0].shape[1]
     size = _BLOCK
     blocks = -(-V // size)
     idx = np.concatenate([order, np.repeat(order[-1:], blocks * size - V)]).reshape(blocks, size)
     Gp, Gn = np.maximum(Gt, 0), np.minimum(Gt, 0)
-    near = np.zeros((m, blocks), dtype=bool)
+    near = np.zeros((len(rho), blocks, m), dtype=bool)  # near[k, blk, j]: piece k's box test fails
     for k, bound in enumerate(rho):
         X, Z = grids[2 * k][:, idx], grids[2 * k + 1][:, idx]  # n x blocks x size
         lo, hi = np.minimum(X, Z).min(axis=2), np.maximum(X, Z).max(axis=2)
-        near |= bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]
+        near[k] = (bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]).T
     facets, vertices = [], []
     for blk in range(blocks):
-        F = np.nonzero(near[:, blk])[0]
+        F = np.nonzero(near[:, blk].any(axis=0))[0]
         if not len(F):
             continue
         cols = np.unique(idx[blk])
         keep = np.zeros((len(F), len(cols)), dtype=bool)
         for k, bound in enumerate(rho):
+            rows = np.nonzero(near[k, blk, F])[0]
+            if not len(rows):
+                continue
+            Gk, bk = Gt[F[rows]], bt[F[rows]]
             for U in grids[2 * k: 2 * k + 2]:
-                keep |= bt[F] - _dot(Gt[F], U[:, cols]) <= bound[None, cols]
+                keep[rows] |= bk - _dot(Gk, U[:, cols]) <= bound[None, cols]
         j, i = np.nonzero(keep)
         facets.append(F[j])
         vertices.append(cols[i])
@@ -299,26 +306,44 @@ class Pruning:
         return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
 
 
+VERTEX_ZERO = "vertex 0 valid set"  # ConditionSet.derived: the valid set of vertex 0's conditions
+
+
 def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
     """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
     set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
+    Tightest conditions first, each skipped when proved positive up to the bound so far
+    (:mod:`..core.nonnegative`); the valid set of vertex 0 is kept in ``cs.derived``.
 
     >>> import exactinv as ei
     >>> from exactinv.beyond.conditions import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-    >>> bounding_horizon(cs, False)[0]
-    Fraction(2, 1)
+    >>> bounding_horizon(cs, False)[0], cs.derived[VERTEX_ZERO]
+    (Fraction(2, 1), [0, 2])
     """
     t0 = time.perf_counter()
     first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
     if first_end:
-        end = min((nonnegative_until(c.p) for c in first), key=ExactKey, default=INF)
+        end = first_nonnegative_end([c.p for c in first])
     else:
-        bad = [seg for c in first for seg in negative_segments(c.p)]
-        union = complement_of_open(bad, [])
+        union = cs.derived[VERTEX_ZERO] = nonnegative_set(tightest_first([c.p for c in first]))
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
     T = None if isinstance(end, Infinity) else _short_horizon(upper_bound(end))
     return T, first, [("bounding vertex", time.perf_counter() - t0)]
+
+
+def first_nonnegative_end(polys: list) -> Real:
+    """min over p of sup{T : p >= 0 on [0, T]} (:func:`nonnegative_until`), INF for none: the
+    tightest first, each skipped when proved positive on (0, best so far) (it cannot end earlier).
+
+    >>> first_nonnegative_end([flint.fmpq_poly([3, -1]), flint.fmpq_poly([2, -3, 1]), flint.fmpq_poly([1])])
+    Fraction(1, 1)
+    """
+    best: Real = INF
+    for p in tightest_first(polys):
+        if isinstance(best, Infinity) or not positive_below([p], upper_bound(best))[0]:
+            best = min(best, nonnegative_until(p), key=ExactKey)
+    return best
 
 
 def _short_horizon(x: Fraction) -> Fraction | None:
