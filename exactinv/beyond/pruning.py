@@ -194,16 +194,31 @@ def pieces_test(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, pieces: list, ord
         return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
     rho = [(np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64) @ a).max(axis=0)
            for _, _, M in pieces]  # >= K^2 rho_v / R
+    Gt, bt = _facet_grid(G, b, K, int(R))
+    bt = (bt - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
+    return _blocked_test(Gt, bt, grids, rho, np.array(order, dtype=np.int64))
+
+
+def _facet_grid(G: flint.fmpq_mat, b: list, K: int, R: int) -> tuple[np.ndarray, np.ndarray]:
+    """(round(K g_j / ||g_j||_1) half to even, floor(K^2 clamp(b_j / (||g_j||_1 R), -n - 4, n + 4))) per facet,
+    in integers: g_j / ||g_j||_1 = a_j / ||a_j||_1 for the integer rows a_j = dG g_j (dG > 0)."""
+    n, m = G.ncols(), G.nrows()
+    Gz, dG = G.numer_denom()
+    a, dG, top = [int(x) for x in Gz.entries()], int(dG), (n + 4) * K * K
     Gt, bt = [], []
     for j in range(m):
-        g = [fraction_of(G[j, l]) for l in range(n)]
-        norm = sum(abs(x) for x in g)
-        Gt.append([round(x / norm * K) for x in g])
-        bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
-        bt.append(math.floor(bbar * K * K))
-    Gt = np.array(Gt, dtype=np.int64)
-    bt = (np.array(bt, dtype=np.int64) - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
-    return _blocked_test(Gt, bt, grids, rho, np.array(order, dtype=np.int64))
+        row = a[j * n:(j + 1) * n]
+        A = sum(map(abs, row))
+        Gt.append([_round_half_even(x * K, A) for x in row])
+        bj = b[j]
+        bt.append(min(max(int(bj.p) * dG * K * K // (int(bj.q) * A * R), -top), top))
+    return np.array(Gt, dtype=np.int64).reshape(m, n), np.array(bt, dtype=np.int64)
+
+
+def _round_half_even(x: int, d: int) -> int:
+    """round(x / d) for d > 0, ties to even (Python's round of a Fraction)."""
+    q, r = divmod(x, d)
+    return q + (2 * r > d or (2 * r == d and q % 2 == 1))
 
 
 def _blocked_test(Gt, bt, grids, rho, order):
