@@ -210,8 +210,8 @@ def _facet_grid(G: flint.fmpq_mat, b: list, K: int, R: int) -> tuple[np.ndarray,
         row = a[j * n:(j + 1) * n]
         A = sum(map(abs, row))
         Gt.append([_round_half_even(x * K, A) for x in row])
-        bj = b[j]
-        bt.append(min(max(int(bj.p) * dG * K * K // (int(bj.q) * A * R), -top), top))
+        bj = fraction_of(b[j])
+        bt.append(min(max(bj.numerator * dG * K * K // (bj.denominator * A * R), -top), top))
     return np.array(Gt, dtype=np.int64).reshape(m, n), np.array(bt, dtype=np.int64)
 
 
