@@ -9,9 +9,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from exactinv.core.intervals import complement_of_open
-from exactinv.core.nonnegative import nonnegative_set, tightest_first
+from exactinv.core.algebraic import ExactKey
+from exactinv.core.nonnegative import earliest_first, first_end, nonnegative_set, tightest_first
 from exactinv.core.polys import positive_below
-from exactinv.core.roots import negative_segments, positive_roots
+from exactinv.core.roots import negative_segments, nonnegative_until, positive_roots
 from exactinv.core.scalars import INF
 
 # products of linear factors (t - r) with small rational roots: many shared and touching ends
@@ -40,7 +41,7 @@ def test_nonnegative_set_is_the_all_at_once_set(ps, points):
     """Same maximal intervals as complement_of_open of every negative segment, whatever the order."""
     reference = complement_of_open([s for p in ps for s in negative_segments(p)], points)
     start = complement_of_open([], points)
-    for order in (ps, tightest_first(ps), ps[::-1]):
+    for order in (ps, tightest_first(ps), earliest_first(ps), ps[::-1]):
         assert repr(nonnegative_set(order, start)) == repr(reference)
     for t in _samples(ps)[1:] + points:  # and the set is right pointwise on t > 0 (0 is always kept)
         inside = all(p(flint.fmpq(t.numerator, t.denominator)) >= 0 for p in ps) and t not in points
@@ -79,3 +80,11 @@ def test_intersect_is_pointwise(ps, qs):
         assert (t in both) == (t in A and t in B)
     assert all(iv.lo_closed or iv.lo != 0 for iv in both) and (not both.intervals or both[-1].hi == INF or
                                                                    both[-1].hi_closed)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(polys, max_size=6))
+def test_first_end_is_the_least_nonnegative_end(ps):
+    """first_end (skips, earliest first) equals the minimum of nonnegative_until over every p."""
+    assert first_end(ps) == min((nonnegative_until(p) for p in ps), key=ExactKey, default=INF)
+    assert sorted(map(str, earliest_first(ps))) == sorted(map(str, ps))   # a permutation

@@ -34,7 +34,7 @@ from ..core.algebraic import ExactKey, Real, exact_lt, upper_bound
 from ..core.encode import encode_real, vec
 from ..core.intervals import Interval, IntervalUnion, complement_of_open
 from ..core.latex import latex_real
-from ..core.nonnegative import nonnegative_set, tightest_first
+from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until, positive_roots
@@ -251,7 +251,7 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     first = [c.p for c in distinct.values() if c.kind == Kind.VERTEX and c.generator == 0]
     vertex_zero = cs.derived.get(VERTEX_ZERO) if route is None else None
     if vertex_zero is None:
-        vertex_zero = nonnegative_set(tightest_first(first))
+        vertex_zero = nonnegative_set(earliest_first(first))
     union = nonnegative_set([c.p for c in distinct.values() if c.kind != Kind.VERTEX or c.generator != 0],
                             vertex_zero.intersect(complement_of_open([], singular)))
     if equalities:  # lines: only the common roots of every e survive

@@ -49,16 +49,14 @@ from fractions import Fraction
 import flint
 import numpy as np
 
-from ..core.algebraic import ExactKey, Real, upper_bound
-from ..core.nonnegative import nonnegative_set, tightest_first
-from ..core.polys import positive_below
-from ..core.roots import nonnegative_until
-from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.algebraic import upper_bound
+from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
+from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
 
-__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "first_nonnegative_end", "prune", "build_survivors"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
 
 _BITS = 24  # the grid: K = 2^24
 _BLOCK = 64  # vertices per block of the box test
@@ -327,7 +325,7 @@ VERTEX_ZERO = "vertex 0 valid set"  # ConditionSet.derived: the valid set of ver
 def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
     """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
     set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
-    Tightest conditions first, each skipped when proved positive up to the bound so far
+    Earliest conditions first, each skipped when proved positive up to the bound so far
     (:mod:`..core.nonnegative`); the valid set of vertex 0 is kept in ``cs.derived``.
 
     >>> import exactinv as ei
@@ -339,26 +337,12 @@ def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
     t0 = time.perf_counter()
     first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
     if first_end:
-        end = first_nonnegative_end([c.p for c in first])
+        end = earliest_end([c.p for c in first])
     else:
-        union = cs.derived[VERTEX_ZERO] = nonnegative_set(tightest_first([c.p for c in first]))
+        union = cs.derived[VERTEX_ZERO] = nonnegative_set(earliest_first([c.p for c in first]))
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
     T = None if isinstance(end, Infinity) else _short_horizon(upper_bound(end))
     return T, first, [("bounding vertex", time.perf_counter() - t0)]
-
-
-def first_nonnegative_end(polys: list) -> Real:
-    """min over p of sup{T : p >= 0 on [0, T]} (:func:`nonnegative_until`), INF for none: the
-    tightest first, each skipped when proved positive on (0, best so far) (it cannot end earlier).
-
-    >>> first_nonnegative_end([flint.fmpq_poly([3, -1]), flint.fmpq_poly([2, -3, 1]), flint.fmpq_poly([1])])
-    Fraction(1, 1)
-    """
-    best: Real = INF
-    for p in tightest_first(polys):
-        if isinstance(best, Infinity) or not positive_below([p], upper_bound(best))[0]:
-            best = min(best, nonnegative_until(p), key=ExactKey)
-    return best
 
 
 def _short_horizon(x: Fraction) -> Fraction | None:
