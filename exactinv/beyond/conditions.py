@@ -32,7 +32,7 @@ from typing import Iterable
 
 import flint
 
-from ..core.polys import integer_part, sign_variations
+from ..core.polys import integer_part
 from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
@@ -124,13 +124,13 @@ def _integer_row(row: list) -> tuple[list[int], int]:
 
 
 def never_binds(coeffs) -> bool:
-    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes).
+    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes) -- that is,
+    every coefficient >= 0 (True for the zero polynomial, which is >= 0 everywhere).
 
-    >>> never_binds([0, 1, 2]), never_binds([1, -1])
-    (True, False)
+    >>> never_binds([0, 1, 2]), never_binds([1, -1]), never_binds([])
+    (True, False, True)
     """
-    nonzero = [c for c in coeffs if c != 0]
-    return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
+    return min(coeffs, default=0) >= 0
 
 
 class ConditionSet:
@@ -351,7 +351,7 @@ def distinct_conditions(conditions: list[Condition]) -> dict[tuple, Condition]:
     """
     seen: dict[tuple, Condition] = {}
     for c in conditions:
-        key = tuple(int(x) for x in integer_part(c.p).coeffs())
+        key = tuple(map(int, integer_part(c.p).coeffs()))
         if key not in seen:
             seen[key] = c
     return seen
