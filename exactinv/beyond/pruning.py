@@ -175,17 +175,16 @@ def pieces_test(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, pieces: list, ord
     K = 1 << _BITS
     maps = [Q for X, Y, _ in pieces for Q in (X, X + Y)] + [pieces[0][0] ** 0]  # the chord ends, then w itself
     Wz, dW = W.numer_denom()
-    wz, dW = [int(x) for x in Wz.entries()], int(dW)
-    vmax = Fraction(max(map(abs, wz), default=0), dW)
+    vmax = Fraction(max((abs(int(x)) for x in Wz.entries()), default=0), int(dW))
     qmax = max(_norm(Q) for Q in maps)
     top = vmax * qmax  # >= every |coordinate| of every point
     r = math.ceil(top).bit_length() if top else 0
     R = Fraction(2) ** r
     e = _BITS - r
     f = max(e, 0) + math.ceil(qmax).bit_length() + 1  # 2^(f-e) >= ||Q||_oo: grid error <= 2
-    wf = [(x << f) // dW for x in wz]  # floor(2^f W), f > 0
-    Wf = flint.fmpz_mat(W.nrows(), W.ncols(), wf)
-    Wn = None if max(map(abs, wf), default=0) >= 2**62 else np.array(wf, dtype=np.int64).reshape(n, V)
+    Wf = flint.fmpz_mat(W.nrows(), W.ncols(), [(x * 2**f).floor() for x in W.entries()])
+    big = max((abs(int(x)) for x in Wf.entries()), default=0) >= 2**62
+    Wn = None if big else np.array([int(x) for x in Wf.entries()], dtype=np.int64).reshape(n, V)
     grids = [_grid(Q, Wf, f, e, Wn) for Q in maps]
     a = np.abs(grids.pop()) + 2  # >= |v| K / R
     cap = Fraction(2**62, n * (K + 1) * K)
