@@ -1,8 +1,10 @@
 """Certified pruning of vertex-facet pairs (issue 13): the same exact answers as
 the unpruned route, a sound bound, and a kernel that rejects what it cannot prove."""
 
+import math
 from fractions import Fraction
 
+import flint
 import pytest
 from hypothesis import given, settings, strategies as st
 
@@ -195,3 +197,22 @@ def test_bad_pruning_and_condition_arguments_are_named(call, message):
     S, P, m = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(2)
     with pytest.raises(ei.ExactinvError, match=message):
         call(S, P, m)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 4), st.lists(st.tuples(st.lists(st.integers(-40, 40), min_size=4, max_size=4),
+                                             st.integers(1, 8), st.fractions(-10**4, 10**4, max_denominator=99)),
+                                   min_size=1, max_size=12),
+       st.sampled_from([3, 8, 24]), st.integers(0, 5))
+def test_facet_grid_is_the_rounded_normalised_rows(n, rows, bits, r):
+    """The integer facet grid equals round(K g / ||g||_1) (ties to even) and floor(K^2 clamp(b / (||g||_1 R)))
+    computed in Fractions (small integers and K = 8 make ties)."""
+    rows = [(g[:n] if any(g[:n]) else [1] * n, q, bj) for g, q, bj in rows]
+    G = flint.fmpq_mat(len(rows), n, [flint.fmpq(x, q) for g, q, _ in rows for x in g])
+    b = [flint.fmpq(bj.numerator, bj.denominator) for _, _, bj in rows]
+    K, R = 1 << bits, 2**r
+    Gt, bt = engine_pruning._facet_grid(G, b, K, R)
+    for j, (g, q, bj) in enumerate(rows):
+        norm = sum(abs(Fraction(x, q)) for x in g)
+        assert Gt[j].tolist() == [round(Fraction(x, q) / norm * K) for x in g]
+        assert bt[j] == math.floor(min(max(bj / norm / R, Fraction(-n - 4)), Fraction(n + 4)) * K * K)

@@ -32,7 +32,7 @@ from typing import Iterable
 
 import flint
 
-from ..core.polys import integer_part, sign_variations
+from ..core.polys import integer_part
 from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
@@ -124,13 +124,13 @@ def _integer_row(row: list) -> tuple[list[int], int]:
 
 
 def never_binds(coeffs) -> bool:
-    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes).
+    """No sign variation and a positive coefficient: c > 0 on (0, oo) (Descartes) -- that is,
+    every coefficient >= 0 (True for the zero polynomial, which is >= 0 everywhere).
 
-    >>> never_binds([0, 1, 2]), never_binds([1, -1])
-    (True, False)
+    >>> never_binds([0, 1, 2]), never_binds([1, -1]), never_binds([])
+    (True, False, True)
     """
-    nonzero = [c for c in coeffs if c != 0]
-    return not nonzero or (nonzero[0] > 0 and sign_variations(nonzero) == 0)
+    return min(coeffs, default=0) >= 0
 
 
 class ConditionSet:
@@ -209,8 +209,11 @@ class ConditionSet:
             Gz, e = self._facet_matrix(j)
             Wz = flint.fmpz_mat(len(generators), n, [x for i in generators for x in rows[i][0]])
             product = Wz * Gz
-            width = product.ncols()
-            clear = self._clear_rows(kind, j, [rows[i][1] for i in generators], product, e)
+            width, d = product.ncols(), [rows[i][1] for i in generators]
+            if kind != Kind.LINE and self.D.coeffs() == [1]:  # c = q: its integer rows decide it and build it
+                self._build_from_rows(kind, j, generators, d, self._q_rows(kind, j, d, product, e), e)
+                continue
+            clear = self._clear_rows(kind, j, d, product, e)
             coeffs = product.entries()
             for r, i in enumerate(generators):
                 self._built[kind, i, j] = None if clear[r] else self._condition(
@@ -247,18 +250,33 @@ class ConditionSet:
         """
         return [(self.G * Nk).tolist() for Nk in self.N]
 
+    def _q_rows(self, kind: Kind, j: int, d: list[int], product: flint.fmpz_mat, e: list[int]) -> list:
+        """The integers d_r e_k q_k, row after row, of q = b_j D - g_j N w_r (vertices; -g_j N w_r
+        for rays) from ``product`` (d_r e_k g_j N_k w_r): positive multiples of q's coefficients."""
+        Dc, width = self.D.coeffs(), product.ncols()
+        bj = self.b[j] if kind == Kind.VERTEX else 0
+        brow = flint.fmpz_mat(1, width, [int(bj * Dc[k] * e[k]) if k < len(Dc) else 0 for k in range(width)])
+        return (flint.fmpz_mat(len(d), 1, d) * brow - product).entries()
+
     def _clear_rows(self, kind: Kind, j: int, d: list[int], product: flint.fmpz_mat, e: list[int]) -> list[bool]:
         """Per row r of ``product`` (d_r e_k g_j N_k w_r, k = 0, 1, ...): True when every coefficient
         of q = b_j D - g_j N w (vertices; -g_j N w for rays) is >= 0 and so are D's -- then c = q D has
         no negative coefficient and never binds (Descartes).  Decided on the integers d_r e_k q_k."""
-        Dc = self.D.coeffs()
-        if kind == Kind.LINE or any(c < 0 for c in Dc):
+        if kind == Kind.LINE or any(c < 0 for c in self.D.coeffs()):
             return [False] * len(d)
-        width = product.ncols()
-        bj = self.b[j] if kind == Kind.VERTEX else 0
-        brow = flint.fmpz_mat(1, width, [int(bj * Dc[k] * e[k]) if k < len(Dc) else 0 for k in range(width)])
-        q = (flint.fmpz_mat(len(d), 1, d) * brow - product).entries()
+        q, width = self._q_rows(kind, j, d, product, e), product.ncols()
         return [all(x >= 0 for x in q[r * width:(r + 1) * width]) for r in range(len(d))]
+
+    def _build_from_rows(self, kind: Kind, j: int, generators: list[int], d: list[int], q: list, e: list[int]):
+        """D = 1 (polynomial methods): c = q, decided and built from the integer rows d_r e_k q_k of
+        :meth:`_q_rows` -- their signs are those of c's coefficients (:func:`never_binds`), and
+        c_k = (d_r e_k q_k) (E / e_k) / (d_r E) with E = lcm(e), one integer polynomial over d_r E."""
+        width, E = len(e), math.lcm(*e)
+        f = [E // x for x in e]
+        for r, i in enumerate(generators):
+            row = q[r * width:(r + 1) * width]
+            self._built[kind, i, j] = None if never_binds(row) else Condition(
+                kind, i, j, flint.fmpq_poly([x * y for x, y in zip(row, f)], d[r] * E))
 
     def all(self) -> tuple[list[Condition], list[Condition]]:
         """(inequalities, equalities) over every generator-facet pair (built once).
@@ -333,7 +351,7 @@ def distinct_conditions(conditions: list[Condition]) -> dict[tuple, Condition]:
     """
     seen: dict[tuple, Condition] = {}
     for c in conditions:
-        key = tuple(int(x) for x in integer_part(c.p).coeffs())
+        key = tuple(map(int, integer_part(c.p).coeffs()))
         if key not in seen:
             seen[key] = c
     return seen

@@ -34,9 +34,10 @@ from ..core.algebraic import ExactKey, Real, exact_lt, upper_bound
 from ..core.encode import encode_real, vec
 from ..core.intervals import Interval, IntervalUnion, complement_of_open
 from ..core.latex import latex_real
+from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.results import ExactValueMixin
-from ..core.roots import negative_segments, nonnegative_until, positive_roots
+from ..core.roots import nonnegative_until, positive_roots
 from ..core.scalars import INF, Infinity
 from ..core.tags import ClaimType
 from ..model import LinearSystem, Method, Polyhedron
@@ -44,7 +45,7 @@ from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
 from .box_conditions import BoxRoute, box_route
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
-from .pruning import WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
+from .pruning import VERTEX_ZERO, WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 from .pruning_rational import prune_rational
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet"]
@@ -244,22 +245,15 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     D = cs.D
     distinct = distinct_conditions(inequalities)
     singular = [r for r, _ in positive_roots(D)]
-    # The valid set lies inside the valid set of any single generator: take the
-    # conditions of the first vertex exactly, then skip every other condition
-    # that Descartes' rule shows nonnegative on [0, T], T the end of that set.
-    first = [c for c in distinct.values() if c.kind == Kind.VERTEX and c.generator == 0]
-    bad: list[tuple[Real, Real]] = []
-    for c in first:
-        bad.extend(negative_segments(c.p))
-    bound = complement_of_open(bad, singular)
-    T = bound.intervals[-1].hi if bound.intervals else Fraction(0)
-    for c in distinct.values():
-        if c.kind == Kind.VERTEX and c.generator == 0:
-            continue
-        if not isinstance(T, Infinity) and positive_right_of_zero(c.p) and no_positive_root_below(c.p, upper_bound(T)):
-            continue
-        bad.extend(negative_segments(c.p))
-    union = complement_of_open(bad, singular)
+    # The valid set lies inside the valid set of any single generator: intersect the
+    # conditions of the first vertex (tightest first; kept by the pruning when it ran)
+    # and then every other, each skipped when proved positive up to the current bound.
+    first = [c.p for c in distinct.values() if c.kind == Kind.VERTEX and c.generator == 0]
+    vertex_zero = cs.derived.get(VERTEX_ZERO) if route is None else None
+    if vertex_zero is None:
+        vertex_zero = nonnegative_set(earliest_first(first))
+    union = nonnegative_set([c.p for c in distinct.values() if c.kind != Kind.VERTEX or c.generator != 0],
+                            vertex_zero.intersect(complement_of_open([], singular)))
     if equalities:  # lines: only the common roots of every e survive
         allowed = None
         for e in distinct_conditions(equalities).values():

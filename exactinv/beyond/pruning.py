@@ -49,10 +49,9 @@ from fractions import Fraction
 import flint
 import numpy as np
 
-from ..core.algebraic import ExactKey, upper_bound
-from ..core.intervals import complement_of_open
-from ..core.roots import negative_segments, nonnegative_until
-from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.algebraic import upper_bound
+from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
+from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
@@ -193,41 +192,62 @@ def pieces_test(G: flint.fmpq_mat, b: list, W: flint.fmpq_mat, pieces: list, ord
         return np.repeat(np.arange(m), V), np.tile(np.arange(V), m)  # bounds too large to prune anything
     rho = [(np.array([[math.ceil(x * K) for x in row] for row in M], dtype=np.int64) @ a).max(axis=0)
            for _, _, M in pieces]  # >= K^2 rho_v / R
+    Gt, bt = _facet_grid(G, b, K, int(R))
+    bt = (bt - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
+    return _blocked_test(Gt, bt, grids, rho, np.array(order, dtype=np.int64))
+
+
+def _facet_grid(G: flint.fmpq_mat, b: list, K: int, R: int) -> tuple[np.ndarray, np.ndarray]:
+    """(round(K g_j / ||g_j||_1) half to even, floor(K^2 clamp(b_j / (||g_j||_1 R), -n - 4, n + 4))) per facet,
+    in integers: g_j / ||g_j||_1 = a_j / ||a_j||_1 for the integer rows a_j = dG g_j (dG > 0)."""
+    n, m = G.ncols(), G.nrows()
+    Gz, dG = G.numer_denom()
+    a, dG, top = [int(x) for x in Gz.entries()], int(dG), (n + 4) * K * K
     Gt, bt = [], []
     for j in range(m):
-        g = [fraction_of(G[j, l]) for l in range(n)]
-        norm = sum(abs(x) for x in g)
-        Gt.append([round(x / norm * K) for x in g])
-        bbar = min(max(fraction_of(b[j]) / norm / R, Fraction(-n - 4)), Fraction(n + 4))
-        bt.append(math.floor(bbar * K * K))
-    Gt = np.array(Gt, dtype=np.int64)
-    bt = (np.array(bt, dtype=np.int64) - ((n + 3) * K + 2 * n))[:, None]  # minus the rounding error E
-    return _blocked_test(Gt, bt, grids, rho, np.array(order, dtype=np.int64))
+        row = a[j * n:(j + 1) * n]
+        A = sum(map(abs, row))
+        Gt.append([_round_half_even(x * K, A) for x in row])
+        bj = fraction_of(b[j])
+        bt.append(min(max(bj.numerator * dG * K * K // (bj.denominator * A * R), -top), top))
+    return np.array(Gt, dtype=np.int64).reshape(m, n), np.array(bt, dtype=np.int64)
+
+
+def _round_half_even(x: int, d: int) -> int:
+    """round(x / d) for d > 0, ties to even (Python's round of a Fraction)."""
+    q, r = divmod(x, d)
+    return q + (2 * r > d or (2 * r == d and q % 2 == 1))
 
 
 def _blocked_test(Gt, bt, grids, rho, order):
     """The surviving (facets, vertices): boxes around blocks of vertices (along ``order``)
-    first, then vertex by vertex for the facets a block's box does not clear."""
+    first, then vertex by vertex for the facets a block's box does not clear -- on each
+    piece only the facets that block's box does not clear on that piece (a box that
+    clears a facet clears it for every vertex of the block: the result is the vertex test)."""
     m, V = Gt.shape[0], grids[0].shape[1]
     size = _BLOCK
     blocks = -(-V // size)
     idx = np.concatenate([order, np.repeat(order[-1:], blocks * size - V)]).reshape(blocks, size)
     Gp, Gn = np.maximum(Gt, 0), np.minimum(Gt, 0)
-    near = np.zeros((m, blocks), dtype=bool)
+    near = np.zeros((len(rho), blocks, m), dtype=bool)  # near[k, blk, j]: piece k's box test fails
     for k, bound in enumerate(rho):
         X, Z = grids[2 * k][:, idx], grids[2 * k + 1][:, idx]  # n x blocks x size
         lo, hi = np.minimum(X, Z).min(axis=2), np.maximum(X, Z).max(axis=2)
-        near |= bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]
+        near[k] = (bt - _dot(Gp, hi) - _dot(Gn, lo) <= bound[idx].max(axis=1)[None, :]).T
     facets, vertices = [], []
     for blk in range(blocks):
-        F = np.nonzero(near[:, blk])[0]
+        F = np.nonzero(near[:, blk].any(axis=0))[0]
         if not len(F):
             continue
         cols = np.unique(idx[blk])
         keep = np.zeros((len(F), len(cols)), dtype=bool)
         for k, bound in enumerate(rho):
+            rows = np.nonzero(near[k, blk, F])[0]
+            if not len(rows):
+                continue
+            Gk, bk = Gt[F[rows]], bt[F[rows]]
             for U in grids[2 * k: 2 * k + 2]:
-                keep |= bt[F] - _dot(Gt[F], U[:, cols]) <= bound[None, cols]
+                keep[rows] |= bk - _dot(Gk, U[:, cols]) <= bound[None, cols]
         j, i = np.nonzero(keep)
         facets.append(F[j])
         vertices.append(cols[i])
@@ -299,23 +319,27 @@ class Pruning:
         return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
 
 
+VERTEX_ZERO = "vertex 0 valid set"  # ConditionSet.derived: the valid set of vertex 0's conditions
+
+
 def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
     """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
     set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
+    Earliest conditions first, each skipped when proved positive up to the bound so far
+    (:mod:`..core.nonnegative`); the valid set of vertex 0 is kept in ``cs.derived``.
 
     >>> import exactinv as ei
     >>> from exactinv.beyond.conditions import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-    >>> bounding_horizon(cs, False)[0]
-    Fraction(2, 1)
+    >>> bounding_horizon(cs, False)[0], cs.derived[VERTEX_ZERO]
+    (Fraction(2, 1), [0, 2])
     """
     t0 = time.perf_counter()
     first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
     if first_end:
-        end = min((nonnegative_until(c.p) for c in first), key=ExactKey, default=INF)
+        end = earliest_end([c.p for c in first])
     else:
-        bad = [seg for c in first for seg in negative_segments(c.p)]
-        union = complement_of_open(bad, [])
+        union = cs.derived[VERTEX_ZERO] = nonnegative_set(earliest_first([c.p for c in first]))
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
     T = None if isinstance(end, Infinity) else _short_horizon(upper_bound(end))
     return T, first, [("bounding vertex", time.perf_counter() - t0)]

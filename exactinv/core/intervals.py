@@ -77,8 +77,36 @@ class IntervalUnion:
     def __repr__(self) -> str:
         return " U ".join(repr(iv) for iv in self.intervals) if self.intervals else "{}"
 
+    def intersect(self, other: "IntervalUnion") -> "IntervalUnion":
+        """The intersection, again as maximal disjoint intervals in increasing order:
+        the pairwise intersections, ends compared exactly (two pieces that touched
+        would lie in one interval of each union, so none touch).
+
+        >>> A = complement_of_open([(Fraction(1), Fraction(2))], [])               # [0, 1] U [2, oo)
+        >>> print(A.intersect(complement_of_open([(Fraction(2), INF)], [Fraction(1)])))   # [0, 1) U (1, 2]
+        [0, 1) U [2, 2]
+        """
+        out, i, j = [], 0, 0
+        while i < len(self.intervals) and j < len(other.intervals):
+            a, b = self.intervals[i], other.intervals[j]
+            lo, lo_closed = _later_start(a, b)
+            c = exact_cmp(a.hi, b.hi)
+            hi, hi_closed = ((a.hi, a.hi_closed) if c < 0 else (b.hi, b.hi_closed) if c > 0
+                             else (a.hi, a.hi_closed and b.hi_closed))
+            k = exact_cmp(lo, hi)
+            if k < 0 or (k == 0 and lo_closed and hi_closed):
+                out.append(Interval(lo, hi, lo_closed, hi_closed))
+            i, j = i + (c <= 0), j + (c >= 0)
+        return IntervalUnion(tuple(out))
+
     def _repr_latex_(self) -> str:
         return "$" + r" \cup ".join(iv._repr_latex_().strip("$") for iv in self.intervals) + "$"
+
+
+def _later_start(a: Interval, b: Interval) -> tuple[Real, bool]:
+    """The later of two left ends, closed only if closed in both where they are equal."""
+    c = exact_cmp(a.lo, b.lo)
+    return (a.lo, a.lo_closed) if c > 0 else (b.lo, b.lo_closed) if c < 0 else (a.lo, a.lo_closed and b.lo_closed)
 
 
 def complement_of_open(bad: list[tuple[Real, Real]], points: list[Real]) -> IntervalUnion:

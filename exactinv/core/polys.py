@@ -16,6 +16,7 @@ True
 from __future__ import annotations
 
 from fractions import Fraction
+from math import comb
 from typing import Any, Iterable
 
 import flint
@@ -32,6 +33,7 @@ __all__ = [
     "sign_variations",
     "no_root_between",
     "no_positive_root_below",
+    "positive_below",
     "count_real_roots",
     "sign_right_of",
     "positive_right_of_zero",
@@ -128,6 +130,33 @@ def no_positive_root_below(p: flint.fmpq_poly, T: Fraction) -> bool:
     (True, False)
     """
     return no_root_between(p, Fraction(0), T)
+
+
+def positive_below(polys: list[flint.fmpq_poly], T: Fraction | None) -> list[bool]:
+    """For each p: True proves p > 0 on the open (0, T) (T None: on (0, oo)) -- exactly when
+    p is positive just right of 0 and Descartes' rule on (0, T) sees no sign variation
+    (after padding to the largest degree d, a factor (1 + y)^j with no positive root).
+    All at once: with T = P/Q, the coefficients of Q^d (1 + y)^d p(T y/(1 + y)) are
+    sum_k a_k P^k Q^(d-k) C(d-k, m-k) (a = the numerator's coefficients, a positive
+    multiple of p's), one FLINT integer matrix product; p is proved positive iff they are
+    all >= 0 and one is > 0.  False says nothing.
+
+    >>> ps = [flint.fmpq_poly([-2, 0, 1]), flint.fmpq_poly([2, -3, 1]), flint.fmpq_poly([0, 1, 5])]
+    >>> positive_below(ps, Fraction(1)), positive_below(ps, None)   # x^2 - 2, (x - 1)(x - 2), x + 5x^2
+    ([False, True, True], [False, False, True])
+    """
+    if not polys:
+        return []
+    d = max(max(p.degree(), 0) for p in polys)
+    rows = [p.numer().coeffs() for p in polys]
+    M = flint.fmpz_mat(len(rows), d + 1, [x for r in rows for x in r + [0] * (d + 1 - len(r))])
+    if T is not None:
+        P, Q = T.numerator, T.denominator
+        M = M * flint.fmpz_mat(d + 1, d + 1, [P**k * Q ** (d - k) * comb(d - k, m - k) if m >= k else 0
+                                              for k in range(d + 1) for m in range(d + 1)])
+    entries, zero = M.entries(), flint.fmpz(0)
+    return [min(entries[i:i + d + 1]) >= zero and max(entries[i:i + d + 1]) > zero
+            for i in range(0, len(entries), d + 1)]
 
 
 def count_real_roots(p: Any, lower: Fraction | None = None, upper: Fraction | None = None) -> int:

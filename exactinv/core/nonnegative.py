@@ -1,0 +1,115 @@
+"""The set {t >= 0 : p(t) >= 0 for every p} of many polynomials, condition by condition.
+
+Start from a set V (default [0, oo)) and replace V by V n {p >= 0} for each p in
+turn -- an exact identity, so the last V is the answer whatever the order.  A step
+is skipped when p is proved > 0 on (0, T), T a rational bound of V's end (then
+p >= 0 on [0, T] by continuity, V n {p >= 0} = V): all remaining p at once by
+:func:`~exactinv.core.polys.positive_below` (one FLINT product), in chunks of
+doubling size so the bound tightens as V shrinks.  Any other p has its negative
+segments (:func:`~exactinv.core.roots.negative_segments`: every positive root
+isolated, exactly) removed from V.  Tightest conditions first
+(:func:`tightest_first`) make V small early, so most p are skipped unisolated.
+This mirrors the kernel's valid set (exactinv_check/validset.py).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Callable, Iterable, Iterator
+
+import flint
+import numpy as np
+
+from .algebraic import ExactKey, Real, upper_bound
+from .intervals import IntervalUnion, complement_of_open
+from .polys import positive_below
+from .roots import negative_segments, nonnegative_until
+from .scalars import INF, Infinity
+
+__all__ = ["nonnegative_set", "first_end", "tightest_first", "earliest_first"]
+
+_FIRST_CHUNK = 16
+_GRID = 512  # points of earliest_first's grid (ratio 1.037)
+
+
+def tightest_first(polys: Iterable[flint.fmpq_poly]) -> list[flint.fmpq_poly]:
+    """The polynomials by |p(0)| / max_k |p_k|, smallest first (stable): those close
+    to binding at t = 0 first.  Only an order -- any order gives the same set.
+
+    >>> tightest_first([flint.fmpq_poly([3, -1]), flint.fmpq_poly([1, -4]), flint.fmpq_poly([0, 1])])
+    [x, (-4)*x + 1, (-1)*x + 3]
+    """
+    def key(p):
+        cs = p.coeffs()
+        return abs(cs[0]) / max(abs(c) for c in cs) if cs else flint.fmpq(0)
+    return sorted(polys, key=key)
+
+
+def earliest_first(polys: Iterable[flint.fmpq_poly]) -> list[flint.fmpq_poly]:
+    """The polynomials by the first point of a geometric grid on [10^-4, 10^4] where a float
+    evaluation is negative (never negative: last), :func:`tightest_first` among equals: the
+    condition likely to end the set first comes first.  The floats only choose the order --
+    any order gives the same set, exactly.
+
+    >>> earliest_first([flint.fmpq_poly([3, -1]), flint.fmpq_poly([0, 1]), flint.fmpq_poly([1, -4])])
+    [(-4)*x + 1, (-1)*x + 3, x]
+    """
+    polys = tightest_first(polys)
+    if not polys:
+        return polys
+    width = max(p.degree() for p in polys) + 1
+    C = np.array([[float(c) for c in p.coeffs()] + [0.0] * (width - len(p.coeffs())) for p in polys])
+    grid = np.geomspace(1e-4, 1e4, _GRID)
+    with np.errstate(all="ignore"):
+        negative = C @ grid[None, :] ** np.arange(width)[:, None] < 0
+    first = np.where(negative.any(axis=1), negative.argmax(axis=1), _GRID)
+    return [polys[i] for i in np.argsort(first, kind="stable")]
+
+
+def _bound(V: IntervalUnion):
+    """A rational T >= every point of V (None if V is unbounded)."""
+    end = V.intervals[-1].hi
+    return None if isinstance(end, Infinity) else upper_bound(end)
+
+
+def nonnegative_set(polys: Iterable[flint.fmpq_poly], start: IntervalUnion | None = None) -> IntervalUnion:
+    """``start`` (default [0, oo)) intersected with {t >= 0 : p(t) >= 0} for every p: maximal
+    intervals with exact ends (see the module docstring).
+
+    >>> ps = [flint.fmpq_poly([6, -5, 1]), flint.fmpq_poly([4, -1]), flint.fmpq_poly([9, -1])]
+    >>> print(nonnegative_set(ps))          # (t - 2)(t - 3) >= 0, t <= 4, t <= 9
+    [0, 2] U [3, 4]
+    """
+    V = start if start is not None else complement_of_open([], [])
+    for p in _unskipped(list(polys), lambda: _bound(V) if V.intervals else Fraction(0)):
+        V = V.intersect(complement_of_open(negative_segments(p), []))
+    return V
+
+
+def first_end(polys: Iterable[flint.fmpq_poly]) -> Real:
+    """min over p of sup{T : p >= 0 on [0, T]} (:func:`~exactinv.core.roots.nonnegative_until`; 0 for a p
+    negative right of 0), INF for none: earliest first, each p skipped when proved positive on
+    (0, best so far) -- it cannot end earlier.  Exact.
+
+    >>> first_end([flint.fmpq_poly([3, -1]), flint.fmpq_poly([2, -3, 1]), flint.fmpq_poly([1])])
+    Fraction(1, 1)
+    """
+    best: Real = INF
+    for p in _unskipped(earliest_first(polys), lambda: upper_bound(best) if not isinstance(best, Infinity) else None):
+        best = min(best, nonnegative_until(p), key=ExactKey)
+    return best
+
+
+def _unskipped(polys: list, bound: Callable[[], Fraction | None]) -> Iterator[flint.fmpq_poly]:
+    """The polys, in order, except those proved > 0 on (0, bound()) (None: on (0, oo)), the bound
+    read again as the caller tightens it: chunks of doubling size tested at once
+    (:func:`~exactinv.core.polys.positive_below`), a p of a chunk tested again alone if the
+    bound moved since."""
+    i, size = 0, _FIRST_CHUNK
+    while i < len(polys):
+        chunk, T = polys[i:i + size], bound()
+        for p, cleared in zip(chunk, positive_below(chunk, T)):
+            if cleared or (bound() != T and positive_below([p], bound())[0]):
+                continue
+            yield p
+        i, size = i + size, 2 * size
