@@ -19,7 +19,7 @@ from math import gcd
 
 from . import polys
 from .linalg import integer_solve
-from .rationals import integer_matrix, matmul, require, within_budget
+from .rationals import integer_matrix, require, within_budget
 
 MAX_CONDITIONS = 1_000_000  # about 35 s of conditions (35 us each, measured with degree 2)
 
@@ -191,13 +191,17 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
             facet_lists[kind, index] = range(m) if chosen is None else chosen
     pairs = sum(len(f) for f in facet_lists.values())
     require(pairs <= MAX_CONDITIONS, f"{pairs} generator-facet conditions exceed the kernel's bound")
-    # integers throughout: G N_k = GN_k / d_k, D = D_int / dD, w = w_int / d_w, b_j = bn_j / bd_j
-    GN = [matmul(G, Nk) for Nk in N]
-    dk = [_common_denominator(x for row in M for x in row) for M in GN]
-    L = 1
-    for d in dk:
-        L = L * d // gcd(L, d)
-    GN_int = [[[int(x * d) * (L // d) for x in row] for row in M] for M, d in zip(GN, dk)]  # L * G N_k
+    # integers throughout: row j of G N_k = GN_int[k][j] / L[j] (L[j] = the denominators of g_j and of N),
+    # D = D_int / dD, w = w_int / d_w, b_j = bn_j / bd_j; each condition is a positive multiple of its own
+    dN = _common_denominator(x for Nk in N for row in Nk for x in row)
+    N_int = [[[int(x * dN) for x in row] for row in Nk] for Nk in N]
+    L, GN_rows = [], []
+    for g in G:
+        dg = _common_denominator(g)
+        g_int = [int(x * dg) for x in g]
+        L.append(dg * dN)
+        GN_rows.append([[sum(a * Nk[l][c] for l, a in enumerate(g_int) if a) for c in range(len(g))] for Nk in N_int])
+    GN_int = [[GN_rows[j][k] for j in range(m)] for k in range(len(N))]  # L[j] * g_j N_k
     dD = _common_denominator(D)
     D_int = [int(c * dD) for c in D]
     inequalities, equalities = {}, {}
@@ -206,15 +210,15 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
             dw = _common_denominator(w)
             w_int = [int(x * dw) for x in w]
             for j in facet_lists[kind, index]:
-                e = polys.trim([sum(a * x for a, x in zip(M[j], w_int)) for M in GN_int])  # L dw (g_j N(h) w)
+                e = polys.trim([sum(a * x for a, x in zip(M[j], w_int)) for M in GN_int])  # L[j] dw (g_j N(h) w)
                 if kind == "line":
                     if e:
                         equalities.setdefault(tuple(polys.integer_coefficients(e)), (kind, index, j))
                     continue
-                if kind == "vertex":  # (b_j D - g_j N v) times the positive L dw dD bd_j
+                if kind == "vertex":  # (b_j D - g_j N v) times the positive L[j] dw dD bd_j
                     bn, bd = b[j].numerator, b[j].denominator
                     width = max(len(D_int), len(e))
-                    q = [bn * L * dw * (D_int[i] if i < len(D_int) else 0) - dD * bd * (e[i] if i < len(e) else 0)
+                    q = [bn * L[j] * dw * (D_int[i] if i < len(D_int) else 0) - dD * bd * (e[i] if i < len(e) else 0)
                          for i in range(width)]
                 else:
                     q = [-c for c in e]
