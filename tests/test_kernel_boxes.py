@@ -206,6 +206,14 @@ def test_integer_solve_is_the_adjugate_times_b(n, rng):
         assert X is None
 
 
+def _matrix_polynomial(coeffs, t, A):
+    """sum_k coeffs[k] (tA)^k by Horner, in Fractions (3 x 3)."""
+    out = [[F(0)] * 3 for _ in range(3)]
+    for c in reversed(coeffs):
+        out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)] for i in range(3)]
+    return out
+
+
 @pytest.mark.parametrize("m", [M.backward_euler(), M.pade(2, 2), M.theta("1/3"), M.rational([2, 1], [2, -3, 1])],
                          ids=lambda m: m.name)
 def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(m):
@@ -214,15 +222,7 @@ def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(
     num, den = [F(x) for x in m.numerator], [F(x) for x in m.denominator]
     D, N = method_matrices(A, num, den)
     t = F(1, 3)
-
-    def poly_of(coeffs):
-        out = [[F(0)] * 3 for _ in range(3)]
-        for c in reversed(coeffs):
-            out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)]
-                   for i in range(3)]
-        return out
-
-    H, Gm = poly_of(den), poly_of(num)
+    H, Gm = _matrix_polynomial(den, t, A), _matrix_polynomial(num, t, A)
     d = determinant(H)
     assert sum(c * t**k for k, c in enumerate(D)) == d
     X = solve(H, Gm)
@@ -237,16 +237,8 @@ def test_method_matrix_at_is_r_of_dt_A_by_one_solve(m, t):
     """r(tA) = h(tA)^-1 g(tA) in Fractions (a direct Gauss solve) equals the kernel's one fraction-free solve."""
     A = [[F(-1), F(1, 2), F(0)], [F(1, 3), F(-2), F(1)], [F(0), F(-1, 4), F(-1)]]
     num, den = [F(x) for x in m.numerator], [F(x) for x in m.denominator]
-
-    def poly_of(coeffs):
-        out = [[F(0)] * 3 for _ in range(3)]
-        for c in reversed(coeffs):
-            out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)]
-                   for i in range(3)]
-        return out
-
-    H = poly_of(den)
-    expected = solve(H, poly_of(num)) if determinant(H) != 0 else None
+    H = _matrix_polynomial(den, t, A)
+    expected = solve(H, _matrix_polynomial(num, t, A)) if determinant(H) != 0 else None
     assert method_matrix_at(A, num, den, t) == expected
 
 

@@ -8,7 +8,6 @@ kept as ordinary regression tests."""
 
 import itertools
 import random
-import signal
 from fractions import Fraction as F
 
 import pytest
@@ -22,24 +21,9 @@ from exactinv_check.kernel import Method
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.validset import first_end, valid_set
 
+from kernel_deadline import check_within
+
 M = ei.methods
-
-
-class _TooSlow(Exception):
-    pass
-
-
-def _check_within(cert, seconds):
-    """check(cert), but raise _TooSlow if the kernel has no verdict after `seconds`."""
-    def alarm(*_):
-        raise _TooSlow(f"no verdict after {seconds} s")
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.alarm(seconds)
-    try:
-        return check(cert)
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
 
 
 def _degree_64_method():
@@ -66,7 +50,7 @@ def test_discrete_invariance_dt_prices_the_rational_method_matrices():
     n = 12
     cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n),
             "claims": [{"type": "discrete_invariance", "holds": True, "dt": "1", "H": [["0"] * (2 * n)] * (2 * n)}]}
-    assert not _check_within(cert, 2).ok
+    assert not check_within(cert, 2).ok
 
 
 def test_listed_route_prices_the_rational_method_matrices():
@@ -74,7 +58,7 @@ def test_listed_route_prices_the_rational_method_matrices():
     claim = {"type": "valid_steplengths", "intervals": [], "rays": [], "lines": [],
              "vertices": [[str(x) for x in v] for v in itertools.product([-1, 1], repeat=n)]}
     cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
-    assert not _check_within(cert, 2).ok
+    assert not check_within(cert, 2).ok
 
 
 def test_box_route_prices_the_same_input_first():
@@ -82,7 +66,7 @@ def test_box_route_prices_the_same_input_first():
     n = 6
     claim = {"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}
     cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
-    report = _check_within(cert, 2)
+    report = check_within(cert, 2)
     assert not report.ok and "work budget" in str(report)
 
 

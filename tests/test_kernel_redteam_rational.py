@@ -10,8 +10,6 @@ and 36 s before a verdict).  Fixed: the pieces run in integers and are priced by
 (pruning_rational.pieces_cost); both inputs are now rejected by the price in a fraction of a second."""
 
 import random
-import signal
-from fractions import Fraction as F
 from math import factorial
 
 import pytest
@@ -19,21 +17,7 @@ import pytest
 import exactinv as ei
 from exactinv_check import check
 
-
-class _TooSlow(Exception):
-    pass
-
-
-def _check_within(cert, seconds):
-    def alarm(*_):
-        raise _TooSlow(f"no verdict after {seconds} s")
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.alarm(seconds)
-    try:
-        return check(cert)
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
+from kernel_deadline import check_within
 
 
 SQUARE = [["1", "1"], ["1", "-1"], ["-1", "1"], ["-1", "-1"]]
@@ -58,7 +42,7 @@ def test_bernstein_pieces_priced_by_bit_size_taylor64():
     method = {"numerator": [f"1/{factorial(k)}" for k in range(65)], "denominator": ["1"]}
     A = [["-1", "1/3"], ["-1/5", "-1"]]
     cert = _square_cert(method, A, _record("1", "18446744073709551615/9223372036854775809", 512))
-    assert not _check_within(cert, 2).ok
+    assert not check_within(cert, 2).ok
 
 
 def test_bernstein_pieces_priced_by_method_coefficient_size():
@@ -66,7 +50,7 @@ def test_bernstein_pieces_priced_by_method_coefficient_size():
     big = lambda: str(rng.randrange(10 ** 999, 10 ** 1000))
     method = {"numerator": ["1"] + [f"{big()}/{big()}" for _ in range(20)], "denominator": ["1"]}
     cert = _square_cert(method, [["-1", "0"], ["0", "-1"]], _record("1", "1", 8))
-    assert not _check_within(cert, 2).ok
+    assert not check_within(cert, 2).ok
 
 
 # ---------------------------------------------------------------- what held

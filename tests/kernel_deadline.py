@@ -1,0 +1,23 @@
+"""The kernel's verdict within a deadline: resource tests of the red-team files assert that an
+oversized certificate is rejected by a price, quickly, not after minutes of work."""
+
+import signal
+
+from exactinv_check import check
+
+
+class TooSlow(Exception):
+    """The kernel had no verdict by the deadline."""
+
+
+def check_within(cert, seconds: int):
+    """check(cert), but raise TooSlow if the kernel has no verdict after ``seconds`` (SIGALRM)."""
+    def alarm(*_):
+        raise TooSlow(f"no verdict after {seconds} s")
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.alarm(seconds)
+    try:
+        return check(cert)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
