@@ -21,7 +21,7 @@ from . import polys
 from .linalg import integer_solve
 from .rationals import integer_matrix, require, within_budget
 
-MAX_CONDITIONS = 1_000_000  # about 35 s of conditions (35 us each, measured with degree 2)
+MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
 
 
 def rebuild_size(A, numerator, denominator):
