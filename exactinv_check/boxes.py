@@ -147,16 +147,6 @@ def _integer_row(row):
     return L, [[int(x * L) for x in p] + [0] * (width - len(p)) for p in row]
 
 
-def _times(p, q):
-    """The product of two integer polynomials."""
-    out = [0] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        if a:
-            for k, b in enumerate(q):
-                out[i + k] += a * b
-    return out
-
-
 def box_conditions(A, G, b, numerator, denominator, claimed):
     """(D, inequalities, box): the conditions of (d), keyed like
     :func:`exactinv_check.conditions.condition_polynomials` to (kind, vertex index, facet),
@@ -180,7 +170,7 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
             for sign, p in zip(s, ints[1:]):
                 for k, x in enumerate(p):
                     q[k] -= sign * x
-            c = polys.trim(_times(q, D_int) if len(D_int) > 1 else q)  # a positive multiple of (w_j D - s.v_j) D
+            c = polys.trim(polys.mul_integers(q, D_int) if len(D_int) > 1 else q)  # a positive multiple of (w_j D - s.v_j) D
             if c:
                 facet = facets[j][0 if s[0] > 0 else 1][0]
                 index = int("".join("1" if s[0] * x > 0 else "0" for x in s[1:]), 2)

@@ -161,15 +161,6 @@ def _common_denominator(values):
     return d
 
 
-def _integer_polynomial_product(p, q):
-    out = [0] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        if a:
-            for j, c in enumerate(q):
-                out[i + j] += a * c
-    return out
-
-
 def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of=None, without_D=None):
     """(D, inequalities, equalities): the distinct nonzero condition polynomials
     (each inequality must be >= 0, each equality = 0), as tuples of coprime
@@ -223,7 +214,7 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
                 else:
                     q = [-c for c in e]
                 plain = len(D_int) == 1 or (without_D is not None and without_D(kind, index))
-                c = polys.trim(q if plain else _integer_polynomial_product(q, D_int))
+                c = polys.trim(q if plain else polys.mul_integers(q, D_int))
                 if c:
                     inequalities.setdefault(tuple(polys.integer_coefficients(c)), (kind, index, j))
     return D, inequalities, equalities

@@ -125,6 +125,16 @@ def mul(p, q):
     return trim(out)
 
 
+def mul_integers(p, q):
+    """The product of two polynomials with integer coefficients, in integers (not trimmed)."""
+    out = [0] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for j, c in enumerate(q):
+                out[i + j] += a * c
+    return out
+
+
 def power(p, k):
     out = [Fraction(1)]
     for _ in range(k):

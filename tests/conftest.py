@@ -19,6 +19,8 @@ sys.path.insert(0, os.path.dirname(__file__))  # tests/strategies.py, under --im
 # documented JSON Schema (docs/certificate.schema.json): the kernel's entry
 # point is wrapped here, before any test module (or exactinv) binds it.
 import json  # noqa: E402
+
+import pytest  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import exactinv_check  # noqa: E402
@@ -44,3 +46,9 @@ if jsonschema is not None:
 
     _check_and_validate.__doc__ = _kernel_check.__doc__
     exactinv_check.check = exactinv_check.kernel.check = _check_and_validate
+
+
+@pytest.fixture
+def forced(monkeypatch):
+    """Pruning always applied, however many pairs survive (tests/test_pruning*.py)."""
+    monkeypatch.setattr("exactinv.beyond.pruning.WORTHWHILE", 1.0)

@@ -14,6 +14,8 @@ from exactinv.beyond.conditions import ConditionSet, Kind
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
 
+from pruning_helpers import fractions_of
+
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
 # an elongated octagon: x' = Ax is not invariant on it, and the Taylor-2 valid set is [0, 0] U [594/1019, 2194/1769]
@@ -24,17 +26,6 @@ ROT = ei.LinearSystem([[-1, "1/2"], ["-1/2", -1]])
 INSTANCES = [(SPIN, DIAMOND), (ROT, BOX), (ROT, ei.Polyhedron.from_vertices([[1, 0], [0, 1], [-1, 0], [0, -1], [2, 2]])),
              (ei.LinearSystem([[-1, 2], [0, -3]]), ei.Polyhedron.box([0, 0], [3, 1]))]
 METHODS = [M.taylor(1), M.taylor(2), M.taylor(4), M.polynomial([1, 1, 0, "1/4"])]
-
-
-@pytest.fixture
-def forced(monkeypatch):
-    """Pruning always applied, however many pairs survive."""
-    monkeypatch.setattr(engine_pruning, "WORTHWHILE", 1.0)
-
-
-def _fractions(S, P):
-    A = [[Fraction(x) for x in r] for r in S.A]
-    return A, [[Fraction(x) for x in r] for r in P.G], [Fraction(x) for x in P.b], [list(map(Fraction, v)) for v in P.vertices]
 
 
 def test_the_taylor2_valid_set_of_the_diamond_has_a_gap(forced):
@@ -66,7 +57,7 @@ def test_a_shared_condition_set_builds_each_pair_once(forced):
 
 
 def test_the_kernel_prunes_pairs_and_keeps_the_binding_one():
-    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    A, G, b, verts = fractions_of(SPIN, DIAMOND)
     _, N = method_matrices(A, [Fraction(1), Fraction(1)], [Fraction(1)])
     near = pruning.survivors(G, b, verts, N, Fraction(0), list(range(len(verts))))
     kept = sum(len(f) for f in near.values())
@@ -81,7 +72,7 @@ def test_the_kernel_prunes_pairs_and_keeps_the_binding_one():
 def test_a_pruned_pair_holds_strictly_on_the_whole_horizon(p, T, hs):
     """Theorem of the module: every pair the kernel (or the engine) prunes on [0, T] has
     b_j - g_j A_d(h) v > 0 for h in [0, T]."""
-    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    A, G, b, verts = fractions_of(SPIN, DIAMOND)
     method = M.taylor(p)
     _, N = method_matrices(A, list(method.numerator), list(method.denominator))
     near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
@@ -149,7 +140,7 @@ def test_the_engine_grid_test_is_conservative():
     T = Fraction(1, 8)
     facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], cs.N, T)
     kept = set(zip(vertices.tolist(), facets.tolist()))
-    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    A, G, b, verts = fractions_of(SPIN, DIAMOND)
     _, N = method_matrices(A, [Fraction(1), Fraction(1), Fraction(1, 2)], [Fraction(1)])
     near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
     assert {(i, j) for i, f in near.items() for j in f} <= kept < {(i, j) for i in range(8) for j in range(len(G))}
@@ -162,7 +153,7 @@ def test_rational_valid_sets_agree_with_direct_checks(S, P, method):
     """N(h) = D(h) r(hA) from the n x n interpolation and the Descartes pre-filter:
     membership of rational steps agrees with A_d(h) v in P checked vertex by vertex."""
     V = ei.valid_steplengths(S, P, method)
-    A, G, b, verts = _fractions(S, P)
+    A, G, b, verts = fractions_of(S, P)
     for k in range(0, 40):
         h = Fraction(k, 9)
         try:

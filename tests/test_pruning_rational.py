@@ -18,6 +18,8 @@ from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
 from exactinv_check.rationals import CheckFailure
 
+from pruning_helpers import fractions_of
+
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
 DIAMOND = ei.Polyhedron.from_vertices([[10, 0], [0, 1], [-10, 0], [0, -1], [7, "7/10"], [-7, "7/10"],
@@ -27,17 +29,6 @@ CORNER = ei.Polyhedron.from_vertices([[0, 0], [4, 0], [6, 1], [7, 3], [6, 5], [4
 DECAY = ei.LinearSystem([[-1, 0], [0, -1]])
 RATIONAL = [M.backward_euler(), M.trapezoid(), M.pade(2, 2), M.theta("1/3"), M.pade(1, 3), M.pade(3, 3),
             M.pade(2, 1)]
-
-
-@pytest.fixture
-def forced(monkeypatch):
-    """Pruning always applied, however many pairs survive."""
-    monkeypatch.setattr(engine_pruning, "WORTHWHILE", 1.0)
-
-
-def _fractions(S, P):
-    A = [[Fraction(x) for x in r] for r in S.A]
-    return A, [[Fraction(x) for x in r] for r in P.G], [Fraction(x) for x in P.b], [list(map(Fraction, v)) for v in P.vertices]
 
 
 def _image_slack(S, P, method, h, i, j):
@@ -102,7 +93,7 @@ def test_a_pair_pruned_in_u_holds_strictly_for_every_h(method, us):
     s = engine_rational.scale_of(cs.D)
     f, v = engine_rational.rational_survivors(cs, s, Fraction(1), 8)
     engine_kept = set(zip(v.tolist(), f.tolist()))
-    A, G, b, verts = _fractions(S, P)
+    A, G, b, verts = fractions_of(S, P)
     D, N = method_matrices(A, list(method.numerator), list(method.denominator))
     near = kernel_rational.survivors(G, b, verts, D, N, s, Fraction(1), 8, list(range(len(verts))))
     kernel_kept = {(i, j) for i, fs in near.items() for j in fs}
@@ -119,7 +110,7 @@ def test_a_pair_that_touches_only_at_h_infinity_survives():
     so a pair (v, j) with facet j through 0 has slack > 0 for every h and -> 0: the strict test
     at u = 1 cannot drop it (the kernel keeps it, and decides it exactly)."""
     method = M.backward_euler()
-    A, G, b, verts = _fractions(DECAY, CORNER)
+    A, G, b, verts = fractions_of(DECAY, CORNER)
     D, N = method_matrices(A, list(method.numerator), list(method.denominator))
     near = kernel_rational.survivors(G, b, verts, D, N, Fraction(1), Fraction(1), 8, list(range(len(verts))))
     through_zero = [j for j in range(len(G)) if b[j] == 0]
@@ -216,7 +207,7 @@ def test_a_forged_largest_threshold_under_pruning_is_rejected():
 def test_the_lifted_path_is_the_condition_up_to_a_positive_factor():
     """g' P(u) w = -(1 - u)^E q(h) at h = s u/(1 - u): checked exactly at a few u (kernel and engine lifts)."""
     method = M.pade(2, 2)
-    A, G, b, verts = _fractions(SPIN, DIAMOND)
+    A, G, b, verts = fractions_of(SPIN, DIAMOND)
     D, N = method_matrices(A, list(method.numerator), list(method.denominator))
     s = Fraction(2)
     P = kernel_rational.lifted(D, N, s)
