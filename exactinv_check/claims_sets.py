@@ -48,7 +48,9 @@ def _conditions(problem, claim, context, first_end_claim=False):
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
     With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
-    rule out are built, after proving that the record's vertex bounds the set by T.
+    rule out are built, after proving that the record's vertex bounds the set by T;
+    ``start`` is then that vertex's own set (first end) with its conditions, for
+    :func:`valid_set` (:func:`first_end`) to start from (None otherwise).
     A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
     require(problem.method is not None, "a method is needed")
     box, lists = _generators(problem, claim)
@@ -60,12 +62,13 @@ def _conditions(problem, claim, context, first_end_claim=False):
             gens = SimpleNamespace(vertices=_BoxVertices(lo, hi), rays=[], lines=[], counts=(2 ** len(lo), 0, 0))
             context[key] = (gens, D, inequalities, {})
         gens, D, inequalities, equalities = context[key]
+        start = None
     else:
-        gens, D, inequalities, equalities = _listed(problem, claim, context, lists, first_end_claim)
+        gens, D, inequalities, equalities, start = _listed(problem, claim, context, lists, first_end_claim)
     if claim.get("determinant") is not None:
         claimed = polys.trim(vector(claim["determinant"], "determinant"))
         require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
-    return gens, D, inequalities, equalities
+    return gens, D, inequalities, equalities, start
 
 
 def _listed(problem, claim, context, lists, first_end_claim):
@@ -79,15 +82,16 @@ def _listed(problem, claim, context, lists, first_end_claim):
     key = ("conditions", repr(lists), None if record is None else repr(record), first_end_claim and record is not None)
     if key not in context:
         if record is None:
-            context[key] = condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
-                                                 problem.method.denominator, gens)
+            context[key] = (*condition_polynomials(problem.A, problem.G, problem.b, problem.method.numerator,
+                                                   problem.method.denominator, gens), None)
         else:
             context[key] = _pruned(problem, gens, record, first_end_claim)
     return (gens, *context[key])
 
 
 def _pruned(problem, gens, record, first_end_claim):
-    """The conditions of vertex k, the surviving pairs, every ray and line pair."""
+    """The conditions of vertex k, the surviving pairs, every ray and line pair, and
+    vertex k's own set (first end) with its conditions (:func:`_require_bound`)."""
     method = problem.method
     rational = pruning_rational.is_rational_record(record)
     require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
@@ -98,31 +102,35 @@ def _pruned(problem, gens, record, first_end_claim):
     else:
         T, k, order = pruning.parse(record, len(gens.vertices))
     args = (problem.A, problem.G, problem.b, method.numerator, method.denominator)
-    if T is not None:
-        _require_bound(problem, gens, args, k, T, first_end_claim)
+    start = None if T is None else _require_bound(problem, gens, args, k, T, first_end_claim)
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     everything = range(problem.m)
     if not rational:
         near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T, order)
-        return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]))
+        return (*condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i])),
+                start)
     pruning_rational.require_positive_determinant(D, T)
     near = pruning_rational.survivors(problem.G, problem.b, gens.vertices, D, N, s, U, count, order)
-    return condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]),
-                                 lambda kind, i: kind == "vertex" and (T is None or i != k))
+    return (*condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]),
+                                   lambda kind, i: kind == "vertex" and (T is None or i != k)), start)
 
 
 def _require_bound(problem, gens, args, k, T, first_end_claim):
-    """Vertex k's own valid set (first interval) ends by the horizon T."""
+    """Vertex k's own valid set (first interval) ends by the horizon T; returns that set
+    (its end) and vertex k's conditions, the ``start`` of :func:`valid_set` (:func:`first_end`)."""
     alone = SimpleNamespace(vertices=[gens.vertices[k]], rays=[], lines=[])
     D, own, _ = condition_polynomials(*args, alone)
     if first_end_claim:
         end, _ = first_end(D, own, {})
+        start = (end, list(own))
     else:
-        own_set = valid_set(D, list(own), [])
+        own_set = valid_set(D, [], [], list(own))  # in facet order: near facets first, a bound early on
         end = own_set[-1].hi if own_set else Real.rational(0)
+        start = (own_set, list(own))
     require(not end.inf and end.compare(Real.rational(T)) <= 0,
             f"vertex {k} does not bound the {'first interval' if first_end_claim else 'valid set'} by the "
             f"horizon {T}: its own ends at {end}")
+    return start
 
 
 def _first_vertex(inequalities, claim, n):
@@ -136,8 +144,8 @@ def _first_vertex(inequalities, claim, n):
 
 
 def largest_threshold(problem, claim, context):
-    gens, D, inequalities, equalities = _conditions(problem, claim, context, first_end_claim=True)
-    tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities, claim, problem.n))
+    gens, D, inequalities, equalities, start = _conditions(problem, claim, context, first_end_claim=True)
+    tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities, claim, problem.n), start)
     value = Real.parse(claim["value"], "tau")
     require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")
     require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
@@ -171,8 +179,8 @@ def _over(claim, gens):
 
 
 def valid_steplengths(problem, claim, context):
-    gens, D, inequalities, equalities = _conditions(problem, claim, context)
-    truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities, claim, problem.n))
+    gens, D, inequalities, equalities, start = _conditions(problem, claim, context)
+    truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities, claim, problem.n), start)
     require_intervals(claim["intervals"], truth)
     return (f"the valid set {truth} recomputed from {len(inequalities) + len(equalities)} distinct conditions and "
             f"det h(hA): each condition proved >= 0 around the set by Descartes' rule or intersected exactly, "

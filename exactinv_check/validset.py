@@ -66,7 +66,7 @@ def _tightness(p):
     return Fraction(abs(p[0]), max(abs(c) for c in p)) if p else Fraction(0)
 
 
-def valid_set(D, inequalities, equalities, first=()):
+def valid_set(D, inequalities, equalities, first=(), start=None):
     """The maximal intervals of valid h >= 0 (see the module docstring).
 
     Condition by condition: V starts as {h >= 0 : D(h) != 0, every equality = 0}
@@ -78,11 +78,18 @@ def valid_set(D, inequalities, equalities, first=()):
     (:func:`_nonnegative_on`), and otherwise intersected (:func:`_intersect`) with
     p's own valid set (every positive root of p isolated).  The order only makes
     it cheap: once V is bounded, most p are proved positive around V by
-    Descartes' rule, without a Sturm sequence."""
-    early = [list(p) for p in first]
-    seen = set(map(tuple, early))
+    Descartes' rule, without a Sturm sequence.
+
+    ``start = (V0, done)``: V0 is this function's valid set of D and the
+    inequalities ``done`` alone (the same D); V then starts as V0 n {every
+    equality = 0} and skips ``done`` -- the same intersection, done once."""
+    done = set(map(tuple, start[1])) if start is not None else set()
+    early = [list(p) for p in first if tuple(p) not in done]
+    seen = set(map(tuple, early)) | done
     rest = sorted((list(p) for p in inequalities if tuple(p) not in seen), key=_tightness)
     V, hull = _valid_set(D, [], equalities, 0, None), None
+    if start is not None:
+        V = _intersect(V, start[0])
     for p in early + rest:
         if not V:
             break
@@ -225,18 +232,25 @@ def _first_sign_change(p, upper):
     return None
 
 
-def first_end(D, inequalities, equalities, first=()):
+def first_end(D, inequalities, equalities, first=(), start=None):
     """(tau, attained): the end of the valid interval that starts at 0.
 
     tau = min over the inequalities c of sup{T : c >= 0 on [0, T]} (the first
     sign change of c, or 0 if c < 0 right after 0), over the equalities (0 if
     any is not identically zero) and over the first positive root of D (not
-    attained there)."""
+    attained there).  ``start = (tau0, done)``: tau0 is this function's tau of D
+    and the inequalities ``done`` alone (the same D); the minimum then starts
+    at tau0 and skips ``done`` -- the same minimum, taken once."""
     if equalities:
         return Real.rational(0), True
-    best, attained = Real(inf=1), True
+    best, attained, done = Real(inf=1), True, set()
+    if start is not None:
+        best, done = start[0], set(map(tuple, start[1]))
+        if best.is_zero():  # one of done is < 0 right after 0 (D has no root at 0)
+            return best, True
     early = set(map(tuple, first))  # e.g. one vertex's conditions: a finite bound early on
-    for p in sorted((list(p) for p in inequalities), key=lambda p: (tuple(p) not in early, _tightness(p))):
+    for p in sorted((list(p) for p in inequalities if tuple(p) not in done),
+                    key=lambda p: (tuple(p) not in early, _tightness(p))):
         if polys.sign_right_of(p, Fraction(0)) < 0:
             return Real.rational(0), True
         if _no_positive_root(p):

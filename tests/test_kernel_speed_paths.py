@@ -112,6 +112,33 @@ def test_condition_by_condition_is_the_plain_sweep(ineq, k, D):
     assert _same(validset.valid_set(D, ineq, [], ineq[:k]), truth)
 
 
+@settings(max_examples=120, deadline=None)
+@given(st.lists(condition, min_size=1, max_size=6), st.integers(0, 6), st.sampled_from([[F(1)], [F(1), F(-1, 3)]]),
+       st.sampled_from([[], [(0, -1, 1)], [(-1, 1)]]))
+def test_starting_from_a_subsets_set_is_the_plain_sweep(ineq, k, D, eq):
+    """valid_set started from the set of the first k conditions (and D) alone -- how the
+    kernel reuses the pruning vertex's own set -- is the valid set of all of them, with
+    or without equalities."""
+    ineq = list(dict.fromkeys(map(tuple, (polys.integer_coefficients(p) for p in ineq))))
+    done = ineq[:k]
+    V0 = validset.valid_set(D, [], [], done)
+    truth = _plain(D, [list(p) for p in ineq], [list(e) for e in eq])
+    assert _same(validset.valid_set(D, ineq, [list(e) for e in eq], (), (V0, done)), truth)
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.lists(condition, min_size=1, max_size=6), st.integers(0, 6), st.sampled_from([[F(1)], [F(1), F(-1, 3)]]))
+def test_first_end_started_from_a_subsets_end_is_the_plain_first_end(ineq, k, D):
+    """first_end started from the first end of the first k conditions (and D) alone is the
+    first end of all of them: the same end, the same attained flag (a pole of D included)."""
+    ineq = list(dict.fromkeys(map(tuple, (polys.integer_coefficients(p) for p in ineq))))
+    done = ineq[:k]
+    tau0, _ = validset.first_end(D, done, [])
+    tau, attained = validset.first_end(D, ineq, [])
+    started, started_attained = validset.first_end(D, ineq, [], (), (tau0, done))
+    assert started.compare(tau) == 0 and started_attained == attained
+
+
 def test_tangent_conditions_by_hand():
     one = [F(1)]
     # p1 = 2 - h >= 0 and p2 = -(h - 1)^2 >= 0: the valid set is the single point {1}
