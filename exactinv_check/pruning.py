@@ -11,22 +11,24 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    nodes T x, x in {0, 1, a/16, 2^-i, 1 - 2^-i : a < 16, i <= 12}; with
    A_d(h) = sum_k h^k N_k (N_0 = I) and s = h - t in [0, d],
        A_d(t + s) = sum_k s^k D_k,  D_k = sum_{i>=k} C(i, k) t^(i-k) N_i,
-       A_d(t + s) v = X + s Y + R(s),  X = D_0 v,  Y = D_1 v,
-       |R(s)| <= M |v| entrywise,  M = sum_{k>=2} d^k |D_k|,
-   so on the piece A_d(h) v lies within rho_v = max_i (M |v|)_i (in every
-   coordinate) of the chord from X to Z = X + d Y.  A linear function is
-   largest on the chord at an end: both ends, widened by rho_v, inside the
-   open half-space g_j x < b_j on every piece prove the condition positive
-   on [0, T].  The kernel decides this itself for every pair, in
-   integers: coordinates are rounded outwards to a grid of step 1/K, so it
-   may keep more pairs than needed, never fewer.  To stay cheap it tests
-   boxes around blocks of consecutive vertices along ``order`` (any
-   permutation; a good one keeps near vertices together) first over all
-   pieces at once, then piece by piece, then around chunks of each block,
-   and only then vertex by vertex (at both chord ends); each box against many facets at once
-   (:class:`_Packed`: one integer, one facet per fixed-width slot).  The
-   kept pairs are exactly those of the vertex-by-vertex test: a box around
-   boxes clears a facet only if each of them does.
+       A_d(t + s) v = (1 - s/d) X v + (s/d) Z v + R(s) v,  X = A_d(t),  Z = A_d(t + d),
+       |R(s) v| <= M |v| entrywise,  M = sum_{k>=2} c_k d^k |D_k|,  c_k = min(1, (k - 1)/4)
+   (:func:`_piece`), so on the piece the path lies in the box around X v and
+   Z v widened by M |v| in each coordinate: the secant's ends are the path at
+   the nodes, so each node is one end, widened by the larger remainder of its
+   two pieces.  A linear function is largest on a box at a corner: every end's
+   box inside the open half-space g_j x < b_j proves the condition positive on
+   [0, T].  The kernel decides this itself for every pair, in integers: the
+   ends' matrices, the remainders and the vertices are rounded outwards to
+   grids of step 2^-48 and the boxes to the grid 1/K (:class:`_Ends`, all ends
+   of one vertex at once), so it may keep more pairs than needed, never fewer.
+   To stay cheap it tests the box around a block of consecutive vertices along
+   ``order`` (any permutation; a good one keeps near vertices together) at
+   every end against every facet first, then each vertex of the block at
+   every end against the facets the block's box did not clear there; each box
+   against many facets at once (:class:`_Packed`: one integer, one facet per
+   fixed-width slot).  The kept pairs are exactly those of the
+   vertex-by-vertex test: a block's box holds the boxes of its vertices.
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
 The horizon is short (numerator and denominator of at most 64 bits): the pieces' exact powers t^i then stay
@@ -39,7 +41,11 @@ from math import comb, gcd, isqrt
 from . import conditions
 from .rationals import integer, rational, require
 
-K = 1 << 40  # the integer grid
+K_BITS = 40
+K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)
+MATRIX_BITS = 48  # X and Z rounded down, M up, to the grid 2^-48
+VERTEX_BITS = 48  # vertex coordinates rounded outwards to the grid 2^-48
+SHIFT = MATRIX_BITS + VERTEX_BITS + 1 - K_BITS  # from the scale 2^(s + w + 1) of (1) in _Ends to the grid 1/K
 HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers t^i stay short (work budget)
 MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
 
@@ -79,102 +85,139 @@ def nodes(T):
 
 
 def _piece(N, t, d):
-    """(D_0, d D_1, M) for the piece [t, t + d]: A_d(t + s) = sum_k s^k D_k with
-    D_k = sum_{i>=k} C(i, k) t^(i-k) N_i, and M = sum_{k>=2} d^k |D_k| entrywise."""
+    """(X, Z, M) for the piece [t, t + d]: the secant's ends X = A_d(t), Z = A_d(t + d) and the
+    remainder M = sum_{k>=2} c_k d^k |D_k| entrywise, c_k = min(1, (k - 1)/4), where
+    A_d(t + s) = sum_k s^k D_k, D_k = sum_{i>=k} C(i, k) t^(i-k) N_i.  (A_d(t + s) minus the
+    secant is sum_{k>=2} (s^k - s d^(k-1)) D_k, and s (d^(k-1) - s^(k-1)) = s (d - s) (d^(k-2)
+    + ... + s^(k-2)) is at most (d^2/4) (k - 1) d^(k-2) and at most d^k.)"""
     n = len(N[0])
     D = [[[sum(comb(i, k) * t ** (i - k) * N[i][r][c] for i in range(k, len(N))) for c in range(n)] for r in range(n)]
          for k in range(len(N))]
-    zero = [[Fraction(0)] * n for _ in range(n)]
-    Y = [[d * x for x in row] for row in D[1]] if len(D) > 1 else zero
-    M = [[sum(d**k * abs(D[k][r][c]) for k in range(2, len(D))) for c in range(n)] for r in range(n)]
-    return D[0], Y, M
+    Z = [[sum(d**k * D[k][r][c] for k in range(len(D))) for c in range(n)] for r in range(n)]
+    M = [[sum(min(Fraction(1), Fraction(k - 1, 4)) * d**k * abs(D[k][r][c]) for k in range(2, len(D))) for c in range(n)]
+         for r in range(n)]
+    return D[0], Z, M
 
 
 def _integer_rows(G, b):
-    """Each row of (G | b) times a positive integer: (g+ g- ||g||_1 concatenated, K b)."""
+    """Each row of (G | b) times a positive integer (the same half-space): (g, b) in integers."""
     rows = []
     for g, beta in zip(G, b):
         d = 1
         for x in list(g) + [beta]:
             d = d * x.denominator // gcd(d, x.denominator)
-        gi = [int(x * d) for x in g]
-        rows.append(([max(x, 0) for x in gi] + [min(x, 0) for x in gi] + [sum(map(abs, gi))], int(beta * d) * K))
+        rows.append(([int(x * d) for x in g], int(beta * d)))
     return rows
 
 
-def _integer_matrix(Q):
-    """(Q_int, d) with Q = Q_int / d, d > 0."""
-    d = 1
-    for row in Q:
-        for x in row:
-            d = d * x.denominator // gcd(d, x.denominator)
-    return [[int(x * d) for x in row] for row in Q], d
-
-
 def chord_pieces(N, T):
-    """(X, Z, M) per piece of [0, T]: the chord ends X = A_d(t), Z = A_d(t + d) and the remainder M."""
+    """(X, Z, M) per piece of [0, T] (:func:`_piece`)."""
     ends = nodes(T)
-    out = []
-    for t, u in zip(ends, ends[1:]):
-        X, Y, M = _piece(N, t, u - t)
-        out.append((X, [[x + y for x, y in zip(rx, ry)] for rx, ry in zip(X, Y)], M))
-    return out
+    return [_piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
 
 
-def _boxes(vertices, pieces):
-    """boxes[i][a] = (end X, end Z), each hi + lo + [B]: the integer box around one chord end
-    of vertex i on piece a (scaled by K, rounded outwards, so at most one grid step wide),
-    widened by B / K >= rho; integer arithmetic only.  The chord's box is their union; a
-    linear function is largest on the chord at one of its ends, so a half-space holding
-    both widened end boxes holds the whole path on the piece."""
-    maps = []
-    for X, Z, M in pieces:
-        (Xi, dX), (Zi, dZ), (Mi, dM) = (_integer_matrix(Q) for Q in (X, Z, M))
-        maps.append(([[K * x for x in row] for row in Xi], dX, [[K * x for x in row] for row in Zi], dZ,
-                     [[K * x for x in row] for row in Mi], dM))
-    out = []
-    for v in vertices:
-        q = 1
-        for x in v:
-            q = q * x.denominator // gcd(q, x.denominator)
-        p = [int(x * q) for x in v]
-        ap = [abs(x) for x in p]
-        mine = []
-        for KX, dX, KZ, dZ, KM, dM in maps:
-            dx, dz = dX * q, dZ * q
-            hx, lx, hz, lz = [], [], [], []
-            for row_x, row_z in zip(KX, KZ):  # K (X v) = (K dX q X v) / (dX q), likewise Z
-                fx, rx = divmod(sum(map(int.__mul__, row_x, p)), dx)
-                fz, rz = divmod(sum(map(int.__mul__, row_z, p)), dz)
-                lx.append(fx)
-                hx.append(fx + (rx > 0))  # ceilings
-                lz.append(fz)
-                hz.append(fz + (rz > 0))
-            rho = [-(-max(sum(map(int.__mul__, row, ap)) for row in KM) // (dM * q))]  # K dM q rho / (dM q)
-            mine.append((hx + lx + rho, hz + lz + rho))
-        out.append(mine)
-    return out
+def _on_grid(x, bits, up):
+    """floor (up: ceil) of x 2^bits, an integer."""
+    y = x.numerator << bits
+    return -((-y) // x.denominator) if up else y // x.denominator
 
 
-def _union(boxes):
-    """The box around boxes given as (hi lo B concatenated): coordinate-wise max of hi and B, min of lo."""
-    n = (len(boxes[0]) - 1) // 2
-    cols = list(zip(*boxes))
-    return [max(c) for c in cols[:n]] + [min(c) for c in cols[n:2 * n]] + [max(cols[-1])]
+def vertex_box(v):
+    """(c2, r2): the vertex's coordinates rounded outwards to the grid 2^-w, as centre and
+    radius times 2^(w + 1) -- c2 = lo + hi, r2 = hi - lo, with lo, hi = floor, ceil of 2^w v."""
+    lo = [_on_grid(x, VERTEX_BITS, False) for x in v]
+    hi = [_on_grid(x, VERTEX_BITS, True) for x in v]
+    return [a + z for a, z in zip(lo, hi)], [z - a for a, z in zip(lo, hi)]
+
+
+def group_box(boxes):
+    """The box (c2, r2) around boxes given as (c2, r2): per coordinate the least lo and the
+    greatest hi (c2 - r2 = 2 lo and c2 + r2 = 2 hi are even)."""
+    lo2 = [min(column) for column in zip(*([c - r for c, r in zip(c2, r2)] for c2, r2 in boxes))]
+    hi2 = [max(column) for column in zip(*([c + r for c, r in zip(c2, r2)] for c2, r2 in boxes))]
+    return [(a + z) // 2 for a, z in zip(lo2, hi2)], [(z - a) // 2 for a, z in zip(lo2, hi2)]
+
+
+class _Ends:
+    """The paths of the vertices in a box near the chord ends, every end at once.
+
+    The ends: the two ends of each piece's chord, with that piece's remainder M; an end that
+    is the previous piece's other end (the same matrix: secants meet at the nodes) is one end,
+    with the larger remainder of the two, entrywise.  Per end E, XL = floor(2^s E) and
+    MU = ceil(2^s M) + 1 entrywise (E = XL 2^-s + F with |F| < 2^-s, so MU >= 2^s (M + |F|)).
+    For v in a box of centre c and radius r (:func:`vertex_box`: c2 = 2^(w+1) c, r2 = 2^(w+1) r)
+    and every row k, the path's coordinate k near the end satisfies
+
+        2^(s+w+1) |x_k - (XL c)_k 2^-s| <= (|XL| r2 + MU (|c2| + r2))_k          (1)
+
+    (|XL (v - c)| <= |XL| r, |F v| + |M v| <= 2^-s MU |v|, |v| <= |c| + r).  Slot e of width
+    S bits of the integers PX[k][c] = sum_e XL_e[k][c] 2^(S e), PW[k][c] = sum_e (|XL_e| +
+    MU_e)[k][c] 2^(S e) and PM[k][c] = sum_e MU_e[k][c] 2^(S e) (base-2^S digits that may be
+    negative: only sums of them are read) holds that end's entry, so one integer holds the
+    centre sum_c PX[k][c] c2_c and one the width sum_c PW[k][c] r2_c + PM[k][c] |c2_c| of (1)
+    at every end, identities of integers.  Each |centre +- width| < 2^(S - 2) in every slot
+    (the width S is chosen so); adding 2^(S - 1) to every slot makes each digit lie in
+    [0, 2^S), and the digits are read off the bytes."""
+
+    def __init__(self, pieces, boxes):
+        s = MATRIX_BITS
+        ends = []  # (E, M): each end's matrix and remainder
+        for X, Z, M in pieces:
+            if ends and ends[-1][0] == X:
+                ends[-1] = (X, [[max(a, z) for a, z in zip(ra, rz)] for ra, rz in zip(ends[-1][1], M)])
+            else:
+                ends.append((X, M))
+            ends.append((Z, M))
+        grid = [([[_on_grid(x, s, False) for x in row] for row in E], [[_on_grid(x, s, True) + 1 for x in row] for row in M])
+                for E, M in ends]
+        n = len(grid[0][0])
+        x_max = max(max(abs(x) for XL, MU in grid for row in XL + MU for x in row), 1)
+        v_max = max([abs(c) + r for c2, r2 in boxes for c, r in zip(c2, r2)] + [1])  # >= |c2|, r2 of any group
+        self.coordinate_max = 4 * n * x_max * v_max  # |centre| + width <= 4 n x_max v_max for every box
+        self.width = ((self.coordinate_max.bit_length() + 2) + 7) // 8
+        S, count = 8 * self.width, len(grid)
+        self.count, self.n = count, n
+        pack = lambda values: sum(x << (S * e) for e, x in enumerate(values))  # noqa: E731
+        self.PX = [[pack([XL[k][c] for XL, _ in grid]) for c in range(n)] for k in range(n)]
+        self.PW = [[pack([abs(XL[k][c]) + MU[k][c] for XL, MU in grid]) for c in range(n)] for k in range(n)]
+        self.PM = [[pack([MU[k][c] for _, MU in grid]) for c in range(n)] for k in range(n)]
+        self.half = 1 << (S - 1)
+        self.bias = pack([self.half] * count)
+
+    def boxes(self, box):
+        """Per end, the integer box (hi + lo, on the grid 1/K) around the path of every vertex in
+        the box near that end: (1) rounded outwards."""
+        n, size = self.n, self.width
+        c2, r2 = box
+        his, los = [], []
+        for k in range(n):
+            centre = sum(self.PX[k][c] * c2[c] for c in range(n) if c2[c])
+            width = sum(self.PW[k][c] * r2[c] + self.PM[k][c] * abs(c2[c]) for c in range(n)) + self.bias
+            for value, target in ((width + centre, his), (width - centre, los)):  # 2^(S-1) + (width +- centre)
+                data = value.to_bytes(size * self.count, "little")
+                target.append([-((self.half - int.from_bytes(data[e:e + size], "little")) >> SHIFT)  # ceilings
+                               for e in range(0, size * self.count, size)])
+        return [list(hi) + [-x for x in lo] for hi, lo in zip(zip(*his), zip(*los))]
+
+
+def _hull(boxes):
+    """The box (hi + lo) around boxes given as hi + lo: coordinate-wise max of hi, min of lo."""
+    n = len(boxes[0]) // 2
+    columns = list(zip(*boxes))
+    return [max(c) for c in columns[:n]] + [min(c) for c in columns[n:]]
 
 
 def _outside(row, box):
-    """True unless the box [lo, hi] / K widened by B / K lies in g x < b (then the pairs are pruned):
-    max over the box of g x is g+ hi + g- lo, and |g (A_d - I) ...| adds at most ||g||_1 B / K."""
+    """True unless the box [lo, hi] / K lies in g x < b (then the pairs are pruned):
+    max over the box of g x is g+ hi + g- lo."""
     return row[1] <= sum(map(int.__mul__, row[0], box))
 
 
-def _slot_bytes(rows, boxes):
+def _slot_bytes(rows, entry):
     """Bytes per slot of a :class:`_Packed` test: |g . box - K b| < 2^(8 W - 2) for every
-    row and every box given (or union of them: the same entries), and every |row entry| and
+    row and every box with entries at most ``entry`` in size, and every |row entry| and
     |K b| as well."""
     coefficient = max(abs(x) for row in rows for x in row[0])
-    entry = max(abs(x) for box in boxes for x in box)
     threshold = max(abs(row[1]) for row in rows)
     bound = len(rows[0][0]) * coefficient * entry + threshold + coefficient
     return (bound.bit_length() + 2 + 7) // 8
@@ -184,8 +227,8 @@ class _Packed:
     """The test :func:`_outside` of one box against many rows at once, in one integer.
 
     Slot t of width S = 8 W bits holds row J_t.  With the columns
-    C_c = sum_t |a_{J_t c}| 2^(S t) (a column of the rows has one sign s_c: g+ and
-    ||g||_1 are >= 0, g- <= 0) and E = sum_t (2^(S-1) - K b_{J_t}) 2^(S t),
+    C_c = sum_t |a_{J_t c}| 2^(S t) (a column of the rows has one sign s_c: g+ >= 0,
+    g- <= 0) and E = sum_t (2^(S-1) - K b_{J_t}) 2^(S t),
 
         X = E + sum_c s_c box_c C_c = sum_t (2^(S-1) + v_t) 2^(S t),
         v_t = a_{J_t} . box - K b_{J_t},
@@ -207,11 +250,11 @@ class _Packed:
         """(width, signs s_c, cells): each |a_jc| and 2^(S-1) - K b_j as W little-endian bytes,
         column by column, once; a :class:`_Packed` joins the cells of its rows."""
         columns = len(rows[0][0])
-        n = (columns - 1) // 2
+        n = columns // 2
         half = 1 << (8 * width - 1)
         cells = [[abs(row[0][c]).to_bytes(width, "little") for row in rows] for c in range(columns)]
         cells.append([(half - row[1]).to_bytes(width, "little") for row in rows])
-        return width, [1] * n + [-1] * n + [1], cells
+        return width, [1] * n + [-1] * n, cells
 
     def outside(self, box):
         """The rows J_t for which :func:`_outside` holds (in the order of J)."""
@@ -238,54 +281,39 @@ def survivors(G, b, vertices, N, T, order):
 
 def survivors_of_pieces(G, b, vertices, pieces, order):
     """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces given
-    as (X, Z, M) (the path of v on a piece within max_i (M |v|)_i of the chord from X v to
-    Z v): exactly the pairs (i, j) with :func:`_outside` for row j and one of the two
-    widened chord-end boxes of vertex i on some piece (a box around boxes is outside
-    whenever one of them is, so the blocks of vertices along ``order`` and their chunks
-    only skip work), each test done by :class:`_Packed`."""
+    as (X, Z, M) (the path of v on a piece within M |v| entrywise of the chord from X v to
+    Z v): exactly the pairs (i, j) with :func:`_outside` for row j and vertex i's box at
+    some end (:meth:`_Ends.boxes` of :func:`vertex_box`).  The boxes around blocks of
+    vertices along ``order`` only skip work (the box (1) of a block holds those of its
+    vertices): a block's boxes against every row, each vertex's against the rows its block
+    does not clear there (:class:`_Packed`)."""
     rows = _integer_rows(G, b)
-    boxes = _boxes(vertices, pieces)
     out = {i: set() for i in range(len(vertices))}
-    if not rows:
+    if not rows or not vertices:
         return {i: [] for i in out}
-    every_box = [box for per_vertex in boxes for ends in per_vertex for box in ends]
-    width = _slot_bytes(rows, every_box)
-    require(width * len(rows) * (len(rows[0][0]) + 1) <= MAX_PACKED_BYTES,
+    boxes = [vertex_box(v) for v in vertices]
+    ends = _Ends(pieces, boxes)
+    packed_rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], K * beta) for g, beta in rows]
+    width = _slot_bytes(packed_rows, (ends.coordinate_max >> SHIFT) + 1)
+    require(width * len(rows) * (2 * ends.n + 1) <= MAX_PACKED_BYTES,
             f"over the kernel's work budget: {len(rows)} rows packed in slots of {width} bytes")
-    table = _Packed.table(rows, width)
+    table = _Packed.table(packed_rows, width)
     everything = _Packed(table, list(range(len(rows))))
-    size, total = max(1, isqrt(len(vertices))), [0]
+    size, total = max(1, isqrt(len(vertices))), 0
     for start in range(0, len(order), size):
         block = order[start:start + size]
-        chunks = [block[k:k + isqrt(size)] for k in range(0, len(block), isqrt(size))]
-        per_chunk = [[_union([end for i in chunk for end in boxes[i][a]]) for a in range(len(boxes[block[0]]))]
-                     for chunk in chunks]
-        per_piece = [_union(list(boxes_a)) for boxes_a in zip(*per_chunk)]
-        near = everything.outside(_union(per_piece))
-        if near:
-            near_rows = _Packed(table, near)
-            for a, box in enumerate(per_piece):
-                _descend(table, near_rows.outside(box), [(chunk, c[a]) for chunk, c in zip(chunks, per_chunk)],
-                         boxes, a, out, total)
+        per_end = ends.boxes(group_box([boxes[i] for i in block]))
+        near = everything.outside(_hull(per_end))
+        if not near:
+            continue
+        near_rows = _Packed(table, near)
+        hits = [(e, _Packed(table, found)) for e, found in enumerate(near_rows.outside(box) for box in per_end) if found]
+        for i in block:
+            mine = ends.boxes(boxes[i])
+            before = len(out[i])
+            for e, rows_e in hits:
+                out[i].update(rows_e.outside(mine[e]))
+            total += len(out[i]) - before
+            require(total <= conditions.MAX_CONDITIONS,
+                    f"more than {conditions.MAX_CONDITIONS} pairs survive the pruning test: they exceed the kernel's bound")
     return {i: sorted(f) for i, f in out.items()}
-
-
-def _descend(table, hits, chunks, boxes, a, out, total):
-    """Piece a of one block: the rows ``hits`` its box does not clear, tested on each
-    chunk's box, then on the boxes of the chunk's vertices (``total[0]`` counts the
-    distinct pairs found: past the kernel's bound on conditions, reject at once)."""
-    if not hits:
-        return
-    hit_rows = _Packed(table, hits)
-    for chunk, box in chunks:
-        close = hit_rows.outside(box)
-        if close:
-            close_rows = _Packed(table, close)
-            for i in chunk:
-                x, z = boxes[i][a]
-                before = len(out[i])
-                out[i].update(close_rows.outside(x))
-                out[i].update(close_rows.outside(z))
-                total[0] += len(out[i]) - before
-                require(total[0] <= conditions.MAX_CONDITIONS,
-                        f"more than {conditions.MAX_CONDITIONS} pairs survive the pruning test: they exceed the kernel's bound")

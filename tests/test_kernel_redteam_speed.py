@@ -122,16 +122,16 @@ def test_survivors_stop_at_the_condition_bound(monkeypatch):
 # The slot width is set by the largest row and box entry over ALL rows, so one
 # row with a 3000-digit entry (a redundant facet 10^3000 x <= 10^3001) gives every
 # one of the m short rows a ~1250-byte slot, in each of the 2n + 2 columns of the
-# table.  Measured (survivors on the 4 corners of a square, T = 2, A = -I, forward
+# table (2n + 1 since the remainder widens each coordinate on its own).  Measured (survivors on the 4 corners of a square, T = 2, A = -I, forward
 # Euler): 20,001 rows -> 380 MB resident, 100,001 rows (about 1.5 MB of G) ->
 # 1.85 GB, a memory amplification of about 1000x.  (Time stays a few seconds.)
 # A fix: price m x slot width before building the table, or pack rows in groups of
 # similar size (a slot width per group), or test the long rows one by one.
 
 def test_one_long_row_does_not_widen_every_slot():
-    """Fixed by a bound on the packed table (MAX_PACKED_BYTES): 20,001 rows in 1250-byte slots would
-    need 150 MB; the kernel rejects before building it."""
-    m = 20_000
+    """Fixed by a bound on the packed table (MAX_PACKED_BYTES): 25,001 rows in 1250-byte slots would
+    need 156 MB in the 5 columns; the kernel rejects before building it."""
+    m = 25_000
     G = [[F(1), F(k, m)] for k in range(m)] + [[F(10**3000), F(0)]]
     b = [F(10)] * m + [F(10**3001)]
     square = [[F(1), F(1)], [F(-1), F(1)], [F(-1), F(-1)], [F(1), F(-1)]]

@@ -27,47 +27,122 @@ def test_the_packed_test_is_the_row_by_row_test(data, n):
     rows = []
     for _ in range(m):
         g = [data.draw(entries) for _ in range(n)]
-        rows.append(([max(x, 0) for x in g] + [min(x, 0) for x in g] + [sum(map(abs, g))], data.draw(entries)))
-    boxes = [[[data.draw(entries) for _ in range(2 * n)] + [abs(data.draw(entries))] for _ in range(3)]
-             for _ in range(data.draw(st.integers(1, 4)))]
-    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, [box for per_vertex in boxes for box in per_vertex]))
+        rows.append(([max(x, 0) for x in g] + [min(x, 0) for x in g], data.draw(entries)))
+    boxes = [[data.draw(entries) for _ in range(2 * n)] for _ in range(data.draw(st.integers(1, 6)))]
+    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, max(abs(x) for box in boxes for x in box)))
     J = data.draw(st.lists(st.integers(0, m - 1), min_size=1, max_size=m, unique=True))
     packed = pruning._Packed(table, J)
-    for per_vertex in boxes:
-        for box in per_vertex:
-            assert packed.outside(box) == [j for j in J if pruning._outside(rows[j], box)]
+    for box in boxes:
+        assert packed.outside(box) == [j for j in J if pruning._outside(rows[j], box)]
 
 
 def test_the_slots_hold_the_rows_even_when_every_box_is_zero():
     """Regression (found by hypothesis): the slot width must cover the row entries
     themselves, not only |g . box - K b|."""
-    rows = [([2**130, 0, 2**130], 1), ([0, -5, 5], -3)]
-    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, [[0, 0, 0]]))
-    assert pruning._Packed(table, [0, 1]).outside([0, 0, 0]) == [1]
+    rows = [([2**130, 0], 1), ([0, -5], -3)]
+    table = pruning._Packed.table(rows, pruning._slot_bytes(rows, 0))
+    assert pruning._Packed(table, [0, 1]).outside([0, 0]) == [1]
 
 
 def _reference_survivors(G, b, verts, N, T):
-    """Every pair tested row by row on every piece: the set the kernel must keep."""
-    rows, boxes = pruning._integer_rows(G, b), pruning._boxes(verts, pruning.chord_pieces(N, T))
-    return {i: sorted(j for j in range(len(rows)) if any(pruning._outside(rows[j], box) for ends in boxes[i]
-                                                         for box in ends))
-            for i in range(len(verts))}
+    """Every vertex against every row at every chord end, no blocks: the set the kernel must keep."""
+    rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], pruning.K * beta) for g, beta in pruning._integer_rows(G, b)]
+    ends = pruning._Ends(pruning.chord_pieces(N, T), [pruning.vertex_box(v) for v in verts])
+    return {i: sorted(j for j in range(len(rows)) if any(pruning._outside(rows[j], box)
+                                                         for box in ends.boxes(pruning.vertex_box(v))))
+            for i, v in enumerate(verts)}
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_survivors_are_the_pairs_of_the_row_by_row_test(seed):
-    rng = random.Random(seed)
-    n = rng.choice([2, 3])
+def _random_problem(rng, n, degree):
     A = [[F(rng.randint(-3, 3), 4) - (i == j) for j in range(n)] for i in range(n)]
     G = [[F(rng.randint(-5, 5)) for _ in range(n)] for _ in range(12)]
     G = [g for g in G if any(g)]
     b = [F(rng.randint(1, 9), rng.randint(1, 3)) for _ in G]
     verts = [[F(rng.randint(-20, 20), rng.randint(1, 20)) for _ in range(n)] for _ in range(30)]
-    _, N = method_matrices(A, [F(1), F(1), F(1, 2), F(1, 6)], [F(1)])
+    taylor = [F(1)]
+    for k in range(1, degree + 1):
+        taylor.append(taylor[-1] / k)
+    _, N = method_matrices(A, taylor, [F(1)])
+    return A, G, b, verts, N
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_survivors_are_the_pairs_of_the_row_by_row_test(seed):
+    rng = random.Random(seed)
+    _, G, b, verts, N = _random_problem(rng, rng.choice([2, 3]), 3)
     T = F(rng.randint(1, 40), 16)
     order = list(range(len(verts)))
     rng.shuffle(order)
     assert pruning.survivors(G, b, verts, N, T, order) == _reference_survivors(G, b, verts, N, T)
+
+
+def _path(N, h, v):
+    return [sum(sum(h**k * N[k][r][c] for k in range(len(N))) * v[c] for c in range(len(v))) for r in range(len(v))]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 10**6), st.integers(2, 3), st.integers(1, 6), st.fractions(0, 3, max_denominator=64),
+       st.lists(st.fractions(0, 1, max_denominator=1000), min_size=4, max_size=4))
+def test_the_end_boxes_hold_the_path(seed, n, degree, T, xs):
+    """The lemma under the pruning test: on each piece, A_d(h) v lies in the box around the
+    integer boxes of the piece's two ends (the ends meet at the nodes), divided by K -- for
+    random systems, vertices (rational, off the grid), Taylor degrees and horizons."""
+    rng = random.Random(seed)
+    _, _, _, verts, N = _random_problem(rng, n, degree)
+    ends_of = pruning.nodes(T)
+    ends = pruning._Ends(pruning.chord_pieces(N, T), [pruning.vertex_box(v) for v in verts])
+    assert ends.count == len(ends_of)  # secants: one end per node
+    for v in verts[:5]:
+        boxes = ends.boxes(pruning.vertex_box(v))
+        for a, (t, u) in enumerate(zip(ends_of, ends_of[1:])):
+            hi = [max(x, z) for x, z in zip(boxes[a][:n], boxes[a + 1][:n])]
+            lo = [min(x, z) for x, z in zip(boxes[a][n:], boxes[a + 1][n:])]
+            for x in xs:
+                point = _path(N, t + x * (u - t), v)
+                assert all(l <= pruning.K * p <= h for l, p, h in zip(lo, point, hi))
+
+
+def _secant_error_within_remainder(N, t, d, s):
+    X, Z, M = pruning._piece(N, t, d)
+    n = len(X)
+    Ad = [[sum((t + s) ** k * N[k][r][c] for k in range(len(N))) for c in range(n)] for r in range(n)]
+    return all(abs(Ad[r][c] - ((1 - s / d) * X[r][c] + s / d * Z[r][c])) <= M[r][c] for r in range(n) for c in range(n))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 10**6), st.integers(1, 3), st.integers(1, 7), st.fractions(0, 3, max_denominator=64),
+       st.fractions(1, 2, max_denominator=64), st.lists(st.fractions(0, 1, max_denominator=1000), min_size=3, max_size=3))
+def test_the_piece_remainder_bounds_the_secant_error(seed, n, degree, t, d, xs):
+    """_piece's M bounds A_d(t + s) minus the secant from A_d(t) to A_d(t + d), entrywise, on [0, d]."""
+    _, _, _, _, N = _random_problem(random.Random(seed), n, degree)
+    assert all(_secant_error_within_remainder(N, t, d, x * d) for x in xs + [F(577, 1000)])
+
+
+def test_the_remainder_covers_a_pure_cubic_term():
+    """A_d(s) = 1 - s - 1000 s^3 on the piece [0, 1]: the secant misses by 1000 (s - s^3), largest
+    (385 and a bit) at s = 1/sqrt(3) -- more than d^3/4 |D_3| = 250, within c_3 d^3 |D_3| = 500."""
+    N = [[[F(1)]], [[F(-1)]], [[F(0)]], [[F(-1000)]]]
+    assert _secant_error_within_remainder(N, F(0), F(1), F(577, 1000))
+    assert pruning._piece(N, F(0), F(1))[2] == [[F(500)]]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 10**6), st.integers(2, 3), st.integers(1, 5), st.fractions(0, 2, max_denominator=64),
+       st.lists(st.fractions(0, 1, max_denominator=1000), min_size=6, max_size=6))
+def test_a_pair_that_leaves_its_half_space_survives(seed, n, degree, T, xs):
+    """Soundness of the pruning test, from the definition: whenever g_j A_d(h) v >= b_j at some
+    sampled h in [0, T], the pair (v, j) is among the survivors."""
+    rng = random.Random(seed)
+    _, G, b, verts, N = _random_problem(rng, n, degree)
+    order = list(range(len(verts)))
+    rng.shuffle(order)
+    near = pruning.survivors(G, b, verts, N, T, order)
+    for h in [T * x for x in xs] + [F(0), T]:
+        for i, v in enumerate(verts):
+            point = _path(N, h, v)
+            for j, g in enumerate(G):
+                if sum(a * c for a, c in zip(g, point)) >= b[j]:
+                    assert j in near[i], (h, i, j)
 
 
 # ---------------------------------------------------------------- the valid set, condition by condition
@@ -199,22 +274,26 @@ def _floor(q):
     return q.numerator // q.denominator
 
 
-def test_boxes_are_the_outward_rounded_chords():
-    """_boxes against its definition in Fractions: for each piece and each chord end, hi/lo =
-    the K-scaled coordinates of X v (and of Z v = (X + Y) v) rounded up/down, B = K rho rounded up."""
+def test_the_end_boxes_are_the_rounded_bound():
+    """_Ends.boxes against its definition in Fractions: at each end E (X of the first piece, then
+    the secants' ends Z, one per node) with remainder W (the larger of the two pieces' M there),
+    hi/lo = the K-scaled (E v)_k +- (W |v|)_k widened by the grids and rounded outwards;
+    the integer box is never more than a few grid steps wider than that."""
     rng = random.Random(3)
     n = 3
-    A = [[F(rng.randint(-3, 3), 4) - (i == j) for j in range(n)] for i in range(n)]
-    verts = [[F(rng.randint(-20, 20), rng.randint(1, 20)) for _ in range(n)] for _ in range(6)]
-    _, N = method_matrices(A, [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)], [F(1)])
+    _, _, _, verts, N = _random_problem(rng, n, 4)
     T = F(7, 5)
-    ends = pruning.nodes(T)
+    pieces = pruning.chord_pieces(N, T)
+    ends = pruning._Ends(pieces, [pruning.vertex_box(v) for v in verts])
+    matrices = [(pieces[0][0], pieces[0][2])] + [
+        (Z, [[max(a, c) for a, c in zip(ra, rc)] for ra, rc in zip(M, pieces[a + 1][2])] if a + 1 < len(pieces) else M)
+        for a, (X, Z, M) in enumerate(pieces)]
+    matrices[0] = (pieces[0][0], pieces[0][2])
     K = pruning.K
-    for v, mine in zip(verts, pruning._boxes(verts, pruning.chord_pieces(N, T))):
-        for (t, u), (box_x, box_z) in zip(zip(ends, ends[1:]), mine):
-            X, Y, M = pruning._piece(N, t, u - t)
-            x = [sum(a * c for a, c in zip(row, v)) * K for row in X]
-            z = [sum((a + b) * c for a, b, c in zip(rx, ry, v)) * K for rx, ry in zip(X, Y)]
-            rho = max(sum(a * abs(c) for a, c in zip(row, v)) for row in M) * K
-            assert box_x == [_ceil(a) for a in x] + [_floor(a) for a in x] + [_ceil(rho)]
-            assert box_z == [_ceil(c) for c in z] + [_floor(c) for c in z] + [_ceil(rho)]
+    for v in verts:
+        for (E, W), box in zip(matrices, ends.boxes(pruning.vertex_box(v))):
+            for k in range(n):
+                centre = sum(a * c for a, c in zip(E[k], v)) * K
+                spread = sum(a * abs(c) for a, c in zip(W[k], v)) * K
+                assert centre + spread <= box[k] <= centre + spread + 1 + K * F(2 * n * 64, 2**48)
+                assert centre - spread >= box[n + k] >= centre - spread - 1 - K * F(2 * n * 64, 2**48)
