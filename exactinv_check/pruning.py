@@ -50,14 +50,6 @@ HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers
 MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
 
 
-def _ceil(x):
-    return -((-x.numerator) // x.denominator)
-
-
-def _floor(x):
-    return x.numerator // x.denominator
-
-
 def parse(record, vertex_count):
     """(T, k, order) from a pruning record, shape-checked."""
     require(isinstance(record, dict) and set(record) == {"horizon", "vertex", "order"},

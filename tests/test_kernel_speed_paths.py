@@ -266,14 +266,6 @@ def test_a_valid_set_wrong_only_at_a_tangency_is_rejected(numerator, truth, forg
         assert not check(_certificate(numerator, forged)).ok
 
 
-def _ceil(q):
-    return -((-q.numerator) // q.denominator)
-
-
-def _floor(q):
-    return q.numerator // q.denominator
-
-
 def test_the_end_boxes_are_the_rounded_bound():
     """_Ends.boxes against its definition in Fractions: at each end E (X of the first piece, then
     the secants' ends Z, one per node) with remainder W (the larger of the two pieces' M there),
@@ -288,7 +280,6 @@ def test_the_end_boxes_are_the_rounded_bound():
     matrices = [(pieces[0][0], pieces[0][2])] + [
         (Z, [[max(a, c) for a, c in zip(ra, rc)] for ra, rc in zip(M, pieces[a + 1][2])] if a + 1 < len(pieces) else M)
         for a, (X, Z, M) in enumerate(pieces)]
-    matrices[0] = (pieces[0][0], pieces[0][2])
     K = pruning.K
     for v in verts:
         for (E, W), box in zip(matrices, ends.boxes(pruning.vertex_box(v))):
