@@ -231,6 +231,15 @@ def _families(rng: random.Random) -> dict[str, list[dict]]:
         "hypercube R^6, Pade(2,2)": [dict(zip(("system", "polyhedron"), cube(6)), method={"pade": [2, 2]})
                                      for _ in range(2)],
     }
+    fam["polygon N=1000, Taylor-4"] = [{"system": {"A": ROT}, "polyhedron": poly(1000), "method": {"taylor": 4}}]
+    fam["hypercube R^10, Taylor-4 (box route)"] = [dict(zip(("system", "polyhedron"), cube(10)), method={"taylor": 4})
+                                                  for _ in range(2)]
+    from scale import r6
+    S6, P6 = r6()
+    fam["R^6, 100 random facets, Taylor-6"] = [{"system": {"A": [[str(x) for x in r] for r in S6.A]},
+                                                "polyhedron": {"G": [[str(x) for x in r] for r in P6.G],
+                                                               "b": [str(x) for x in P6.b]},
+                                                "method": {"taylor": 6}}]
     fam["random 3-D polytope, 20 points, RK4"] = [
         {"system": {"A": _matrix(rng, 3)}, "polyhedron": {"vertices": [[rng.randint(-9, 9) for _ in range(3)]
                                                                        for _ in range(20)]}, "method": "rk4"}
