@@ -45,7 +45,6 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
     coefficients: tuple[tuple[Fraction, ...], ...] = field(default=(), repr=False)
 
 
-
     @property
     def certificate(self) -> dict:
         """A certificate with the method only (no system or polyhedron)."""
