@@ -3,49 +3,46 @@
 Everything the kernel knows about roots comes from Sturm sequences: exact
 counts of distinct real roots in half-open intervals, with no tolerance and no
 float.  Root isolation bisects until each interval holds one root.
+
+The arithmetic (:mod:`exactinv_check.poly_arithmetic`) and the resultants
+(:mod:`exactinv_check.resultants`) are re-exported here: the kernel reaches
+every polynomial function as ``polys.<name>``.
 """
 
 from fractions import Fraction
-from math import gcd as _igcd
 
+from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
+    MAX_DEGREE,
+    _bounded,
+    _content_free,
+    _exact_quotient,
+    _integer_derivative,
+    _integer_gcd,
+    _pseudo_remainder,
+    add,
+    degree,
+    derivative,
+    divmod_,
+    evaluate,
+    gcd,
+    integer_coefficients,
+    monic,
+    mul,
+    mul_integers,
+    power,
+    primitive,
+    scale,
+    sign,
+    strip_zero_roots,
+    sub,
+    trim,
+)
 from .rationals import require
+from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
-MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 MAX_BISECTIONS = 4000
 STURM_BUDGET = 5 * 10**12  # degree^4 * bits^2 of a polynomial to isolate: up to about half a minute of gcd / Sturm work
 # (measured: 1.5e12 ~ 8 s, 5e12 ~ 23 s on random polynomials); the tail polynomials of Pade(6,5) need 4e12
-
-
-def trim(p):
-    p = list(p)
-    while p and p[-1] == 0:
-        p.pop()
-    return p
-
-
-def degree(p):
-    return len(trim(p)) - 1
-
-
-def evaluate(p, x):
-    acc = Fraction(0)
-    for c in reversed(p):
-        acc = acc * x + c
-    return acc
-
-
-def sign(x):
-    return (x > 0) - (x < 0)
-
-
-def integer_coefficients(p):
-    """Coprime integers proportional to p by a positive factor (so signs agree)."""
-    p = trim(p)
-    den = 1
-    for c in p:
-        if not isinstance(c, int):
-            den = den * c.denominator // _igcd(den, c.denominator)
-    return _content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
 
 
 def sign_at(ints, x):
@@ -101,138 +98,6 @@ def no_root_between(p, a, b, depth=4):
     return True
 
 
-def add(p, q):
-    n = max(len(p), len(q))
-    return trim([(p[i] if i < len(p) else 0) + (q[i] if i < len(q) else 0) for i in range(n)])
-
-
-def sub(p, q):
-    return add(p, [-c for c in q])
-
-
-def scale(p, c):
-    return trim([c * a for a in p])
-
-
-def mul(p, q):
-    if not p or not q:
-        return []
-    out = [Fraction(0)] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        if a:
-            for j, b in enumerate(q):
-                out[i + j] += a * b
-    return trim(out)
-
-
-def mul_integers(p, q):
-    """The product of two polynomials with integer coefficients, in integers (not trimmed)."""
-    out = [0] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        if a:
-            for j, c in enumerate(q):
-                out[i + j] += a * c
-    return out
-
-
-def power(p, k):
-    out = [Fraction(1)]
-    for _ in range(k):
-        out = mul(out, p)
-    return out
-
-
-def derivative(p):
-    return trim([k * p[k] for k in range(1, len(p))])
-
-
-def divmod_(p, d):
-    p, d = trim(p), trim(d)
-    require(d, "division by the zero polynomial")
-    q = [Fraction(0)] * max(len(p) - len(d) + 1, 1)
-    r = list(p)
-    lead = d[-1]
-    while r and len(r) >= len(d):
-        shift = len(r) - len(d)
-        c = Fraction(r[-1]) / lead
-        q[shift] = c
-        for k, dk in enumerate(d):
-            r[k + shift] -= c * dk
-        r = trim(r)
-    return trim(q), r
-
-
-def primitive(p):
-    """p scaled by a POSITIVE rational to coprime integer coefficients (sign kept)."""
-    return [Fraction(c) for c in integer_coefficients(p)]
-
-
-def monic(p):
-    p = trim(p)
-    return [Fraction(c, 1) / p[-1] for c in p] if p else p
-
-
-# --------------------------------------------- integer core (Python ints, no Fractions)
-def _content_free(a):
-    """a divided by the positive gcd of its coefficients (signs kept)."""
-    g = 0
-    for c in a:
-        g = _igcd(g, c)
-    return [c // g for c in a] if g > 1 else a
-
-
-def _pseudo_remainder(a, b):
-    """r with s^k a = q b + r for s = |lc(b)| > 0: the remainder up to a POSITIVE factor,
-    so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
-    s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
-    r = list(a)
-    while len(r) >= len(b) and r:
-        shift, c = len(r) - len(b), r[-1] * sgn
-        r = [s * x for x in r]
-        for k, bk in enumerate(b):
-            r[k + shift] -= c * bk
-        while r and r[-1] == 0:
-            r.pop()
-        r = _content_free(r)
-    return r
-
-
-def _integer_gcd(a, b):
-    """gcd of two integer polynomials: primitive, positive leading coefficient."""
-    while b:
-        a, b = b, _pseudo_remainder(a, b)
-    a = _content_free(a)
-    return [-c for c in a] if a and a[-1] < 0 else a
-
-
-def _exact_quotient(a, b):
-    """a / b for integer polynomials where b divides a over Z (checked)."""
-    a, q = list(a), [0] * (len(a) - len(b) + 1)
-    for shift in range(len(a) - len(b), -1, -1):
-        c, rest = divmod(a[shift + len(b) - 1], b[-1])
-        require(rest == 0, "internal: inexact polynomial division")
-        q[shift] = c
-        for k, bk in enumerate(b):
-            a[k + shift] -= c * bk
-    require(not any(a), "internal: inexact polynomial division")
-    return q
-
-
-def _integer_derivative(a):
-    return [k * a[k] for k in range(1, len(a))]
-
-
-def gcd(p, q):
-    """The monic gcd over Q."""
-    g = _integer_gcd(integer_coefficients(_bounded(p)), integer_coefficients(_bounded(q)))
-    return [Fraction(c, g[-1]) for c in g] if g else []
-
-
-def _bounded(p):
-    require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
-    return p
-
-
 def _affordable(ints):
     """Reject, before any pseudo-remainder sequence, an integer polynomial whose
     degree^4 * bits^2 (the cost of its gcd or Sturm sequence) is over the budget,
@@ -251,13 +116,6 @@ def squarefree(p):
         return a
     g = _integer_gcd(_affordable(a), _integer_derivative(a))
     return _exact_quotient(a, g) if len(g) > 1 else a
-
-
-def strip_zero_roots(p):
-    p = trim(p)
-    while p and p[0] == 0:
-        p = p[1:]
-    return p
 
 
 def sign_right_of(p, x):
@@ -347,48 +205,3 @@ def positive_roots(p, upper=None):
         stack.append((a, m))
     out.sort(key=lambda iv: iv[0])
     return out
-
-
-def resultant(f, g):
-    """The resultant of f and g over Q (Euclid's algorithm on the defining identity
-    res(f, g) = lc(g)^deg f * prod_{g(b)=0} f(b))."""
-    f, g = trim(f), trim(g)
-    if not f or not g:
-        return Fraction(0)
-    result = Fraction(1)
-    while len(g) > 1:
-        df, dg = len(f) - 1, len(g) - 1
-        r = divmod_(f, g)[1]
-        if not r:
-            return Fraction(0)
-        dr = len(r) - 1
-        # res(f, g) = (-1)^(df dg) res(g, f) = (-1)^(df dg) lc(g)^(df - dr) res(g, r)
-        result *= (-1) ** (df * dg) * g[-1] ** (df - dr)
-        f, g = g, r
-    return result * g[0] ** (len(f) - 1)
-
-
-def interpolate(points, values):
-    """The polynomial of degree < len(points) through (points, values) (Newton form)."""
-    k = len(points)
-    coef = list(values)
-    for level in range(1, k):
-        for i in range(k - 1, level - 1, -1):
-            coef[i] = (coef[i] - coef[i - 1]) / (points[i] - points[i - level])
-    result = [coef[-1]] if coef else []
-    for i in range(k - 2, -1, -1):
-        result = add(mul(result, [-points[i], Fraction(1)]), [coef[i]])
-    return trim(result)
-
-
-def quotient_polynomial(p, q):
-    """A nonzero polynomial in t vanishing at a/b for every root a of p and b != 0 of q:
-    res_y(p(t y), q(y)), by evaluation and interpolation."""
-    p, q = strip_zero_roots(p), strip_zero_roots(q)
-    dp, dq = len(p) - 1, len(q) - 1
-    require(dp * dq <= MAX_DEGREE, "the quotient of two algebraic numbers has too large a degree for this kernel")
-    # T = 0 would drop the degree of p(T y) and, with it, the resultant's formal
-    # degree: interpolate at T = 1 .. dp dq + 1 only
-    points = [Fraction(k) for k in range(1, dp * dq + 2)]
-    values = [resultant([c * t ** k for k, c in enumerate(p)], q) for t in points]
-    return interpolate(points, values)

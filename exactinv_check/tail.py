@@ -39,19 +39,17 @@ centred form), the b_{k,m} from them by midpoint-radius disk arithmetic over Gau
 isotone, outward rounding of every centre and radius): each enclosure holds the exact value at the true pole.
 """
 
-import cmath
 from fractions import Fraction
-from math import ceil, comb, isqrt
+from math import ceil, comb
 
+from .disks import _absup, _ball, _bmul, _binv, _disks, _sqrt_bounds, _taylor_balls, _up
 from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
-    primitive, sign, squarefree, sub, trim
+    sign, squarefree, sub, trim
 from .rationals import CheckFailure, require
 from .tie import kappa_enclosure, tie_interval
 
 MAX_INDEX = 1 << 20  # the largest tail index the kernel will certify
 MAX_REFINE = 2000  # bisections when separating a real pole from other roots
-PREC = 128  # bits kept in the centres of the disk arithmetic
-MAX_WEIERSTRASS = 40  # refinement steps of the root approximations
 
 
 def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
@@ -182,78 +180,8 @@ def _b_signs(g, h, f, M, iv):
     return [(-1) ** m * _sign_at(A[M - m], f, iv) * s ** (M - m + 1) for m in range(1, M + 1)]
 
 
-# ----------------------------------------------------------------- rational bounds and disk arithmetic
-def _sqrt_bounds(x):
-    """Rationals lo <= sqrt(x) <= hi for a Fraction x >= 0."""
-    if x == 0:
-        return Fraction(0), Fraction(0)
-    s = max(0, (160 - x.numerator.bit_length() + x.denominator.bit_length()) // 2)
-    y = x * 4 ** s
-    return Fraction(isqrt(y.numerator // y.denominator), 2 ** s), Fraction(isqrt(ceil(y)) + 1, 2 ** s)
 
-
-def _scale_of(x):
-    return x.numerator.bit_length() - x.denominator.bit_length()
-
-
-def _up(x):
-    """A short dyadic >= x (x >= 0)."""
-    if x == 0:
-        return Fraction(0)
-    s = Fraction(2) ** (40 - _scale_of(x))
-    return ceil(x * s) / s
-
-
-def _short(x):
-    """x rounded to PREC significant bits."""
-    if x == 0:
-        return Fraction(0)
-    s = Fraction(2) ** (PREC - _scale_of(x))
-    return round(x * s) / s
-
-
-def _ball(re, im, rad):
-    """The disk {|z - (re + i im)| <= rad}, centre rounded, the rounding error added to the radius."""
-    re2, im2 = _short(Fraction(re)), _short(Fraction(im))
-    return re2, im2, _up(rad + abs(re - re2) + abs(im - im2))
-
-
-def _absup(x):
-    return _sqrt_bounds(x[0] ** 2 + x[1] ** 2)[1] + x[2]
-
-
-def _bmul(x, y):
-    return _ball(x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0],
-                 (_absup(x) - x[2]) * y[2] + (_absup(y) - y[2]) * x[2] + x[2] * y[2])
-
-
-def _binv(x):  # |1/z - 1/c| = |z - c|/(|z||c|) <= rad/(L (L - rad)) with L <= |c|
-    n = x[0] ** 2 + x[1] ** 2
-    L = _sqrt_bounds(n)[0]
-    require(L > x[2], "tail: a pole's enclosure is too wide to invert a Taylor coefficient")
-    return _ball(x[0] / n, -x[1] / n, x[2] / (L * (L - x[2])))
-
-
-def _taylor_balls(p, z, first, count):
-    """Enclosures of T_i(w) = [v^i] p(w + v), i = first .. first+count-1, for all w in the disk z = (c, rho):
-    exactly p(c + u) = sum_k s_k u^k (Taylor shift at the centre), so T_i(c + u) = sum_{k>=i} C(k,i) s_k u^(k-i)
-    and |T_i(c + u) - s_i| <= sum_{k>i} C(k,i) |s_k| rho^(k-i)  (the centred form: no cancellation is lost)."""
-    re, im, rho = z
-    sr, si = [Fraction(a) for a in p], [Fraction(0)] * len(p)
-    for i in range(len(p) - 1):  # repeated synthetic division by (x - c)
-        for k in range(len(p) - 2, i - 1, -1):
-            sr[k], si[k] = sr[k] + re * sr[k + 1] - im * si[k + 1], si[k] + re * si[k + 1] + im * sr[k + 1]
-    size = [_sqrt_bounds(a * a + b * b)[1] for a, b in zip(sr, si)]
-    out = []
-    for i in range(first, first + count):
-        if i >= len(p):
-            out.append(_ball(0, 0, 0))
-            continue
-        rad = sum(comb(k, i) * size[k] * rho ** (k - i) for k in range(i + 1, len(p))) if rho else 0
-        out.append(_ball(sr[i], si[i], rad))
-    return out
-
-
+# ----------------------------------------------------------------- disk enclosures of b_{k,m} (module disks)
 def _b_balls(g, h, M, z):
     """Enclosures of b_1..b_M at the pole in the disk z (multiplicity M), by the recursion of _b_signs."""
     tg, th = _taylor_balls(g, z, 0, M), _taylor_balls(h, z, M, M)
@@ -267,75 +195,6 @@ def _b_balls(g, h, M, z):
         phi.append(_bmul(acc, inverse))
     return [_ball((-1) ** m * phi[M - m][0], (-1) ** m * phi[M - m][1], phi[M - m][2]) for m in range(1, M + 1)]
 
-
-def _approx_roots(f, iterations=200):
-    """Float approximations of the roots of f (Aberth-Ehrlich iteration): hints only."""
-    d = len(f) - 1
-    try:
-        c = [complex(float(x / f[-1])) for x in f]
-    except OverflowError:
-        raise CheckFailure("tail: coefficients out of floating-point range for the root hints") from None
-    R = 2 * max(abs(c[i]) ** (1 / (d - i)) for i in range(d))  # Fujiwara's bound on |roots|
-    z = [R * cmath.exp(2j * cmath.pi * (k + 0.25) / d) for k in range(d)]
-    for _ in range(iterations):
-        moved = 0.0
-        for i in range(d):
-            p, dp = c[-1], 0j
-            for a in reversed(c[:-1]):
-                p, dp = p * z[i] + a, dp * z[i] + p
-            if p == 0:
-                continue
-            s = sum(1 / (z[i] - z[k]) for k in range(d) if k != i and z[k] != z[i])
-            ratio = p / dp if dp != 0 else 1e-8
-            step = ratio / (1 - ratio * s) if ratio * s != 1 else ratio
-            z[i] -= step
-            moved = max(moved, abs(step) / max(abs(z[i]), 1e-300))
-        if moved < 1e-15:
-            break
-    return z
-
-
-def _weierstrass(f, X, s):
-    """W_i = f(x_i) / (lc prod_{j != i} (x_i - x_j)) exactly, for x_i = X_i / 2^s (X_i Gaussian integers
-    (re, im)) and f with integer coefficients: integer arithmetic, one division per root."""
-    d, S = len(f) - 1, 1 << s
-    out = []
-    for i, (a, b) in enumerate(X):
-        pr, pi, scale = f[d], 0, 1  # 2^(s d) f(x_i), homogeneous Horner
-        for k in range(d - 1, -1, -1):
-            scale *= S
-            pr, pi = pr * a - pi * b + f[k] * scale, pr * b + pi * a
-        qr, qi = f[d], 0  # 2^(s (d-1)) lc prod_{j != i} (x_i - x_j)
-        for j, (u, v) in enumerate(X):
-            if j != i:
-                qr, qi = qr * (a - u) - qi * (b - v), qr * (b - v) + qi * (a - u)
-        n = (qr * qr + qi * qi) * S
-        require(n != 0, "tail: coinciding root approximations")
-        out.append((Fraction(pr * qr + pi * qi, n), Fraction(pi * qr - pr * qi, n)))
-    return out
-
-
-def _disks(f):
-    """Pairwise disjoint exact disks (re, im, rad), each holding exactly one root of the squarefree f: float
-    hints, refined by Weierstrass steps x_i <- x_i - W_i in 2^-s fixed point, then the Gerschgorin disks."""
-    f = [int(c) for c in primitive(f)]
-    d = len(f) - 1
-    hints = _approx_roots(f)
-    s = PREC + max(0, -min(_scale_of(Fraction(abs(x))) for x in hints if x))
-    hints = [x * (1 + (k + 1) * 2.0 ** -40 * (1 + 1j)) for k, x in enumerate(hints)]  # break conjugate symmetry
-    X = [(round(Fraction(x.real) * 2 ** s), round(Fraction(x.imag) * 2 ** s)) for x in hints]
-    for _ in range(MAX_WEIERSTRASS):
-        W = _weierstrass(f, X, s)
-        centres = [(Fraction(a, 2 ** s) - wr, Fraction(b, 2 ** s) - wi) for (a, b), (wr, wi) in zip(X, W)]
-        if all((wr * wr + wi * wi) * 4 ** (PREC - 16) <= a * a + b * b for (wr, wi), (a, b) in zip(W, centres)):
-            break
-        X = [(round(a * 2 ** s), round(b * 2 ** s)) for a, b in centres]
-    out = [_ball(a, b, (d - 1) * _sqrt_bounds(wr * wr + wi * wi)[1]) for (a, b), (wr, wi) in zip(centres, W)]
-    for i, x in enumerate(out):
-        for y in out[i + 1:]:
-            require((x[0] - y[0]) ** 2 + (x[1] - y[1]) ** 2 > (x[2] + y[2]) ** 2,
-                    "tail: the inclusion disks of two poles overlap (poles too close to separate)")
-    return out
 
 
 # ----------------------------------------------------------------- dominance

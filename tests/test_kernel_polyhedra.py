@@ -369,35 +369,6 @@ def test_agrees_with_ppl(seed):
                 prove_generators(G, b, P, R, L[:i] + L[i + 1 :])
 
 
-def test_degenerate_cone_enumeration_matches_brute_force():
-    """The double description at a degenerate vertex finds exactly the extreme
-    rays that the subset enumeration (rank r - 1 tight sets) finds."""
-    from exactinv_check.rationals import rank_and_nullspace
-
-    rng = random.Random(5)
-    tested = 0
-    while tested < 300:
-        r = rng.randint(1, 4)
-        A = [[rng.randint(-2, 2) for _ in range(r)] for _ in range(rng.randint(r, r + 5))]
-        rank, _, basis, _, _ = polyhedra._reduce(A, r)
-        if rank != r:
-            continue
-        got = [tuple(y) for y in polyhedra._cone_rays(A, basis, r)]
-        want = set()
-        for S in itertools.combinations(range(len(A)), r - 1):
-            k, null = rank_and_nullspace([[F(x) for x in A[i]] for i in S], r)
-            if k != r - 1:
-                continue
-            for sign in (1, -1):
-                y = [sign * x for x in null[0]]
-                Ay = [sum(a * c for a, c in zip(row, y)) for row in A]
-                if max(Ay) <= 0 and any(Ay):
-                    den = math.lcm(*(x.denominator for x in y))
-                    want.add(tuple(polyhedra._primitive([int(x * den) for x in y])))
-        assert len(got) == len(set(got)) and set(got) == want, (A, got, want)
-        tested += 1
-
-
 # ----------------------------------------------------------------------------
 # scale
 

@@ -15,25 +15,21 @@ level, with a "did you mean" hint.  Errors name the file and the JSON path.
 
 from __future__ import annotations
 
-import difflib
-import json
 import os
-import re
 from dataclasses import dataclass
-from typing import Any, Iterable
+from typing import Any
 
 from ..errors import InvalidInput
-from ..model import methods as _methods
 from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
+from .method_format import METHOD_KINDS, method_from_text, parse_method  # re-exported: their old home
+from .strict_json import _At, _kind, _object, _parse, _require, check_keys
+from .strict_json import did_you_mean  # noqa: F401 (re-exported: its old home)
 
 __all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
 
 TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description")
 """The keys a problem file may hold (system and one of polyhedron, ellipsoid are required)."""
-
-METHOD_KINDS = ("taylor", "polynomial", "rational", "theta", "pade", "butcher", "preset", "ssprk_s1")
-"""The keys of a method object ({"taylor": 4}, ...); a bare string is a preset name."""
 
 
 @dataclass(frozen=True)
@@ -48,163 +44,6 @@ class Problem:
     @property
     def is_ellipsoid(self) -> bool:
         return isinstance(self.polyhedron, Ellipsoid)
-
-
-def did_you_mean(word: str, choices: Iterable[str]) -> str:
-    """'; did you mean "x"?' for the closest choice, or '' (difflib).
-
-    >>> did_you_mean("polyhedra", TOP_KEYS), did_you_mean("zzz", TOP_KEYS)
-    ('; did you mean "polyhedron"?', '')
-    """
-    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
-    return f'; did you mean "{close[0]}"?' if close else ""
-
-
-def check_keys(obj: dict, allowed: Iterable[str], path: str) -> None:
-    """Refuse a key of ``obj`` outside ``allowed``, naming its JSON path and the closest allowed key.
-
-    >>> check_keys({"G": [[1]], "b": [1]}, ("G", "b"), "polyhedron")   # all allowed: no error
-    >>> check_keys({"G": [[1]], "bb": [1]}, ("G", "b"), "polyhedron")
-    Traceback (most recent call last):
-    ...
-    exactinv.errors.InvalidInput: polyhedron.bb: unknown key; did you mean "b"? (allowed: G, b)
-    """
-    allowed = list(allowed)
-    for key in obj:
-        if key not in allowed:
-            raise InvalidInput(f"{path + '.' if path else ''}{key}: unknown key{did_you_mean(key, allowed)} "
-                               f"(allowed: {', '.join(allowed)})")
-
-
-_LEAD = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?=[\[:])")
-
-
-class _At:
-    """Prefix the message of an InvalidInput raised inside the block with a JSON path:
-    an argument name that is one of ``keys`` becomes ``path.key``; any other leading
-    argument name (the value itself, e.g. ``p`` of taylor) is replaced by ``path``."""
-
-    def __init__(self, path: str, keys: Iterable[str] = ()):
-        self.path, self.keys = path, set(keys)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, kind, exc, tb):
-        if isinstance(exc, InvalidInput):
-            msg = str(exc)
-            lead = _LEAD.match(msg)
-            if lead and lead.group(1) in self.keys:
-                msg = f"{self.path}.{msg}"
-            elif lead:
-                msg = self.path + msg[lead.end():]
-            else:
-                msg = f"{self.path}: {msg}"
-            raise type(exc)(msg) from None
-        return False
-
-
-def _object(value: Any, path: str, what: str) -> dict:
-    if not isinstance(value, dict):
-        raise InvalidInput(f"{path}: expected {what}, got {_kind(value)}")
-    return value
-
-
-def _kind(value: Any) -> str:
-    return {dict: "a JSON object", list: "a JSON list", str: "a string", bool: "a boolean", int: "an integer",
-            type(None): "null"}.get(type(value), type(value).__name__)
-
-
-def parse_method(spec: Any, path: str = "method") -> Method:
-    """A method from its JSON form, e.g. {"taylor": 4}, {"preset": "rk4"} or the preset name "rk4".
-
-    Taylor(2) is r(z) = 1 + z + z^2/2; backward Euler, r(z) = 1/(1 - z), as a rational method:
-
-    >>> parse_method({"taylor": 2}).numerator
-    (Fraction(1, 1), Fraction(1, 1), Fraction(1, 2))
-    >>> m = parse_method({"rational": {"num": [1], "den": [1, -1]}}); m.numerator, m.denominator
-    ((Fraction(1, 1),), (Fraction(1, 1), Fraction(-1, 1)))
-    >>> parse_method({"tailor": 2})
-    Traceback (most recent call last):
-    ...
-    exactinv.errors.InvalidInput: method.tailor: unknown kind of method; did you mean "taylor"? (known: ...)
-    """
-    if isinstance(spec, str):
-        return _preset(spec, path)
-    if not isinstance(spec, dict) or len(spec) != 1:
-        got = f"keys {sorted(spec)}" if isinstance(spec, dict) else _kind(spec)
-        raise InvalidInput(f"{path}: expected one key such as {{\"taylor\": 4}} or a preset name, got {got}")
-    (kind, arg), = spec.items()
-    where = f"{path}.{kind}"
-    if kind not in METHOD_KINDS:
-        raise InvalidInput(f"{where}: unknown kind of method{did_you_mean(kind, METHOD_KINDS)} "
-                           f"(known: {', '.join(METHOD_KINDS)})")
-    if kind == "preset":
-        if not isinstance(arg, str):
-            raise InvalidInput(f"{where}: expected a preset name (a string), got {_kind(arg)}")
-        return _preset(arg, where)
-    with _At(where):
-        if kind == "taylor":
-            return _methods.taylor(arg)
-        if kind == "polynomial":
-            return _methods.polynomial(arg)
-        if kind == "theta":
-            return _methods.theta(arg)
-        if kind == "ssprk_s1":
-            return _methods.ssprk_s1(arg)
-    with _At(where, ("k", "l")):
-        if kind == "pade":
-            if not isinstance(arg, list) or len(arg) != 2:
-                raise InvalidInput("expected [k, l] (numerator and denominator degrees)")
-            return _methods.pade(*arg)
-    if kind == "rational":
-        _object(arg, where, '{"num": [...], "den": [...]}')
-        check_keys(arg, ("num", "den"), where)
-        _require(arg, ("num", "den"), where)
-        with _At(where, ("num", "den")):
-            return _methods.rational(arg["num"], arg["den"])
-    _object(arg, where, '{"A": [[...]], "b": [...]} (and optionally "c": [...])')
-    check_keys(arg, ("A", "b", "c"), where)
-    _require(arg, ("A", "b"), where)
-    with _At(where, ("A", "b", "c")):
-        return _methods.from_butcher(arg["A"], arg["b"], c=arg.get("c"))
-
-
-def _preset(name: str, where: str) -> Method:
-    if name not in _methods.PRESETS:
-        raise InvalidInput(f"{where}: unknown preset {name!r}{did_you_mean(name, _methods.PRESETS)} "
-                           f"(known: {', '.join(sorted(_methods.PRESETS))})")
-    return _methods.preset(name)
-
-
-def method_from_text(text: str, where: str = "--method") -> Method:
-    """A method from command-line text: JSON (``{"taylor": 4}``) or a preset name (``rk4``).
-
-    Pade(1,1) is the trapezoid rule, r(z) = (1 + z/2)/(1 - z/2); rk4 is Taylor(4).
-
-    >>> m = method_from_text('{"pade": [1, 1]}'); m.numerator, m.denominator
-    ((Fraction(1, 1), Fraction(1, 2)), (Fraction(1, 1), Fraction(-1, 2)))
-    >>> method_from_text("rk4").numerator == parse_method({"taylor": 4}).numerator
-    True
-    >>> method_from_text('{"theta": 0.5}')
-    Traceback (most recent call last):
-    ...
-    exactinv.errors.InvalidInput: --method: the JSON number 0.5 is a float; write it as a string ("0.5") to mean it exactly
-    """
-    text = text.strip()
-    if text[:1] in "{[\"":
-        try:
-            spec = json.loads(text, parse_float=_refuse_float(where), parse_constant=_refuse_constant(where))
-        except json.JSONDecodeError as exc:
-            raise InvalidInput(f"{where}: not valid JSON ({exc}); give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
-        return parse_method(spec, where)
-    return _preset(text, where)
-
-
-def _require(obj: dict, keys: Iterable[str], path: str) -> None:
-    for key in keys:
-        if key not in obj:
-            raise InvalidInput(f"{path}: missing key {key!r}")
 
 
 def _section(data: dict, key: str) -> dict:
@@ -330,37 +169,3 @@ def load_problem(source: Any) -> Problem:
         if str(exc).startswith(path):
             raise
         raise type(exc)(f"{path}: {exc}") from None
-
-
-def _parse(text: str, where: str) -> Any:
-    try:
-        return json.loads(text, parse_float=_refuse_float(), parse_constant=_refuse_constant(),
-                          object_pairs_hook=_no_duplicates)
-    except json.JSONDecodeError as exc:
-        raise InvalidInput(f"{where}: not valid JSON ({exc})") from None
-    except RecursionError:
-        raise InvalidInput(f"{where}: nested too deeply") from None
-
-
-def _no_duplicates(pairs):
-    keys = [k for k, _ in pairs]
-    dup = sorted({k for k in keys if keys.count(k) > 1})
-    if dup:
-        raise InvalidInput(f"duplicate key {dup[0]!r} in one JSON object (ambiguous)")
-    return dict(pairs)
-
-
-def _refuse_float(where: str = ""):
-    prefix = f"{where}: " if where else ""
-
-    def refuse(text: str):
-        raise InvalidInput(f"{prefix}the JSON number {text} is a float; write it as a string (\"{text}\") to mean it exactly")
-    return refuse
-
-
-def _refuse_constant(where: str = ""):
-    prefix = f"{where}: " if where else ""
-
-    def refuse(text: str):
-        raise InvalidInput(f"{prefix}{text} is not a number exactinv accepts")
-    return refuse

@@ -1,0 +1,121 @@
+"""Strict JSON input (problem files and ``--method``): exact numbers only (a JSON
+float or NaN/Infinity is refused), no duplicate key, unknown keys refused with a
+"did you mean" hint, and every error names its JSON path.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import re
+from typing import Any, Iterable
+
+from ..errors import InvalidInput
+
+__all__ = ["did_you_mean", "check_keys"]
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """'; did you mean "x"?' for the closest choice, or '' (difflib).
+
+    >>> from exactinv.interfaces.problem import TOP_KEYS
+    >>> did_you_mean("polyhedra", TOP_KEYS), did_you_mean("zzz", TOP_KEYS)
+    ('; did you mean "polyhedron"?', '')
+    """
+    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
+    return f'; did you mean "{close[0]}"?' if close else ""
+
+
+def check_keys(obj: dict, allowed: Iterable[str], path: str) -> None:
+    """Refuse a key of ``obj`` outside ``allowed``, naming its JSON path and the closest allowed key.
+
+    >>> check_keys({"G": [[1]], "b": [1]}, ("G", "b"), "polyhedron")   # all allowed: no error
+    >>> check_keys({"G": [[1]], "bb": [1]}, ("G", "b"), "polyhedron")
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: polyhedron.bb: unknown key; did you mean "b"? (allowed: G, b)
+    """
+    allowed = list(allowed)
+    for key in obj:
+        if key not in allowed:
+            raise InvalidInput(f"{path + '.' if path else ''}{key}: unknown key{did_you_mean(key, allowed)} "
+                               f"(allowed: {', '.join(allowed)})")
+
+
+_LEAD = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?=[\[:])")
+
+
+class _At:
+    """Prefix the message of an InvalidInput raised inside the block with a JSON path:
+    an argument name that is one of ``keys`` becomes ``path.key``; any other leading
+    argument name (the value itself, e.g. ``p`` of taylor) is replaced by ``path``."""
+
+    def __init__(self, path: str, keys: Iterable[str] = ()):
+        self.path, self.keys = path, set(keys)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        if isinstance(exc, InvalidInput):
+            msg = str(exc)
+            lead = _LEAD.match(msg)
+            if lead and lead.group(1) in self.keys:
+                msg = f"{self.path}.{msg}"
+            elif lead:
+                msg = self.path + msg[lead.end():]
+            else:
+                msg = f"{self.path}: {msg}"
+            raise type(exc)(msg) from None
+        return False
+
+
+def _object(value: Any, path: str, what: str) -> dict:
+    if not isinstance(value, dict):
+        raise InvalidInput(f"{path}: expected {what}, got {_kind(value)}")
+    return value
+
+
+def _kind(value: Any) -> str:
+    return {dict: "a JSON object", list: "a JSON list", str: "a string", bool: "a boolean", int: "an integer",
+            type(None): "null"}.get(type(value), type(value).__name__)
+
+
+def _require(obj: dict, keys: Iterable[str], path: str) -> None:
+    for key in keys:
+        if key not in obj:
+            raise InvalidInput(f"{path}: missing key {key!r}")
+
+
+def _parse(text: str, where: str) -> Any:
+    try:
+        return json.loads(text, parse_float=_refuse_float(), parse_constant=_refuse_constant(),
+                          object_pairs_hook=_no_duplicates)
+    except json.JSONDecodeError as exc:
+        raise InvalidInput(f"{where}: not valid JSON ({exc})") from None
+    except RecursionError:
+        raise InvalidInput(f"{where}: nested too deeply") from None
+
+
+def _no_duplicates(pairs):
+    keys = [k for k, _ in pairs]
+    dup = sorted({k for k in keys if keys.count(k) > 1})
+    if dup:
+        raise InvalidInput(f"duplicate key {dup[0]!r} in one JSON object (ambiguous)")
+    return dict(pairs)
+
+
+def _refuse_float(where: str = ""):
+    prefix = f"{where}: " if where else ""
+
+    def refuse(text: str):
+        raise InvalidInput(f"{prefix}the JSON number {text} is a float; write it as a string (\"{text}\") to mean it exactly")
+    return refuse
+
+
+def _refuse_constant(where: str = ""):
+    prefix = f"{where}: " if where else ""
+
+    def refuse(text: str):
+        raise InvalidInput(f"{prefix}{text} is not a number exactinv accepts")
+    return refuse

@@ -1,0 +1,288 @@
+"""The radius of absolute monotonicity of a rational stability function with poles
+(paper, Section 3.2; the definition and the polynomial case:
+:mod:`exactinv.paper.monotonicity`).
+
+*Rational functions with poles*: infinitely many c_j matter.  With
+d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), a polynomial with the sign of c_j,
+the engine argues in four exact or certified steps:
+
+1. Pringsheim: if all c_j(kappa) >= 0, the nearest singularity of r to
+   -kappa lies on the positive real axis.  So without a positive real pole
+   rho = 0; a witness j with c_j(0) < 0 is found by exact series expansion.
+2. Let p* be the smallest positive real pole, of multiplicity mu.  Its
+   principal part dominates the tail, so it must have the right sign:
+   a_mu (-1)^mu > 0 where r ~ a_mu/(z - p*)^mu; otherwise rho = 0 (witness j).
+3. Dominance: another pole z_k = a + ib (a < p*) is as close to -kappa as p* at
+   kappa_k = (|z_k|^2 - p*^2)/(2(p* - a)) and closer beyond it, which again
+   violates Pringsheim, so rho <= kappa_A = min_k kappa_k.  kappa_A is exact:
+   a root of the tie polynomial (:mod:`exactinv.paper.poles`), an algebraic
+   condition isolated among that polynomial's real roots.
+4. The tail: on [0, K] with K < kappa_A an explicit index N (Arb ball bounds
+   on the partial fraction expansion) bounds where c_j, j >= N, is positive.
+   The scan runs d_0, d_1, ... incrementally (Descartes' rule on [0, K]
+   first, FLINT root isolation only where it is inconclusive); each sign
+   change found below the current K lowers K and with it N.
+5. The tie itself: if no coefficient ends below kappa_A and p* still wins
+   there -- every tied pole has multiplicity < mu, or = mu with
+   sum |b_{k,mu}| < b_{*,mu} -- the dominance bound holds uniformly on
+   [0, kappa_A] with the tied poles at ratio 1, and rho = kappa_A
+   (reason ``"tie"``, attained).  If the tied poles outweigh p*, some c_j
+   turns negative below kappa_A and the scan finds it.
+
+Undecided (documented, never a guess): (a) the tied poles' principal parts
+balance p*'s exactly (sum = b_{*,mu}; e.g. 1/(1 - 2z/3 - z^2/4)), where the
+strict tail bound fails; (b) the tied poles outweigh p* and no c_j with
+j < 600 turns negative below kappa_A -- for one dominant pair this happens
+only if its argument is a rational multiple of pi, and for several tied
+pairs it is the positivity problem of linear recurrences with several
+dominant characteristic roots, open in general; (c) no pole ever gets as
+close as p* but a non-real pole with Re z > p* approaches p*'s distance as
+kappa -> oo (e.g. 1/(1 - z + z^2/4 - z^3/40)): no tail index is uniform in
+kappa, and rho = oo would need the kappa -> oo asymptotics of c_j(kappa).
+The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
+records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from math import comb
+
+import flint
+
+from ..core.algebraic import ExactKey, Real, RealAlgebraic
+from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
+from ..core.roots import real_roots
+from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
+from ..core.tags import RadiusReason
+from ..errors import Undecided
+from ..model.methods import Method
+from .monotonicity_radius import AbsoluteMonotonicityRadius
+from .poles import dominance_tie, pole_structure, precision, tail_index
+
+_WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
+_MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
+_MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
+_BITS = 256  # Arb working precision
+
+
+def _negative_coefficient_at_zero(method: Method) -> int | None:
+    """The least j < _WITNESS_SCAN with c_j(0) < 0 (exact series of g/h at 0, stopping at the first)."""
+    g, h = method.numerator, method.denominator
+    c: list[Fraction] = []
+    for j in range(_WITNESS_SCAN):
+        value = g[j] if j < len(g) else Fraction(0)
+        for i in range(1, min(j, len(h) - 1) + 1):
+            value -= h[i] * c[j - i]
+        if value < 0:
+            return j
+        c.append(value)  # h[0] = 1
+    return None
+
+
+def _zero_radius(method: Method, reason: RadiusReason, pole=None) -> AbsoluteMonotonicityRadius:
+    j = _negative_coefficient_at_zero(method)
+    if j is None:
+        raise Undecided(f"absolute monotonicity of {method.name}: {reason} implies rho = 0, "
+                        f"but no c_j(0) < 0 was found among the first {_WITNESS_SCAN} coefficients")
+    return AbsoluteMonotonicityRadius(Fraction(0), False, reason, method, witness_j=j, pole=pole)
+
+
+def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
+    """Exact sign of p at a Fraction or RealAlgebraic alpha."""
+    if isinstance(alpha, Fraction):
+        return sign_at(p, alpha)
+    q = integer_part(p)
+    g = q.gcd(alpha.poly)
+    if g.degree() > 0 and sign_at(g, alpha.lower) * sign_at(g, alpha.upper) < 0:
+        return 0
+    while count_real_roots(q, alpha.lower, alpha.upper) > 0:
+        alpha._bisect()
+    return sign_at(q, alpha.lower) * (1 if p.numer().leading_coefficient() * q.leading_coefficient() > 0 else -1)
+
+
+def _coefficient_polynomials(method: Method):
+    """d_0, d_1, ... incrementally (the recurrence of :func:`taylor_coefficient_polynomials`)."""
+    kappa = flint.fmpq_poly([0, 1])
+
+    def shifted(coeffs):
+        return [sum((flint.fmpq_poly([fmpq_of(coeffs[k] * comb(k, i))]) * (-kappa) ** (k - i)
+                     for k in range(i, len(coeffs))), flint.fmpq_poly([0])) for i in range(len(coeffs))]
+
+    G, Hs = shifted(method.numerator), shifted(method.denominator)
+    d, powers, j = [], [flint.fmpq_poly([1])], 0
+    while True:
+        while len(powers) <= j:
+            powers.append(powers[-1] * Hs[0])
+        value = (G[j] if j < len(G) else flint.fmpq_poly([0])) * powers[j]
+        for i in range(1, min(j, len(Hs) - 1) + 1):
+            value -= Hs[i] * d[j - i] * powers[i - 1]
+        d.append(value)
+        yield value
+        j += 1
+
+
+def _nonnegative_on(d: flint.fmpq_poly, K: Fraction | None) -> bool:
+    """True proves d >= 0 on [0, K] ([0, oo) for None): positive right of 0 and, by Descartes' rule,
+    no root in (0, K).  False means: not proved (the caller then locates the sign change exactly)."""
+    if d.is_zero():
+        return True
+    if sign_right_of(d, Fraction(0)) < 0:
+        return False
+    if K is None:
+        return sign_variations(d.coeffs()) == 0
+    return K == 0 or no_root_between(d, Fraction(0), K)
+
+
+def _first_end(d: flint.fmpq_poly) -> Real:
+    """sup{T : d >= 0 on [0, T]} (d >= 0 just right of 0 or not): 0, INF or the least positive root of
+    odd multiplicity -- FLINT's squarefree factorisation and certified (Arb) root isolation."""
+    if sign_right_of(d, Fraction(0)) < 0:
+        return Fraction(0)
+    _, parts = integer_part(d).factor_squarefree()
+    odd = [p for p, m in parts if m % 2]
+    roots = [r for p in odd for r, _ in real_roots(flint.fmpq_poly(p)) if r > 0]
+    return min(roots, key=ExactKey) if roots else INF
+
+
+def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
+    h = method.h
+    positive = [(z, m) for z, m in real_roots(h) if z > 0]
+    if not positive:
+        return _zero_radius(method, RadiusReason.NO_POSITIVE_POLE)
+    p_star, mu = positive[0]
+    h_mu = h
+    for _ in range(mu):
+        h_mu = h_mu.derivative()
+    if _sign_at_real(method.g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu <= 0:
+        return _zero_radius(method, RadiusReason.PRINCIPAL_PART_SIGN, p_star)
+    with precision(_BITS):
+        s = pole_structure(method.numerator, method.denominator, p_star)
+        tie = dominance_tie(s, h, exact=False)
+        if tie is not None and tie.kappa < 0:
+            return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
+        return _decide(method, s, tie, p_star)
+
+
+def _tie_positive(s, tie) -> bool | None:
+    """At kappa_A, does p* still win?  True: every tied pole has multiplicity < mu, or = mu with
+    sum |b_{k,mu}| < b_{*,mu}; False: it loses (a tied pole dominates, so c_j(kappa_A) < 0 for some j
+    when the tied poles are one non-real pair or a negative real pole); None: not separated."""
+    mu, b_mu = s.mu, s.balls[s.star][2][s.mu - 1].real
+    if any(s.balls[k][1] > mu for k in tie.tied):
+        return False
+    total = sum((abs(s.balls[k][2][mu - 1]) for k in tie.tied if s.balls[k][1] == mu), flint.arb(0))
+    if total < b_mu:
+        return True
+    return False if total > b_mu else None
+
+
+def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
+    """Scan d_0, d_1, ... for the first end of nonnegativity below the current bound K (Descartes on
+    [0, K] first, exact location only when it fails), with the tail index N bounded before the scan.
+    An exact kappa_A <= 0 is no tie (rho is a sup over kappa >= 0): rho = 0, not attained, by a witness
+    c_j(0) < 0 (Undecided without one)."""
+    first = max(len(method.numerator) - len(method.denominator) + 1, 1)
+    positive_tie = None if tie is None else _tie_positive(s, tie)
+    if tie is not None and positive_tie is None:
+        raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
+                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
+                        "inequality, and an exact balance needs a finer argument than the tail bound")
+    bound = None if tie is None else _short_upper(dyadic_of(tie.kappa.upper()))  # rational K >= the bound
+    exact_bound = None
+    tied = ()
+    N = None
+    if positive_tie:
+        exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        if not ExactKey(Fraction(0)) < ExactKey(exact_bound):  # kappa_A <= 0: kappa = 0 decides, not a tie
+            return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
+        bound, tied = _short_upper(exact_bound), tie.tied
+        N = tail_index(s, bound, first, tied)
+    value, binding, ds = None, None, []
+    for j, d in enumerate(_coefficient_polynomials(method)):
+        if N is not None and j >= max(N, first):
+            break
+        if j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
+            return _undecided_scan(method, tie)
+        if tie is None and value is None and j == first + len(method.denominator):
+            infinite = _infinite_radius_certificate(method, s.balls, s.star)
+            if infinite is not None:
+                return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        ds.append(d)
+        if _nonnegative_on(d, bound):
+            continue
+        end = _first_end(d)
+        if end == INF:
+            continue
+        if exact_bound is None and tie is not None and _ambiguous(end, tie.kappa):
+            exact_bound = dominance_tie(s, method.h, exact=True).kappa
+        if exact_bound is not None and not ExactKey(end) < ExactKey(exact_bound):
+            continue
+        if exact_bound is None and tie is not None and not flint.arb(fmpq_of(_rational_upper(end))) < tie.kappa:
+            continue
+        if value is None or ExactKey(end) < ExactKey(value):
+            value, binding, exact_bound = end, j, end
+            bound, tied = _short_upper(end), ()
+            N = tail_index(s, bound, first)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N)
+
+
+def _ambiguous(end, ball: flint.arb) -> bool:
+    """Is end < kappa_A (an Arb ball) undecided after refining end's enclosure?"""
+    for bits in (0, 32, 64, 128, 256, 512):
+        if bits and isinstance(end, RealAlgebraic):
+            end.refine(bits)
+        lo, hi = (end.lower, end.upper) if isinstance(end, RealAlgebraic) else (end, end)
+        if flint.arb(fmpq_of(hi)) < ball or flint.arb(fmpq_of(lo)) > ball:
+            return False
+    return True
+
+
+def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
+    if tie is None:
+        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative "
+                        "for every kappa >= 0 and p* stays the nearest pole for every kappa, but a non-real pole with "
+                        "Re z > p* approaches p*'s distance as kappa -> oo (ratio -> 1), so no tail index is uniform "
+                        "in kappa; rho = oo would need the kappa -> oo asymptotics of c_j(kappa) uniformly in j/kappa "
+                        "(not implemented), and product/termwise certificates need all poles real")
+    raise Undecided(f"absolute monotonicity of {method.name}: rho <= kappa_A = {float(tie.kappa.mid()):.6g}, where "
+                    f"{len(tie.tied)} other pole(s) reach p*'s distance from -kappa and outweigh it; no c_j with "
+                    f"j < {_MAX_SCAN} turns negative below kappa_A.  Deciding this is the positivity problem for a "
+                    "linear recurrence with several dominant characteristic roots (open in general)")
+
+
+def _finish(method, kappa_A, p_star, value, binding, ds, N) -> AbsoluteMonotonicityRadius:
+    if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
+    attained = value != 0 or all(p(0) >= 0 for p in ds)
+    coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
+    return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
+                                      coefficients=coeffs)
+
+
+def _rational_upper(v) -> Fraction:
+    return v.upper if isinstance(v, RealAlgebraic) else v
+
+
+def _short_upper(v, bits: int = 48) -> Fraction:
+    """A short dyadic >= v (>= 0): Descartes tests on [0, K] stay cheap with a short K."""
+    q = _rational_upper(v)
+    if q <= 0:
+        return Fraction(0) if q == 0 else q
+    scale = 1 << max(0, bits - max(q.numerator.bit_length() - q.denominator.bit_length(), 0))
+    return Fraction(-((-q.numerator * scale) // q.denominator), scale)
+
+
+def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
+    """Why rho = INF, if a sufficient certificate applies:
+    ``product``  -- r = prod (1 - z/p_k)^(-m_k) with all p_k > 0 (each factor and
+                    so the product is absolutely monotonic on (-oo, 0]);
+    ``termwise`` -- deg g <= deg h, all poles real and positive and every
+                    b_{k,m} > 0: each c_j, j >= 1, is a sum of positive terms."""
+    if not all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls):
+        return None
+    if len(method.numerator) == 1:
+        return RadiusReason.PRODUCT
+    if len(method.numerator) <= len(method.denominator) and all(v.real > 0 for _, _, b in balls for v in b):
+        return RadiusReason.TERMWISE
+    return None

@@ -1,0 +1,167 @@
+"""The extreme rays of a polyhedral cone {d : A d <= 0}, in integers.
+
+Fraction-free elimination (with an optional augmented part, Gauss-Jordan),
+the edge directions of a simplicial cone from one solve, and the
+double-description method with the algebraic adjacency test for a degenerate
+vertex (more active rows than the rank), bounded by MAX_CONE_PAIRS adjacency
+tests and MAX_CONE_RAYS rays held at once.  Vectors are Python integers: a
+rational vector is scaled once to (integers, denominator), a direction is kept
+primitive (divided by the gcd of its entries, a positive factor).
+"""
+
+from math import gcd, lcm
+
+from .rationals import CheckFailure, require
+
+MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
+MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once
+
+
+def _scaled(v):
+    """(integer vector p, denominator q > 0) with v = p / q."""
+    q = lcm(*(x.denominator for x in v)) if v else 1
+    return [x.numerator * (q // x.denominator) for x in v], q
+
+
+def _primitive(v):
+    """v divided by the gcd of its entries (a positive factor); None if v = 0."""
+    g = gcd(*v)
+    if g == 0:
+        return None
+    return [x // g for x in v] if g != 1 else list(v)
+
+
+# ----------------------------------------------------------------------------
+# integer linear algebra
+
+
+def _reduce(rows, ncols, aug=None):
+    """Fraction-free elimination of integer rows.
+
+    Returns (rank, pivot columns, original indices of the pivot rows, reduced
+    pivot rows, their augmented parts).  The pivot rows are a maximal
+    independent subset of ``rows``.  With ``aug`` (one augmented row per row)
+    it is Gauss-Jordan and every row operation is applied to the augmented
+    part too, so reduced = T * rows and augmented = T * aug for one invertible T.
+    """
+    work = [list(r) for r in rows]
+    ext = [list(a) for a in aug] if aug is not None else None
+    order = list(range(len(work)))
+    rank, cols = 0, []
+    for c in range(ncols):
+        if rank == len(work):
+            break
+        pr = next((i for i in range(rank, len(work)) if work[i][c]), None)
+        if pr is None:
+            continue
+        work[rank], work[pr] = work[pr], work[rank]
+        order[rank], order[pr] = order[pr], order[rank]
+        if ext is not None:
+            ext[rank], ext[pr] = ext[pr], ext[rank]
+        prow, pv = work[rank], work[rank][c]
+        targets = range(len(work)) if ext is not None else range(rank + 1, len(work))
+        for i in targets:
+            f = work[i][c]
+            if i == rank or not f:
+                continue
+            row = [pv * x - f * y for x, y in zip(work[i], prow)]
+            if ext is not None:
+                e = [pv * x - f * y for x, y in zip(ext[i], ext[rank])]
+                g = gcd(*row, *e)
+                if g > 1:
+                    row = [x // g for x in row]
+                    e = [x // g for x in e]
+                ext[i] = e
+            else:
+                g = gcd(*row)
+                if g > 1:
+                    row = [x // g for x in row]
+            work[i] = row
+        cols.append(c)
+        rank += 1
+    return rank, cols, order[:rank], work[:rank], (ext[:rank] if ext is not None else None)
+
+
+def _rank(rows, ncols):
+    return _reduce(rows, ncols)[0] if rows else 0
+
+
+def _basis_rays(B, ncols):
+    """Edge directions of a simplicial cone.
+
+    For integer rows B (k of them, length ncols): None if they are dependent;
+    otherwise (cols, ys) with k independent columns ``cols`` and, for each row
+    b, an integer y_b in Q^k such that the vector d_b with d_b[cols] = y_b and
+    zeros elsewhere has B d_b = -c_b e_b, c_b > 0.  So d_b is tight on every
+    row of B but b, and the d_b are the extreme rays of {d : B d <= 0}
+    modulo its lineality space {d : B d = 0}.
+    """
+    k = len(B)
+    identity = [[int(i == j) for j in range(k)] for i in range(k)]
+    rank, cols, _, R, T = _reduce(B, ncols, identity)
+    if rank != k:
+        return None
+    # Gauss-Jordan: R = T B with R[i][cols[i']] = 0 for i != i'; so with
+    # c_i = R[i][cols[i]] and y_b[i] = -T[i][b] M / c_i (M = lcm |c_i| > 0),
+    # R d_b = -M T e_b, hence B d_b = T^{-1} R d_b = -M e_b.
+    c = [R[i][cols[i]] for i in range(k)]
+    M = lcm(*(abs(x) for x in c))
+    ys = [_primitive([-T[i][b] * (M // c[i]) for i in range(k)]) for b in range(k)]
+    return cols, ys
+
+
+def _cone_rays(A, basis, r):
+    """The extreme rays of the pointed cone {y in Q^r : A y <= 0} (A integer,
+    rank r, ``basis`` the indices of r independent rows), by the
+    double-description method with the algebraic adjacency test."""
+    if r == 0:
+        return []
+    S = [A[i] for i in basis]
+    full = 0
+    for i in basis:
+        full |= 1 << i
+    _, initial = _basis_rays(S, r)  # S is square and nonsingular: its columns are 0..r-1
+    rays = [(y, full & ~(1 << basis[k])) for k, y in enumerate(initial)]
+    in_basis = set(basis)
+    pairs = 0
+    for j, a in enumerate(A):
+        if j in in_basis:
+            continue
+        bit = 1 << j
+        pos, neg, kept = [], [], []
+        for y, Z in rays:
+            v = sum(x * z for x, z in zip(a, y))
+            if v > 0:
+                pos.append((v, y, Z))
+            elif v < 0:
+                neg.append((v, y, Z))
+                kept.append((y, Z))
+            else:
+                kept.append((y, Z | bit))
+        for vp, p, Zp in pos:
+            for vq, q, Zq in neg:
+                pairs += 1
+                Z = Zp & Zq
+                if Z.bit_count() < r - 2:
+                    continue
+                tight = []
+                while Z:
+                    low = Z & -Z
+                    tight.append(A[low.bit_length() - 1])
+                    Z ^= low
+                if _rank(tight, r) != r - 2:
+                    continue
+                # vp > 0 > vq: a positive combination with a.y = 0
+                y = _primitive([vp * qi - vq * pi for pi, qi in zip(p, q)])
+                if y is not None:
+                    kept.append((y, (Zp & Zq) | bit))
+            if pairs > MAX_CONE_PAIRS:
+                raise CheckFailure(
+                    f"a degenerate vertex needs more than {MAX_CONE_PAIRS} adjacency tests to enumerate its edges"
+                )
+        require(
+            len(kept) <= MAX_CONE_RAYS,
+            f"a degenerate vertex has more than {MAX_CONE_RAYS} intermediate edge directions",
+        )
+        rays = kept
+    return [y for y, _ in rays]

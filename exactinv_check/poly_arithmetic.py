@@ -1,0 +1,183 @@
+"""Polynomials over Q as coefficient lists from x^0 up: exact arithmetic on an
+integer core (content, pseudo-remainders, the gcd), every polynomial the
+kernel builds from a certificate bounded by MAX_DEGREE.  Re-exported by
+:mod:`exactinv_check.polys`.
+"""
+
+from fractions import Fraction
+from math import gcd as _igcd
+
+from .rationals import require
+
+MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
+
+
+def trim(p):
+    p = list(p)
+    while p and p[-1] == 0:
+        p.pop()
+    return p
+
+
+def degree(p):
+    return len(trim(p)) - 1
+
+
+def evaluate(p, x):
+    acc = Fraction(0)
+    for c in reversed(p):
+        acc = acc * x + c
+    return acc
+
+
+def sign(x):
+    return (x > 0) - (x < 0)
+
+
+def integer_coefficients(p):
+    """Coprime integers proportional to p by a positive factor (so signs agree)."""
+    p = trim(p)
+    den = 1
+    for c in p:
+        if not isinstance(c, int):
+            den = den * c.denominator // _igcd(den, c.denominator)
+    return _content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
+
+
+def add(p, q):
+    n = max(len(p), len(q))
+    return trim([(p[i] if i < len(p) else 0) + (q[i] if i < len(q) else 0) for i in range(n)])
+
+
+def sub(p, q):
+    return add(p, [-c for c in q])
+
+
+def scale(p, c):
+    return trim([c * a for a in p])
+
+
+def mul(p, q):
+    if not p or not q:
+        return []
+    out = [Fraction(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for j, b in enumerate(q):
+                out[i + j] += a * b
+    return trim(out)
+
+
+def mul_integers(p, q):
+    """The product of two polynomials with integer coefficients, in integers (not trimmed)."""
+    out = [0] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if a:
+            for j, c in enumerate(q):
+                out[i + j] += a * c
+    return out
+
+
+def power(p, k):
+    out = [Fraction(1)]
+    for _ in range(k):
+        out = mul(out, p)
+    return out
+
+
+def derivative(p):
+    return trim([k * p[k] for k in range(1, len(p))])
+
+
+def divmod_(p, d):
+    p, d = trim(p), trim(d)
+    require(d, "division by the zero polynomial")
+    q = [Fraction(0)] * max(len(p) - len(d) + 1, 1)
+    r = list(p)
+    lead = d[-1]
+    while r and len(r) >= len(d):
+        shift = len(r) - len(d)
+        c = Fraction(r[-1]) / lead
+        q[shift] = c
+        for k, dk in enumerate(d):
+            r[k + shift] -= c * dk
+        r = trim(r)
+    return trim(q), r
+
+
+def primitive(p):
+    """p scaled by a POSITIVE rational to coprime integer coefficients (sign kept)."""
+    return [Fraction(c) for c in integer_coefficients(p)]
+
+
+def monic(p):
+    p = trim(p)
+    return [Fraction(c, 1) / p[-1] for c in p] if p else p
+
+
+# --------------------------------------------- integer core (Python ints, no Fractions)
+def _content_free(a):
+    """a divided by the positive gcd of its coefficients (signs kept)."""
+    g = 0
+    for c in a:
+        g = _igcd(g, c)
+    return [c // g for c in a] if g > 1 else a
+
+
+def _pseudo_remainder(a, b):
+    """r with s^k a = q b + r for s = |lc(b)| > 0: the remainder up to a POSITIVE factor,
+    so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
+    s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
+    r = list(a)
+    while len(r) >= len(b) and r:
+        shift, c = len(r) - len(b), r[-1] * sgn
+        r = [s * x for x in r]
+        for k, bk in enumerate(b):
+            r[k + shift] -= c * bk
+        while r and r[-1] == 0:
+            r.pop()
+        r = _content_free(r)
+    return r
+
+
+def _integer_gcd(a, b):
+    """gcd of two integer polynomials: primitive, positive leading coefficient."""
+    while b:
+        a, b = b, _pseudo_remainder(a, b)
+    a = _content_free(a)
+    return [-c for c in a] if a and a[-1] < 0 else a
+
+
+def _exact_quotient(a, b):
+    """a / b for integer polynomials where b divides a over Z (checked)."""
+    a, q = list(a), [0] * (len(a) - len(b) + 1)
+    for shift in range(len(a) - len(b), -1, -1):
+        c, rest = divmod(a[shift + len(b) - 1], b[-1])
+        require(rest == 0, "internal: inexact polynomial division")
+        q[shift] = c
+        for k, bk in enumerate(b):
+            a[k + shift] -= c * bk
+    require(not any(a), "internal: inexact polynomial division")
+    return q
+
+
+def _integer_derivative(a):
+    return [k * a[k] for k in range(1, len(a))]
+
+
+def gcd(p, q):
+    """The monic gcd over Q."""
+    g = _integer_gcd(integer_coefficients(_bounded(p)), integer_coefficients(_bounded(q)))
+    return [Fraction(c, g[-1]) for c in g] if g else []
+
+
+def _bounded(p):
+    require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
+    return p
+
+
+def strip_zero_roots(p):
+    p = trim(p)
+    while p and p[0] == 0:
+        p = p[1:]
+    return p
