@@ -97,20 +97,20 @@ def _pruned(problem, gens, record, first_end_claim):
     require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
             f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
     if rational:
-        s, U, count, k, order = pruning_rational.parse(record, len(gens.vertices), problem.n)
+        s, U, count, k, _ = pruning_rational.parse(record, len(gens.vertices), problem.n)  # the kernel orders the vertices itself
         T = pruning_rational.horizon(s, U)
     else:
-        T, k, order = pruning.parse(record, len(gens.vertices))
+        T, k, _ = pruning.parse(record, len(gens.vertices))  # the kernel orders the vertices itself
     args = (problem.A, problem.G, problem.b, method.numerator, method.denominator)
     start = None if T is None else _require_bound(problem, gens, args, k, T, first_end_claim)
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     everything = range(problem.m)
     if not rational:
-        near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T, order)
+        near = pruning.survivors(problem.G, problem.b, gens.vertices, N, T)
         return (*condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i])),
                 start)
     pruning_rational.require_positive_determinant(D, T)
-    near = pruning_rational.survivors(problem.G, problem.b, gens.vertices, D, N, s, U, count, order)
+    near = pruning_rational.survivors(problem.G, problem.b, gens.vertices, D, N, s, U, count)
     return (*condition_polynomials(*args, gens, lambda kind, i: (everything if kind != "vertex" or i == k else near[i]),
                                    lambda kind, i: kind == "vertex" and (T is None or i != k)), start)
 

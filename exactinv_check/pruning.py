@@ -22,9 +22,10 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
    ends' matrices, the remainders and the vertices are rounded outwards to
    grids of step 2^-48 and the boxes to the grid 1/K (:class:`_Ends`, all ends
    of one vertex at once), so it may keep more pairs than needed, never fewer.
-   To stay cheap it tests the box around a block of consecutive vertices along
-   ``order`` (any permutation; a good one keeps near vertices together) at
-   every end against every facet first, then each vertex of the block at
+   To stay cheap it tests the box around a block of consecutive vertices in
+   its own :func:`morton_order` (near vertices together; the record's
+   ``order`` is only shape-checked, so no certificate can make the blocks
+   large) at every end against every facet first, then each vertex of the block at
    every end against the facets the block's box did not clear there; each box
    against many facets at once (:class:`_Packed`: one integer, one facet per
    fixed-width slot).  The kept pairs are exactly those of the
@@ -32,14 +33,15 @@ A claim may carry ``"pruning": {"horizon": T, "vertex": k, "order": [...]}``
 3. Every surviving pair, all of vertex k's pairs, every ray and line pair are
    built; with 1 and 2 their valid set (or first interval) is that of all pairs.
 The horizon is short (numerator and denominator of at most 64 bits): the pieces' exact powers t^i then stay
-small; a longer one is rejected before any piece is built.
+small; a longer one is rejected before any piece is built, and the pieces themselves are
+priced first (:func:`pieces_cost`).
 """
 
 from fractions import Fraction
 from math import comb, gcd, isqrt
 
 from . import conditions
-from .rationals import integer, rational, require
+from .rationals import integer, rational, require, within_budget
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)
@@ -81,14 +83,71 @@ def _piece(N, t, d):
     remainder M = sum_{k>=2} c_k d^k |D_k| entrywise, c_k = min(1, (k - 1)/4), where
     A_d(t + s) = sum_k s^k D_k, D_k = sum_{i>=k} C(i, k) t^(i-k) N_i.  (A_d(t + s) minus the
     secant is sum_{k>=2} (s^k - s d^(k-1)) D_k, and s (d^(k-1) - s^(k-1)) = s (d - s) (d^(k-2)
-    + ... + s^(k-2)) is at most (d^2/4) (k - 1) d^(k-2) and at most d^k.)"""
+    + ... + s^(k-2)) is at most (d^2/4) (k - 1) d^(k-2) and at most d^k.)  Entry by entry in
+    integers: the D_k of an entry are a Taylor shift (:func:`_shifted`)."""
     n = len(N[0])
-    D = [[[sum(comb(i, k) * t ** (i - k) * N[i][r][c] for i in range(k, len(N))) for c in range(n)] for r in range(n)]
-         for k in range(len(N))]
-    Z = [[sum(d**k * D[k][r][c] for k in range(len(D))) for c in range(n)] for r in range(n)]
-    M = [[sum(min(Fraction(1), Fraction(k - 1, 4)) * d**k * abs(D[k][r][c]) for k in range(2, len(D))) for c in range(n)]
-         for r in range(n)]
-    return D[0], Z, M
+    X = [[Fraction(0)] * n for _ in range(n)]
+    Z = [[Fraction(0)] * n for _ in range(n)]
+    M = [[Fraction(0)] * n for _ in range(n)]
+    u, w = d.numerator, d.denominator
+    for r in range(n):
+        for c in range(n):
+            e, scale = _shifted([Nk[r][c] for Nk in N], t)  # D_k = e_k / (scale q^(deg - k)), t = p/q
+            q, top = t.denominator, len(e) - 1
+            # d^k D_k = e_k u^k q^k w^(top-k) / (scale q^top w^top): one common denominator
+            terms = [x * u**k * q**k * w ** (top - k) for k, x in enumerate(e)]
+            whole = scale * q**top * w**top
+            X[r][c] = Fraction(e[0], scale * q**top)
+            Z[r][c] = Fraction(sum(terms), whole)
+            M[r][c] = Fraction(sum(min(4, k - 1) * abs(x) for k, x in enumerate(terms) if k >= 2), 4 * whole)
+    return X, Z, M
+
+
+def _shifted(a, t):
+    """(e, L): the coefficients of P(t + s) = sum_k e_k s^k / (L q^(deg - k)) for P(h) = sum_i a_i h^i
+    (rationals a_i, t = p/q): with L a_i = c_i integers and h = (p + sigma)/q, sigma = q s,
+    L q^deg P = sum_i c_i q^(deg - i) (p + sigma)^i = sum_k e_k sigma^k, a Taylor shift by the
+    integer p (Horner, integers only)."""
+    L = 1
+    for x in a:
+        L = L * x.denominator // gcd(L, x.denominator)
+    p, q, top = t.numerator, t.denominator, len(a) - 1
+    e = [int(x * L) * q ** (top - i) for i, x in enumerate(a)]
+    if p:
+        for j in range(top):
+            for i in range(top - 1, j - 1, -1):
+                e[i] += p * e[i + 1]
+    return e, L
+
+
+def pieces_cost(N, ends):
+    """The price of :func:`chord_pieces` in word operations: per piece and entry a Taylor shift of
+    (deg + 1)^2 / 2 products of a short integer by one of B bits, B = deg (bits of t) + bits of the
+    entries (a product in C, counted per 512 bits), and 4 (deg + 1) more for the ends and the
+    remainder.  Measured: 7.8e7 (n = 16, degree 64, horizon 1) and 9.2e7 (n = 8, degree 64, a 64-bit
+    horizon) run in about 2 s."""
+    size_of = lambda x: x.numerator.bit_length() + x.denominator.bit_length()  # noqa: E731
+    top, n = len(N) - 1, len(N[0])
+    bits = top * max(size_of(t) for t in ends) + max(size_of(x) for Nk in N for row in Nk for x in row)
+    return (len(ends) - 1) * n * n * ((top + 1) ** 2 // 2 + 4 * (top + 1)) * (1 + bits // 512)
+
+
+def morton_order(boxes):
+    """The vertices in Morton order of their first (up to) four coordinates, each scaled to
+    12 bits over the vertices' range: near vertices stay near, so a block's box stays small.
+    (Any order gives the same pairs; this one is the kernel's own, not the certificate's.)"""
+    dims = min(4, len(boxes[0][0])) if boxes else 0
+    spread = [0] * 4096
+    for x in range(4096):
+        for bit in range(12):
+            spread[x] |= ((x >> bit) & 1) << (bit * dims)
+    keys = [0] * len(boxes)
+    for l in range(dims):
+        column = [c2[l] for c2, _ in boxes]
+        lo, span = min(column), max(column) - min(column)
+        for i, x in enumerate(column):
+            keys[i] |= spread[(x - lo) * 4095 // span if span else 0] << (dims - 1 - l)
+    return sorted(range(len(boxes)), key=keys.__getitem__)
 
 
 def _integer_rows(G, b):
@@ -265,20 +324,23 @@ class _Packed:
         return out
 
 
-def survivors(G, b, vertices, N, T, order):
+def survivors(G, b, vertices, N, T):
     """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune
-    (:func:`survivors_of_pieces` on the chords and Taylor remainders of A_d(h))."""
-    return survivors_of_pieces(G, b, vertices, chord_pieces(N, T), order)
+    (:func:`survivors_of_pieces` on the secants and remainders of A_d(h)), after pricing the
+    pieces (:func:`pieces_cost`)."""
+    within_budget(pieces_cost(N, nodes(T)), f"the {len(nodes(T)) - 1} pieces of the pruning test "
+                  f"(degree {len(N) - 1}, n = {len(N[0])})")
+    return survivors_of_pieces(G, b, vertices, chord_pieces(N, T))
 
 
-def survivors_of_pieces(G, b, vertices, pieces, order):
+def survivors_of_pieces(G, b, vertices, pieces):
     """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces given
     as (X, Z, M) (the path of v on a piece within M |v| entrywise of the chord from X v to
     Z v): exactly the pairs (i, j) with :func:`_outside` for row j and vertex i's box at
     some end (:meth:`_Ends.boxes` of :func:`vertex_box`).  The boxes around blocks of
-    vertices along ``order`` only skip work (the box (1) of a block holds those of its
-    vertices): a block's boxes against every row, each vertex's against the rows its block
-    does not clear there (:class:`_Packed`)."""
+    vertices along :func:`morton_order` only skip work (the box (1) of a block holds those
+    of its vertices): a block's boxes against every row, each vertex's against the rows its
+    block does not clear there (:class:`_Packed`)."""
     rows = _integer_rows(G, b)
     out = {i: set() for i in range(len(vertices))}
     if not rows or not vertices:
@@ -291,7 +353,7 @@ def survivors_of_pieces(G, b, vertices, pieces, order):
             f"over the kernel's work budget: {len(rows)} rows packed in slots of {width} bytes")
     table = _Packed.table(packed_rows, width)
     everything = _Packed(table, list(range(len(rows))))
-    size, total = max(1, isqrt(len(vertices))), 0
+    order, size, total = morton_order(boxes), max(1, isqrt(len(vertices))), 0
     for start in range(0, len(order), size):
         block = order[start:start + size]
         per_end = ends.boxes(group_box([boxes[i] for i in block]))

@@ -166,7 +166,7 @@ def pieces_cost(D, N, s, ends):
     return (len(ends) - 1) * size**2 * ((E + 1) ** 2 * (1 + bits // 512) + 3 * (1 + bits // 64) ** 2)
 
 
-def survivors(G, b, vertices, D, N, s, U, count, order):
+def survivors(G, b, vertices, D, N, s, U, count):
     """{vertex index: [facets]} of the pairs the lifted test on [0, U] cannot prune."""
     ends = nodes(U, count)
     cost = pieces_cost(D, N, s, ends)
@@ -176,4 +176,4 @@ def survivors(G, b, vertices, D, N, s, U, count, order):
     pieces = [_piece(P, t, u - t) for t, u in zip(ends, ends[1:])]
     rows = [[-beta] + list(g) for g, beta in zip(G, b)]
     lifted_vertices = [[Fraction(1)] + list(v) for v in vertices]
-    return pruning.survivors_of_pieces(rows, [Fraction(0)] * len(G), lifted_vertices, pieces, order)
+    return pruning.survivors_of_pieces(rows, [Fraction(0)] * len(G), lifted_vertices, pieces)

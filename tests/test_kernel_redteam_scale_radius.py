@@ -374,7 +374,7 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
             for end, mode in ((own_set[-1].hi if own_set else None, "set"), (first_end(D, own, {})[0], "first")):
                 if end is None or end.inf:
                     continue
-                near = pruning.survivors(G, b, verts, N, end.bounds()[1], rng.sample(range(k), k))
+                near = pruning.survivors(G, b, verts, N, end.bounds()[1])
                 D2, i2, e2 = condition_polynomials(A, G, b, num, [Fraction(1)], gens,
                                                    lambda kind, i: range(len(G)) if i == vk else near[i])
                 if mode == "set":

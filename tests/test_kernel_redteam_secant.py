@@ -8,26 +8,20 @@ survive, for tiny, huge and negative magnitudes, T = 0, one vertex, n = 1 (check
 against the exact definition); every bounding vertex k of a genuine record gives the
 same verdict as the unpruned route.
 
-The findings are RESOURCE holes: work no budget priced before it ran.
+The findings were RESOURCE holes, work no budget priced before it ran; both are fixed
+and their tests below pass.
 
-1. ``pruning.chord_pieces`` (the polynomial route) builds D_k = sum_i C(i, k) t^(i-k) N_i
-   for every piece, k and entry with Fractions: about (pieces = 32) x n^2 x deg^2 / 2
-   Fraction products, unpriced.  A 3.3 KB certificate -- x' = -x on a simplex in R^12,
-   the polynomial method 1 + z + z^64 (the kernel's degree bound), vertex 0 bounding the
-   valid set [0, 1] by T = 1 -- runs 56 s, all of it in chord_pieces (n = 6, degree 60:
-   18 s; R^16, the instance below, about 100 s by n^2 scaling, not measured).  rebuild_size prices D and N themselves at only
-   n^3 deg w (1e6 here), and the rational route prices its pieces (pieces_cost); this
-   route does not.
-2. ``survivors_of_pieces``: the per-vertex test costs (rows the vertex's block did not
-   clear) x (ends) slot tests, and ``order`` is certificate data.  An order that scatters
-   near vertices makes every block box the whole polygon, so each vertex is tested against
-   all m rows at all ~33 ends: V x 33 x m slot tests, unpriced (MAX_CONDITIONS counts only
-   the pairs that survive, and a bad order keeps exactly the same pairs).  Measured on the
-   engine's genuine 4000-gon certificate (ROT, Taylor 4): its own order 3.2e7 slot tests,
-   1.4 s in survivors; the same certificate with the order shuffled 3.4e8 slot tests,
-   13.5 s; the engine's genuine 10,000-gon certificate: 1.3e8 slot tests, 9.6 s for the
-   whole check with its own order, 2.1e9 slot tests and 156 s with the order shuffled
-   (load about 2 on 2 cores).  Quadratic in the size: minutes more for a 20,000-gon.
+1. ``pruning.chord_pieces`` (the polynomial route) built D_k = sum_i C(i, k) t^(i-k) N_i
+   for every piece, k and entry with Fractions, unpriced: a 3.3 KB certificate -- x' = -x
+   on a simplex in R^12, the polynomial method 1 + z + z^64, vertex 0 bounding the valid
+   set [0, 1] by T = 1 -- ran 56 s.  Now an integer Taylor shift per entry (R^12: 1.4 s),
+   priced first (pruning.pieces_cost).
+2. ``survivors_of_pieces`` followed the record's ``order``: an order that scattered near
+   vertices made every block box the whole polygon, V x ends x m slot tests, unpriced
+   (the engine's genuine 10,000-gon certificate: 1.3e8 slot tests and 9.6 s with its own
+   order, 2.1e9 and 156 s shuffled).  Now the kernel orders the vertices itself
+   (pruning.morton_order of their gridded coordinates); the record's order is only
+   shape-checked.
 """
 
 import copy
@@ -90,9 +84,7 @@ def test_a_pair_touching_its_facet_at_a_rational_h_survives(seed):
     h in [0, T] (often with equality) forces (i, j) to survive, whatever the magnitudes."""
     rng = random.Random(seed)
     G, b, V, N, T, touch = _touching_instance(rng)
-    order = list(range(len(V)))
-    rng.shuffle(order)
-    near = pruning.survivors(G, b, V, N, T, order)
+    near = pruning.survivors(G, b, V, N, T)
     for j, (i, h) in enumerate(touch):
         if sum(a * x for a, x in zip(G[j], _path(N, h, V[i]))) >= b[j]:
             assert j in near[i]
@@ -152,10 +144,12 @@ def test_the_small_simplex_certificate_is_true():
     assert check(_simplex_certificate(2, 6)).ok
 
 
-@pytest.mark.xfail(strict=True, raises=TooSlow, reason="resource hole: pruning.chord_pieces is unpriced "
-                   "(n^2 deg^2 Fraction products per piece): 56 s for R^12, degree 64, about 100 s for R^16")
 def test_the_chord_pieces_of_a_high_degree_method_are_priced():
-    check_within(_simplex_certificate(16, 64), 3)
+    """Fixed: the pieces are built by an integer Taylor shift per entry (R^16, degree 64: 2.5 s
+    instead of about 100 s) and priced first (pruning.pieces_cost); R^24 is over the price and
+    rejected at once (the deadline only guards against a hang)."""
+    report = check_within(_simplex_certificate(24, 64), 30)
+    assert not report.ok and "pieces of the pruning test" in str(report)
 
 
 def _circle_polygon(m):
@@ -207,18 +201,18 @@ def _slot_tests(monkeypatch, m, order, limit):
 
     monkeypatch.setattr(pruning._Packed, "outside", counting)
     try:
-        pruning.survivors(G, b, [list(p) for p in pts], N, F(167127, 65536), order(len(pts)))
+        pruning.survivors(G, b, [list(pts[i]) for i in order(len(pts))], N, F(167127, 65536))
     except CheckFailure:
         pass
     monkeypatch.setattr(pruning._Packed, "outside", original)
     return counted[0]
 
 
-@pytest.mark.xfail(strict=True, raises=TooSlow, reason="resource hole: a scattered pruning order makes every "
-                   "block box the whole polygon: V x ends x m slot tests, unpriced")
 def test_a_scattered_order_is_priced(monkeypatch):
-    """The 1500-gon's slot tests with its own order and with a scattered one: the scattered
-    order must not cost 5 times more unpriced (it costs about 10 times, the ratio growing
-    linearly with the size: 8x at 1000, 12x at 3000, 11x at 4000 -- 13.5 s against 1.4 s)."""
+    """The 1500-gon's slot tests with its vertices listed in order and scattered: the scattered
+    listing must not cost 5 times more (it cost about 10 times when the kernel followed the
+    record's order, the ratio growing linearly with the size: 8x at 1000, 12x at 3000, 11x at
+    4000 -- 13.5 s against 1.4 s).  Fixed: the kernel orders the vertices itself
+    (pruning.morton_order), so the listing does not matter."""
     own = _slot_tests(monkeypatch, 1500, lambda V: list(range(V)), float("inf"))
     _slot_tests(monkeypatch, 1500, _scattered, 5 * own)

@@ -137,4 +137,4 @@ def test_one_long_row_does_not_widen_every_slot():
     square = [[F(1), F(1)], [F(-1), F(1)], [F(-1), F(-1)], [F(1), F(-1)]]
     N = [[[F(1), F(0)], [F(0), F(1)]], [[F(-1), F(0)], [F(0), F(-1)]]]  # forward Euler on x' = -x
     with pytest.raises(CheckFailure, match="packed in slots"):
-        pruning.survivors(G, b, square, N, F(2), [0, 1, 2, 3])
+        pruning.survivors(G, b, square, N, F(2))

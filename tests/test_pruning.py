@@ -59,7 +59,7 @@ def test_a_shared_condition_set_builds_each_pair_once(forced):
 def test_the_kernel_prunes_pairs_and_keeps_the_binding_one():
     A, G, b, verts = fractions_of(SPIN, DIAMOND)
     _, N = method_matrices(A, [Fraction(1), Fraction(1)], [Fraction(1)])
-    near = pruning.survivors(G, b, verts, N, Fraction(0), list(range(len(verts))))
+    near = pruning.survivors(G, b, verts, N, Fraction(0))
     kept = sum(len(f) for f in near.values())
     assert kept < len(verts) * len(G)  # at T = 0 only the pairs with zero slack can bind
     # the pairs with zero slack (v on facet j) are exactly the ones that must be kept at T = 0
@@ -75,7 +75,7 @@ def test_a_pruned_pair_holds_strictly_on_the_whole_horizon(p, T, hs):
     A, G, b, verts = fractions_of(SPIN, DIAMOND)
     method = M.taylor(p)
     _, N = method_matrices(A, list(method.numerator), list(method.denominator))
-    near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
+    near = pruning.survivors(G, b, verts, N, T)
     cs = ConditionSet(SPIN, DIAMOND, method)
     facets, vertices = engine_pruning.surviving_pairs(cs.G, cs.b, cs.W[Kind.VERTEX], cs.N, T)
     engine_kept = set(zip(vertices.tolist(), facets.tolist()))
@@ -142,7 +142,7 @@ def test_the_engine_grid_test_is_conservative():
     kept = set(zip(vertices.tolist(), facets.tolist()))
     A, G, b, verts = fractions_of(SPIN, DIAMOND)
     _, N = method_matrices(A, [Fraction(1), Fraction(1), Fraction(1, 2)], [Fraction(1)])
-    near = pruning.survivors(G, b, verts, N, T, list(range(len(verts))))
+    near = pruning.survivors(G, b, verts, N, T)
     assert {(i, j) for i, f in near.items() for j in f} <= kept < {(i, j) for i in range(8) for j in range(len(G))}
 
 

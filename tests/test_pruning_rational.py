@@ -95,7 +95,7 @@ def test_a_pair_pruned_in_u_holds_strictly_for_every_h(method, us):
     engine_kept = set(zip(v.tolist(), f.tolist()))
     A, G, b, verts = fractions_of(S, P)
     D, N = method_matrices(A, list(method.numerator), list(method.denominator))
-    near = kernel_rational.survivors(G, b, verts, D, N, s, Fraction(1), 8, list(range(len(verts))))
+    near = kernel_rational.survivors(G, b, verts, D, N, s, Fraction(1), 8)
     kernel_kept = {(i, j) for i, fs in near.items() for j in fs}
     for u in us + [Fraction(999, 1000)]:
         h = s * u / (1 - u)
@@ -112,7 +112,7 @@ def test_a_pair_that_touches_only_at_h_infinity_survives():
     method = M.backward_euler()
     A, G, b, verts = fractions_of(DECAY, CORNER)
     D, N = method_matrices(A, list(method.numerator), list(method.denominator))
-    near = kernel_rational.survivors(G, b, verts, D, N, Fraction(1), Fraction(1), 8, list(range(len(verts))))
+    near = kernel_rational.survivors(G, b, verts, D, N, Fraction(1), Fraction(1), 8)
     through_zero = [j for j in range(len(G)) if b[j] == 0]
     far = [i for i, v in enumerate(verts) if any(sum(g * x for g, x in zip(G[j], v)) < 0 for j in through_zero)]
     assert far and all(any(j in near[i] for j in through_zero if sum(g * x for g, x in zip(G[j], verts[i])) < 0)
