@@ -77,6 +77,18 @@ def test_survivors_are_the_pairs_of_the_row_by_row_test(seed):
     assert pruning.survivors(G, b, verts, N, T) == _reference_survivors(G, b, verts, N, T)
 
 
+def test_the_kernels_own_order_is_a_permutation_that_sorts_a_line():
+    """morton_order: a permutation; in one dimension the points sorted by their coordinate;
+    equal points (and a single one, or none) in their listed order."""
+    line = [[F(x, 7)] for x in (5, -3, 12, 0, -3, 2)]
+    order = pruning.morton_order([pruning.vertex_box(v) for v in line])
+    assert [line[i][0] for i in order] == sorted(v[0] for v in line) and sorted(order) == list(range(6))
+    assert pruning.morton_order([pruning.vertex_box([F(1), F(2)])] * 3) == [0, 1, 2]
+    assert pruning.morton_order([]) == []
+    cloud = [[F(random.Random(k).randint(-10**30, 10**30), 3) for _ in range(6)] for k in range(50)]
+    assert sorted(pruning.morton_order([pruning.vertex_box(v) for v in cloud])) == list(range(50))
+
+
 def _path(N, h, v):
     return [sum(sum(h**k * N[k][r][c] for k in range(len(N))) * v[c] for c in range(len(v))) for r in range(len(v))]
 
