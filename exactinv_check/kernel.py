@@ -64,7 +64,7 @@ class Method:
                 f"method degree above the kernel's bound {MAX_METHOD_DEGREE}")
         if den[0] < 0:
             num, den = [-c for c in num], [-c for c in den]
-        common = polys.gcd(num, den)
+        common = polys.affordable_gcd(num, den) if len(den) > 1 else [Fraction(1)]  # a constant h: coprime
         if len(common) > 1:  # r is the reduced function: a cancelled factor is no pole
             num, den = polys.divmod_(num, common)[0], polys.divmod_(den, common)[0]
             num, den = [c / den[0] for c in num], [c / den[0] for c in den]

@@ -10,6 +10,7 @@ every polynomial function as ``polys.<name>``.
 """
 
 from fractions import Fraction
+from math import gcd as _igcd, isqrt
 
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
     MAX_DEGREE,
@@ -107,6 +108,22 @@ def _affordable(ints):
             f"over the kernel's work budget: root isolation of a polynomial of degree {len(ints) - 1} "
             f"with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
     return ints
+
+
+def affordable_gcd(p, q):
+    """gcd(p, q) over Q (monic), priced first: the common denominator of each is built with a
+    running bound on its size (at most the bits degree^4 bits^2 <= STURM_BUDGET allows), then
+    each integer polynomial is priced by :func:`_affordable` -- so no certificate's coefficients
+    can make the content or the pseudo-remainder sequence run for minutes."""
+    for r in (trim(p), trim(q)):
+        limit = isqrt(STURM_BUDGET // max(1, (len(r) - 1) ** 4))
+        den = 1
+        for c in r:
+            den = den * c.denominator // _igcd(den, c.denominator)
+            require(den.bit_length() <= limit, f"over the kernel's work budget: a polynomial of degree "
+                    f"{len(r) - 1} whose coefficients' common denominator passes {limit} bits")
+        _affordable(integer_coefficients(r))
+    return gcd(p, q)
 
 
 def squarefree(p):

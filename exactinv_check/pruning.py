@@ -50,6 +50,7 @@ VERTEX_BITS = 48  # vertex coordinates rounded outwards to the grid 2^-48
 SHIFT = MATRIX_BITS + VERTEX_BITS + 1 - K_BITS  # from the scale 2^(s + w + 1) of (1) in _Ends to the grid 1/K
 HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers t^i stay short (work budget)
 MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
+MAX_SLOT_TESTS = 4 * 10**8  # vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
 
 
 def parse(record, vertex_count):
@@ -122,32 +123,36 @@ def _shifted(a, t):
 
 def pieces_cost(N, ends):
     """The price of :func:`chord_pieces` in word operations: per piece and entry a Taylor shift of
-    (deg + 1)^2 / 2 products of a short integer by one of B bits, B = deg (bits of t) + bits of the
-    entries (a product in C, counted per 512 bits), and 4 (deg + 1) more for the ends and the
-    remainder.  Measured: 7.8e7 (n = 16, degree 64, horizon 1) and 9.2e7 (n = 8, degree 64, a 64-bit
+    (deg + 1)^2 / 2 products of a short integer by one of B bits (a product in C, counted per 512
+    bits), 4 (deg + 1) more for the ends and the remainder, and three gcds of B-bit integers
+    (quadratic, per 64-bit word squared).  B: the entry's coefficients over their common
+    denominator (at most the product of their denominators) plus deg times the bits of t.
+    Measured: 7.8e7 (n = 16, degree 64, horizon 1) and 9.2e7 (n = 8, degree 64, a 64-bit
     horizon) run in about 2 s."""
-    size_of = lambda x: x.numerator.bit_length() + x.denominator.bit_length()  # noqa: E731
     top, n = len(N) - 1, len(N[0])
-    bits = top * max(size_of(t) for t in ends) + max(size_of(x) for Nk in N for row in Nk for x in row)
-    return (len(ends) - 1) * n * n * ((top + 1) ** 2 // 2 + 4 * (top + 1)) * (1 + bits // 512)
+    entry_bits = max(sum(Nk[r][c].denominator.bit_length() for Nk in N) + max(Nk[r][c].numerator.bit_length() for Nk in N)
+                     for r in range(n) for c in range(n))
+    bits = entry_bits + top * max(t.numerator.bit_length() + t.denominator.bit_length() for t in ends)
+    per_entry = ((top + 1) ** 2 // 2 + 4 * (top + 1)) * (1 + bits // 512) + 3 * (1 + bits // 64) ** 2
+    return (len(ends) - 1) * n * n * per_entry
 
 
 def morton_order(boxes):
-    """The vertices in Morton order of their first (up to) four coordinates, each scaled to
-    12 bits over the vertices' range: near vertices stay near, so a block's box stays small.
-    (Any order gives the same pairs; this one is the kernel's own, not the certificate's.)"""
+    """The vertices in Morton order of their ranks in the first (up to) four coordinates, each
+    scaled to 12 bits: near vertices stay near, so a block's box stays small (ranks, not
+    values: one far vertex cannot put all the others in one cell).  Any order gives the same
+    pairs; this one is the kernel's own, not the certificate's."""
+    count = len(boxes)
     dims = min(4, len(boxes[0][0])) if boxes else 0
     spread = [0] * 4096
     for x in range(4096):
         for bit in range(12):
             spread[x] |= ((x >> bit) & 1) << (bit * dims)
-    keys = [0] * len(boxes)
+    keys = [0] * count
     for l in range(dims):
-        column = [c2[l] for c2, _ in boxes]
-        lo, span = min(column), max(column) - min(column)
-        for i, x in enumerate(column):
-            keys[i] |= spread[(x - lo) * 4095 // span if span else 0] << (dims - 1 - l)
-    return sorted(range(len(boxes)), key=keys.__getitem__)
+        for rank, i in enumerate(sorted(range(count), key=lambda i: boxes[i][0][l])):
+            keys[i] |= spread[rank * 4096 // count] << (dims - 1 - l)
+    return sorted(range(count), key=keys.__getitem__)
 
 
 def _integer_rows(G, b):
@@ -353,7 +358,7 @@ def survivors_of_pieces(G, b, vertices, pieces):
             f"over the kernel's work budget: {len(rows)} rows packed in slots of {width} bytes")
     table = _Packed.table(packed_rows, width)
     everything = _Packed(table, list(range(len(rows))))
-    order, size, total = morton_order(boxes), max(1, isqrt(len(vertices))), 0
+    order, size, total, slot_tests = morton_order(boxes), max(1, isqrt(len(vertices))), 0, 0
     for start in range(0, len(order), size):
         block = order[start:start + size]
         per_end = ends.boxes(group_box([boxes[i] for i in block]))
@@ -362,6 +367,9 @@ def survivors_of_pieces(G, b, vertices, pieces):
             continue
         near_rows = _Packed(table, near)
         hits = [(e, _Packed(table, found)) for e, found in enumerate(near_rows.outside(box) for box in per_end) if found]
+        slot_tests += len(block) * sum(len(rows_e.J) for _, rows_e in hits)
+        require(slot_tests <= MAX_SLOT_TESTS, f"over the kernel's work budget: more than {MAX_SLOT_TESTS:.0e} "
+                f"vertex-facet tests at the chord ends, past the blocks")
         for i in block:
             mine = ends.boxes(boxes[i])
             before = len(out[i])
