@@ -138,20 +138,23 @@ def pieces_cost(N, ends):
 
 
 def morton_order(boxes):
-    """The vertices in Morton order of their ranks in the first (up to) four coordinates, each
-    scaled to 12 bits: near vertices stay near, so a block's box stays small (ranks, not
-    values: one far vertex cannot put all the others in one cell).  Any order gives the same
+    """The vertices in Morton order of the ranks of their coordinates (equal values, equal
+    ranks), each scaled to 12 bits: near vertices stay near, so a block's box stays small.
+    Ranks, not values: one far vertex cannot put all the others in one cell; every coordinate:
+    vertices that agree in some cannot fall back on their listing.  Any order gives the same
     pairs; this one is the kernel's own, not the certificate's."""
     count = len(boxes)
-    dims = min(4, len(boxes[0][0])) if boxes else 0
+    dims = len(boxes[0][0]) if boxes else 0
     spread = [0] * 4096
     for x in range(4096):
         for bit in range(12):
             spread[x] |= ((x >> bit) & 1) << (bit * dims)
     keys = [0] * count
     for l in range(dims):
-        for rank, i in enumerate(sorted(range(count), key=lambda i: boxes[i][0][l])):
-            keys[i] |= spread[rank * 4096 // count] << (dims - 1 - l)
+        values = sorted({c2[l] for c2, _ in boxes})
+        rank = {x: k * 4096 // len(values) for k, x in enumerate(values)}
+        for i, (c2, _) in enumerate(boxes):
+            keys[i] |= spread[rank[c2[l]]] << (dims - 1 - l)
     return sorted(range(count), key=keys.__getitem__)
 
 
