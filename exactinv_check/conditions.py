@@ -27,19 +27,23 @@ MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured
 def rebuild_size(A, numerator, denominator):
     """(cost, d, w) of rebuilding D and N (:func:`method_matrices`): d = deg N (and so of D up to n deg h_r),
     w the words of an entry, cost in word operations.  With A = Ai / L (Ai integral, entries of b bits):
-    polynomial methods n^3 deg g products of numbers of about k b bits (the powers Ai^k); rational ones
+    polynomial methods n^3 deg g products of numbers of about k b bits (the powers Ai^k) and the
+    method's coefficients over their common denominator (mb bits, at most the sum of theirs); rational ones
     one fraction-free elimination of about n^3 w^2 per interpolation point (the minors of c h_r(tA) have
     about n (s b + s log t) bits) and n^2 count^2 w for the interpolation."""
     n = len(A)
     L, Ai = integer_matrix(A)
     b = max([abs(x).bit_length() for row in Ai for x in row] + [L.bit_length(), 1])
     dh, dg = len(denominator) - 1, len(numerator) - 1
+    # the method's coefficients over a common denominator (at most the product of theirs)
+    mb = max(sum(c.denominator.bit_length() for c in p) + max(abs(c.numerator).bit_length() for c in p)
+             for p in (numerator, denominator))
     if dh == 0:
-        w = 1 + dg * b // 64
+        w = 1 + (dg * b + mb) // 64
         return n ** 3 * dg * w, dg, w
     s, d = max(dg, dh), max(n * dh, (n - 1) * dh + dg)
     count = d + 1
-    w = 1 + n * s * (b + (count + n * dh).bit_length()) // 64
+    w = 1 + n * (s * (b + (count + n * dh).bit_length()) + mb) // 64
     return (count + n * dh) * n ** 3 * w * w + n * n * count * count * w, d, w
 
 

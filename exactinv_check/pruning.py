@@ -41,7 +41,7 @@ from fractions import Fraction
 from math import comb, gcd, isqrt
 
 from . import conditions
-from .rationals import integer, rational, require, within_budget
+from .rationals import FRACTION_WEIGHT, integer, rational, require, within_budget
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)
@@ -133,7 +133,8 @@ def pieces_cost(N, ends):
     entry_bits = max(sum(Nk[r][c].denominator.bit_length() for Nk in N) + max(Nk[r][c].numerator.bit_length() for Nk in N)
                      for r in range(n) for c in range(n))
     bits = entry_bits + top * max(t.numerator.bit_length() + t.denominator.bit_length() for t in ends)
-    per_entry = ((top + 1) ** 2 // 2 + 4 * (top + 1)) * (1 + bits // 512) + 3 * (1 + bits // 64) ** 2
+    per_entry = (((top + 1) ** 2 // 2 + 4 * (top + 1)) * (1 + bits // 512) + 3 * (1 + bits // 64) ** 2
+                 + FRACTION_WEIGHT * (top + 4))  # the Python work of an entry: its loops, three Fractions
     return (len(ends) - 1) * n * n * per_entry
 
 
@@ -354,7 +355,12 @@ def survivors_of_pieces(G, b, vertices, pieces):
     if not rows or not vertices:
         return {i: [] for i in out}
     boxes = [vertex_box(v) for v in vertices]
+    n = len(boxes[0][0])
+    within_budget(80 * n * n * 2 * len(pieces), f"the {2 * len(pieces)} chord ends of the pruning test (n = {n})")
     ends = _Ends(pieces, boxes)
+    box_count = len(vertices) + len(vertices) // max(1, isqrt(len(vertices))) + 1
+    within_budget(20 * box_count * 3 * n * n * (1 + ends.count * ends.width * 8 // 4096),
+                  f"the boxes of {len(vertices)} vertices at {ends.count} chord ends (n = {n})")
     packed_rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], K * beta) for g, beta in rows]
     width = _slot_bytes(packed_rows, (ends.coordinate_max >> SHIFT) + 1)
     require(width * len(rows) * (2 * ends.n + 1) <= MAX_PACKED_BYTES,

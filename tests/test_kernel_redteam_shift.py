@@ -40,6 +40,20 @@ The findings were RESOURCE holes (no soundness hole found), all fixed; their tes
    With n > 4 only the first four coordinates are keyed: [0, 1]^4 x m-gon in R^6 (16 clusters
    of m vertices equal in the first four coordinates), its vertices shuffled within the
    clusters: 2.6x at m = 300, 4.1x (16 s against 6.6 s) at m = 1000.
+   Whole check of a genuine 2 MB certificate (x' = -x, Taylor 4, the 10,254-gon of circle
+   points and the far vertex, vertex 0 bounding by T = 182537/65536): 18 s with its vertices
+   listed along the circle, 175 s with the same vertices shuffled (load 2-4 on 2 cores).
+4. ``conditions.rebuild_size`` prices the rational route's interpolation of D and N by the
+   bits of A only, not of the method's coefficients: a (4, 4) method over 4000-digit
+   denominators on a 4 x 4 A, price 3e4, 140 s (load 3).  The polynomial route's condition
+   polynomials have the same blind spot: the octahedron certificate of 1. with 3997-digit
+   denominators (253 KB, a true claim, verified) takes 574 s: Method 189 s, the pieces about
+   180 s, condition_polynomials 191 s.
+5. ``pruning.pieces_cost`` counts (deg + 1)^2 / 2 + 4 (deg + 1) word operations per entry and
+   piece, but the Python work per entry (the Taylor shift's loops, three Fractions) is about
+   100 times that for small degrees: x' = -x on the simplex of R^200 with 1 - h + h^2 (rt-secant's
+   certificate, 646 KB, true, verified): pieces price 2.0e7 (0.4 s), whole check 36 s; R^100:
+   price 5e6, survivors 13 s of a 17 s check (profiled, load 4).
 """
 
 import copy
@@ -406,3 +420,27 @@ def test_one_far_vertex_does_not_hand_the_order_back(monkeypatch):
     scattered = [list(p) for p in P]
     random.Random(1).shuffle(scattered)
     _count_slot_tests(monkeypatch, G, b, scattered, N, T, 3 * listed)
+
+
+# ------------------------------------------------------------------ the rational route's D and N
+
+
+def test_the_rational_rebuild_is_priced_by_the_method_coefficients():
+    """Fixed: rebuild_size counts the method's coefficients over their common denominator."""
+    base = 10**3990
+    numerator = [F(1)] + [F(1, base + 2 * k + 1) for k in range(1, 5)]
+    denominator = [F(1)] + [F(-1, base + 2 * k + 1001) for k in range(1, 5)]
+    A = [[F(-2 if i == j else (1 if j == i + 1 else 0)) for j in range(4)] for i in range(4)]
+    with _Deadline(20), pytest.raises(CheckFailure, match="work budget"):
+        method_matrices(A, numerator, denominator)
+
+
+def test_the_pieces_of_a_large_low_degree_problem_are_priced():
+    """Fixed: pieces_cost counts the Python work of each entry (R^100, degree 2: priced at 2e8,
+    3 s of pieces and 3 s of boxes measured), and the boxes are priced too: rejected at once."""
+    n = 100
+    A = [[F(-1 if i == j else 0) for j in range(n)] for i in range(n)]
+    _, N = method_matrices(A, [F(1), F(1), F(1)], [F(1)])
+    assert pruning.pieces_cost(N, pruning.nodes(F(1))) > WORK_BUDGET
+    with _Deadline(20), pytest.raises(CheckFailure, match="work budget"):
+        pruning.survivors([[F(1)] * n], [F(1)], [[F(0)] * n], N, F(1))
