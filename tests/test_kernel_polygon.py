@@ -14,6 +14,7 @@ from exactinv_check import check, polyhedra
 from exactinv_check.polygon import prove_polygon
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.rationals import CheckFailure
+from pruning_helpers import polygon_rows
 
 
 def hull(points):
@@ -40,12 +41,7 @@ def hull(points):
 
 def facets(corners):
     """G, b with one row per edge of the counter-clockwise corners (outward normals)."""
-    G, b = [], []
-    for (x1, y1), (x2, y2) in zip(corners, corners[1:] + corners[:1]):
-        g = [y2 - y1, x1 - x2]
-        G.append(g)
-        b.append(g[0] * x1 + g[1] * y1)
-    return G, b
+    return polygon_rows(corners)
 
 
 def general(G, b, V):

@@ -13,6 +13,7 @@ import pytest
 from exactinv_check import polyhedra
 from exactinv_check.polyhedra import Generators, prove_generators
 from exactinv_check.rationals import CheckFailure
+from pruning_helpers import polygon_rows
 
 
 def vec(*xs):
@@ -39,12 +40,7 @@ def rejects(G, b, V, R=(), L=(), match=None):
 
 def polygon(points):
     """G, b of the convex polygon with the given vertices in counter-clockwise order."""
-    G, b = [], []
-    for (x1, y1), (x2, y2) in zip(points, points[1:] + points[:1]):
-        g = [y2 - y1, x1 - x2]
-        G.append(g)
-        b.append(g[0] * x1 + g[1] * y1)
-    return G, b
+    return polygon_rows(points)
 
 
 def circle_points(N):

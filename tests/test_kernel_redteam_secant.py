@@ -33,9 +33,9 @@ import pytest
 import exactinv as ei
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure
 
-from kernel_deadline import TooSlow, check_within
+from kernel_deadline import check_within
+from pruning_helpers import count_slot_tests, polygon_rows
 
 
 # ------------------------------------------------------------------ soundness that held
@@ -159,12 +159,7 @@ def _circle_polygon(m):
         s = F(int((2 * a + 1 - m) * 10**6 // m), 10**6) if a else None  # tan(theta/2) in (-1, 1), increasing
         pts.append((F(-1), F(0)) if s is None else ((1 - s * s) / (1 + s * s), 2 * s / (1 + s * s)))
     pts = [pts[0]] + sorted(set(pts[1:]), key=lambda p: (p[1] >= 0, p[0] if p[1] < 0 else -p[0]))
-    G, b = [], []
-    for (x1, y1), (x2, y2) in zip(pts, pts[1:] + pts[:1]):
-        g = [y2 - y1, x1 - x2]
-        G.append(g)
-        b.append(g[0] * x1 + g[1] * y1)
-    return pts, G, b
+    return pts, *polygon_rows(pts)
 
 
 def _polygon_certificate(m, order):
@@ -186,26 +181,10 @@ def _scattered(V):
 
 
 def _slot_tests(monkeypatch, m, order, limit):
-    """The packed slot tests of pruning.survivors on the m-gon with the given order (counted, not
-    timed); TooSlow once they pass ``limit``; a CheckFailure (a price) ends the count as well."""
+    """The packed slot tests of pruning.survivors on the m-gon, its vertices listed in the given order."""
     pts, G, b = _circle_polygon(m)
     _, N = method_matrices([[F(-1), F(1, 2)], [F(-1, 2), F(-1)]], [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)], [F(1)])
-    counted = [0]
-    original = pruning._Packed.outside
-
-    def counting(self, box):
-        counted[0] += len(self.J)
-        if counted[0] > limit:
-            raise TooSlow(f"{counted[0]} slot tests")
-        return original(self, box)
-
-    monkeypatch.setattr(pruning._Packed, "outside", counting)
-    try:
-        pruning.survivors(G, b, [list(pts[i]) for i in order(len(pts))], N, F(167127, 65536))
-    except CheckFailure:
-        pass
-    monkeypatch.setattr(pruning._Packed, "outside", original)
-    return counted[0]
+    return count_slot_tests(monkeypatch, G, b, [list(pts[i]) for i in order(len(pts))], N, F(167127, 65536), limit)
 
 
 def test_a_scattered_order_is_priced(monkeypatch):

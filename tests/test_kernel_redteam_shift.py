@@ -72,6 +72,7 @@ from exactinv_check.kernel import Method
 from exactinv_check.rationals import WORK_BUDGET, CheckFailure
 
 from kernel_deadline import TooSlow
+from pruning_helpers import count_slot_tests, polygon_rows
 from test_kernel_redteam_secant import _circle_polygon
 
 
@@ -370,41 +371,12 @@ def _hull(points):
     return half(pts) + half(reversed(pts))
 
 
-def _rows(pts):
-    G, b = [], []
-    for (x1, y1), (x2, y2) in zip(pts, pts[1:] + pts[:1]):
-        g = [y2 - y1, x1 - x2]
-        G.append(g)
-        b.append(g[0] * x1 + g[1] * y1)
-    return G, b
-
-
-def _count_slot_tests(monkeypatch, G, b, V, N, T, limit):
-    counted = [0]
-    original = pruning._Packed.outside
-
-    def counting(self, box):
-        counted[0] += len(self.J)
-        if counted[0] > limit:
-            raise TooSlow(f"{counted[0]} slot tests")
-        return original(self, box)
-
-    monkeypatch.setattr(pruning._Packed, "outside", counting)
-    try:
-        pruning.survivors(G, b, V, N, T)
-    except CheckFailure:
-        pass
-    finally:
-        monkeypatch.setattr(pruning._Packed, "outside", original)
-    return counted[0]
-
-
 def _outlier_polygon():
     """Rational points of the unit circle (rt-secant's 5000-gon) and one far vertex (1e5, -1e5):
     1,467 vertices, all but the far one in one Morton cell of the kernel's 12-bit grid."""
     pts, _, _ = _circle_polygon(5000)
     P = _hull(list(pts) + [(F(10**5), F(-10**5))])
-    return P, *_rows(P)
+    return P, *polygon_rows(P)
 
 
 _ROT_TAYLOR4 = ([[F(-1), F(1, 2)], [F(-1, 2), F(-1)]], [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)])
@@ -416,10 +388,10 @@ def test_one_far_vertex_does_not_hand_the_order_back(monkeypatch):
     P, G, b = _outlier_polygon()
     _, N = method_matrices(_ROT_TAYLOR4[0], _ROT_TAYLOR4[1], [F(1)])
     T = F(167127, 65536)
-    listed = _count_slot_tests(monkeypatch, G, b, [list(p) for p in P], N, T, float("inf"))
+    listed = count_slot_tests(monkeypatch, G, b, [list(p) for p in P], N, T, float("inf"))
     scattered = [list(p) for p in P]
     random.Random(1).shuffle(scattered)
-    _count_slot_tests(monkeypatch, G, b, scattered, N, T, 3 * listed)
+    count_slot_tests(monkeypatch, G, b, scattered, N, T, 3 * listed)
 
 
 # ------------------------------------------------------------------ the rational route's D and N

@@ -19,17 +19,13 @@ import pytest
 from exactinv_check import check, conditions, polygon, pruning
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.rationals import CheckFailure
+from pruning_helpers import polygon_rows
 
 
 def _parabola_polygon(m):
     """A convex m-gon: (i, i^2) for i < m - 1 and an apex far above; its rows, counter-clockwise."""
     pts = [(F(i), F(i * i)) for i in range(m - 1)] + [(F(m // 2), F(4 * m * m))]
-    G, b = [], []
-    for (x1, y1), (x2, y2) in zip(pts, pts[1:] + pts[:1]):
-        g = [y2 - y1, x1 - x2]
-        G.append(g)
-        b.append(g[0] * x1 + g[1] * y1)
-    return pts, G, b
+    return pts, *polygon_rows(pts)
 
 
 def _certificate(pts, G, b, extra=(), vertex=1, horizon="2"):
