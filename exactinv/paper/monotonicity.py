@@ -22,18 +22,18 @@ records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 
 from __future__ import annotations
 
-from math import comb
+from itertools import islice
 
 import flint
 
 from ..core.algebraic import ExactKey
 from ..core.roots import nonnegative_until
-from ..core.scalars import INF, fmpq_of, fraction_of
+from ..core.scalars import INF, fraction_of
 from ..core.tags import RadiusReason
 from ..model.methods import Method
 from ..model.validate import check_method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
-from .monotonicity_tail import _rational_radius
+from .monotonicity_tail import _coefficient_polynomials, _rational_radius
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 
@@ -49,25 +49,7 @@ def taylor_coefficient_polynomials(method: Method, count: int) -> list[flint.fmp
     >>> [[str(c) for c in d.coeffs()] for d in taylor_coefficient_polynomials(methods.trapezoid(), 3)]
     [['1', '-1/2'], ['1'], ['1/2']]
     """
-    kappa = flint.fmpq_poly([0, 1])
-
-    def shifted(coeffs):  # [w^i] p(w - kappa) as polynomials in kappa
-        return [sum((flint.fmpq_poly([fmpq_of(coeffs[k] * comb(k, i))]) * (-kappa) ** (k - i)
-                     for k in range(i, len(coeffs))), flint.fmpq_poly([0])) for i in range(len(coeffs))]
-
-    G = shifted(method.numerator)
-    Hs = shifted(method.denominator)
-    H0 = Hs[0]
-    d: list[flint.fmpq_poly] = []
-    powers = [flint.fmpq_poly([1])]
-    for j in range(count):
-        while len(powers) <= j:
-            powers.append(powers[-1] * H0)
-        value = (G[j] if j < len(G) else flint.fmpq_poly([0])) * powers[j]
-        for i in range(1, min(j, len(Hs) - 1) + 1):
-            value -= Hs[i] * d[j - i] * powers[i - 1]
-        d.append(value)
-    return d
+    return list(islice(_coefficient_polynomials(method), count))
 
 
 def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:

@@ -102,10 +102,14 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
 
 
 def _coefficient_polynomials(method: Method):
-    """d_0, d_1, ... incrementally (the recurrence of :func:`taylor_coefficient_polynomials`)."""
+    """d_0, d_1, ... incrementally (:func:`exactinv.paper.monotonicity.taylor_coefficient_polynomials`
+    lists the first ones): with G, H the coefficients of g(w - kappa), h(w - kappa) in w
+    (polynomials in kappa), d_j = G_j H_0^j - sum_{i=1}^{min(j, deg h)} H_i d_{j-i} H_0^(i-1):
+    the coefficients of w^j in g(w - kappa) = r(w - kappa) h(w - kappa), with the c_j of
+    r(w - kappa) scaled to d_j = c_j H_0^(j+1)."""
     kappa = flint.fmpq_poly([0, 1])
 
-    def shifted(coeffs):
+    def shifted(coeffs):  # [w^i] p(w - kappa) as polynomials in kappa
         return [sum((flint.fmpq_poly([fmpq_of(coeffs[k] * comb(k, i))]) * (-kappa) ** (k - i)
                      for k in range(i, len(coeffs))), flint.fmpq_poly([0])) for i in range(len(coeffs))]
 
