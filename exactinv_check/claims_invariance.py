@@ -17,11 +17,13 @@ from .reals import Real
 
 
 def check_H(problem, H):
-    """H is an invariance certificate: off-diagonal >= 0, HG = GA, Hb <= 0."""
-    A, G, b, m = problem.A, problem.G, problem.b, problem.m
-    require(matmul(H, G) == matmul(G, A), "HG != GA")
-    require(all(v <= 0 for v in matvec(H, b)), "Hb <= 0 fails")
-    require(all(H[i][k] >= 0 for i in range(m) for k in range(m) if i != k), "an off-diagonal entry of H is negative")
+    """H is an invariance certificate: off-diagonal >= 0, HG = GA, Hb <= 0 -- over the nonzero
+    entries of each row of H only (a row LP's basic solution has at most n + 1 of its m)."""
+    A, G, b, n = problem.A, problem.G, problem.b, problem.n
+    rows = [[(k, x) for k, x in enumerate(row) if x] for row in H]
+    require([[sum(x * G[k][c] for k, x in row) for c in range(n)] for row in rows] == matmul(G, A), "HG != GA")
+    require(all(sum(x * b[k] for k, x in row) <= 0 for row in rows), "Hb <= 0 fails")
+    require(all(x >= 0 for i, row in enumerate(rows) for k, x in row if k != i), "an off-diagonal entry of H is negative")
 
 
 def facet_witness(problem, M, w, on_facet):

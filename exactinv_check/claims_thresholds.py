@@ -19,7 +19,7 @@ from .claims_invariance import check_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
-from .rationals import dot, integer, matrix, matvec, rational, require, vector
+from .rationals import integer, integer_matrix, matrix, rational, require, vector
 from .reals import Real, quotient
 from .validset import first_end
 
@@ -152,23 +152,43 @@ def smallest_positive_root(p):
     return Real.root_in(p, *roots[0]) if roots else None
 
 
+def _ratio_tests(problem, gens):
+    """min over the generator-facet pairs of eps: for a vertex x with g_j.Ax > 0,
+    eps = (b_j - g_j.x)/(g_j.Ax); for a ray, -g_j.x/(g_j.Ax); for a line with g_j.Ax != 0, 0
+    (None: no pair limits the step).  In integers: with A = Ai/L, x = xi/d and row j times
+    its positive denominator (gi, bi), eps = (bi d - gi.xi) L / (gi.Ai xi) for a vertex, the
+    same without bi d for a ray; the least is kept as a fraction (num, den), den > 0, and
+    compared by cross-multiplication."""
+    L, Ai = integer_matrix(problem.A)
+    rows = []
+    for g, beta in zip(problem.G, problem.b):
+        d, gi = integer_matrix([list(g) + [beta]])
+        rows.append((gi[0][:-1], gi[0][-1]))
+    best = None  # (num, den)
+    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
+        for x in vectors:
+            d, xi = integer_matrix([x])
+            xi = xi[0]
+            Axi = [sum(map(int.__mul__, row, xi)) for row in Ai]
+            for gi, bi in rows:
+                rate = sum(map(int.__mul__, gi, Axi))
+                if kind == "line":
+                    if rate == 0:
+                        continue
+                    num, den = 0, 1
+                elif rate <= 0:
+                    continue
+                else:
+                    num, den = ((bi * d if kind == "vertex" else 0) - sum(map(int.__mul__, gi, xi))) * L, rate
+                if best is None or num * best[1] < best[0] * den:
+                    best = (num, den)
+    return None if best is None else Fraction(*best)
+
+
 def forward_euler_threshold(problem, claim, context):
     gens = prove_generators(problem.G, problem.b, *(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines")))
     gamma = _verified(context, "gamma", "gamma_star")
-    best = None
-    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
-        for x in vectors:
-            Ax = matvec(problem.A, x)
-            for j, g in enumerate(problem.G):
-                rate = dot(g, Ax)
-                if kind == "line":
-                    eps = None if rate == 0 else Fraction(0)
-                elif rate <= 0:
-                    eps = None
-                else:
-                    eps = ((problem.b[j] if kind == "vertex" else 0) - dot(g, x)) / rate
-                if eps is not None and (best is None or eps < best):
-                    best = eps
+    best = _ratio_tests(problem, gens)
     by_vertices = INF if best is None else Real.rational(best)
     if gamma.inf == 1:
         by_gamma = ZERO

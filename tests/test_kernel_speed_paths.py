@@ -5,13 +5,16 @@ that are wrong only where a condition is tangent (a double root)."""
 
 import random
 from fractions import Fraction as F
+from types import SimpleNamespace
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv_check import check, polys, pruning, validset
+from exactinv_check import check, claims_thresholds, polys, pruning, validset
+from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
+from exactinv_check.rationals import CheckFailure
 
 big = st.integers(-(2**130), 2**130)
 small = st.integers(-9, 9)
@@ -302,3 +305,64 @@ def test_the_end_boxes_are_the_rounded_bound():
                 spread = sum(a * abs(c) for a, c in zip(W[k], v)) * K
                 assert centre + spread <= box[k] <= centre + spread + 1 + K * F(2 * n * 64, 2**48)
                 assert centre - spread >= box[n + k] >= centre - spread - 1 - K * F(2 * n * 64, 2**48)
+
+
+# ---------------------------------------------------- the paper's claims on large P: integers, sparse H
+
+
+def _ratio_reference(A, G, b, gens):
+    best = None
+    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
+        for x in vectors:
+            Ax = [sum(a * c for a, c in zip(row, x)) for row in A]
+            for g, beta in zip(G, b):
+                rate = sum(a * c for a, c in zip(g, Ax))
+                if kind == "line":
+                    eps = None if rate == 0 else F(0)
+                elif rate <= 0:
+                    eps = None
+                else:
+                    eps = ((beta if kind == "vertex" else 0) - sum(a * c for a, c in zip(g, x))) / rate
+                if eps is not None and (best is None or eps < best):
+                    best = eps
+    return best
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(0, 10**6), st.integers(1, 3))
+def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
+    """claims_thresholds._ratio_tests (integers, cross-multiplied) against the forward-Euler ratio
+    tests in Fractions, over random rational A, rows, vertices, rays and lines."""
+    rng = random.Random(seed)
+    q = lambda: F(rng.randint(-9, 9), rng.randint(1, 12))  # noqa: E731
+    A = [[q() for _ in range(n)] for _ in range(n)]
+    G = [[q() for _ in range(n)] for _ in range(rng.randint(1, 6))]
+    b = [q() for _ in G]
+    gens = SimpleNamespace(**{k: [[q() for _ in range(n)] for _ in range(rng.randint(0, 4))] for k in ("vertices", "rays", "lines")})
+    problem = SimpleNamespace(A=A, G=G, b=b)
+    assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
+
+
+def test_a_sparse_H_is_checked_like_a_dense_one():
+    """check_H reads only the nonzero entries of H's rows: a correct H passes, and each of the
+    three conditions fails when one entry is spoiled."""
+    # x' = -x on the square [-1, 1]^2: H = -I (HG = GA = -G, Hb = -b <= 0)
+    G = [[F(1), F(0)], [F(-1), F(0)], [F(0), F(1)], [F(0), F(-1)]]
+    problem = SimpleNamespace(A=[[F(-1), F(0)], [F(0), F(-1)]], G=G, b=[F(1)] * 4, n=2, m=4)
+    H = [[F(-1) if i == k else F(0) for k in range(4)] for i in range(4)]
+    check_H(problem, H)
+    # rows 0 and 1 of G are g and -g: adding t (e_0 + e_1) to row 0 of H keeps HG = GA
+    for changes, message in [({(0, 0): F(-2)}, "HG"), ({(0, 0): F(-2), (0, 1): F(-1)}, "off-diagonal"),
+                             ({(1, 1): F(0)}, "HG")]:
+        spoiled = [list(r) for r in H]
+        for (i, k), value in changes.items():
+            spoiled[i][k] = value
+        with pytest.raises(CheckFailure, match=message):
+            check_H(problem, spoiled)
+    check_H(problem, [[F(-1) + F(1, 2), F(1, 2), F(0), F(0)]] + H[1:])  # t = 1/2: still a certificate
+    # Hb <= 0: x' = 0 on the square and H with rows e_i + e_(i xor 1): HG = 0 = GA (g and -g cancel),
+    # off-diagonal 1 >= 0, but Hb = (2, 2, 2, 2) > 0
+    zero = SimpleNamespace(A=[[F(0), F(0)], [F(0), F(0)]], G=G, b=[F(1)] * 4, n=2, m=4)
+    swap = [[F(int(k in (i, i ^ 1))) for k in range(4)] for i in range(4)]
+    with pytest.raises(CheckFailure, match="Hb"):
+        check_H(zero, swap)
