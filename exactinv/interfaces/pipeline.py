@@ -26,7 +26,7 @@ from ..core.polys import poly_text
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import forward_euler_threshold
-from ..paper.gamma_star import optimal_gamma
+from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.threshold import steplength_threshold
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
@@ -148,10 +148,10 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         lines.append("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
         lines.append(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {_routes(gamma.paths)}]")
         step("forward Euler (vertex ratio tests)")
-        results += _forward_euler(S, P, lines)
+        results += _forward_euler(S, P, gamma, lines)
         if method is not None:
             step(f"paper's threshold for {method.name}")
-            results += _paper_threshold(S, P, method, lines)
+            results += _paper_threshold(S, P, method, gamma, lines)
     if method is not None and P.n <= VERTEX_LIMIT:
         step("exact valid steplengths")
         results += _largest(S, P, method, lines)
@@ -180,17 +180,17 @@ def _routes(paths: Any) -> str:
     return str(paths)
 
 
-def _forward_euler(S, P, lines: list[str]) -> list[Any]:
+def _forward_euler(S, P, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
     if P.n > VERTEX_LIMIT:
         lines.append("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
         return []
-    fe = forward_euler_threshold(S, P)
+    fe = forward_euler_threshold(S, P, gamma=gamma)
     lines.append(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")
     return [fe]
 
 
-def _paper_threshold(S, P, method: Method, lines: list[str]) -> list[Any]:
-    t = steplength_threshold(S, P, method)
+def _paper_threshold(S, P, method: Method, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
+    t = steplength_threshold(S, P, method, gamma=gamma)
     lines.append(f"paper's threshold for {method.name} ({t.theorem}): {exact_text(t.value)}"
                  + ("" if t.attained else "  (not attained: valid on [0, tau))"))
     if t.paper != t.value:

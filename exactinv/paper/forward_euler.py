@@ -6,19 +6,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
+from math import lcm
 
-from ..core.algebraic import Real, exact_lt
+from ..core.algebraic import Real
 from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.scalars import INF, Infinity
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed
 from ..model import LinearSystem, Polyhedron
 from ..model.methods import forward_euler
 from ..model.record import certificate as make_certificate, generator_record
 from ..model.validate import check_problem
-from .gamma_star import OptimalGamma, optimal_gamma
+from .gamma_star import OptimalGamma, gamma_for
 
 __all__ = ["ForwardEulerThreshold", "forward_euler_threshold"]
 
@@ -66,9 +67,11 @@ class ForwardEulerThreshold(ExactValueMixin):
         return make_certificate(self.gamma.system, self.gamma.polyhedron, None, [self])
 
 
-def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron) -> ForwardEulerThreshold:
+def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron, *,
+                            gamma: OptimalGamma | None = None) -> ForwardEulerThreshold:
     """The largest forward-Euler steplength, exact, cross-checked: 1/gamma* from
-    the verified LP and the vertex ratio tests must coincide.
+    the verified LP and the vertex ratio tests must coincide.  ``gamma``: gamma* of
+    this pair if already computed (:func:`~exactinv.paper.gamma_star.gamma_for`).
 
     >>> from exactinv.model import LinearSystem, Polyhedron
     >>> fe = forward_euler_threshold(LinearSystem([[-1, 1], [-1, -1]]), Polyhedron.box([-1, -1], [1, 1]))
@@ -76,28 +79,45 @@ def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron) -> For
     (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
     """
     check_problem(system, polyhedron, forward_euler())
-    gamma = optimal_gamma(system, polyhedron)
+    gamma = gamma_for(system, polyhedron, gamma)
     g = gamma.value
     by_gamma = Fraction(0) if g == INF else (INF if isinstance(g, Infinity) or g <= 0 else 1 / g)
-    A = system.A_flint
-    G, b = polyhedron.G, polyhedron.b
-    best: Real = INF
-    binding = None
-    for kind, gens in (("vertex", polyhedron.vertices), ("ray", polyhedron.rays), ("line", polyhedron.lines)):
-        for i, x in enumerate(gens):
-            Ax = [sum(A[r, k] * fmpq_of(x[k]) for k in range(len(x))) for r in range(len(x))]
-            Ax = [fraction_of(v) for v in Ax]
-            for j, row in enumerate(G):
-                rate = sum(gj * v for gj, v in zip(row, Ax))
-                if kind == "line":
-                    eps = INF if rate == 0 else Fraction(0)
-                elif rate <= 0:
-                    continue
-                else:
-                    slack = (b[j] if kind == "vertex" else 0) - sum(gj * v for gj, v in zip(row, x))
-                    eps = slack / rate
-                if exact_lt(eps, best):
-                    best, binding = eps, (kind, i, j)
+    best, binding = _ratio_tests(system, polyhedron)
     if best != by_gamma:
         raise VerificationFailed(f"forward Euler: 1/gamma* = {by_gamma} but the vertex ratio tests give {best}")
     return ForwardEulerThreshold(best, by_gamma, best, binding, gamma)
+
+
+def _scaled(values) -> tuple[int, list[int]]:
+    """(d, d * values) with d > 0 the least common denominator: integers with the same signs."""
+    d = lcm(*(Fraction(v).denominator for v in values)) if values else 1
+    return d, [int(Fraction(v) * d) for v in values]
+
+
+def _ratio_tests(system: LinearSystem, polyhedron: Polyhedron) -> tuple[Real, tuple[str, int, int] | None]:
+    """(min eps, its (kind, generator, facet)) over the generator-facet pairs, exact: for a vertex x
+    with g_j.Ax > 0, eps = (b_j - g_j.x)/(g_j.Ax); for a ray, -g_j.x/(g_j.Ax); 0 for a line with
+    g_j.Ax != 0 (INF if nothing limits the step).  In integers: with A = Ai/L, x = xi/d and row j
+    times its positive denominator (gi, bi), eps = (bi d - gi.xi) L / (gi.Ai xi); the least is
+    kept as (num, den), den > 0, compared by cross-multiplication."""
+    L = lcm(*(Fraction(v).denominator for row in system.A for v in row))
+    Ai = [[int(Fraction(v) * L) for v in row] for row in system.A]
+    rows = [(scaled[:-1], scaled[-1]) for _, scaled in (_scaled(list(g) + [beta]) for g, beta in zip(polyhedron.G, polyhedron.b))]
+    best, binding = None, None
+    for kind, gens in (("vertex", polyhedron.vertices), ("ray", polyhedron.rays), ("line", polyhedron.lines)):
+        for i, x in enumerate(gens):
+            d, xi = _scaled(list(x))
+            Axi = [sum(map(int.__mul__, row, xi)) for row in Ai]
+            for j, (gi, bi) in enumerate(rows):
+                rate = sum(map(int.__mul__, gi, Axi))
+                if kind == "line":
+                    if rate == 0:
+                        continue
+                    num, den = 0, 1
+                elif rate <= 0:
+                    continue
+                else:
+                    num, den = ((bi * d if kind == "vertex" else 0) - sum(map(int.__mul__, gi, xi))) * L, rate
+                if best is None or num * best[1] < best[0] * den:
+                    best, binding = (num, den), (kind, i, j)
+    return (INF if best is None else Fraction(*best)), binding
