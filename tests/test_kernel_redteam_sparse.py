@@ -1,0 +1,295 @@
+"""Red team rt-sparse: commit b4fe074 -- ``claims_invariance.check_H`` over the nonzero entries of
+H's rows, ``claims_thresholds._ratio_tests`` (forward Euler) in integers cross-multiplied, and
+``rationals.rational``'s fast path for the string "0"; plus the engine's ``gamma=`` keyword
+(``exactinv.paper.gamma_star.gamma_for``).
+
+What held (kept as fast regressions below):
+
+* check_H is the dense definition (HG = GA, Hb <= 0, off-diagonal >= 0) on random problems and on
+  H moved along the left null space of G (y^T G = 0, so HG = GA is kept and only Hb and the signs
+  decide), with zero entries spelt "0", "00", "-0", "+0", "0/5", "0.0", "-0/7" or the JSON
+  integer 0: every zero spelling parses to Fraction(0), is skipped, and changes no verdict.
+  Malformed spellings are still rejected.
+* _ratio_tests equals the Fraction ratio tests over huge (200-bit) and tiny entries, int
+  vertices, zero rows of G, n = 1, empty generator lists, rays and lines only.
+* Forged forward-Euler values on genuine certificates are rejected unless equal to the truth.
+* gamma_for refuses a gamma* of another system or polyhedron (also of the same set of points
+  written with a scaled row) and of another type.
+
+No soundness hole found.  Findings (strict xfail tests below):
+
+1. RESOURCE (kernel): _ratio_tests scales A by its common denominator L and cross-multiplies
+   num * best_den < best_num * den, numbers of L's size, for every vertex-facet pair, unpriced.
+   A whose off-diagonal entries have distinct 3990-digit denominators (L ~ (n - 1)^2 * 13,000
+   bits) on the cube [-1, 1]^n: a TRUE certificate (_fe_certificate) of 601 KB (n = 8) checks in
+   148 s, 147 s of it in _ratio_tests (profiled); the Fraction version before b4fe074: 16 s on
+   the same certificate (n = 6: 9.9 s against 1.4 s).  Load ~1.5-2 on 2 cores.
+2. ENGINE: optimal_gamma raises OverflowError (not an ExactinvError) when A's common denominator
+   times an entry exceeds a float (gamma_batch._integers converts the scaled integers to float).
+3. ENGINE (the kernel catches it): a caller-TAMPERED OptimalGamma (dataclasses.replace on a
+   genuine one) passes gamma_for, and steplength_threshold returns a wrong tau (2, true 1)
+   without any error; its certificate is rejected by the kernel.
+"""
+
+import dataclasses
+import json
+import random
+from fractions import Fraction as F
+from types import SimpleNamespace
+
+import pytest
+from test_kernel_redteam import _check_in_subprocess
+from test_kernel_speed_paths import _ratio_reference
+
+import exactinv as ei
+from exactinv.paper.forward_euler import forward_euler_threshold
+from exactinv.paper.gamma_star import gamma_for, optimal_gamma
+from exactinv.paper.threshold import steplength_threshold
+from exactinv_check import check, claims_thresholds
+from exactinv_check.claims_invariance import check_H
+from exactinv_check.rationals import CheckFailure, rational
+
+ZERO_SPELLINGS = ["0", "00", "-0", "+0", "0/5", "0.0", "-0/7", 0]
+NOT_NUMBERS = ["0/0", "0e0", " 0", "0 ", "0.", ".0", "", "-", "0x0", "\u0660", "0_0", False, 0.0, None, ["0"]]
+
+
+def _dense_check_H(A, G, b, H):
+    """The definition, dense: True iff HG = GA, Hb <= 0 and H's off-diagonal entries are >= 0."""
+    m, n = len(G), len(A)
+    HG = [[sum(H[i][k] * G[k][c] for k in range(m)) for c in range(n)] for i in range(m)]
+    GA = [[sum(G[i][k] * A[k][c] for k in range(n)) for c in range(n)] for i in range(m)]
+    return (HG == GA and all(sum(H[i][k] * b[k] for k in range(m)) <= 0 for i in range(m))
+            and all(H[i][k] >= 0 for i in range(m) for k in range(m) if i != k))
+
+
+def _left_null(G):
+    """A nonzero y with y^T G = 0 (exact Gaussian elimination on G^T), or None."""
+    m, n = len(G), len(G[0])
+    M = [[G[k][c] for k in range(m)] for c in range(n)]
+    pivots, r = [], 0
+    for col in range(m):
+        p = next((i for i in range(r, n) if M[i][col]), None)
+        if p is None:
+            continue
+        M[r], M[p] = M[p], M[r]
+        M[r] = [v / M[r][col] for v in M[r]]
+        for i in range(n):
+            if i != r and M[i][col]:
+                M[i] = [a - M[i][col] * c for a, c in zip(M[i], M[r])]
+        pivots.append(col)
+        r += 1
+    free = next((c for c in range(m) if c not in pivots), None)
+    if free is None:
+        return None
+    y = [F(0)] * m
+    y[free] = F(1)
+    for i, col in enumerate(pivots):
+        y[col] = -M[i][free]
+    return y
+
+
+def _random_problem(rng, n, m):
+    q = lambda: F(rng.randint(-4, 4), rng.randint(1, 3))  # noqa: E731
+    A = [[q() for _ in range(n)] for _ in range(n)]
+    G = [[q() for _ in range(n)] for _ in range(m)]
+    return A, G, [q() for _ in G]
+
+
+def test_check_H_is_the_dense_definition():
+    """Random H, and H = H0 + sum_i t_i e_i y^T (y in G's left null space): check_H accepts exactly
+    when the dense definition holds."""
+    rng = random.Random(7)
+    seen = {True: 0, False: 0}
+    for _ in range(400):
+        n, m = rng.randint(1, 3), rng.randint(1, 5)
+        A, G, b = _random_problem(rng, n, m)
+        sparse = lambda: F(rng.randint(-3, 3), rng.randint(1, 3)) if rng.random() < 0.4 else F(0)  # noqa: E731
+        H = [[sparse() for _ in range(m)] for _ in range(m)]
+        y = _left_null(G)
+        if y is not None and rng.random() < 0.7:  # make HG = GA hold, then move along y
+            # A = -I makes H0 = -I satisfy HG = GA; moving H0's rows along y keeps it
+            A = [[F(-1) if i == c else F(0) for c in range(n)] for i in range(n)]
+            b = [abs(v) for v in b]  # H0 b = -b <= 0
+            H = [[F(-1) if i == k else F(0) for k in range(m)] for i in range(m)]
+            for i in range(m):
+                t = F(rng.randint(-2, 2), rng.randint(1, 2)) if rng.random() < 0.3 else F(0)
+                H[i] = [h + t * v for h, v in zip(H[i], y)]
+        problem = SimpleNamespace(A=A, G=G, b=b, n=n, m=m)
+        truth = _dense_check_H(A, G, b, H)
+        seen[truth] += 1
+        try:
+            check_H(problem, H)
+            verdict = True
+        except CheckFailure:
+            verdict = False
+        assert verdict == truth
+    assert min(seen.values()) > 20  # both verdicts exercised
+
+
+def test_zero_spellings_parse_to_zero_and_bad_ones_are_rejected():
+    for s in ZERO_SPELLINGS:
+        assert rational(s) == 0 and isinstance(rational(s), F)
+    for s in NOT_NUMBERS:
+        with pytest.raises(CheckFailure):
+            rational(s)
+    assert rational("0") + 1 == 1 and rational("0") == 0
+
+
+def _square_certificate():
+    S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    return forward_euler_threshold(S, P).certificate
+
+
+def test_zero_spellings_in_H_change_no_verdict():
+    """The genuine square certificate with its H's zeros spelt otherwise: verified; a zero
+    replaced by a tiny nonzero, or by a malformed zero: rejected."""
+    cert = _square_certificate()
+    H = cert["claims"][0]["H"]
+    zeros = [(i, k) for i, row in enumerate(H) for k, v in enumerate(row) if v == "0"]
+    assert zeros
+    for s in ZERO_SPELLINGS[:-1]:  # the JSON integer 0 verifies too, but is outside the schema
+        forged = json.loads(json.dumps(cert))
+        for i, k in zeros:
+            forged["claims"][0]["H"][i][k] = s
+        assert check(forged), s
+    for s in ["1/10000000000000000000000000", "-1/10000000000000000000000000"] + NOT_NUMBERS:
+        forged = json.loads(json.dumps(cert))
+        i, k = zeros[0]
+        forged["claims"][0]["H"][i][k] = s
+        assert not check(forged), s
+
+
+def _huge(rng):
+    r = rng.random()
+    if r < 0.3:
+        return F(0)
+    if r < 0.45:
+        return F(rng.randint(-2**200, 2**200), rng.randint(1, 2**150))
+    if r < 0.6:
+        return F(rng.randint(-3, 3), 10 ** rng.randint(0, 40))
+    return F(rng.randint(-5, 5), rng.randint(1, 7))
+
+
+def test_integer_ratio_tests_on_adversarial_entries():
+    """_ratio_tests against the Fraction definition: huge/tiny/zero entries, int vertices, zero rows,
+    n = 1, empty generator lists."""
+    rng = random.Random(11)
+    for _ in range(1500):
+        n = rng.randint(1, 3)
+        A = [[_huge(rng) for _ in range(n)] for _ in range(n)]
+        G = [[_huge(rng) for _ in range(n)] for _ in range(rng.randint(0, 5))]
+        b = [_huge(rng) for _ in G]
+        gens = SimpleNamespace(**{k: [[_huge(rng) for _ in range(n)] for _ in range(rng.randint(0, 3))]
+                                  for k in ("vertices", "rays", "lines")})
+        if rng.random() < 0.2:
+            gens.vertices = [[int(v) for v in x] for x in gens.vertices]
+        problem = SimpleNamespace(A=A, G=G, b=b, n=n, m=len(G))
+        assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
+
+
+def test_forged_forward_euler_values_are_rejected():
+    """Genuine forward-Euler certificates on random polygons; the value replaced by nearby ones:
+    accepted only when equal to the true 1/gamma* (from the Fraction ratio tests on P's vertices)."""
+    rng = random.Random(3)
+    done = 0
+    while done < 6:
+        k = rng.randint(3, 6)
+        pts = [(rng.randint(-5, 5), rng.randint(-5, 5)) for _ in range(k)] + [(0, 0)]
+        try:
+            P = ei.Polyhedron.from_vertices(pts)
+            S = ei.LinearSystem([[rng.randint(-3, 1), rng.randint(-2, 2)], [rng.randint(-2, 2), rng.randint(-3, 1)]])
+            cert = forward_euler_threshold(S, P).certificate
+        except ei.ExactinvError:
+            continue
+        done += 1
+        gens = SimpleNamespace(vertices=[list(v) for v in P.vertices], rays=[], lines=[])
+        truth = _ratio_reference([list(r) for r in S.A], [list(r) for r in P.G], list(P.b), gens)
+        truth = "oo" if truth is None else truth
+        assert check(cert)
+        for value in ["0", "1", "1/3", "oo", "2"] + ([] if truth == "oo" else [str(truth + F(1, 10**30)), str(truth * 2)]):
+            forged = json.loads(json.dumps(cert))
+            forged["claims"][-1]["value"] = value
+            assert bool(check(forged)) == (value == str(truth)), (value, truth)
+
+
+def test_gamma_of_another_pair_is_refused():
+    S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    g = optimal_gamma(S, P)
+    assert gamma_for(ei.LinearSystem([[F(-1), F(1)], [F(-1), F(-1)]]), P, g) is g
+    scaled = ei.Polyhedron([[2, 0], [0, 1], [-1, 0], [0, -1]], [2, 1, 1, 1])  # the same square
+    for system, polyhedron, gamma in [(S, scaled, g), (ei.LinearSystem([[-2, 1], [-1, -1]]), P, g),
+                                      (S, P, g.value), (S, P, "g")]:
+        with pytest.raises(ei.InvalidInput, match="gamma"):
+            gamma_for(system, polyhedron, gamma)
+        with pytest.raises(ei.InvalidInput, match="gamma"):
+            forward_euler_threshold(system, polyhedron, gamma=gamma)
+        with pytest.raises(ei.InvalidInput, match="gamma"):
+            steplength_threshold(system, polyhedron, ei.methods.taylor(2), gamma=gamma)
+
+
+def test_a_tampered_gamma_is_caught_by_the_kernel():
+    """A caller's OptimalGamma with a replaced value: the engine's steplength_threshold returns
+    tau = 2 (true tau = 1) -- but the kernel rejects its certificate."""
+    S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
+    with pytest.raises(ei.VerificationFailed):
+        forward_euler_threshold(S, P, gamma=fake)  # cross-checked by the ratio tests
+    assert not check(steplength_threshold(S, P, ei.methods.taylor(2), gamma=fake).certificate)
+
+
+@pytest.mark.xfail(strict=True, reason="engine hole (kernel catches it): gamma_for trusts a caller-tampered "
+                   "OptimalGamma (dataclasses.replace), steplength_threshold returns a wrong tau without error")
+def test_engine_refuses_a_tampered_gamma():
+    S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
+    fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
+    with pytest.raises(ei.ExactinvError):
+        steplength_threshold(S, P, ei.methods.taylor(2), gamma=fake)
+
+
+# ---------------------------------------------------------------- resources: the integer ratio tests
+
+
+def _fe_certificate(n, digits, seed=1):
+    """A TRUE forward-Euler certificate on the cube [-1, 1]^n for A = -n I plus off-diagonal entries:
+    row 0 has n/(n - 1) (so gamma* = (n + s_0)/2 = n, binding row 0), the other rows 1/p_ik with
+    distinct `digits`-digit odd p_ik (tiny, so their rows' H need no diagonal shift): H rows
+    h_r = -n e_r + A_ik on the facet of e_k's sign; the dual y = e_0/2 - sum_(k>0) e_k/2, lambda = 1/2.
+    A's common denominator L has about (n - 1)^2 digits-digit factors."""
+    rng = random.Random(seed)
+    A = [[F(-n) if i == c else F(n, n - 1) if i == 0 else F(1, rng.randint(10 ** (digits - 1), 10 ** digits) | 1)
+          for c in range(n)] for i in range(n)]
+    m = 2 * n
+    H = [[F(0)] * m for _ in range(m)]
+    for i in range(n):
+        for r, offset in ((i, 0), (n + i, n)):
+            H[r][r] = F(-n)
+            for k in range(n):
+                if k != i:
+                    H[r][offset + k] = A[i][k]
+    text = lambda M: [[str(v) for v in row] for row in M]  # noqa: E731
+    vertices = [[str(1 - 2 * ((v >> k) & 1)) for k in range(n)] for v in range(2**n)]
+    return {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": text(A), "G": text([[F(int(i == c)) for c in range(n)] for i in range(n)]
+                                                + [[F(-int(i == c)) for c in range(n)] for i in range(n)]),
+                        "b": ["1"] * m},
+            "claims": [{"type": "gamma_star", "value": str(n), "H": text(H), "binding_row": 0,
+                        "dual": {"y": ["1/2"] + ["-1/2"] * (n - 1), "lambda": "1/2"}},
+                       {"type": "forward_euler_threshold", "value": f"1/{n}", "vertices": vertices,
+                        "rays": [], "lines": []}]}
+
+
+def test_the_cube_certificate_is_genuine():
+    assert check(_fe_certificate(3, 30))
+
+
+@pytest.mark.xfail(strict=True, reason="resource hole: _ratio_tests cross-multiplies numbers of A's common "
+                   "denominator's size (unpriced): n = 8, 601 KB true certificate, 148 s (the Fraction version before b4fe074: 16 s)")
+def test_integer_ratio_tests_are_priced():
+    _check_in_subprocess(_fe_certificate(8, 3990), 6)  # an answer (verified, or rejected as over budget) in time
+
+
+@pytest.mark.xfail(strict=True, reason="engine bug: optimal_gamma raises OverflowError (not an ExactinvError) "
+                   "when A's common denominator exceeds a float (gamma_batch._integers)")
+def test_engine_gamma_with_long_denominators():
+    A = [[F(-2), F(1, 10**400 + 1)], [F(0), F(-2)]]
+    assert optimal_gamma(ei.LinearSystem(A), ei.Polyhedron.box([-1, -1], [1, 1])).value == 2
