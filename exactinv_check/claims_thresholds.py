@@ -12,14 +12,14 @@
 """
 
 from fractions import Fraction
-from math import comb
+from math import comb, gcd
 
 from . import polys
 from .claims_invariance import check_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
-from .rationals import integer, integer_matrix, matrix, rational, require, vector
+from .rationals import integer, integer_matrix, matrix, rational, require, vector, within_budget
 from .reals import Real, quotient
 from .validset import first_end
 
@@ -157,14 +157,23 @@ def _ratio_tests(problem, gens):
     eps = (b_j - g_j.x)/(g_j.Ax); for a ray, -g_j.x/(g_j.Ax); for a line with g_j.Ax != 0, 0
     (None: no pair limits the step).  In integers: with A = Ai/L, x = xi/d and row j times
     its positive denominator (gi, bi), eps = (bi d - gi.xi) L / (gi.Ai xi) for a vertex, the
-    same without bi d for a ray; the least is kept as a fraction (num, den), den > 0, and
-    compared by cross-multiplication."""
+    same without bi d for a ray; the least is kept as a reduced fraction (num, den), den > 0,
+    and compared by cross-multiplication; priced first (generators x facets, by the words of
+    the numbers)."""
     L, Ai = integer_matrix(problem.A)
     rows = []
     for g, beta in zip(problem.G, problem.b):
         d, gi = integer_matrix([list(g) + [beta]])
         rows.append((gi[0][:-1], gi[0][-1]))
-    best = None  # (num, den)
+    generators = [x for vectors in (gens.vertices, gens.rays, gens.lines) for x in vectors]
+    words = 1 + (max([abs(x).bit_length() for row in Ai for x in row] + [1])
+                 + max([sum(x.denominator.bit_length() for x in v) + max(abs(x.numerator).bit_length() for x in v)
+                        for v in generators] + [1])
+                 + max([abs(x).bit_length() for gi, bi in rows for x in gi + [bi]] + [1])) // 64
+    n = len(problem.A)
+    within_budget(len(generators) * len(rows) * (30 + (2 * n + 4) * words // 20),
+                  f"the forward-Euler ratio tests of {len(generators)} generators and {len(rows)} facets")
+    best = None  # (num, den), reduced: each comparison multiplies a long number by a short one
     for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
         for x in vectors:
             d, xi = integer_matrix([x])
@@ -181,7 +190,8 @@ def _ratio_tests(problem, gens):
                 else:
                     num, den = ((bi * d if kind == "vertex" else 0) - sum(map(int.__mul__, gi, xi))) * L, rate
                 if best is None or num * best[1] < best[0] * den:
-                    best = (num, den)
+                    common = gcd(num, den)
+                    best = (num // common, den // common)
     return None if best is None else Fraction(*best)
 
 

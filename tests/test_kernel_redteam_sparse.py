@@ -13,10 +13,8 @@ What held (kept as fast regressions below):
 * _ratio_tests equals the Fraction ratio tests over huge (200-bit) and tiny entries, int
   vertices, zero rows of G, n = 1, empty generator lists, rays and lines only.
 * Forged forward-Euler values on genuine certificates are rejected unless equal to the truth.
-* gamma_for refuses a gamma* of another system or polyhedron (also of the same set of points
-  written with a scaled row) and of another type.
 
-No soundness hole found.  Findings (strict xfail tests below):
+No soundness hole found.  Findings, all fixed (their tests below pass):
 
 1. RESOURCE (kernel): _ratio_tests scales A by its common denominator L and cross-multiplies
    num * best_den < best_num * den, numbers of L's size, for every vertex-facet pair, unpriced.
@@ -27,8 +25,9 @@ No soundness hole found.  Findings (strict xfail tests below):
 2. ENGINE: optimal_gamma raises OverflowError (not an ExactinvError) when A's common denominator
    times an entry exceeds a float (gamma_batch._integers converts the scaled integers to float).
 3. ENGINE (the kernel catches it): a caller-TAMPERED OptimalGamma (dataclasses.replace on a
-   genuine one) passes gamma_for, and steplength_threshold returns a wrong tau (2, true 1)
-   without any error; its certificate is rejected by the kernel.
+   genuine one) passed gamma_for, and steplength_threshold returned a wrong tau (2, true 1)
+   without any error; its certificate is rejected by the kernel.  Now the public functions take
+   no gamma: only exactinv.certify passes the gamma* it solved itself.
 """
 
 import dataclasses
@@ -42,9 +41,9 @@ from test_kernel_redteam import _check_in_subprocess
 from test_kernel_speed_paths import _ratio_reference
 
 import exactinv as ei
-from exactinv.paper.forward_euler import forward_euler_threshold
-from exactinv.paper.gamma_star import gamma_for, optimal_gamma
-from exactinv.paper.threshold import steplength_threshold
+from exactinv.paper.forward_euler import _forward_euler_threshold, forward_euler_threshold
+from exactinv.paper.gamma_star import optimal_gamma
+from exactinv.paper.threshold import _steplength_threshold, steplength_threshold
 from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.rationals import CheckFailure, rational
@@ -212,38 +211,27 @@ def test_forged_forward_euler_values_are_rejected():
             assert bool(check(forged)) == (value == str(truth)), (value, truth)
 
 
-def test_gamma_of_another_pair_is_refused():
+def test_the_public_thresholds_take_no_gamma():
+    """Fixed (3.): gamma* is passed along only inside exactinv.certify (the private
+    _forward_euler_threshold / _steplength_threshold, with the gamma* certify solved itself):
+    the public functions solve it themselves and accept no caller's gamma."""
     S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
     g = optimal_gamma(S, P)
-    assert gamma_for(ei.LinearSystem([[F(-1), F(1)], [F(-1), F(-1)]]), P, g) is g
-    scaled = ei.Polyhedron([[2, 0], [0, 1], [-1, 0], [0, -1]], [2, 1, 1, 1])  # the same square
-    for system, polyhedron, gamma in [(S, scaled, g), (ei.LinearSystem([[-2, 1], [-1, -1]]), P, g),
-                                      (S, P, g.value), (S, P, "g")]:
-        with pytest.raises(ei.InvalidInput, match="gamma"):
-            gamma_for(system, polyhedron, gamma)
-        with pytest.raises(ei.InvalidInput, match="gamma"):
-            forward_euler_threshold(system, polyhedron, gamma=gamma)
-        with pytest.raises(ei.InvalidInput, match="gamma"):
-            steplength_threshold(system, polyhedron, ei.methods.taylor(2), gamma=gamma)
+    with pytest.raises(TypeError):
+        forward_euler_threshold(S, P, gamma=g)
+    with pytest.raises(TypeError):
+        steplength_threshold(S, P, ei.methods.taylor(2), gamma=g)
+    assert steplength_threshold(S, P, ei.methods.taylor(2)).value == 1
 
 
 def test_a_tampered_gamma_is_caught_by_the_kernel():
-    """A caller's OptimalGamma with a replaced value: the engine's steplength_threshold returns
-    tau = 2 (true tau = 1) -- but the kernel rejects its certificate."""
+    """An OptimalGamma with a replaced value handed to the private helpers: the engine's forward
+    Euler cross-check refuses it, and the kernel rejects the paper's threshold built from it."""
     S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
     fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
     with pytest.raises(ei.VerificationFailed):
-        forward_euler_threshold(S, P, gamma=fake)  # cross-checked by the ratio tests
-    assert not check(steplength_threshold(S, P, ei.methods.taylor(2), gamma=fake).certificate)
-
-
-@pytest.mark.xfail(strict=True, reason="engine hole (kernel catches it): gamma_for trusts a caller-tampered "
-                   "OptimalGamma (dataclasses.replace), steplength_threshold returns a wrong tau without error")
-def test_engine_refuses_a_tampered_gamma():
-    S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
-    fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
-    with pytest.raises(ei.ExactinvError):
-        steplength_threshold(S, P, ei.methods.taylor(2), gamma=fake)
+        _forward_euler_threshold(S, P, fake)  # cross-checked by the ratio tests
+    assert not check(_steplength_threshold(ei.methods.taylor(2), fake).certificate)
 
 
 # ---------------------------------------------------------------- resources: the integer ratio tests
@@ -282,14 +270,14 @@ def test_the_cube_certificate_is_genuine():
     assert check(_fe_certificate(3, 30))
 
 
-@pytest.mark.xfail(strict=True, reason="resource hole: _ratio_tests cross-multiplies numbers of A's common "
-                   "denominator's size (unpriced): n = 8, 601 KB true certificate, 148 s (the Fraction version before b4fe074: 16 s)")
 def test_integer_ratio_tests_are_priced():
+    """Fixed (1.): the least ratio is kept reduced (a long number times a short one per comparison)
+    and the tests are priced first."""
     _check_in_subprocess(_fe_certificate(8, 3990), 6)  # an answer (verified, or rejected as over budget) in time
 
 
-@pytest.mark.xfail(strict=True, reason="engine bug: optimal_gamma raises OverflowError (not an ExactinvError) "
-                   "when A's common denominator exceeds a float (gamma_batch._integers)")
 def test_engine_gamma_with_long_denominators():
+    """Fixed (2.): gamma_batch._integers checks the sizes as integers, before any float."""
     A = [[F(-2), F(1, 10**400 + 1)], [F(0), F(-2)]]
-    assert optimal_gamma(ei.LinearSystem(A), ei.Polyhedron.box([-1, -1], [1, 1])).value == 2
+    # on the box, gamma* = max_i (-a_ii + sum_(k != i) |a_ik|) = 2 + 1/(10^400 + 1)
+    assert optimal_gamma(ei.LinearSystem(A), ei.Polyhedron.box([-1, -1], [1, 1])).value == 2 + F(1, 10**400 + 1)

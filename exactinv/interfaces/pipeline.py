@@ -25,9 +25,9 @@ from ..core.algebraic import RealAlgebraic, significant_digits
 from ..core.polys import poly_text
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from ..paper.forward_euler import forward_euler_threshold
+from ..paper.forward_euler import _forward_euler_threshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.threshold import steplength_threshold
+from ..paper.threshold import _steplength_threshold
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
@@ -184,13 +184,13 @@ def _forward_euler(S, P, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
     if P.n > VERTEX_LIMIT:
         lines.append("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
         return []
-    fe = forward_euler_threshold(S, P, gamma=gamma)
+    fe = _forward_euler_threshold(S, P, gamma)
     lines.append(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")
     return [fe]
 
 
 def _paper_threshold(S, P, method: Method, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
-    t = steplength_threshold(S, P, method, gamma=gamma)
+    t = _steplength_threshold(method, gamma)
     lines.append(f"paper's threshold for {method.name} ({t.theorem}): {exact_text(t.value)}"
                  + ("" if t.attained else "  (not attained: valid on [0, tau))"))
     if t.paper != t.value:

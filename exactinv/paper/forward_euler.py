@@ -19,7 +19,7 @@ from ..model import LinearSystem, Polyhedron
 from ..model.methods import forward_euler
 from ..model.record import certificate as make_certificate, generator_record
 from ..model.validate import check_problem
-from .gamma_star import OptimalGamma, gamma_for
+from .gamma_star import OptimalGamma, optimal_gamma
 
 __all__ = ["ForwardEulerThreshold", "forward_euler_threshold"]
 
@@ -67,11 +67,9 @@ class ForwardEulerThreshold(ExactValueMixin):
         return make_certificate(self.gamma.system, self.gamma.polyhedron, None, [self])
 
 
-def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron, *,
-                            gamma: OptimalGamma | None = None) -> ForwardEulerThreshold:
+def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron) -> ForwardEulerThreshold:
     """The largest forward-Euler steplength, exact, cross-checked: 1/gamma* from
-    the verified LP and the vertex ratio tests must coincide.  ``gamma``: gamma* of
-    this pair if already computed (:func:`~exactinv.paper.gamma_star.gamma_for`).
+    the verified LP and the vertex ratio tests must coincide.
 
     >>> from exactinv.model import LinearSystem, Polyhedron
     >>> fe = forward_euler_threshold(LinearSystem([[-1, 1], [-1, -1]]), Polyhedron.box([-1, -1], [1, 1]))
@@ -79,7 +77,12 @@ def forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron, *,
     (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
     """
     check_problem(system, polyhedron, forward_euler())
-    gamma = gamma_for(system, polyhedron, gamma)
+    return _forward_euler_threshold(system, polyhedron, optimal_gamma(system, polyhedron))
+
+
+def _forward_euler_threshold(system: LinearSystem, polyhedron: Polyhedron, gamma: OptimalGamma) -> ForwardEulerThreshold:
+    """:func:`forward_euler_threshold` with gamma* already solved for this very pair by
+    :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims)."""
     g = gamma.value
     by_gamma = Fraction(0) if g == INF else (INF if isinstance(g, Infinity) or g <= 0 else 1 / g)
     best, binding = _ratio_tests(system, polyhedron)

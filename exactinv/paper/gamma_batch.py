@@ -229,13 +229,12 @@ def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarra
 def _integers(rows: Sequence[Sequence[Fraction]]) -> tuple[np.ndarray, int] | None:
     """(N, d) with rows = N/d, N integer-valued float64 (every |entry| < 2^53); None if too large."""
     d = lcm(*{v.denominator for row in rows for v in row}) if rows and rows[0] else 1
-    if d == 1:
-        N = np.array([[v.numerator for v in row] for row in rows], dtype=float)
-    else:
-        N = np.array([[v.numerator * (d // v.denominator) for v in row] for row in rows], dtype=float)
-    if d >= _EXACT or (N.size and not np.abs(N).max() < _EXACT):  # a rounded double >= 2^53 is >= 2^53 too
+    if d >= _EXACT:
         return None
-    return N.reshape(len(rows), -1), d
+    ints = [[v.numerator * (d // v.denominator) for v in row] for row in rows]
+    if any(abs(x) >= _EXACT for row in ints for x in row):  # checked as integers: no float overflow
+        return None
+    return np.array(ints, dtype=float).reshape(len(rows), -1), d
 
 
 def _max(M: np.ndarray) -> int:

@@ -23,7 +23,7 @@ from ..core.encode import encode_real, mat, vec
 from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
 from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..core.tags import ClaimType
-from ..errors import InvalidInput, VerificationFailed
+from ..errors import VerificationFailed
 from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
 from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
@@ -33,7 +33,7 @@ from .gamma_batch import RowBatch, batch_rows, integer_G, is_sparse
 from .gamma_dense import DenseRows, dense_rows
 from .witness import FacetWitness, push_along_ray
 
-__all__ = ["GammaRow", "OptimalGamma", "optimal_gamma", "gamma_for"]
+__all__ = ["GammaRow", "OptimalGamma", "optimal_gamma"]
 
 
 @dataclass(frozen=True)
@@ -225,27 +225,6 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     H = _assemble_H(rows, value)
     _recheck_continuous(S, P, H, value)
     return OptimalGamma(value, partial(_identity, H), binding, tuple(rows), None, S, P)
-
-
-def gamma_for(system: LinearSystem, polyhedron: Polyhedron, gamma: OptimalGamma | None = None) -> OptimalGamma:
-    """gamma* of (system, polyhedron): ``gamma`` if given -- a result of :func:`optimal_gamma` for
-    this very pair, so that callers computing several claims solve the m row LPs once -- else
-    computed.  A ``gamma`` of another pair is refused (it would certify the wrong problem).
-
-    >>> S, P = LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])
-    >>> g = optimal_gamma(S, P)
-    >>> gamma_for(S, P, g) is g, gamma_for(S, P).value
-    (True, Fraction(1, 2))
-    >>> gamma_for(LinearSystem([[-2]]), P, g)
-    Traceback (most recent call last):
-        ...
-    exactinv.errors.InvalidInput: gamma: computed for another system or polyhedron
-    """
-    if gamma is None:
-        return optimal_gamma(system, polyhedron)
-    if not isinstance(gamma, OptimalGamma) or gamma.system != system or gamma.polyhedron != polyhedron:
-        raise InvalidInput("gamma: computed for another system or polyhedron")
-    return gamma
 
 
 def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:

@@ -6,17 +6,15 @@ from __future__ import annotations
 from ..errors import NotInvariant
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method
-from .gamma_star import OptimalGamma, gamma_for
+from .gamma_star import OptimalGamma, optimal_gamma
 from .polynomial import SteplengthThreshold, polynomial_threshold
 from .rational import rational_threshold
 
 __all__ = ["steplength_threshold"]
 
 
-def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, *,
-                         gamma: OptimalGamma | None = None) -> SteplengthThreshold:
-    """The paper's valid threshold for ``method`` on P, with gamma = gamma* (``gamma``: gamma* of
-    this pair if already computed, :func:`~exactinv.paper.gamma_star.gamma_for`).
+def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method) -> SteplengthThreshold:
+    """The paper's valid threshold for ``method`` on P, with gamma = gamma*.
 
     Polynomial methods: Theorem 3.4 (tau = min_i tau_i); rational methods:
     Theorem 3.12, corrected by errata E2 and E2'.  Raises
@@ -29,7 +27,12 @@ def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: M
     Fraction(1, 1)
     """
     check_method(method)
-    gamma = gamma_for(system, polyhedron, gamma)
+    return _steplength_threshold(method, optimal_gamma(system, polyhedron))
+
+
+def _steplength_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
+    """:func:`steplength_threshold` with gamma* already solved by
+    :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims)."""
     if gamma.witness is not None:
         raise NotInvariant("P is not invariant for x' = Ax (gamma* = +oo); no threshold exists", gamma.witness)
     if method.is_polynomial:
