@@ -279,5 +279,6 @@ def test_integer_ratio_tests_are_priced():
 def test_engine_gamma_with_long_denominators():
     """Fixed (2.): gamma_batch._integers checks the sizes as integers, before any float."""
     A = [[F(-2), F(1, 10**400 + 1)], [F(0), F(-2)]]
-    # on the box, gamma* = max_i (-a_ii + sum_(k != i) |a_ik|) = 2 + 1/(10^400 + 1)
-    assert optimal_gamma(ei.LinearSystem(A), ei.Polyhedron.box([-1, -1], [1, 1])).value == 2 + F(1, 10**400 + 1)
+    # on [-1, 1]^2 forward Euler keeps row i iff |1 + h a_ii| + h sum_(k != i) |a_ik| <= 1, i.e.
+    # h <= 2/(-a_ii + sum |a_ik|): gamma* = max_i (-a_ii + sum_(k != i) |a_ik|)/2 = 1 + 1/(2 (10^400 + 1))
+    assert optimal_gamma(ei.LinearSystem(A), ei.Polyhedron.box([-1, -1], [1, 1])).value == 1 + F(1, 2 * (10**400 + 1))
