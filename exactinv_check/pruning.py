@@ -38,7 +38,7 @@ priced first (:func:`pieces_cost`).
 """
 
 from fractions import Fraction
-from math import comb, gcd, isqrt
+from math import gcd, isqrt
 
 from . import conditions
 from .rationals import FRACTION_WEIGHT, integer, rational, require, within_budget
