@@ -19,7 +19,7 @@ from .claims_invariance import check_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
-from .rationals import integer, integer_matrix, matrix, rational, require, vector, within_budget
+from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
 from .reals import Real, quotient
 from .validset import first_end
 
@@ -161,10 +161,7 @@ def _ratio_tests(problem, gens):
     and compared by cross-multiplication; priced first (generators x facets, by the words of
     the numbers)."""
     L, Ai = integer_matrix(problem.A)
-    rows = []
-    for g, beta in zip(problem.G, problem.b):
-        d, gi = integer_matrix([list(g) + [beta]])
-        rows.append((gi[0][:-1], gi[0][-1]))
+    rows = integer_rows(problem.G, problem.b)
     generators = [x for vectors in (gens.vertices, gens.rays, gens.lines) for x in vectors]
     words = 1 + (max([abs(x).bit_length() for row in Ai for x in row] + [1])
                  + max([sum(x.denominator.bit_length() for x in v) + max(abs(x.numerator).bit_length() for x in v)

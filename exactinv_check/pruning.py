@@ -41,7 +41,7 @@ from fractions import Fraction
 from math import gcd, isqrt
 
 from . import conditions
-from .rationals import FRACTION_WEIGHT, integer, rational, require, within_budget
+from .rationals import FRACTION_WEIGHT, integer, integer_rows, rational, require, within_budget
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)
@@ -157,17 +157,6 @@ def morton_order(boxes):
         for i, (c2, _) in enumerate(boxes):
             keys[i] |= spread[rank[c2[l]]] << (dims - 1 - l)
     return sorted(range(count), key=keys.__getitem__)
-
-
-def _integer_rows(G, b):
-    """Each row of (G | b) times a positive integer (the same half-space): (g, b) in integers."""
-    rows = []
-    for g, beta in zip(G, b):
-        d = 1
-        for x in list(g) + [beta]:
-            d = d * x.denominator // gcd(d, x.denominator)
-        rows.append(([int(x * d) for x in g], int(beta * d)))
-    return rows
 
 
 def chord_pieces(N, T):
@@ -337,7 +326,8 @@ def survivors(G, b, vertices, N, T):
     """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune
     (:func:`survivors_of_pieces` on the secants and remainders of A_d(h)), after pricing the
     pieces (:func:`pieces_cost`)."""
-    within_budget(pieces_cost(N, nodes(T)), f"the {len(nodes(T)) - 1} pieces of the pruning test "
+    ends = nodes(T)
+    within_budget(pieces_cost(N, ends), f"the {len(ends) - 1} pieces of the pruning test "
                   f"(degree {len(N) - 1}, n = {len(N[0])})")
     return survivors_of_pieces(G, b, vertices, chord_pieces(N, T))
 
@@ -350,7 +340,7 @@ def survivors_of_pieces(G, b, vertices, pieces):
     vertices along :func:`morton_order` only skip work (the box (1) of a block holds those
     of its vertices): a block's boxes against every row, each vertex's against the rows its
     block does not clear there (:class:`_Packed`)."""
-    rows = _integer_rows(G, b)
+    rows = integer_rows(G, b)
     out = {i: set() for i in range(len(vertices))}
     if not rows or not vertices:
         return {i: [] for i in out}

@@ -59,6 +59,16 @@ def integer_matrix(M):
     return L, [[x.numerator * (L // x.denominator) for x in row] for row in M]
 
 
+def integer_rows(G, b):
+    """Each row of (G | b) times its least positive common denominator: (g, beta) in integers,
+    the same half-space g x <= beta."""
+    rows = []
+    for g, beta in zip(G, b):
+        _, (scaled,) = integer_matrix([list(g) + [beta]])
+        rows.append((scaled[:-1], scaled[-1]))
+    return rows
+
+
 def rational(s, what="number"):
     """A Fraction from an exact number string (never from a float or bool)."""
     if isinstance(s, bool) or not isinstance(s, (str, int)):

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from exactinv_check import check, claims_thresholds, polys, pruning, validset
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.rationals import CheckFailure, integer_rows
 
 big = st.integers(-(2**130), 2**130)
 small = st.integers(-9, 9)
@@ -49,7 +49,7 @@ def test_the_slots_hold_the_rows_even_when_every_box_is_zero():
 
 def _reference_survivors(G, b, verts, N, T):
     """Every vertex against every row at every chord end, no blocks: the set the kernel must keep."""
-    rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], pruning.K * beta) for g, beta in pruning._integer_rows(G, b)]
+    rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], pruning.K * beta) for g, beta in integer_rows(G, b)]
     ends = pruning._Ends(pruning.chord_pieces(N, T), [pruning.vertex_box(v) for v in verts])
     return {i: sorted(j for j in range(len(rows)) if any(pruning._outside(rows[j], box)
                                                          for box in ends.boxes(pruning.vertex_box(v))))
