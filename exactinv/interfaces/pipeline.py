@@ -15,13 +15,13 @@ The command line, the notebooks and a batch runner all call :func:`certify`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from fractions import Fraction
 from typing import Any, Callable
 
 import exactinv_check
 
 from ..beyond.largest import ConditionSet, largest_threshold, valid_steplengths
 from ..core.text import exact_text, safe_step_text
+from ..errors import Undecided
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import _forward_euler_threshold
@@ -40,7 +40,10 @@ class Report:
     """What :func:`certify` found: the ``results`` (in certificate order), the
     JSON ``certificate``, the kernel's ``check`` report (None when skipped)
     and the human-readable ``lines``.  ``ok``: the kernel verified the
-    certificate (False when the check was skipped)."""
+    certificate (False when the check was skipped).  ``undecided``: the
+    questions exactinv could neither prove nor refute, as (what, why) pairs;
+    their claims are absent from the certificate, every other claim is in it
+    (a partial answer, never all-or-nothing)."""
 
     problem: Problem
     method: Method | None
@@ -48,10 +51,17 @@ class Report:
     certificate: dict = field(repr=False)
     check: Any = None
     lines: tuple[str, ...] = field(default=(), repr=False)
+    undecided: tuple[tuple[str, str], ...] = ()
 
     @property
     def ok(self) -> bool:
+        """The kernel verified the certificate (of every claim that was decided)."""
         return self.check is not None and self.check.ok
+
+    @property
+    def complete(self) -> bool:
+        """``ok`` and every question decided: nothing was left out of the certificate."""
+        return self.ok and not self.undecided
 
     @property
     def text(self) -> str:
@@ -100,6 +110,7 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         lines = [f"problem {problem.name}: n = {S.n}, ellipsoid x^T Q x <= 1" + (f", method {method.name}" if method else "")]
         return _finish(problem, method, ellipsoid_results(S, P, method, lines, step), lines, check, step)
     lines = [f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else "")]
+    undecided: list[tuple[str, str]] = []
     step("gamma* (verified row LPs)")
     gamma = optimal_gamma(S, P)
     results: list[Any] = [gamma]
@@ -115,15 +126,30 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         results += _forward_euler(S, P, gamma, lines)
         if method is not None:
             step(f"paper's threshold for {method.name}")
-            results += _paper_threshold(S, P, method, gamma, lines)
+            results += _decided(f"paper's threshold for {method.name}", lines, undecided,
+                                lambda: _paper_threshold(S, P, method, gamma, lines))
     if method is not None and P.n <= VERTEX_LIMIT:
         step("exact valid steplengths")
-        results += _largest(S, P, method, lines)
-    return _finish(problem, method, results, lines, check, step)
+        results += _decided(f"exact valid steplengths and largest threshold for {method.name}", lines, undecided,
+                            lambda: _largest(S, P, method, lines))
+    return _finish(problem, method, results, lines, check, step, tuple(undecided))
+
+
+def _decided(what: str, lines: list[str], undecided: list[tuple[str, str]],
+             stage: Callable[[], list[Any]]) -> list[Any]:
+    """The results of one stage, or none if it raises :class:`~exactinv.Undecided`: then
+    the question and the reason are recorded (``undecided``, a report line) and the
+    other stages go on -- the certificate simply holds no claim for it."""
+    try:
+        return stage()
+    except Undecided as exc:
+        undecided.append((what, str(exc)))
+        lines.append(f"{what}: UNDECIDED -- {exc}")
+        return []
 
 
 def _finish(problem: Problem, method: Method | None, results: list[Any], lines: list[str], check: bool,
-            step: Callable[[str], None]) -> Report:
+            step: Callable[[str], None], undecided: tuple[tuple[str, str], ...] = ()) -> Report:
     """The certificate of ``results`` and, if ``check``, the trusted kernel's verdict on it."""
     cert = make_certificate(problem.system, problem.polyhedron, method, results)
     report = None
@@ -134,7 +160,9 @@ def _finish(problem: Problem, method: Method | None, results: list[Any], lines: 
     else:
         lines.append(f"independent check: skipped (--no-check); run `exactinv check` on the certificate "
                      f"({len(cert['claims'])} claims)")
-    return Report(problem, method, tuple(results), cert, report, tuple(lines))
+    if undecided:
+        lines.append(f"undecided ({len(undecided)}, not in the certificate): " + "; ".join(w for w, _ in undecided))
+    return Report(problem, method, tuple(results), cert, report, tuple(lines), undecided)
 
 
 def _routes(paths: Any) -> str:
