@@ -8,7 +8,7 @@ from fractions import Fraction
 from math import isqrt
 
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
@@ -177,3 +177,31 @@ def test_every_threshold_has_a_float_safe_lower_end(problem, method):
     if L.value != ei.INF:
         assert oracle.judge_threshold(S, P, method, L.safe_float)  # valid per the exact oracle
         assert ei.discrete_invariance(S, P, method, L.lower).holds
+
+
+@st.composite
+def ellipsoid_problems(draw):
+    """A Q-dissipative A = (J - R) Q on E = {x^T Q x <= 1}, n = 2 (as tests/test_ellipsoid_thresholds.py)."""
+    q = st.builds(Fraction, st.integers(-3, 3), st.integers(1, 3))
+    B = [[draw(q) for _ in range(2)] for _ in range(2)]
+    Q = [[sum(B[k][i] * B[k][j] for k in range(2)) + (i == j) for j in range(2)] for i in range(2)]
+    s, c = draw(q), [draw(q), draw(q)]
+    JR = [[-c[0] * c[0], s - c[0] * c[1]], [-s - c[0] * c[1], -c[1] * c[1]]]
+    A = [[sum(JR[i][k] * Q[k][j] for k in range(2)) for j in range(2)] for i in range(2)]
+    return ei.LinearSystem(A), ei.Ellipsoid(Q)
+
+
+@given(ellipsoid_problems(), st.sampled_from([M.taylor(1), M.taylor(2), M.heun(), M.rk4()]))
+@settings(max_examples=10)
+def test_every_ellipsoid_threshold_has_a_float_safe_lower_end(problem, method):
+    S, E = problem
+    for x in (ei.largest_threshold(S, E, method), ei.forward_euler_threshold(S, E)):
+        if x.value == ei.INF:
+            assert x.safe_float == DOUBLE_MAX
+            continue
+        d = x.safe_float
+        assert float(x.lower) == x.lower == Fraction(d) and Fraction(d) <= x.value
+        assert Fraction(_up(d)) > x.value or (Fraction(_up(d)) == x.value and not x.attained)
+        if x.value > 0:
+            assert ei.discrete_invariance(S, E, method if isinstance(x, ei.LargestThreshold) else M.taylor(1),
+                                          x.lower).holds
