@@ -6,8 +6,8 @@ double d with [0, d] inside the valid steps -- judged by the exact oracle."""
 import math
 from fractions import Fraction
 from math import isqrt
+from pathlib import Path
 
-import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
@@ -19,7 +19,7 @@ from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.interfaces.problem import load_problem
 from strategies import metzler_cones
 
-ROOT = __import__("pathlib").Path(__file__).parent.parent
+ROOT = Path(__file__).parent.parent
 
 # issue 21: RK4 on x' = [[0, 1], [-2, -3]]x, P = {|2x1 + x2| <= 1, |x1 + x2| <= 1}
 RK4_S = ei.LinearSystem([[0, 1], [-2, -3]])

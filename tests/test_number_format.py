@@ -19,7 +19,7 @@ from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.core.text import exact_text
 from exactinv.interfaces.explain import explain
 from exactinv.interfaces.pipeline import certify
-from exactinv.interfaces.problem import Problem, load_problem
+from exactinv.interfaces.problem import load_problem
 from exactinv_check import text as kernel
 from exactinv_check.reals import Real
 

@@ -3,9 +3,8 @@ adjacent doubles around it, the safe float, and display."""
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 import math
+from fractions import Fraction
 
 from .algebraic import RealAlgebraic, Real
 from .doubles import DOUBLE_MAX, double_above, double_below
