@@ -324,3 +324,24 @@ def test_problem_cdd_errors_name_everything(tmp_path):
     problem.write_text(json.dumps({"system": {"A": [[-1]]}, "polyhedron": {"cdd": "missing.ine"}}))
     with pytest.raises(ei.ExactinvError, match=r"polyhedron.cdd: .*missing.ine: cannot read the cdd file"):
         load_problem(problem)
+
+
+def test_a_batch_finds_the_cdd_file_next_to_its_problem(tmp_path, monkeypatch):
+    from exactinv.interfaces.batch.corpus import read_corpus
+    from exactinv.interfaces.batch.task import Limits, run_task
+
+    monkeypatch.chdir(tmp_path)  # not the examples' folder
+    tasks = [t for t in read_corpus([str(ROOT / "examples" / "cdd")]) if t.kind == "certify"]
+    assert tasks
+    for task in tasks:
+        record = run_task(task, Limits(timeout=300, check=True))
+        assert record["status"] == "ok", record
+    lines = tmp_path / "corpus.jsonl"   # a .jsonl corpus: relative to the corpus file's folder
+    (tmp_path / "sets").mkdir()
+    (tmp_path / "sets" / "seg.ine").write_text("begin\n2 2 integer\n1 -1\n1 1\nend\n")
+    lines.write_text(json.dumps({"name": "seg", "system": {"A": [[-1]]}, "polyhedron": {"cdd": "sets/seg.ine"},
+                                 "method": {"taylor": 2}}) + "\n")
+    monkeypatch.chdir(ROOT)
+    (task,) = read_corpus([str(lines)])
+    record = run_task(task, Limits(timeout=300, check=True))
+    assert record["status"] == "ok" and record["values"]["largest_threshold"] == "2", record
