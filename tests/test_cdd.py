@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 from fractions import Fraction
 from math import lcm
+from pathlib import Path
 
 import ppl
 import pytest
@@ -19,7 +20,7 @@ import exactinv as ei
 from exactinv.interfaces.problem import load_problem
 from exactinv.model.cdd import parse_cdd, read_cdd
 
-ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parent.parent
 
 
 def ppl_h(G, b):
