@@ -32,8 +32,9 @@ SIBLINGS_THAT_NEVER_MEET = {("paper", "beyond"), ("beyond", "paper")}
 # Optional heavy extras, imported where they are used.  cvxpy: only the cvxpy
 # hint backend (exactinv/lp/hint.py) and the oracle's judge_lp need it, so it
 # stays an optional dependency.  dask: only `exactinv batch` (interfaces/batch/engine.py)
-# schedules on it (the `batch` extra).
-IN_FUNCTION_ALLOWED = ("matplotlib", "sympy", "IPython", "cvxpy", "dask")
+# schedules on it (the `batch` extra).  nodepy: only ei.methods.from_nodepy
+# (model/nodepy_methods.py) reads its method objects (the `nodepy` extra).
+IN_FUNCTION_ALLOWED = ("matplotlib", "sympy", "IPython", "cvxpy", "dask", "nodepy")
 
 
 def _module_name(path: Path) -> str:

@@ -2,7 +2,7 @@
 docs/problem.schema.json).
 
     {"system": {"A": [["-1", "1"], ["-1", "-1"]]},          # or {"A0", "B", "F"}
-     "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}
+     "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}, or {"cdd": "P.ine"}
      "method": {"taylor": 4}}                               # optional
 
 or, instead of "polyhedron", an ellipsoid {x : x^T Q x <= 1}:
@@ -67,20 +67,42 @@ def _system(data: dict) -> LinearSystem:
     raise InvalidInput(f'system: give "A", or "A0", "B" and "F" (missing {", ".join(missing)})')
 
 
-def _polyhedron(data: dict) -> Polyhedron:
+POLYHEDRON_KEYS = ("G", "b", "vertices", "rays", "lines", "cdd")
+
+
+def _cdd(poly: dict, base: str | None) -> Polyhedron:
+    if set(poly) != {"cdd"}:
+        raise InvalidInput('polyhedron: give "cdd" (a cdd file) alone, without "G", "b", "vertices", "rays", "lines"')
+    ref = poly["cdd"]
+    if not isinstance(ref, str) or not ref.strip():
+        raise InvalidInput(f"polyhedron.cdd: expected the path of a cdd file (.ine or .ext), got {_kind(ref)}")
+    if "\n" in ref.strip():  # the file's text, inline
+        source = ref
+    else:
+        source = ref if os.path.isabs(ref) else os.path.join(base or os.curdir, ref)
+    try:
+        return Polyhedron.from_cdd(source)
+    except InvalidInput as exc:
+        raise InvalidInput(f"polyhedron.cdd: {exc}") from None
+
+
+def _polyhedron(data: dict, base: str | None = None) -> Polyhedron:
     poly = _section(data, "polyhedron")
-    check_keys(poly, ("G", "b", "vertices", "rays", "lines"), "polyhedron")
+    check_keys(poly, POLYHEDRON_KEYS, "polyhedron")
+    if "cdd" in poly:
+        return _cdd(poly, base)
     h_keys, v_keys = {"G", "b"} & set(poly), {"vertices", "rays", "lines"} & set(poly)
     if h_keys and v_keys:
-        raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines") -- not both')
+        raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines"), '
+                           'or "cdd" -- not both')
     if h_keys:
         _require(poly, ("G", "b"), "polyhedron")
-        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+        with _At("polyhedron", POLYHEDRON_KEYS):
             return Polyhedron(poly["G"], poly["b"])
     if "vertices" in poly:
-        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+        with _At("polyhedron", POLYHEDRON_KEYS):
             return Polyhedron.from_vertices(poly["vertices"], poly.get("rays", ()), poly.get("lines", ()))
-    raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines")')
+    raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines"), or "cdd"')
 
 
 def _ellipsoid(data: dict) -> Ellipsoid:
@@ -91,16 +113,18 @@ def _ellipsoid(data: dict) -> Ellipsoid:
         return Ellipsoid(ell["Q"])
 
 
-def _invariant_set(data: dict) -> Polyhedron | Ellipsoid:
+def _invariant_set(data: dict, base: str | None) -> Polyhedron | Ellipsoid:
     if "ellipsoid" in data:
         if "polyhedron" in data:
             raise InvalidInput('ellipsoid: give "polyhedron" or "ellipsoid" -- not both')
         return _ellipsoid(data)
-    return _polyhedron(data)
+    return _polyhedron(data, base)
 
 
-def problem_from_dict(data: Any, name: str = "problem") -> Problem:
+def problem_from_dict(data: Any, name: str = "problem", base: str | None = None) -> Problem:
     """A :class:`Problem` from the parsed JSON of a problem file (every key checked).
+    A relative ``{"cdd": path}`` polyhedron is looked up in the folder ``base``
+    (the problem file's folder; the working directory when ``None``).
 
     >>> problem_from_dict({"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, "1/2"]},
     ...                    "method": {"taylor": 2}}, "box")
@@ -122,7 +146,7 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
     if "description" in data and not isinstance(data["description"], str):
         raise InvalidInput(f"description: expected a string, got {_kind(data['description'])}")
     system = _system(data)
-    polyhedron = _invariant_set(data)
+    polyhedron = _invariant_set(data, base)
     if system.n != polyhedron.n:
         what = "ellipsoid" if isinstance(polyhedron, Ellipsoid) else "polyhedron"
         raise InvalidInput(f"{what}: the system has dimension {system.n} but the {what} lives in dimension {polyhedron.n}")
@@ -130,9 +154,12 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
     return Problem(system, polyhedron, method, name)
 
 
-def load_problem(source: Any) -> Problem:
+def load_problem(source: Any, base: str | None = None) -> Problem:
     """Read a problem from a dict, a JSON string or a path to a JSON file.
-    Errors from a file are prefixed with its path.
+    Errors from a file are prefixed with its path.  A cdd file the problem
+    names (``"polyhedron": {"cdd": "P.ine"}``) is found relative to the problem
+    file's folder, or to ``base`` (default: the working directory) for a dict or
+    JSON text.
 
     >>> import pathlib, exactinv
     >>> examples = pathlib.Path(exactinv.__file__).parents[1] / "examples"
@@ -147,9 +174,9 @@ def load_problem(source: Any) -> Problem:
     exactinv.errors.InvalidInput: the JSON number -1.0 is a float; write it as a string ("-1.0") to mean it exactly
     """
     if isinstance(source, dict):
-        return problem_from_dict(source)
+        return problem_from_dict(source, base=base)
     if isinstance(source, str) and source.lstrip().startswith("{"):
-        return problem_from_dict(_parse(source, "problem"))
+        return problem_from_dict(_parse(source, "problem"), base=base)
     if not isinstance(source, (str, os.PathLike)):
         raise InvalidInput(f"problem: expected a dict, JSON text or a path, got {type(source).__name__}")
     path = str(source)
@@ -164,7 +191,7 @@ def load_problem(source: Any) -> Problem:
     except UnicodeDecodeError:
         raise InvalidInput(f"{path}: not a text file (a problem file is UTF-8 JSON)") from None
     try:
-        return problem_from_dict(_parse(text, path), name)
+        return problem_from_dict(_parse(text, path), name, os.path.dirname(os.path.abspath(path)))
     except InvalidInput as exc:
         if str(exc).startswith(path):
             raise
