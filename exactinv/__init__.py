@@ -29,6 +29,7 @@ from .beyond.ellipsoid_thresholds import (
     EllipsoidValidSteplengths,
 )
 from .beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths
+from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
@@ -108,6 +109,10 @@ __all__ = [
     "nearest_rational",
     "nonnegative_until",
     "optimal_gamma",
+    "optimal_gain",
+    "OptimalGain",
+    "robust_threshold",
+    "RobustThreshold",
     "real_roots",
     "steplength_threshold",
 ]
