@@ -89,6 +89,8 @@ def controllable(A, B):
 
 @st.composite
 def gain_problems(draw, with_inputs):
+    """Random controllable (A, B) with P a box or a polytope around 0 (often no gain exists:
+    both engines must then say infeasible) and, if asked, an input box."""
     n = draw(st.integers(2, 3))
     p = draw(st.integers(1, 2)) if n == 3 else 1
     A = [[draw(st.integers(-3, 3)) for _ in range(n)] for _ in range(n)]
@@ -105,6 +107,29 @@ def gain_problems(draw, with_inputs):
         with_inputs = draw(st.booleans())
     U = ei.Polyhedron.box([-draw(st.integers(1, 5)) for _ in range(p)], [draw(st.integers(1, 5)) for _ in range(p)]) \
         if with_inputs else None
+    return A, B, P, U
+
+
+@st.composite
+def feasible_gain_problems(draw):
+    """Controllable (A, B) for which some gain F0 keeps the box [-s, s]^n invariant, by construction:
+    M = A + B F0 has M_ii + sum_{j != i} |M_ij| <= 0 (each facet's outward rate <= 0 at every vertex);
+    the input box, if any, contains F0 P."""
+    n = draw(st.integers(2, 3))
+    p = draw(st.integers(1, 2)) if n == 3 else 1
+    M = [[draw(st.integers(-2, 2)) if i != j else 0 for j in range(n)] for i in range(n)]
+    for i in range(n):
+        M[i][i] = -sum(abs(v) for v in M[i]) - draw(st.integers(0, 2))
+    B = [[draw(st.integers(-2, 2)) for _ in range(p)] for _ in range(n)]
+    F0 = [[draw(st.integers(-2, 2)) for _ in range(n)] for _ in range(p)]
+    A = [[M[i][j] - sum(B[i][k] * F0[k][j] for k in range(p)) for j in range(n)] for i in range(n)]
+    assume(controllable(A, B))
+    s = draw(st.integers(1, 3))
+    P = ei.Polyhedron.box([-s] * n, [s] * n)
+    U = None
+    if draw(st.booleans()):
+        bound = [s * sum(abs(v) for v in F0[k]) + draw(st.integers(0, 2)) for k in range(p)]
+        U = ei.Polyhedron.box([-max(u, 1) for u in bound], [max(u, 1) for u in bound])
     return A, B, P, U
 
 
@@ -130,11 +155,11 @@ def test_against_an_independent_float_lp_with_inputs(problem):
     _check_against_float(*problem)
 
 
-@given(gain_problems(with_inputs=None), st.data())
+@given(feasible_gain_problems(), st.data())
 def test_closed_loop_gamma_and_forward_euler_and_no_random_gain_does_better(problem, data):
     A, B, P, U = problem
     g = ei.optimal_gain(A, B, P, inputs=U)
-    assume(g.holds)
+    assert g.holds  # F0 is admissible
     closed = g.optimal_gamma()
     assert closed.value == g.gamma  # the closed loop's own gamma* (its own verified LPs)
     fe = g.forward_euler_threshold()
@@ -157,10 +182,12 @@ def test_double_integrator_by_hand():
     On x1 + x2 = 1 with u = f1 x1 + f2 x2: (x1 + x2)' = x2 + u; the LP's optimum is worked out
     independently by the float LP and must match the closed loop's own gamma*."""
     A, B = DOUBLE_INTEGRATOR
-    U = ei.Polyhedron.box([-1], [1])
+    U = ei.Polyhedron.box([-2], [2])
     g = ei.optimal_gain(A, B, SKEWED, inputs=U)
-    assert g.holds
-    assert all(abs(sum(g.F[0][c] * x[c] for c in range(2))) <= 1 for x in SKEWED.vertices)  # |u| <= 1 on P
+    assert g.holds and g.gamma == 1
+    assert all(abs(sum(g.F[0][c] * x[c] for c in range(2))) <= 2 for x in SKEWED.vertices)  # |u| <= 2 on P
+    # |u| <= 1 is too little: at the vertex (-1, 2) of the facet x1 + x2 = 1, x2 + u <= 0 needs u <= -2
+    assert not ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-1], [1])).holds
     assert ei.optimal_gamma(g.system, SKEWED).value == g.gamma
     free = ei.optimal_gain(A, B, SKEWED)
     assert free.gamma <= g.gamma  # fewer constraints, no worse
@@ -179,10 +206,12 @@ def test_infeasible_gain_has_a_kernel_checked_farkas_certificate():
     assert report.ok, str(report)
     with pytest.raises(ei.NotInvariant):
         g.system
-    # a controllable pair whose input limit is too tight: x2' = x1 + u with |u| <= 1/2 on the box
-    tight = ei.optimal_gain([[0, 1], [1, 0]], [[0], [1]], BOX2, inputs=ei.Polyhedron.box(["-1/2"], ["1/2"]))
+    # a controllable pair whose input limit is too tight (test_double_integrator_by_hand): |u| <= 1 on SKEWED
+    A, B = DOUBLE_INTEGRATOR
+    tight = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-1], [1]))
     assert not tight.holds and ei.check(tight.certificate).ok
-    assert ei.optimal_gain([[0, 1], [1, 0]], [[0], [1]], BOX2, inputs=ei.Polyhedron.box([-2], [2])).holds
+    assert tight.farkas["w"] and any(w > 0 for w in tight.farkas["w"])  # the input rows take part in the proof
+    assert ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-2], [2])).holds
 
 
 def _rejected(cert):
@@ -191,7 +220,7 @@ def _rejected(cert):
 
 def test_forged_certificates_are_rejected():
     A, B = DOUBLE_INTEGRATOR
-    g = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-1], [1]))
+    g = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-2], [2]))
     cert = g.certificate
     assert ei.check(cert).ok
     claim = cert["claims"][0]
@@ -213,14 +242,16 @@ def test_forged_certificates_are_rejected():
     c = copy.deepcopy(cert)
     c["problem"]["inputs"]["e"] = ["1/2", "1/2"]
     assert _rejected(c)
-    # Farkas vectors: a flipped sign is no proof
+    # Farkas vectors: the negated vector, the zero vector and a negative mu are no proof
     bad = ei.optimal_gain([[1, 0], [0, 0]], [[0], [1]], BOX2).certificate
-    for i, row in enumerate(bad["claims"][0]["farkas"]["Y"]):
-        for j, v in enumerate(row):
-            if Fraction(v) != 0:
-                c = copy.deepcopy(bad)
-                c["claims"][0]["farkas"]["Y"][i][j] = str(-Fraction(v))
-                assert _rejected(c)
+    farkas = bad["claims"][0]["farkas"]
+    for edit in (lambda f: f.update(Y=[[str(-Fraction(v)) for v in row] for row in f["Y"]]),
+                 lambda f: f.update(Y=[["0"] * len(row) for row in f["Y"]], mu=["0"] * len(f["mu"])),
+                 lambda f: f.update(mu=[str(-Fraction(v)) if Fraction(v) else "-1" for v in f["mu"]]),
+                 lambda f: f.update(nu=["1"] + f["nu"][1:])):
+        c = copy.deepcopy(bad)
+        edit(c["claims"][0]["farkas"])
+        assert c["claims"][0]["farkas"] != farkas and _rejected(c)
     c = copy.deepcopy(bad)
     c["problem"]["A"][0][0] = "-1"  # now a gain exists (x1' = -x1): the certificate proves nothing
     assert _rejected(c)
@@ -228,7 +259,7 @@ def test_forged_certificates_are_rejected():
 
 def test_the_closed_loop_results_delegate_to_the_engine():
     A, B = DOUBLE_INTEGRATOR
-    g = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-1], [1]))
+    g = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-2], [2]))
     S = g.system
     assert S.A == ei.LinearSystem.closed_loop(A, B, g.F).A
     m = ei.methods.taylor(2)
