@@ -166,7 +166,7 @@ def _kind(example):
         return "certificate"
     if "type" in example:
         return "claim"
-    assert set(example) <= {"A", "G", "b", "Q", "method"}, f"unrecognised example {example!r:.200}"
+    assert set(example) <= {"A", "G", "b", "Q", "method", "B", "inputs", "hull"}, f"unrecognised example {example!r:.200}"
     return "problem"
 
 
