@@ -73,7 +73,12 @@ class GainLP:
         return self.m * self.m + self.p * self.n
 
     def primal(self, x: Sequence[Fraction]) -> tuple[Matrix, Matrix, Fraction, Matrix]:
-        """(H, F, gamma, Lambda) from an LP point."""
+        """(H, F, gamma, Lambda) from an LP point.
+
+        >>> lp = gain_lp([[0]], [[1]], [[1], [-1]], [1, 1])
+        >>> lp.primal([1, 2, 3, 4, 5, 6])
+        (((1, 2), (3, 4)), ((5,),), 6, ())
+        """
         m, n, p, q = self.m, self.n, self.p, self.q
         H = _block(x, 0, m, m)
         F = _block(x, m * m, p, n)
@@ -81,7 +86,11 @@ class GainLP:
         return H, F, x[g], _block(x, g + 1, q, m)
 
     def dual(self, y: Sequence[Fraction]) -> dict:
-        """The dual's parts {Y, mu, nu, Z, w} from an LP dual vector (rows in the order (1)-(5))."""
+        """The dual's parts {Y, mu, nu, Z, w} from an LP dual vector (rows in the order (1)-(5)).
+
+        >>> gain_lp([[0]], [[1]], [[1], [-1]], [1, 1]).dual([1, 2, 3, 4, 5, 6])
+        {'Y': ((1,), (2,)), 'mu': (3, 4), 'nu': (5, 6), 'Z': (), 'w': ()}
+        """
         m, n, q = self.m, self.n, self.q
         s = m * n
         return {"Y": _block(y, 0, m, n), "mu": tuple(y[s:s + m]), "nu": tuple(y[s + m:s + 2 * m]),

@@ -75,23 +75,49 @@ class OptimalGain:
         return INF if self.gamma <= 0 else 1 / self.gamma
 
     def optimal_gamma(self) -> OptimalGamma:
-        """gamma* of the closed loop, recomputed by :func:`exactinv.optimal_gamma` (it equals ``gamma``)."""
+        """gamma* of the closed loop, recomputed by :func:`exactinv.optimal_gamma` (it equals ``gamma``).
+
+        The mass-spring-damper x1' = x2, x2' = -x1 - x2/2 + u on {|x1| <= 1, |x1 + x2| <= 1}, |u| <= 2:
+
+        >>> g = _example()
+        >>> g.F, g.system.A[1], g.optimal_gamma().value
+        (((Fraction(1, 1), Fraction(-1, 2)),), (Fraction(0, 1), Fraction(-1, 1)), Fraction(1, 1))
+        """
         return optimal_gamma(self.system, self.polyhedron)
 
     def threshold(self, method: Method) -> SteplengthThreshold:
-        """The paper's threshold of ``method`` for the closed loop (:func:`exactinv.steplength_threshold`)."""
+        """The paper's threshold of ``method`` for the closed loop (:func:`exactinv.steplength_threshold`).
+
+        >>> from exactinv.model.methods import taylor
+        >>> _example().threshold(taylor(2)).value     # rho/gamma = 1/1
+        Fraction(1, 1)
+        """
         return steplength_threshold(self.system, self.polyhedron, check_method(method))
 
     def largest_threshold(self, method: Method) -> LargestThreshold:
-        """The closed loop's exact largest threshold of ``method`` (:func:`exactinv.largest_threshold`)."""
+        """The closed loop's exact largest threshold of ``method`` (:func:`exactinv.largest_threshold`).
+
+        >>> from exactinv.model.methods import taylor
+        >>> _example().largest_threshold(taylor(2)).value
+        Fraction(2, 1)
+        """
         return largest_threshold(self.system, self.polyhedron, check_method(method))
 
     def valid_steplengths(self, method: Method) -> ValidSteplengths:
-        """The closed loop's exact valid set of ``method`` (:func:`exactinv.valid_steplengths`)."""
+        """The closed loop's exact valid set of ``method`` (:func:`exactinv.valid_steplengths`).
+
+        >>> from exactinv.model.methods import taylor
+        >>> _example().valid_steplengths(taylor(2)).intervals
+        [0, 2]
+        """
         return valid_steplengths(self.system, self.polyhedron, check_method(method))
 
     def forward_euler_threshold(self) -> ForwardEulerThreshold:
-        """The closed loop's largest forward-Euler step, derived two ways (it equals 1/gamma)."""
+        """The closed loop's largest forward-Euler step, derived two ways (it equals 1/gamma).
+
+        >>> _example().forward_euler_threshold().value
+        Fraction(1, 1)
+        """
         return forward_euler_threshold(self.system, self.polyhedron)
 
     def _require_gain(self) -> None:
@@ -137,6 +163,12 @@ def gain_problem_record(A: Matrix, B: Matrix, polyhedron: Polyhedron, inputs: Po
     if inputs is not None:
         record["inputs"] = {"E": mat(inputs.G), "e": vec(inputs.b)}
     return record
+
+
+def _example() -> OptimalGain:
+    """The mass-spring-damper of the docstrings (and notebooks/06_optimal_gain.ipynb)."""
+    P = Polyhedron([[1, 0], [-1, 0], [1, 1], [-1, -1]], [1, 1, 1, 1])
+    return optimal_gain([[0, 1], [-1, "-1/2"]], [[0], [1]], P, inputs=Polyhedron.box([-2], [2]))
 
 
 def _encoded(parts: dict) -> dict:

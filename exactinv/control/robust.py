@@ -80,7 +80,13 @@ class RobustThreshold(ExactValueMixin):
         return INF if isinstance(g, Infinity) or g <= 0 else 1 / g
 
     def vertex_valid_sets(self) -> tuple[Any, ...]:
-        """The vertices' exact valid sets (:func:`exactinv.valid_steplengths`), each with its certificate."""
+        """The vertices' exact valid sets (:func:`exactinv.valid_steplengths`), each with its certificate.
+
+        >>> from exactinv.model.methods import taylor
+        >>> r = robust_threshold([LinearSystem([[-1]]), LinearSystem([[-2]])], Polyhedron.box([-1], [1]), taylor(1))
+        >>> [V.intervals for V in r.vertex_valid_sets()], r.upper_bound    # |1 - h| <= 1, |1 - 2h| <= 1
+        ([[0, 2], [0, 1]], [0, 1])
+        """
         return self._vertex_sets
 
     @cached_property
@@ -125,6 +131,12 @@ class RobustThreshold(ExactValueMixin):
         return envelope(robust_problem_record(self.systems, self.polyhedron, self.method), [self])
 
     def to_latex(self) -> str:
+        """The robust threshold in LaTeX.
+
+        >>> from exactinv.model.methods import taylor
+        >>> print(robust_threshold([LinearSystem([[-1]])], Polyhedron.box([-1], [1]), taylor(1)).to_latex())
+        \\tau_{\\mathrm{robust}} = \\rho/\\gamma = 2\\ \\text{(valid on } [0, \\tau])
+        """
         end = "]" if self.attained else ")"
         return rf"\tau_{{\mathrm{{robust}}}} = \rho/\gamma = {latex_real(self.value)}\ \text{{(valid on }} [0, \tau{end})"
 
