@@ -9,7 +9,7 @@ standard-library-only package :mod:`exactinv_check` -- re-verifies
 (``exactinv.check`` is ``exactinv_check.check``).
 
 The package is layered; imports point one way only (tests/test_layering.py):
-errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces.
+errors <- core <- lp <- model <- {paper, beyond} <- {control, certificates} <- interfaces.
 
 >>> import exactinv as ei
 >>> S = ei.LinearSystem([[-1, 1], [-1, -1]])
