@@ -77,7 +77,8 @@ class OptimalGain:
     def optimal_gamma(self) -> OptimalGamma:
         """gamma* of the closed loop, recomputed by :func:`exactinv.optimal_gamma` (it equals ``gamma``).
 
-        The mass-spring-damper x1' = x2, x2' = -x1 - x2/2 + u on {|x1| <= 1, |x1 + x2| <= 1}, |u| <= 2:
+        The mass-spring-damper x1' = x2, x2' = -x1 - x2/2 + u on
+        P = {-1 <= x1 <= 1, -1 <= x1 + x2 <= 1} with -2 <= u <= 2:
 
         >>> g = _example()
         >>> g.F, g.system.A[1], g.optimal_gamma().value
@@ -186,8 +187,8 @@ def optimal_gain(A: Any, B: Any, polyhedron: Polyhedron, inputs: Polyhedron | No
     gain makes P invariant (``holds == False``).  Raises :class:`~exactinv.ExactinvError`
     when gamma is unbounded below (no optimum; e.g. P a cone that an input can expand).
 
-    The double integrator x1' = x2, x2' = u on P = {|x1| <= 1, |x1 + x2| <= 1} with |u| <= 2
-    (on the facet x1 + x2 = 1 the vertex (-1, 2) needs u <= -2; with |u| <= 1 no gain exists):
+    The double integrator x1' = x2, x2' = u on P = {-1 <= x1 <= 1, -1 <= x1 + x2 <= 1} with
+    -2 <= u <= 2 (on the facet x1 + x2 = 1 the vertex (-1, 2) needs u <= -2; with -1 <= u <= 1 no gain exists):
 
     >>> P = Polyhedron([[1, 0], [-1, 0], [1, 1], [-1, -1]], [1, 1, 1, 1])
     >>> g = optimal_gain([[0, 1], [0, 0]], [[0], [1]], P, inputs=Polyhedron.box([-2], [2]))
