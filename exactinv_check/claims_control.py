@@ -17,7 +17,7 @@
 
 from . import claims_invariance
 from .claims_thresholds import INF, ZERO, smallest_positive_root
-from .rationals import describe, dot, matmul, matrix, matvec, rational, require, vector
+from .rationals import describe, dot, matmul, matrix, matvec, rational, require, vector, within_budget
 from .reals import Real, quotient
 
 
@@ -53,6 +53,7 @@ def optimal_gain(problem, claim, context):
     require(problem.B is not None, "an optimal_gain claim needs B in the problem")
     A, B, G, b, m, n, p = problem.A, problem.B, problem.G, problem.b, problem.m, problem.n, problem.p
     E, e, q = problem.E, problem.e, len(problem.E)
+    within_budget((m + q) * (m + p) * n + n * n * p, f"the gain LP's rows ({m} x {m} H, {p} x {n} F, {q} x {m} Lambda)")
     value = Real.parse(claim["value"], "gamma")
     keys = set(claim) - {"type", "holds", "value"}
     if not claim["holds"]:
