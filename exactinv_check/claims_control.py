@@ -128,7 +128,9 @@ def robust_threshold(problem, claim, context):
     has_beta = "beta" in claim or "v" in claim
     if method.is_polynomial:
         require(not has_beta, "beta and v belong to rational methods only")
-        if positive:
+        if positive and rho.inf:
+            expected, at = INF, True
+        elif positive:
             expected, at = quotient(rho, gamma), context["rho_attained"]
         else:
             expected, at = (INF if all(s >= 0 for s in method.numerator) else ZERO), True

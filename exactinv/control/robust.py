@@ -220,7 +220,7 @@ def robust_threshold(systems: Sequence[LinearSystem], polyhedron: Polyhedron, me
     beta = v = None
     if method.is_polynomial:
         if positive:
-            value, attained = _over(rho, gamma), radius.attained
+            value, attained = (INF, True) if isinstance(rho, Infinity) else (_over(rho, gamma), radius.attained)
         else:  # H >= 0: tau = oo iff every sigma_k >= 0 (erratum E6)
             value, attained = (INF, True) if all(s >= 0 for s in method.numerator) else (Fraction(0), True)
     else:
