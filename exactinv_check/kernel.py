@@ -12,8 +12,8 @@ import json
 import os
 from fractions import Fraction
 
-from . import claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
-from .rationals import CheckFailure, matrix, require, vector
+from . import claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
+from .rationals import CheckFailure, matrix, rank_and_nullspace, require, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2)
@@ -42,6 +42,9 @@ CLAIMS = {
     "ellipsoid_valid_steplengths": (claims_ellipsoid.valid_steplengths, {"intervals"}, {"determinant"}),
     "ellipsoid_largest_threshold": (claims_ellipsoid.largest_threshold, {"value", "attained"}, {"determinant", "binding"}),
     "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
+    "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas"}),
+    "robust_threshold": (claims_control.robust_threshold, {"value", "attained", "gamma", "rho", "forward_euler",
+                                                           "vertices"}, {"beta", "v"}),
 }
 _BOOLEAN_KEYS = {"holds", "attained"}
 
@@ -81,10 +84,16 @@ class Problem:
     symmetric positive definite) and the method; radius certificates have only the method."""
 
     def __init__(self, record):
-        require(isinstance(record, dict) and set(record) <= {"A", "G", "b", "Q", "method"},
-                "problem has the keys A, G, b (or Q), method")
+        require(isinstance(record, dict) and set(record) <= {"A", "B", "inputs", "hull", "G", "b", "Q", "method"},
+                "problem has the keys A, G, b (or Q), method; B and inputs (a gain); hull, G, b, method (robust)")
         self.method = Method(record["method"]) if record.get("method") is not None else None
-        self.Q = None
+        self.Q = self.B = self.hull = None
+        self.E, self.e, self.p = [], [], 0
+        if "hull" in record:
+            self._hull(record)
+            return
+        require(not {"B", "inputs"} & set(record) or {"A", "G", "b", "B"} <= set(record) and "method" not in record,
+                "a gain problem has the keys A, B, G, b (and inputs)")
         if "Q" in record:
             require(set(record) <= {"A", "Q", "method"} and "A" in record, "an ellipsoid problem has the keys A, Q, method")
             self.A = matrix(record["A"], "A")
@@ -109,6 +118,31 @@ class Problem:
         else:
             self.A = self.G = self.b = None
             self.n = self.m = 0
+        if "B" in record:
+            self.B = matrix(record["B"], "B", self.n)
+            self.p = len(self.B[0]) if self.B else 0
+            require(self.p >= 1, "B has no column")
+            if "inputs" in record:
+                U = record["inputs"]
+                require(isinstance(U, dict) and set(U) == {"E", "e"}, "inputs has the keys E, e")
+                self.E = matrix(U["E"], "inputs E", cols=self.p)
+                self.e = vector(U["e"], "inputs e", len(self.E))
+                require(self.E and all(any(row) for row in self.E), "inputs E is empty or has a zero row")
+
+    def _hull(self, record):
+        """conv{A_1, ..., A_k} on P = {x : Gx <= b}: the vertices, G, b and the method."""
+        require(set(record) <= {"hull", "G", "b", "method"} and {"G", "b"} <= set(record),
+                "a robust problem has the keys hull, G, b, method")
+        require(isinstance(record["hull"], list) and record["hull"], "hull is a nonempty list of matrices")
+        self.G = matrix(record["G"], "G")
+        self.m = len(self.G)
+        self.n = len(self.G[0]) if self.G else 0
+        require(self.m >= 1 and self.n >= 1, "G is empty")
+        self.b = vector(record["b"], "b", self.m)
+        require(all(any(row) for row in self.G), "G has a zero row (void or infeasible; exactinv never writes one)")
+        self.hull = [matrix(A, f"hull[{i}]", self.n, self.n) for i, A in enumerate(record["hull"])]
+        self.A = None
+        self.lines_possible = rank_and_nullspace(self.G, self.n)[0] < self.n
 
 
 class CheckReport:
@@ -205,6 +239,8 @@ def check(certificate, progress=None):
             _check_keys(claim, kind)
             if kind.startswith("ellipsoid_"):
                 require(problem.Q is not None, f"a {kind} claim needs A and Q in the problem")
+            elif kind == "robust_threshold":
+                require(problem.hull is not None, "a robust_threshold claim needs hull, G and b in the problem")
             elif kind != "absolute_monotonicity_radius":
                 require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
             verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
