@@ -30,7 +30,8 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys, pruning
-from .rationals import WORK_BUDGET, integer, rational, require, within_budget
+from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
+from .rationals import integer, rational, require, within_budget
 
 VARIABLE = "h/(s+h)"
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
@@ -38,7 +39,6 @@ MAX_PIECES = 512
 _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the box grid is 2^-40)
 
 
-PIECES_BUDGET = 20 * WORK_BUDGET  # about 20 s of pieces (a genuine Pade(6,6) record on R^6: 7e8, 1 s)
 
 
 def is_rational_record(record):
@@ -172,6 +172,7 @@ def survivors(G, b, vertices, D, N, s, U, count):
     cost = pieces_cost(D, N, s, ends)
     require(cost <= PIECES_BUDGET, f"over the kernel's work budget: the Bernstein pieces of the pruning test in u "
             f"(estimated {cost:.2e} > {PIECES_BUDGET:.0e})")
+    charge(cost // PIECES_PER_WORD, "the Bernstein pieces of the pruning test in u")
     P = lifted(D, N, s)
     pieces = [_piece(P, t, u - t) for t, u in zip(ends, ends[1:])]
     rows = [[-beta] + list(g) for g, beta in zip(G, b)]
