@@ -25,6 +25,10 @@ def degree(p):
 
 
 def evaluate(p, x):
+    """p(x) over Q (Horner), charged to the certificate's account by the size of x."""
+    x = Fraction(x)
+    charge(fraction_products_cost(len(p), len(p) * max(abs(x.numerator).bit_length(), x.denominator.bit_length())),
+           "a value of a polynomial")
     acc = Fraction(0)
     for c in reversed(p):
         acc = acc * x + c

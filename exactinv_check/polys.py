@@ -47,7 +47,8 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     sub,
     trim,
 )
-from .budget import STURM_BUDGET, charge, descartes_node_cost, modular_squarefree_cost, sturm_cost, within_sturm_budget  # noqa: F401
+from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
+from .budget import within_sturm_budget
 from .budget import memo as _memo
 from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
@@ -61,6 +62,8 @@ def sign_at(ints, x):
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
     (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
     n, d = x.numerator, x.denominator
+    charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
+           "a sign of a polynomial at a rational")
     acc, power = 0, 1
     for c in ints:  # low to high: acc = sum_{k<=i} c_k n^k d^(i-k), rescaled as i grows
         acc = acc * d + c * power
@@ -75,7 +78,7 @@ def descartes_variations(ints, a, b):
     D = len(ints) - 1
     w = b - a
     size = a.numerator.bit_length() + a.denominator.bit_length() + b.numerator.bit_length() + b.denominator.bit_length()
-    charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size),
+    charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size, size),
            "root isolation (Descartes' rule)")
     s = a.denominator * w.denominator
     u, v = a.numerator * w.denominator, w.numerator * a.denominator  # a + w y = (u + v y) / s

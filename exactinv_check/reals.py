@@ -15,7 +15,6 @@ only root of ``poly`` in the open (lo, hi), and poly(lo), poly(hi) are nonzero
 from fractions import Fraction
 
 from . import polys, text
-from .budget import charge, evaluation_cost
 from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
 
@@ -107,8 +106,6 @@ class Real:
 
     def bisect(self):
         mid = (self.lo + self.hi) / 2
-        charge(evaluation_cost(len(self._ints) - 1, self._bits + (len(self._ints) - 1)
-                               * (mid.numerator.bit_length() + mid.denominator.bit_length())), "a bisection")
         s = polys.sign_at(self._ints, mid)
         if s == 0:
             self.q, self.poly = mid, None
