@@ -62,6 +62,8 @@ def sign_at(ints, x):
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
     (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
     n, d = x.numerator, x.denominator
+    if not ints:  # the zero polynomial
+        return 0
     charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
            "a sign of a polynomial at a rational")
     acc, power = 0, 1
@@ -78,6 +80,8 @@ def descartes_variations(ints, a, b):
     D = len(ints) - 1
     w = b - a
     size = a.numerator.bit_length() + a.denominator.bit_length() + b.numerator.bit_length() + b.denominator.bit_length()
+    if D < 1:  # a constant: no root, no variation
+        return 0
     charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size, size),
            "root isolation (Descartes' rule)")
     s = a.denominator * w.denominator
