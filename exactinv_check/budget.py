@@ -21,6 +21,12 @@ second of pure-Python work):
   certificate.  Many claims each just under the per-computation limit cannot
   add up to more than one certificate budget.
 
+The constants and the cost formulas of the primitive operations are here.  The
+estimate of a specific computation's size stays next to that computation
+(conditions.rebuild_size, claims_radius.scan_cost, tie.interpolation_cost,
+pruning.pieces_cost, pruning_rational.pieces_cost, ellipsoids._conditions_cost,
+boxes._price) and is passed to :func:`within_budget`.
+
 Charges are deterministic (counts of operations, never clocks), so a verdict
 does not depend on the machine's load.  Behind them stands one safety net, a
 clock: an account also has a time limit (TIME_LIMIT seconds by default), and a

@@ -8,7 +8,7 @@ c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
 * rho = 0 (not attained) by an index j with c_j(0) < 0: then kappa = 0 itself
   fails (exact series of g/h at 0);
 * rho = oo for r = c / prod (1 - z/p_k)^(m_k), c > 0, every p_k real and
-  positive: a product of absolutely monotonic factors (Sturm counts);
+  positive: a product of absolutely monotonic factors (exact root counts);
 * otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
   rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
   and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)

@@ -12,7 +12,7 @@ The kernel proves, trusting nothing in the record:
 
 1. U < 1: vertex k's own valid set (first interval) ends by T = sU/(1 - U);
    U = 1 covers every h >= 0 (T = oo), and nothing is asked of vertex k.
-2. D > 0 on [0, T] (D(0) > 0 and a Sturm count of no root in (0, T]).
+2. D > 0 on [0, T] (D(0) > 0 and an exact count of no root in (0, T], Descartes isolation).
 3. [0, U] is cut at U x, x in {a/pieces} and {2^-i, 1 - 2^-i : i <= 12}; on a
    piece [t, t + d] the Bernstein coefficients B_0..B_E of P(t + d l) give
    P(t + d l) w in the box of B_0 w and B_E w widened by M |w|,
