@@ -31,8 +31,9 @@ boxes._price) and is passed to :func:`within_budget`.
 
 Charges are deterministic (counts of operations, never clocks), so a verdict
 does not depend on the machine's load.  Behind them stands one safety net, a
-clock: an account also has a time limit (TIME_LIMIT seconds by default), and a
-charge made after it rejects the claim ("over the kernel's time limit").  It
+clock: an account also has a time limit (TIME_LIMIT seconds of the process's
+CPU time by default -- CPU time, so that other processes' load does not count),
+and a charge made after it rejects the claim ("over the kernel's time limit").  It
 can only turn a verdict into a rejection -- never accept -- and it guarantees
 a verdict within about that time even where the cost formulas misprice some
 work.  Genuine certificates stay far below both limits.  Outside
@@ -42,7 +43,7 @@ are not counted.
 
 from contextlib import contextmanager
 from contextvars import ContextVar
-from time import monotonic
+from time import process_time
 
 from .failure import require
 
@@ -55,18 +56,18 @@ STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequ
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
 CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)
-TIME_LIMIT = 50  # seconds: the clock behind the account (a verdict within a minute whatever the load)
+TIME_LIMIT = 50  # CPU seconds: the clock behind the account (a verdict within a minute of the kernel's own work)
 
 
 class Account:
     """The running total of one certificate's work, in word operations."""
 
-    __slots__ = ("limit", "spent", "memo", "deadline", "time_limit")
+    __slots__ = ("limit", "spent", "memo", "deadline", "time_limit", "charges")
 
     def __init__(self, limit=CERTIFICATE_BUDGET, time_limit=TIME_LIMIT):
-        self.limit, self.spent, self.memo = limit, 0, {}
+        self.limit, self.spent, self.memo, self.charges = limit, 0, {}, 0
         self.time_limit = time_limit
-        self.deadline = None if time_limit is None else monotonic() + time_limit
+        self.deadline = None if time_limit is None else process_time() + time_limit
 
     def __repr__(self):
         return f"Account(spent={self.spent:.3e}, limit={self.limit:.0e})"
@@ -94,8 +95,9 @@ def charge(cost, what):
         if acc.spent > acc.limit:
             require(False, f"over the certificate's work budget: {what} brings the certificate's estimated work "
                     f"to {acc.spent:.2e} word operations > {acc.limit:.0e}")
-        if acc.deadline is not None and monotonic() > acc.deadline:
-            require(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s ({what} was next)")
+        acc.charges += 1
+        if acc.deadline is not None and not acc.charges & 63 and process_time() > acc.deadline:  # every 64th charge
+            require(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
 
 
 def memo(key, compute):

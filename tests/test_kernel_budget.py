@@ -86,8 +86,9 @@ def test_the_account_is_charged_across_claims_and_rejects_once_overdrawn():
 def test_the_time_limit_only_ever_rejects():
     with budget.account(limit=10 ** 12, time_limit=0) as acc:
         with pytest.raises(CheckFailure, match="time limit"):
-            budget.charge(1, "anything")
-    assert acc.spent == 1
+            for _ in range(64):  # the clock is read at every 64th charge
+                budget.charge(1, "anything")
+    assert acc.spent == 64
 
 
 def test_a_report_states_the_work_charged():
