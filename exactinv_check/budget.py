@@ -87,6 +87,11 @@ def account(limit=CERTIFICATE_BUDGET, time_limit=TIME_LIMIT):
         _CURRENT.reset(token)
 
 
+def active():
+    """Is an account open?  (Callers skip working out a cost when none is.)"""
+    return _CURRENT.get() is not None
+
+
 def charge(cost, what):
     """Charge ``cost`` word operations to the open account; reject once it is overdrawn."""
     acc = _CURRENT.get()

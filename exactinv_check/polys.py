@@ -48,7 +48,7 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     trim,
 )
 from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
-from .budget import within_sturm_budget
+from .budget import active, within_sturm_budget
 from .budget import memo as _memo
 from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
@@ -64,8 +64,9 @@ def sign_at(ints, x):
     n, d = x.numerator, x.denominator
     if not ints:  # the zero polynomial
         return 0
-    charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
-           "a sign of a polynomial at a rational")
+    if active():
+        charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
+               "a sign of a polynomial at a rational")
     acc, power = 0, 1
     for c in ints:  # low to high: acc = sum_{k<=i} c_k n^k d^(i-k), rescaled as i grows
         acc = acc * d + c * power
