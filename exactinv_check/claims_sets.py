@@ -44,6 +44,18 @@ def _generators(problem, claim):
     return claim["box"], None
 
 
+def _pruning_variable(method, record):
+    """The cheap test of a pruning record's variable against the method, before any generator is proved:
+    a record in h (no variable) belongs to a polynomial method, one in u = h/(s+h) to a rational method."""
+    if record is None:
+        return
+    rational = pruning_rational.is_rational_record(record)
+    require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
+            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
+    require(not (rational and method.is_polynomial), f"pruning in u = {pruning_rational.VARIABLE} is written "
+            "for rational methods only: a polynomial method's record is in h (no variable)")
+
+
 def _conditions(problem, claim, context, first_end_claim=False):
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
@@ -53,6 +65,7 @@ def _conditions(problem, claim, context, first_end_claim=False):
     :func:`valid_set` (:func:`first_end`) to start from (None otherwise).
     A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
     require(problem.method is not None, "a method is needed")
+    _pruning_variable(problem.method, claim.get("pruning"))
     box, lists = _generators(problem, claim)
     if box is not None:
         key = ("box", repr(box))
@@ -94,8 +107,7 @@ def _pruned(problem, gens, record, first_end_claim):
     vertex k's own set (first end) with its conditions (:func:`_require_bound`)."""
     method = problem.method
     rational = pruning_rational.is_rational_record(record)
-    require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
-            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
+    _pruning_variable(method, record)
     if rational:
         s, U, count, k, _ = pruning_rational.parse(record, len(gens.vertices), problem.n)  # the kernel orders the vertices itself
         T = pruning_rational.horizon(s, U)

@@ -6,17 +6,25 @@ name; an unknown key, a missing key or a value of the wrong JSON type rejects
 the claim.  Claims are checked in order and may use what an earlier claim
 proved (a threshold uses the gamma* and the radius verified before it); the
 context holds only such proved facts, never data the certificate asserts.
+
+The whole certificate shares one work budget (:mod:`exactinv_check.budget`):
+every claim is charged to one account, and the kernel stops at the first
+rejected claim -- the certificate is rejected then, whatever the later claims
+say, and they may depend on the rejected one; they are reported as not checked.
+Within a claim, cheap structural checks (keys, types, shapes) come before any
+root isolation or elimination.
 """
 
 import json
 import os
 from fractions import Fraction
 
-from . import claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
+from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
 from .rationals import CheckFailure, matrix, rank_and_nullspace, require, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2)
+V2_KEYS = {"discrete_invariance": {"dt"}}  # keys version 1 does not have (docs/certificate-format.md)
 MAX_METHOD_DEGREE = 64
 _ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
            RecursionError, OverflowError, MemoryError)
@@ -148,9 +156,10 @@ class Problem:
 class CheckReport:
     """The verdict per claim; ``ok`` is True only if there is a claim and every claim verified."""
 
-    def __init__(self, verdicts, bad_input=False):
+    def __init__(self, verdicts, bad_input=False, work=0):
         self.verdicts = verdicts  # list of (claim type, ok, message)
         self.bad_input = bad_input
+        self.work = work  # the certificate's charged work, in word operations (exactinv_check.budget)
 
     @property
     def ok(self):
@@ -200,26 +209,37 @@ def _no_float(text):
     raise CheckFailure(f"the JSON number {text} is not exact: certificates write numbers as strings")
 
 
-def _check_keys(claim, kind):
+def _check_keys(claim, kind, version):
     _, required, optional = CLAIMS[kind]
     keys = set(claim) - {"type"}
     require(required <= keys, f"missing keys {sorted(required - keys)}")
     require(keys <= required | optional, f"unknown keys {sorted(keys - required - optional)}")
+    newer = keys & V2_KEYS.get(kind, set())
+    require(version >= 2 or not newer, f"the keys {sorted(newer)} belong to certificate version 2, not {version}")
     for key in _BOOLEAN_KEYS & keys:
         require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
 
 
-def check(certificate, progress=None):
+def check(certificate, progress=None, time_limit=budget.TIME_LIMIT):
     """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
 
     Returns a :class:`CheckReport`, truthy only if every claim was proved.
-    ``progress(k, total, claim_type)``, if given, is called before each claim."""
+    ``progress(k, total, claim_type)``, if given, is called before each claim.
+    The whole certificate shares one work budget (budget.CERTIFICATE_BUDGET word
+    operations) and, as a safety net, ``time_limit`` seconds (None: no clock)."""
     try:
         cert = load(certificate)
     except BadInput as exc:
         return CheckReport([("input", False, str(exc))], bad_input=True)
     if cert.get("format") != FORMAT:
         return CheckReport([("input", False, "not an exactinv certificate (format is missing or wrong)")], bad_input=True)
+    with budget.account(time_limit=time_limit) as account:
+        verdicts = _check_claims(cert, progress)
+    return CheckReport(verdicts, work=account.spent)
+
+
+def _check_claims(cert, progress):
+    """The verdicts: the problem, then the claims in order, stopping at the first rejected one."""
     try:
         require(set(cert) == {"format", "version", "problem", "claims"}, "a certificate has exactly the keys "
                 "format, version, problem, claims")
@@ -228,15 +248,16 @@ def check(certificate, progress=None):
         problem = Problem(cert["problem"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
     except _ERRORS as exc:
-        return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
+        return [("problem", False, f"{type(exc).__name__}: {exc}")]
     context, verdicts = {}, []
-    for k, claim in enumerate(cert["claims"]):
+    claims = cert["claims"]
+    for k, claim in enumerate(claims):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
         if progress is not None:
-            progress(k, len(cert["claims"]), kind)
+            progress(k, len(claims), kind)
         try:
             require(kind in CLAIMS, f"unknown claim type {kind!r}")
-            _check_keys(claim, kind)
+            _check_keys(claim, kind, cert["version"])
             if kind.startswith("ellipsoid_"):
                 require(problem.Q is not None, f"a {kind} claim needs A and Q in the problem")
             elif kind == "robust_threshold":
@@ -246,4 +267,8 @@ def check(certificate, progress=None):
             verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
         except _ERRORS as exc:
             verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))
-    return CheckReport(verdicts)
+            for later in claims[k + 1:]:  # stop: the certificate is rejected, and later claims may use this one
+                verdicts.append((later.get("type", "?") if isinstance(later, dict) else "?", False,
+                                 f"not checked: claim {k} ({kind}) was rejected"))
+            break
+    return verdicts
