@@ -53,8 +53,8 @@ import numpy as np
 
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real
-from ..core.polys import no_root_between
-from ..core.real_signs import next_sign_change, rational_right_of, sign_right_of_real
+from ..core.polys import no_root_between, shift, sign_variations
+from ..core.real_signs import interval_signs, next_sign_change, rational_right_of, sign_right_of_real
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fmpq_of
 from ..errors import ExactinvException
@@ -122,6 +122,15 @@ class LPRoute:
                             "bases": [list(p.basis) for p in f.pieces]} for f in self.facets]}
 
 
+class _Basis:
+    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks b - G x_B."""
+
+    __slots__ = ("rows", "inv_t", "x", "slack")
+
+    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list):
+        self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
+
+
 class _Problem:
     """G, b, D and the facets' objective matrices, the float LP and the exact LP chain, shared by all facets."""
 
@@ -133,9 +142,9 @@ class _Problem:
         self.L = len(cs.N)
         self.float_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
         self._exact: ExactLPSolver | None = None
-        self._bases: dict[tuple[int, ...], tuple[flint.fmpq_mat, flint.fmpq_mat] | None] = {}
+        self._bases: dict[tuple[int, ...], _Basis | None] = {}
         self.b_float = _floats(cs.b)
-        self.float_lps = self.exact_lps = 0
+        self.float_lps = self.exact_lps = self.pivots = 0
 
     @property
     def exact(self) -> ExactLPSolver:
@@ -148,16 +157,16 @@ class _Problem:
         GN = self.cs.GN
         return flint.fmpq_mat(self.n, self.L, [GN[k][i][l] for l in range(self.n) for k in range(self.L)])
 
-    def basis(self, rows: tuple[int, ...]) -> tuple[flint.fmpq_mat, flint.fmpq_mat] | None:
-        """(B^-T, x_B) when the rows give a nonsingular B with x_B = B^-1 b_B in P; else None.  Cached."""
+    def basis(self, rows: tuple[int, ...]) -> _Basis | None:
+        """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
         if rows not in self._bases:
             B = flint.fmpq_mat(self.n, self.n, [self.G[r, l] for r in rows for l in range(self.n)])
             out = None
             if B.rank() == self.n:
                 x = B.solve(flint.fmpq_mat(self.n, 1, [self.b[r, 0] for r in rows]))
-                slack = self.b - self.G * x
-                if all(v >= 0 for v in slack.entries()):
-                    out = (B.transpose().inv(), x)
+                slack = (self.b - self.G * x).entries()
+                if all(v >= 0 for v in slack):
+                    out = _Basis(rows, B.transpose().inv(), x, slack)
             self._bases[rows] = out
         return self._bases[rows]
 
@@ -220,68 +229,151 @@ def _exact_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
     return None
 
 
+def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
+    """The dual simplex step at a breakpoint: component ``leaving`` of z_B turns negative, so its row
+    is released -- x moves along d with B d = -e_leaving (d = minus row ``leaving`` of B^-T) -- and
+    the first rows of G that d meets (the ratio test, ties all kept) are candidates to enter.
+    Only candidates: each is verified like any hint.  Raises :class:`LPRouteDeclined` when no row
+    stops d (P is unbounded)."""
+    P.pivots += 1
+    d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
+    Gd = (P.G * d).entries()
+    best, enter = None, []
+    for r in range(P.m):
+        if Gd[r] > 0 and r not in basis.rows:
+            ratio = basis.slack[r] / Gd[r]
+            if best is None or ratio < best:
+                best, enter = ratio, [r]
+            elif ratio == best:
+                enter.append(r)
+    if best is None:
+        raise LPRouteDeclined("an edge of P is a ray: P is unbounded, which the LP route does not handle yet")
+    out = basis.rows[:leaving] + basis.rows[leaving + 1:]
+    return [tuple(sorted(out + (r,))) for r in enter]
+
+
+def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[float]:
+    """For each row of Y (a polynomial's coefficients), the first point of a float grid on
+    (lo, lo + span], denser near lo, where it is negative (inf if none): a guess that only
+    chooses which component's roots are computed first, and never raises."""
+    n, W = Y.nrows(), Y.ncols()
+    try:
+        with np.errstate(all="ignore"):
+            M = np.array([float(v) for v in Y.entries()], dtype=float).reshape(n, W)
+            grid = float(lo) + float(span) * (np.arange(1, 65) / 64.0) ** 2
+            values = M @ np.vstack([grid ** k for k in range(W)])
+            negative = values < 0
+            first = np.where(negative.any(axis=1), grid[negative.argmax(axis=1)], math.inf)
+        return [float(v) if math.isfinite(v) else math.inf for v in first]
+    except (OverflowError, ValueError):
+        return [0.0] * n
+
+
+def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
+    return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
+
+
 def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
-            cap: Fraction | None) -> Real | None:
-    """The end of the piece from t on which the basis is optimal, or None if it is not optimal just right of t:
-    every component of z_B = D B^-T c_i must be >= 0 right of t; the piece ends at the least odd-multiplicity
-    root beyond t of any component -- or at ``cap`` (a rational beyond the horizon) if that comes first;
-    a component proved root-free on (t, cap) by Descartes' rule never needs its roots."""
+            cap: Fraction | None) -> tuple[_Basis, Real, int] | None:
+    """(basis, end, leaving): the piece from t on which the basis is optimal, or None if it is not
+    optimal just right of t.  Every component of z_B = D B^-T c_i must be >= 0 right of t; the piece
+    ends at the least odd-multiplicity root beyond t of any component (the ``leaving`` one; -1 if
+    none) -- or at ``cap`` (a rational beyond the horizon) if that comes first.
+
+    Exact throughout; a float grid only guesses which component ends the piece.  Its end e is
+    computed exactly, then one batch of Descartes tests on (lo, e) (lo = t, or a rational just
+    below an algebraic t) proves most components positive there; only the others get exact signs
+    right of t and exact roots."""
     if rows is None:
         return None
-    found = P.basis(rows)
-    if found is None:
+    basis = P.basis(rows)
+    if basis is None:
         return None
-    Y = found[0] * C
-    components = [flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())]) * P.D for l in range(P.n)]
-    if any(sign_right_of_real(p, t) < 0 for p in components):
-        return None
+    Y = basis.inv_t * C
+    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
+        Dm = P.D.coeffs()
+        W = Y.ncols() + len(Dm) - 1
+        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
+                                             for k in range(Y.ncols()) for m in range(W)])
+    lo = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
     end: Real = INF if cap is None else cap
-    lo = t.lower if isinstance(t, RealAlgebraic) else t
-    for p in components:
-        if p.is_zero() or p.degree() < 1:
-            continue
-        if cap is not None and lo < cap and no_root_between(p, lo, cap):
-            continue  # no root in (lo, cap), which holds (t, cap): p > 0 there
+    leaving = -1
+    span = (cap - lo) if cap is not None and cap > lo else 2 * (1 + abs(lo))
+    guess = _first_negative(Y, lo, span)
+    done: set[int] = set()
+    first = min(range(P.n), key=lambda l: guess[l])
+    if guess[first] < math.inf:
+        p = _row(Y, first)
+        if sign_right_of_real(p, t) < 0:
+            return None
         e = next_sign_change(p, t)
         if exact_lt(e, end):
-            end = e
-    return end
+            end, leaving = e, first
+        done.add(first)
+    bound = _cap(end)
+    signs = interval_signs(Y, lo, bound if bound is not None and bound > lo else None)
+    for l in sorted(range(P.n), key=lambda l: guess[l]):
+        if l in done or signs[l] > 0:
+            continue  # > 0 on (lo, end), which holds (t, end)
+        p = _row(Y, l)
+        if sign_right_of_real(p, t) < 0:
+            return None
+        bound = _cap(end)
+        if bound is not None and lo < bound and no_root_between(p, lo, bound):
+            continue
+        e = next_sign_change(p, t)
+        if exact_lt(e, end):
+            end, leaving = e, l
+    return basis, end, leaving
 
 
 def _first_width(t: FiniteReal) -> Fraction:
     top = t.upper if isinstance(t, RealAlgebraic) else Fraction(t)
-    return (1 + abs(top)) / 16
+    return (1 + abs(top)) / 64
 
 
 def _cap(T: Real) -> Fraction | None:
-    """A rational >= the horizon T (None for INF)."""
+    """A rational >= T (None for INF)."""
     if isinstance(T, Infinity):
         return None
     return T.upper if isinstance(T, RealAlgebraic) else Fraction(T)
 
 
-def _next_piece(P: _Problem, i: int, C: flint.fmpq_mat, t: FiniteReal, cap: Fraction | None) -> Piece:
+def _next_piece(P: _Problem, i: int, C: flint.fmpq_mat, t: FiniteReal, cap: Fraction | None,
+                previous: tuple[_Basis, int] | None) -> tuple[Piece, _Basis, int]:
     """The piece of facet i from t: a basis optimal just right of t, ending where it stops being optimal
-    (or at cap).  Rationals s ever closer to t are tried; a hint that fails only costs time."""
+    (or at cap); with the basis and the leaving component.  Candidates: the dual simplex step from the
+    previous piece's basis, then float LP hints at rationals s ever closer to t, and every other time
+    the exact LP chain's optimum at s.  A candidate that fails only costs time."""
+    if previous is not None and previous[1] >= 0:
+        for rows in _pivots(P, *previous):
+            found = _accept(P, C, rows, t, cap)
+            if found is not None:
+                return Piece(t, found[1], rows), found[0], found[2]
     width = _first_width(t)
     for attempt in range(_TRIES):
         s = rational_right_of(t, width)
         cost = _cost(C, P.D, s)
         rows = _hint_rows(P, cost)
-        end = _accept(P, C, rows, t, cap)
-        if end is None and attempt % 2 == 1:  # every other width: the exact LP chain's optimum too
+        found = _accept(P, C, rows, t, cap)
+        if found is None and attempt % 2 == 1:
             rows = _exact_rows(P, cost)
-            end = _accept(P, C, rows, t, cap)
-        if end is not None:
-            return Piece(t, end, rows)  # type: ignore[arg-type]
-        width /= 16
+            found = _accept(P, C, rows, t, cap)
+        if found is not None:
+            return Piece(t, found[1], rows), found[0], found[2]  # type: ignore[arg-type]
+        width /= 8
     raise LPRouteDeclined(f"facet {i}: no basis found optimal just right of h = {t}")
 
 
-def _bound(p: flint.fmpq_poly) -> Real:
+def _bound(p: flint.fmpq_poly, T: Real) -> Real:
     """sup{h >= 0 : p(h) >= 0} when p's leading coefficient is negative (p(0) >= 0 for a piece's
-    condition: x_B is in P): its largest real root, or 0; INF otherwise."""
+    condition: x_B is in P): its largest real root, or 0; INF otherwise -- or INF when p has a
+    root beyond the current horizon T (an odd count of sign variations beyond it), which then
+    cannot lower T."""
     if p.degree() < 1 or p.coeffs()[-1] > 0:
+        return INF
+    cap = _cap(T)
+    if cap is not None and sign_variations(shift(p, cap).coeffs()) % 2 == 1:
         return INF
     roots = real_roots(p)
     top = roots[-1][0] if roots else Fraction(0)
@@ -328,13 +420,16 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     objectives = [P.objective(i) for i in range(P.m)]
     walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
 
+    last: list[tuple[_Basis, int] | None] = [None] * P.m
+
     def step(i: int, t: FiniteReal) -> None:
         nonlocal T
-        piece = _next_piece(P, i, objectives[i], t, _cap(T))
-        x = P.basis(piece.basis)[1]  # type: ignore[index]
+        piece, basis, leaving = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
+        last[i] = (basis, leaving)
+        x = basis.x
         gNx = x.transpose() * objectives[i]  # 1 x L: g_i N_k x_B
         c = (P.D * P.cs.b[i] - flint.fmpq_poly(gNx.entries())) * P.D
-        bound = _bound(c)
+        bound = _bound(c, T)
         if exact_lt(bound, T):
             T = bound
         walks[i].append((piece, c, tuple(Fraction(int(v.p), int(v.q)) for v in x.entries())))

@@ -21,19 +21,62 @@ No float anywhere.
 from __future__ import annotations
 
 from fractions import Fraction
+from math import comb
 
 import flint
 
 from .algebraic import FiniteReal, Real, RealAlgebraic
 from .polys import integer_part, no_root_between, sign_at, sign_right_of
-from .roots import first_sign_change, real_roots
+from .roots import first_sign_change
 from .scalars import INF
 
-__all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of"]
+__all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs"]
+
+
+def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
+    """For each row of M (the coefficients, constant first, of a polynomial p): +1 if Descartes'
+    rule proves p > 0 on the open interval (lo, hi) (hi None: (lo, oo)) or p = 0, -1 if it proves
+    p < 0 there, 0 if it proves nothing.  All rows at once: p(lo + y) by one product with the
+    Taylor-shift matrix, then for a finite hi = lo + P/Q the coefficients of
+    Q^d (1 + y)^d p(lo + (P/Q) y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
+    (as in :func:`exactinv.core.polys.positive_below`).  Exact.
+
+    >>> M = flint.fmpq_mat([[2, -3, 1], [-2, 0, 1], [0, 0, 0], [-1, 0, -1]])  # (x-1)(x-2), x^2-2, 0, -1-x^2
+    >>> # (x-1)(x-2) > 0 and x^2 - 2 < 0 on (0, 1); beyond 2 every one keeps its sign
+    >>> interval_signs(M, Fraction(0), Fraction(1)), interval_signs(M, Fraction(2), None)
+    ([1, -1, 1, -1], [1, 1, 1, -1])
+    """
+    W = M.ncols()
+    d = W - 1
+    x = flint.fmpq(lo.numerator, lo.denominator)
+    S = flint.fmpq_mat(W, W, [comb(k, j) * x ** (k - j) if j <= k else 0 for k in range(W) for j in range(W)])
+    T = S
+    if hi is not None:
+        H = hi - lo
+        P, Q = H.numerator, H.denominator
+        T = S * flint.fmpq_mat(W, W, [P ** k * Q ** (d - k) * comb(d - k, m - k) if m >= k else 0
+                                      for k in range(W) for m in range(W)])
+    out = []
+    entries = (M * T).entries()
+    for r in range(M.nrows()):
+        row = entries[r * W:(r + 1) * W]
+        positive = any(c > 0 for c in row)
+        negative = any(c < 0 for c in row)
+        out.append(0 if positive and negative else -1 if negative else 1)
+    return out
 
 
 def _sign_at_algebraic(r: flint.fmpz_poly, alpha: RealAlgebraic) -> int:
-    """sign r(alpha) for r with r(alpha) != 0: refine alpha until r has no root on its closed enclosure."""
+    """sign r(alpha) for r with r(alpha) != 0: first r on a ball holding alpha's enclosure (Arb's
+    rigorous ball arithmetic: a ball that excludes 0 decides); else alpha refined until r has no
+    root on its closed enclosure (Descartes), and r's sign at an end."""
+    ball = flint.arb(flint.fmpq(alpha.lower.numerator, alpha.lower.denominator)).union(
+        flint.arb(flint.fmpq(alpha.upper.numerator, alpha.upper.denominator)))
+    value = flint.arb_poly([flint.arb(c) for c in r.coeffs()])(ball)
+    if value > 0:
+        return 1
+    if value < 0:
+        return -1
     bits = 16
     while True:
         lo, hi = alpha.lower, alpha.upper
@@ -41,6 +84,18 @@ def _sign_at_algebraic(r: flint.fmpz_poly, alpha: RealAlgebraic) -> int:
             return sign_at(r, lo)
         alpha.refine(bits)
         bits *= 2
+
+
+def _split(p: flint.fmpq_poly, alpha: RealAlgebraic) -> tuple[flint.fmpz_poly, flint.fmpz_poly, int]:
+    """(q, r, k): c p = q^k r for a c > 0 (integers), q = alpha's minimal polynomial, q not dividing r:
+    r(alpha) != 0."""
+    q = flint.fmpz_poly(alpha.poly)
+    r, k = integer_part(p), 0
+    while True:
+        quotient, remainder = divmod(r, q)
+        if not remainder.is_zero():
+            return q, r, k
+        r, k = quotient, k + 1
 
 
 def sign_right_of_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
@@ -55,13 +110,7 @@ def sign_right_of_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
         return sign_right_of(p, Fraction(t))
     if p.is_zero():
         return 0
-    q = flint.fmpz_poly(t.poly)
-    r, k = integer_part(p), 0
-    while True:
-        quotient, remainder = divmod(r, q)
-        if not remainder.is_zero():
-            break
-        r, k = quotient, k + 1
+    q, r, k = _split(p, t)
     sign = _sign_at_algebraic(r, t)
     if k % 2:
         sign *= sign_at(q, t.upper)  # q's sign right of its simple root alpha: (alpha, upper) holds no other root
@@ -72,9 +121,15 @@ def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
     """The least root of odd multiplicity of p greater than t (INF if none): where p,
     of one sign just right of t, first takes the other one.
 
+    For t = alpha algebraic: p = q^k r as above; alpha is refined until r has no root on
+    its closed enclosure [lower, upper] (which holds no other root of q either), and the
+    answer is the first sign change beyond ``upper`` of r, and of q when k is odd.
+
     >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
     >>> next_sign_change(flint.fmpq_poly([6, -5, 1]), sqrt2)     # (x - 2)(x - 3)
     Fraction(2, 1)
+    >>> next_sign_change(flint.fmpq_poly([-2, 0, 1]) * flint.fmpq_poly([-3, 1]), sqrt2)   # (x^2 - 2)(x - 3)
+    Fraction(3, 1)
     >>> next_sign_change(flint.fmpq_poly([4, -4, 1]), Fraction(0))   # (x - 2)^2: tangent only
     INF
     """
@@ -82,14 +137,18 @@ def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
         return INF
     if not isinstance(t, RealAlgebraic):
         return first_sign_change(p, Fraction(t))
-    # Descartes first: no sign variation of p(lower + x) means no root beyond t at all
-    from_lower = first_sign_change(p, t.lower)
-    if from_lower == INF or from_lower > t:
-        return from_lower
-    for root, multiplicity in real_roots(p):
-        if multiplicity % 2 and root > t:
-            return root
-    return INF
+    q, r, k = _split(p, t)
+    bits = 16
+    while not (r.degree() < 1 or (sign_at(r, t.lower) != 0 and sign_at(r, t.upper) != 0
+                                   and no_root_between(r, t.lower, t.upper))):
+        t.refine(bits)
+        bits *= 2
+    end = first_sign_change(flint.fmpq_poly(r), t.upper) if r.degree() > 0 else INF
+    if k % 2:
+        other = first_sign_change(flint.fmpq_poly(q), t.upper)
+        if other < end:
+            end = other
+    return end
 
 
 def rational_right_of(t: FiniteReal, width: Fraction) -> Fraction:
