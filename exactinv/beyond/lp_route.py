@@ -289,6 +289,8 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
     basis = P.basis(rows)
     if basis is None:
         return None
+    if cap is not None and not exact_lt(t, cap):
+        cap = None  # a first piece when the horizon is 0: no cap, pieces have positive length
     Y = basis.inv_t * C
     if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
         Dm = P.D.coeffs()
