@@ -54,7 +54,7 @@ import numpy as np
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real
 from ..core.polys import no_root_between, shift, sign_variations
-from ..core.real_signs import interval_signs, next_sign_change, rational_right_of, sign_right_of_real
+from ..core.real_signs import interval_signs, narrowed, next_sign_change, rational_right_of, sign_right_of_real
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fmpq_of
 from ..errors import ExactinvException
@@ -144,6 +144,7 @@ class _Problem:
         self._exact: ExactLPSolver | None = None
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
         self.b_float = _floats(cs.b)
+        self.G_rows = self.G.tolist()
         self.float_lps = self.exact_lps = self.pivots = 0
 
     @property
@@ -160,13 +161,17 @@ class _Problem:
     def basis(self, rows: tuple[int, ...]) -> _Basis | None:
         """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
         if rows not in self._bases:
-            B = flint.fmpq_mat(self.n, self.n, [self.G[r, l] for r in rows for l in range(self.n)])
+            B = flint.fmpq_mat(self.n, self.n, [v for r in rows for v in self.G_rows[r]])
             out = None
-            if B.rank() == self.n:
-                x = B.solve(flint.fmpq_mat(self.n, 1, [self.b[r, 0] for r in rows]))
+            try:
+                inv = B.inv()
+            except ZeroDivisionError:
+                inv = None
+            if inv is not None:
+                x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
                 slack = (self.b - self.G * x).entries()
                 if all(v >= 0 for v in slack):
-                    out = _Basis(rows, B.transpose().inv(), x, slack)
+                    out = _Basis(rows, inv.transpose(), x, slack)
             self._bases[rows] = out
         return self._bases[rows]
 
@@ -269,6 +274,12 @@ def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[flo
         return [0.0] * n
 
 
+def _tight(e: Real) -> Real:
+    """An algebraic end with a narrow enclosure (Arb's, about 2^-53 relative), so that Descartes tests up
+    to its upper end, and from its lower end on the next piece, see no neighbouring root."""
+    return narrowed(e) if isinstance(e, RealAlgebraic) else e
+
+
 def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
     return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
 
@@ -308,7 +319,7 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
         p = _row(Y, first)
         if sign_right_of_real(p, t) < 0:
             return None
-        e = next_sign_change(p, t)
+        e = _tight(next_sign_change(p, t))
         if exact_lt(e, end):
             end, leaving = e, first
         done.add(first)
@@ -323,7 +334,7 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
         bound = _cap(end)
         if bound is not None and lo < bound and no_root_between(p, lo, bound):
             continue
-        e = next_sign_change(p, t)
+        e = _tight(next_sign_change(p, t))
         if exact_lt(e, end):
             end, leaving = e, l
     return basis, end, leaving
