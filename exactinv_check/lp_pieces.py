@@ -133,6 +133,38 @@ def _positive_around(ints, a, b):
     return polys.descartes_variations(ints, a, b) == 0 and polys.sign_at(ints, (a + b) / 2) > 0
 
 
+def _vanishes_at(p, r):
+    """True if p(r) = 0 for an algebraic r (its squarefree polynomial has the one root r in (lo, hi)):
+    gcd(p, r's polynomial) changes sign on (lo, hi).  False says nothing."""
+    g = polys.gcd(p, r.poly)
+    return len(g) > 1 and polys.sign_at(polys.integer_coefficients(g), r.lo) * \
+        polys.sign_at(polys.integer_coefficients(g), r.hi) < 0
+
+
+def _sliver(p, ints, r, inner):
+    """True proves p > 0 on the part of r's enclosure inside the piece ([r, hi] when r starts it,
+    [lo, r) when r ends it; ``inner`` is the other end of the enclosure, hi or lo): Descartes sees
+    no root in (lo, hi), or exactly one and it is r itself; and p > 0 at ``inner``."""
+    if polys.sign_at(ints, inner) <= 0:
+        return False
+    v = polys.descartes_variations(ints, r.lo, r.hi)
+    return v == 0 or (v == 1 and _vanishes_at(p, r))
+
+
+def _fast(p, ints, start, end):
+    """True proves p >= 0 on [start, end]: Descartes on the open interval between the enclosures of
+    the ends, and on each algebraic end's enclosure (:func:`_sliver`).  False says nothing."""
+    a = start.hi if start.poly is not None else start.q
+    b = None if end.inf else (end.lo if end.poly is not None else end.q)
+    if b is not None and not a < b:
+        return False
+    if not _positive_around(ints, a, b):
+        return False
+    if start.poly is not None and not _sliver(p, ints, start, start.hi):
+        return False
+    return end.inf or end.poly is None or _sliver(p, ints, end, end.lo)
+
+
 def _require_nonnegative(p, start, end, what):
     """p >= 0 on the closed piece [start, end] (end may be oo), or CheckFailure."""
     if not p:
@@ -140,7 +172,7 @@ def _require_nonnegative(p, start, end, what):
     ints = polys.integer_coefficients(p)
     a = start.bounds()[0]
     b = None if end.inf else end.bounds()[1]
-    if _positive_around(ints, a, b):
+    if _positive_around(ints, a, b) or _fast(p, ints, start, end):
         return  # p > 0 on (a, b), which holds (start, end); >= 0 at the ends by continuity
     points = [start]
     for lo, hi in polys.positive_roots(p):

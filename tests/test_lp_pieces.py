@@ -157,3 +157,13 @@ def test_a_claimed_valid_set_that_differs_is_rejected():
     claim = cert["claims"][0]
     claim["intervals"][-1]["hi_closed"] = not claim["intervals"][-1]["hi_closed"]
     assert not exactinv_check.check(cert).ok
+
+
+def test_a_breakpoint_moved_a_hair_early_is_rejected():
+    """The end of the first piece moved to a rational 2^-60 below the true breakpoint: the next
+    piece's basis is then claimed on a sliver where one of its components is still negative."""
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    end = Real.parse(f["ends"][0])
+    f["ends"][0] = str(end.bounds()[0] - F(1, 2**60))
+    _rejected(cert, "negative inside its piece")
