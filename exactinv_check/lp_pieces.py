@@ -32,11 +32,12 @@ from types import SimpleNamespace
 from . import polys
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .linalg import integer_solve
-from .rationals import integer, integer_matrix, integer_rows, require, within_budget
+from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, within_budget
 from .reals import Real, separate
 from .validset import valid_set
 
 MAX_PIECES = 200_000  # pieces over all facets: a bound before any parsing of their ends
+LP_WORK_BUDGET = 50 * WORK_BUDGET  # all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
 
 
 def parse(record, m, n):
@@ -64,14 +65,20 @@ def parse(record, m, n):
 
 
 def _price(problem, pieces):
-    """Reject before any work: per piece a Bareiss solve (n^3 w^2) and n components of degree d
-    whose sign is decided on the piece (about d^2 w each); the rebuild of D and N."""
+    """Reject before any work.  One piece is one computation, priced against the kernel's budget of one
+    (:func:`within_budget`): a Bareiss solve (n^3 w^2) and n components of degree d whose sign is decided
+    on the piece (about d^2 w each); the rebuild of D and N likewise.  All pieces together are bounded by
+    :data:`LP_WORK_BUDGET` (each piece is independent work, so the record's total is capped like the
+    vertex route's MAX_CONDITIONS: about a minute or two of checking for R^20 with 200 facets)."""
     n = problem.n
     cost, d, w = rebuild_size(problem.A, problem.method.numerator, problem.method.denominator)
+    within_budget(cost, f"D(h) and N(h) of a {n} x {n} problem")
     _, Gi = integer_matrix(problem.G)
     gw = 1 + max(abs(x).bit_length() for row in Gi for x in row) * n // 64
-    cost += pieces * (n ** 3 * gw * gw + n * (n + d) * (2 * d + 2) ** 2 * (w + gw))
-    within_budget(cost, f"the LP route's pieces ({pieces} pieces of a {n} x {n} problem, degree {d})")
+    one = n ** 3 * gw * gw + n * (n + d) * (2 * d + 2) ** 2 * (w + gw)
+    within_budget(one, f"one piece of the LP route ({n} x {n}, degree {d})")
+    require(pieces * one <= LP_WORK_BUDGET, f"over the kernel's work budget: the LP route's {pieces} pieces "
+            f"(estimated {pieces * one:.2e} word operations > {LP_WORK_BUDGET:.0e})")
 
 
 class _Bases:

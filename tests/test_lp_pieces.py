@@ -167,3 +167,8 @@ def test_a_breakpoint_moved_a_hair_early_is_rejected():
     end = Real.parse(f["ends"][0])
     f["ends"][0] = str(end.bounds()[0] - F(1, 2**60))
     _rejected(cert, "negative inside its piece")
+
+
+def test_the_pieces_together_are_priced_first(monkeypatch):
+    monkeypatch.setattr(lp_pieces, "LP_WORK_BUDGET", 10**3)
+    _rejected(_certificate(), "the LP route's")
