@@ -54,7 +54,7 @@ import numpy as np
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real
 from ..core.polys import no_root_between, shift, sign_variations
-from ..core.real_signs import interval_signs, narrowed, next_sign_change, rational_right_of, sign_right_of_real
+from ..core.real_signs import interval_signs, narrowed, next_sign_change, positive_after, rational_right_of, sign_right_of_real
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fmpq_of
 from ..errors import ExactinvException
@@ -277,7 +277,9 @@ def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[flo
 def _tight(e: Real) -> Real:
     """An algebraic end with a narrow enclosure (Arb's, about 2^-53 relative), so that Descartes tests up
     to its upper end, and from its lower end on the next piece, see no neighbouring root."""
-    return narrowed(e) if isinstance(e, RealAlgebraic) else e
+    if isinstance(e, RealAlgebraic) and e.upper - e.lower > (abs(e.lower) + 1) / 2**40:
+        return narrowed(e)
+    return e
 
 
 def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
@@ -329,11 +331,12 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
         if l in done or signs[l] > 0:
             continue  # > 0 on (lo, end), which holds (t, end)
         p = _row(Y, l)
-        if sign_right_of_real(p, t) < 0:
+        right = sign_right_of_real(p, t)
+        if right < 0:
             return None
         bound = _cap(end)
-        if bound is not None and lo < bound and no_root_between(p, lo, bound):
-            continue
+        if bound is not None and positive_after(p, t, bound, right):
+            continue  # > 0 on (t, bound), which holds (t, end)
         e = _tight(next_sign_change(p, t))
         if exact_lt(e, end):
             end, leaving = e, l

@@ -31,7 +31,8 @@ from .roots import first_sign_change
 from .scalars import INF
 from .flintq import dyadic_of
 
-__all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed"]
+__all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
+           "positive_after"]
 
 
 def narrowed(alpha: FiniteReal) -> FiniteReal:
@@ -138,6 +139,33 @@ def sign_right_of_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
     if k % 2:
         sign *= sign_at(q, t.upper)  # q's sign right of its simple root alpha: (alpha, upper) holds no other root
     return sign
+
+
+def positive_after(p: flint.fmpq_poly, t: FiniteReal, bound: Fraction, right: int | None = None) -> bool:
+    """True proves p > 0 on the open (t, bound) (a rational bound); False says nothing.  ``right``,
+    if given, is :func:`sign_right_of_real` (p, t), already known.  For t = alpha algebraic,
+    c p = q^k r (:func:`_split`): r has no root on [lower, bound) and q none on [upper, bound)
+    (Descartes; q's only root in (lower, upper) is alpha), so p keeps its sign right of alpha.
+
+    >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> p = flint.fmpq_poly([-2, 0, 1]) * flint.fmpq_poly([-3, 1]) * -1     # (x^2 - 2)(3 - x)
+    >>> positive_after(p, sqrt2, Fraction(3)), positive_after(p, sqrt2, Fraction(4))
+    (True, False)
+    """
+    if p.is_zero():
+        return False
+    if right is None:
+        right = sign_right_of_real(p, t)
+    if right <= 0:
+        return False
+    if not isinstance(t, RealAlgebraic):
+        return Fraction(t) < bound and no_root_between(p, Fraction(t), bound)
+    if not t.upper < bound:
+        return False
+    q, r, k = _split(p, t)
+    if r.degree() > 0 and not (sign_at(r, t.lower) != 0 and no_root_between(r, t.lower, bound)):
+        return False
+    return k == 0 or no_root_between(q, t.upper, bound)
 
 
 def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
