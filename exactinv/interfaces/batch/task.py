@@ -128,6 +128,9 @@ def _certify(task: Task, check: bool) -> dict:
               "checked": check, "claims": len(report.certificate["claims"]), "values": _values(report.results)}
     if check and not report.ok:
         record["error"] = f"the kernel rejected the certificate: {report.check}"
+    if report.undecided:  # a partial answer: status "undecided", the decided claims in "values"
+        record["undecided"] = {what: why for what, why in report.undecided}
+        record["status"] = "undecided" if record["status"] == "ok" else record["status"]
     return record
 
 
