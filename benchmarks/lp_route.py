@@ -41,6 +41,7 @@ import numpy as np
 import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
+from exactinv.lp.highs import silent_highs
 from exactinv.model.record import certificate
 
 SIZES = [(6, 12), (6, 36), (6, 60), (8, 16), (8, 32), (8, 48), (10, 40), (12, 60), (16, 100), (20, 200)]
@@ -89,7 +90,7 @@ def float_bisection(S: ei.LinearSystem, P: ei.Polyhedron, method: ei.Method) -> 
     b = np.array([float(v) for v in P.b])
     A = np.array([[float(v) for v in row] for row in S.A])
     m, n = G.shape
-    h = highspy.Highs()
+    h = silent_highs()
     h.setOptionValue("output_flag", False)
     lp = highspy.HighsLp()
     lp.num_col_, lp.num_row_ = n, m
