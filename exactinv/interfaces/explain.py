@@ -75,6 +75,11 @@ def _count(n: int, word: str) -> str:
 
 
 def _generators(c: dict) -> str:
+    if "lp" in c:
+        pieces = sum(len(f["bases"]) for f in c["lp"]["facets"])
+        return (f"never listed: the LP route takes, per facet, the pieces of [0, oo) on which one basis of "
+                f"max g_i A_d(dt) x over P is optimal ({pieces} pieces in all, each proved by weak duality), and the "
+                f"vertex of each piece, which together decide every vertex")
     if "box" in c:
         lo, hi = c["box"]["lo"], c["box"]["hi"]
         count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"
