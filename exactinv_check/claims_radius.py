@@ -9,6 +9,10 @@ c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
   fails (exact series of g/h at 0);
 * rho = oo for r = c / prod (1 - z/p_k)^(m_k), c > 0, every p_k real and
   positive: a product of absolutely monotonic factors (Sturm counts);
+* rho = oo by Bernstein's theorem (reason "bernstein"): r(-x) = c + int e^(-xt) f(t) dt
+  with c >= 0 and the exponential polynomial f >= 0 on (0, oo), proved by
+  :func:`exactinv_check.bernstein.prove_completely_monotone` (exact Sturm count for one
+  pole; Taylor at 0, disk-arithmetic steps and a dominance bound otherwise);
 * otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
   rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
   and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)
@@ -25,12 +29,13 @@ from . import polys
 from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
 from .reals import Real
+from .bernstein import prove_completely_monotone
 from .tail import prove_tail
 from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "tie"}
+           "dominance-at-0", "tie", "bernstein"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
@@ -164,7 +169,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein"},
             "binding belongs to the coefficient reasons only")
     if method.is_polynomial:
         require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
@@ -180,6 +185,10 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(_all_roots_real_positive(den), "h has a root that is not real and positive")
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
+    elif reason == "bernstein":
+        require(claim.get("tail_index") is None, "a bernstein claim has no tail index")
+        how = prove_completely_monotone(num, den)
+        rho, rho_attained, d = Real(inf=1), True, []
     elif reason == "tie":
         rho, rho_attained, d, N, count = _tie(num, den, value, claim)
         how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "

@@ -58,12 +58,14 @@ from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
+from .bernstein import completely_monotone
 from .poles import dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
+_MAX_INDEX = 4096  # the kernel's MAX_COEFFICIENTS: a longer scan could not be certified
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:
@@ -202,16 +204,26 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
+    verdict = None
+    if tie is None:  # every other pole has Re z > p*: rho = oo or a witness c_j(K) < 0 (Bernstein)
+        infinite = _infinite_radius_certificate(method, s.balls, s.star)
+        if infinite is not None:
+            return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
+        if verdict.infinite:
+            return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if verdict.bound is not None:  # rho < K = verdict.bound: the tail on [0, K] has an index
+            bound = exact_bound = verdict.bound
+            N = tail_index(s, bound, first)
+            if N > _MAX_INDEX:
+                raise Undecided(f"absolute monotonicity of {method.name}: rho < {verdict.bound} (c_{verdict.j} < 0 "
+                                f"there), but the certified tail starts at j = {N} > {_MAX_INDEX} coefficients")
     value, binding, ds = None, None, []
     for j, d in enumerate(_coefficient_polynomials(method)):
         if N is not None and j >= max(N, first):
             break
-        if j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
-            return _undecided_scan(method, tie)
-        if tie is None and value is None and j == first + len(method.denominator):
-            infinite = _infinite_radius_certificate(method, s.balls, s.star)
-            if infinite is not None:
-                return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        if N is None and j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
+            return _undecided_scan(method, tie, verdict)
         ds.append(d)
         if _nonnegative_on(d, bound):
             continue
@@ -228,7 +240,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             value, binding, exact_bound = end, j, end
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
-    return _finish(method, exact_bound, p_star, value, binding, ds, N)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie)
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -242,20 +254,21 @@ def _ambiguous(end, ball: flint.arb) -> bool:
     return True
 
 
-def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
+def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
     if tie is None:
-        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative "
-                        "for every kappa >= 0 and p* stays the nearest pole for every kappa, but a non-real pole with "
-                        "Re z > p* approaches p*'s distance as kappa -> oo (ratio -> 1), so no tail index is uniform "
-                        "in kappa; rho = oo would need the kappa -> oo asymptotics of c_j(kappa) uniformly in j/kappa "
-                        "(not implemented), and product/termwise certificates need all poles real")
+        raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo iff "
+                        "r(-x) is completely monotone (Bernstein), and that was not decided: "
+                        f"{verdict.how if verdict is not None else 'no verdict'}; "
+                        f"c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative for every kappa >= 0")
     raise Undecided(f"absolute monotonicity of {method.name}: rho <= kappa_A = {float(tie.kappa.mid()):.6g}, where "
                     f"{len(tie.tied)} other pole(s) reach p*'s distance from -kappa and outweigh it; no c_j with "
                     f"j < {_MAX_SCAN} turns negative below kappa_A.  Deciding this is the positivity problem for a "
                     "linear recurrence with several dominant characteristic roots (open in general)")
 
 
-def _finish(method, kappa_A, p_star, value, binding, ds, N) -> AbsoluteMonotonicityRadius:
+def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None) -> AbsoluteMonotonicityRadius:
+    if value is None and tie is None:  # cannot happen: a witness c_j(K) < 0 has j < N
+        raise Undecided(f"absolute monotonicity of {method.name}: no coefficient ends below the witness bound")
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
