@@ -102,17 +102,36 @@ def _at_infinity_witness(g, h) -> tuple[Fraction, int] | None:
     return _witness(g, h, [(Fraction(2) ** e, j) for e in range(0, 64) for j in range(top + 1)])
 
 
-def _density_witness(g, h, t0: Fraction, s: PoleStructure | None) -> tuple[Fraction, int] | None:
-    """f(t0) < 0: c_j(j/t0) < 0 for j large; screened in Arb (when s is given), confirmed exactly."""
+def _density_witness(g, h, ts: list, s: PoleStructure) -> tuple[Fraction, int] | None:
+    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large.  The least j (on a geometric scale) for which
+    some t0 works, screened in Arb and confirmed exactly; then kappa is lowered by bisection while c_j stays
+    negative (a smaller K gives a shorter certified tail)."""
     j = 1
     while j <= _MAX_WITNESS_J:
-        kappa = Fraction(j) / t0
-        if s is None or _arb_coefficient(s, kappa, j) < 0:
-            w = _witness(g, h, [(kappa, j)])
-            if w is not None:
-                return w
-        j *= 2
+        found = [(Fraction(j) / t0, j) for t0 in ts if _arb_coefficient(s, Fraction(j) / t0, j) < 0]
+        found = [w for w in found if _witness(g, h, [w]) is not None]
+        if found:
+            kappa, j = min(found)
+            lo = Fraction(0)
+            for _ in range(24):
+                mid = _short((lo + kappa) / 2)
+                if not lo < mid < kappa:
+                    break
+                if coefficient_at(g, h, mid, j) < 0:
+                    kappa = mid
+                else:
+                    lo = mid
+            return kappa, j
+        j = max(j + 1, j * 3 // 2)
     return None
+
+
+def _short(q: Fraction, bits: int = 24) -> Fraction:
+    """q rounded to a dyadic with about ``bits`` significant bits."""
+    if q == 0:
+        return q
+    e = bits - (q.numerator.bit_length() - q.denominator.bit_length())
+    return Fraction(round(q * 2 ** e), 2 ** e) if e >= 0 else Fraction(round(q / 2 ** -e) * 2 ** -e)
 
 
 def _arb_coefficient(s: PoleStructure, kappa: Fraction, j: int) -> flint.arb:
@@ -141,11 +160,12 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> 
     if c < 0:
         return _finite(g, h, _at_infinity_witness(g, h), f"r(-x) tends to c = {c} < 0")
     if len(s.balls) == 1:
-        return _single_pole(g, h, s.mu)
+        return _single_pole(g, h, s)
     return _general(g, h, s, bits)
 
 
-def _single_pole(g, h, mu) -> Verdict:
+def _single_pole(g, h, s: PoleStructure) -> Verdict:
+    mu = s.mu
     p = -h[0] * mu / h[1]  # h = h_0 (1 - z/p)^mu: h_1 = -mu h_0/p
     taylor = [sum(comb(k, i) * g[k] * p ** (k - i) for k in range(i, len(g))) for i in range(mu)]
     lc = h[-1]
@@ -159,9 +179,9 @@ def _single_pole(g, h, mu) -> Verdict:
         lo, hi = (x.lower, x.upper) if hasattr(x, "lower") else (x, x)
         points += [lo / 2, hi + 1, (lo + hi) / 2 + Fraction(1, 2 ** 20)]
     points += [(a + b) / 2 for a, b in zip(points, points[1:])]
-    t0 = next((t for t in points if t > 0 and sign_at(poly, t) < 0), None)
+    ts = [t for t in points if t > 0 and sign_at(poly, t) < 0]
     how = f"one pole p = {p}: P(t) = e^(p t) f(t) changes sign on (0, oo)"
-    return _finite(g, h, None if t0 is None else _density_witness(g, h, t0, None), how)
+    return _finite(g, h, _density_witness(g, h, ts, s) if ts else None, how)
 
 
 def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
@@ -177,13 +197,13 @@ def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
             return Verdict(False, "f vanishes to order deg h at 0")
         if fs[n0] < 0:
             t0 = _negative_near_zero(s, fs, n0)
-            return _finite(g, h, None if t0 is None else _density_witness(g, h, t0, s),
+            return _finite(g, h, None if t0 is None else _density_witness(g, h, [t0, t0 / 2], s),
                            f"f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near 0")
         outcome = _march(s, fs, n0)
         if outcome is True:
             return Verdict(True, "c >= 0 and f > 0 on (0, oo) (Taylor at 0, certified Arb steps, dominance of p*)")
         if isinstance(outcome, Fraction):
-            return _finite(g, h, _density_witness(g, h, outcome, s), f"f({outcome}) < 0")
+            return _finite(g, h, _density_witness(g, h, [outcome], s), f"f({outcome}) < 0")
         return Verdict(False, outcome)
 
 

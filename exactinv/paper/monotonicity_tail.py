@@ -294,12 +294,14 @@ def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
     """Why rho = INF, if a sufficient certificate applies:
     ``product``  -- r = prod (1 - z/p_k)^(-m_k) with all p_k > 0 (each factor and
                     so the product is absolutely monotonic on (-oo, 0]);
-    ``termwise`` -- deg g <= deg h, all poles real and positive and every
-                    b_{k,m} > 0: each c_j, j >= 1, is a sum of positive terms."""
+    ``termwise`` -- deg g <= deg h, all poles real and positive, every
+                    b_{k,m} > 0 and c = lim r >= 0: each c_j is a sum of terms >= 0."""
     if not all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls):
         return None
     if len(method.numerator) == 1:
         return RadiusReason.PRODUCT
-    if len(method.numerator) <= len(method.denominator) and all(v.real > 0 for _, _, b in balls for v in b):
+    at_infinity = method.numerator[-1] / method.denominator[-1] if len(method.numerator) == len(method.denominator) else 0
+    if len(method.numerator) <= len(method.denominator) and at_infinity >= 0 \
+            and all(v.real > 0 for _, _, b in balls for v in b):
         return RadiusReason.TERMWISE
     return None
