@@ -120,7 +120,7 @@ def repeated_pole(draw):
     return num, den
 
 
-@settings(deadline=None, max_examples=40, suppress_health_check=[HealthCheck.too_slow])
+@settings(deadline=None, max_examples=25, suppress_health_check=[HealthCheck.too_slow])
 @given(repeated_pole())
 def test_repeated_real_pole_is_decided_and_agrees_with_the_reference(case):
     num, den = case
