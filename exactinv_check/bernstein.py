@@ -14,6 +14,9 @@ Hence c >= 0 and f >= 0 on (0, oo) give c_j(kappa) >= 0 for every j and kappa >=
 conditions necessary, which is why the engine can decide rho = oo this way.)
 
 The proof of f >= 0:
+ * simple rational poles p_k > 0 (found exactly: a rational root k/q of H has q | lc(H)): with u = e^(-t/L),
+   L the lcm of their denominators, f(t) = F(u) = sum b_k u^(L p_k), a polynomial; f >= 0 iff F >= 0 on (0, 1),
+   an exact Sturm count (this decides f touching 0, e.g. e^(-t) (1 - 2 e^(-t))^2);
  * one distinct pole p (h = lc (z - p)^mu, p rational > 0): f(t) = e^(-p t) P(t) with
    P(t) = sum_m b_m t^(m-1)/(m-1)! and b_m = (-1)^m [w^(mu-m)] g(p + w)/lc exact rationals; P >= 0 on
    (0, oo) is exact: P positive right of 0 and no positive root of odd multiplicity (Yun + Sturm).
@@ -35,10 +38,10 @@ Every number is an exact rational; disks round outward; what is not proved withi
 """
 
 from fractions import Fraction
-from math import comb, factorial
+from math import ceil, comb, factorial, gcd
 
 from .disks import ball, ball_abs_upper, ball_mul, pole_disks
-from .polys import count_roots, mul, positive_roots, sign_right_of, trim
+from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
 from .rationals import require
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
@@ -46,6 +49,8 @@ MAX_STEPS = 20000  # steps of the compact piece
 MAX_DEGREE = 16  # the largest deg h the general proof takes
 MIN_STEP = Fraction(1, 2 ** 50)
 TAYLOR_TERMS = 28
+MAX_RATIONAL_BISECTIONS = 4000  # bisections to pin a rational pole
+MAX_EXPONENT = 2000  # the largest degree of F(u) for rational poles
 
 __all__ = ["prove_completely_monotone", "density_at_zero"]
 
@@ -80,6 +85,11 @@ def prove_completely_monotone(numerator, denominator):
     require(poles, "bernstein: r has no positive real pole")
     if len(factors) == 1 and len(factors[0][0]) == 2:
         return _single_pole(g, h, factors[0][1])
+    rational = _rational_simple_poles(h, factors, poles)
+    if rational is not None:
+        how = _rational_exponents(g, h, rational)
+        if how is not None:
+            return how
     require(len(h) - 1 <= MAX_DEGREE, f"bernstein: deg h > {MAX_DEGREE}")
     f_star, mu = factor_of(factors, poles[0])
     disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, poles[0])
@@ -117,6 +127,63 @@ def _single_pole(g, h, mu):
                 "bernstein: P(t) = e^(p t) f(t) changes sign on (0, oo)")
     return (f"one pole p = {p} of multiplicity {mu}: f(t) = e^(-p t) P(t), P = {[str(x) for x in P]} >= 0 on "
             f"(0, oo) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+
+
+def _rational_simple_poles(h, factors, poles):
+    """The poles as exact rationals when every pole is simple, real, positive and rational; else None.  A
+    rational root k/q of the integer polynomial H has q | lc(H): an isolating interval narrower than 1/lc^2
+    holds at most one fraction with such a denominator, the candidate ceil(lo lc)/lc, tested exactly."""
+    if len(factors) != 1 or factors[0][1] != 1 or len(poles) != len(h) - 1:
+        return None
+    H = integer_coefficients(h)
+    lc = abs(H[-1])
+    out = []
+    for lo, hi in poles:
+        if lo != hi:
+            for _ in range(MAX_RATIONAL_BISECTIONS):
+                if (hi - lo) * lc * lc < 1:
+                    break
+                mid = (lo + hi) / 2
+                if sign_at(H, mid) == 0:
+                    lo = hi = mid
+                    break
+                lo, hi = (lo, mid) if sign_at(H, lo) * sign_at(H, mid) < 0 else (mid, hi)
+            else:
+                return None
+        q = lo if lo == hi else Fraction(ceil(lo * lc), lc)
+        if not lo <= q <= hi or sign_at(H, q) != 0:
+            return None
+        out.append(q)
+    return out
+
+
+def _rational_exponents(g, h, ps):
+    """Simple rational poles p_k > 0: f(t) = sum b_k e^(-p_k t) = F(u) with u = e^(-t/L), L the lcm of the
+    denominators, F(u) = sum b_k u^(L p_k) exactly (b_k = -g(p_k)/h'(p_k)); f >= 0 on (0, oo) iff F >= 0 on
+    (0, 1): F positive right of 0 and no root of odd multiplicity in (0, 1) (Yun + Sturm).  None when F does
+    not show it (the general proof may still)."""
+    L = 1
+    for p in ps:
+        L = L * p.denominator // gcd(L, p.denominator)
+    exponents = [int(p * L) for p in ps]
+    if max(exponents) > MAX_EXPONENT:
+        return None
+    dh = [k * c for k, c in enumerate(h)][1:]
+    F = [Fraction(0)] * (max(exponents) + 1)
+    for p, n in zip(ps, exponents):
+        F[n] += -evaluate(g, p) / evaluate(dh, p)
+    F = trim(F)
+    if not F or sign_right_of(F, Fraction(0)) <= 0:
+        return None
+    odd = [Fraction(1)]
+    for q, M in squarefree_decomposition(F[next(i for i, c in enumerate(F) if c):]):
+        if M % 2:
+            odd = mul(odd, q)
+    inside = count_roots(odd, Fraction(0), Fraction(1)) - (1 if evaluate(odd, Fraction(1)) == 0 else 0)
+    if len(odd) > 1 and inside:
+        return None
+    return (f"simple rational poles {[str(p) for p in ps]}: f(t) = F(e^(-t/{L})) with the polynomial F >= 0 on "
+            f"(0, 1) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
 
 
 # ----------------------------------------------------------------- disk helpers

@@ -30,12 +30,13 @@ from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
 from .reals import Real
 from .bernstein import prove_completely_monotone
-from .tail import prove_tail
+from .tail import prove_tail, reduced
+from .tie import balanced_tie
 from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "tie", "bernstein"}
+           "dominance-at-0", "tie", "bernstein", "balanced-tie"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
@@ -169,7 +170,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie"},
             "binding belongs to the coefficient reasons only")
     if method.is_polynomial:
         require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
@@ -189,6 +190,17 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(claim.get("tail_index") is None, "a bernstein claim has no tail index")
         how = prove_completely_monotone(num, den)
         rho, rho_attained, d = Real(inf=1), True, []
+    elif reason == "balanced-tie":
+        require(claim.get("tail_index") is None, "a balanced-tie claim has no tail index")
+        g, h = reduced(num, den)
+        kappa = balanced_tie(g, h)
+        require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {kappa}")
+        count = max(len(num), len(den), 1)  # c_j for j > deg g - 2 are >= 0 on [0, kappa*] by the identity
+        first, attained, d = recompute(num, den, count, False, kappa)
+        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {kappa}")
+        rho, rho_attained = value, attained if first.compare(value) == 0 else True
+        how = (f"two simple real poles p* > 0 > a with balanced residues |b_a| = b_*: c_j >= 0 on [0, {kappa}] "
+               f"for j > deg q by the closed form, c_0 .. c_{count - 1} recomputed")
     elif reason == "tie":
         rho, rho_attained, d, N, count = _tie(num, den, value, claim)
         how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
@@ -206,7 +218,7 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

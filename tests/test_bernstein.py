@@ -229,3 +229,69 @@ def test_kernel_rejects_a_false_bernstein_claim(num, den):
     assert not ei.check(_forged(num, den)).ok
     with pytest.raises(CheckFailure):
         prove_completely_monotone([F(c) for c in num], [F(c) for c in den])
+
+
+# ----------------------------------------------------------------- simple rational poles: f may touch 0
+def test_density_touching_zero_with_rational_exponents_is_decided():
+    """r(-x) = 3 (1/(x+1) - 4/(x+2) + 4/(x+3)): f(t) = 3 e^-t (1 - 2 e^-t)^2 >= 0 vanishes at t = ln 2 (no interval
+    method can see f >= 0 there); with u = e^-t, F(u) = 3 u (1 - 2u)^2 >= 0 on (0, 1) decides rho = oo."""
+    num, den = [F(1), F(-1, 2), F(1, 2)], [F(1), F(-11, 6), F(1), F(-1, 6)]
+    assert pmul([F(1), F(-1)], pmul([F(1), F(-1, 2)], [F(1), F(-1, 3)])) == den
+    m = M.rational(num, den)
+    r = ei.absolute_monotonicity_radius(m)
+    assert r.value == ei.INF and r.reason == "bernstein"
+    assert "rational poles" in prove_completely_monotone(num, den)
+    assert_against_reference(m, r)
+
+
+def test_density_slightly_negative_with_rational_exponents_is_finite():
+    """f(t) = e^-t (1 - 2 e^-t)^2 - e^-2t/100 dips below 0 near t = ln 2: rho < oo."""
+    num3, den = pmul([F(1, 2)], pmul([F(2), F(-1)], [F(3), F(-1)])), pmul(pmul([F(1), F(-1)], [F(2), F(-1)]), [F(3), F(-1)])
+    # 1/(x+1) - (4 + 1/100)/(x+2) + 4/(x+3) at z = -x, over the common denominator (1-z)(2-z)(3-z)
+    num = padd(padd(pmul([F(1)], pmul([F(2), F(-1)], [F(3), F(-1)])),
+                    pmul([F(-401, 100)], pmul([F(1), F(-1)], [F(3), F(-1)]))),
+               pmul([F(4)], pmul([F(1), F(-1)], [F(2), F(-1)])))
+    num = [x / num[0] for x in num]
+    den = [x / den[0] for x in den]
+    m = M.rational(num, den)
+    r = ei.absolute_monotonicity_radius(m)
+    assert r.value != ei.INF
+    assert_against_reference(m, r)
+    with pytest.raises(CheckFailure):
+        prove_completely_monotone(num, den)
+
+
+# ----------------------------------------------------------------- an exactly balanced tie
+@pytest.mark.parametrize("num, den, kappa", [
+    ([1], [1, F(-2, 3), F(-1, 4)], F(4, 3)),          # poles (-4 +- 2 sqrt 13)/3: b_a = -b_*
+    ([1], [1, F(-1, 2), F(-1, 2)], F(1, 2)),          # poles 1 and -2: tie at kappa = 1/2
+    ([1, F(1, 4)], [1, F(-3, 4), F(-1, 4)], F(3, 2)),  # g vanishes... no: G1 = 0 makes the residues equal and opposite
+])
+def test_balanced_tie_is_decided_by_the_closed_form(num, den, kappa):
+    m = M.rational(num, den)
+    try:
+        r = ei.absolute_monotonicity_radius(m)
+    except ei.Undecided:
+        pytest.fail("an exactly balanced tie must be decided")
+    assert r.value <= kappa
+    if r.reason == "balanced-tie":
+        assert r.value == kappa and r.attained
+        # at kappa*, the odd-index coefficients vanish (two poles, one balanced pair) and the even ones are > 0
+        c = coefficients_at(num, den, kappa, 40)
+        assert all(x >= 0 for x in c) and any(x == 0 for x in c[2:])
+        assert admissible(num, den, kappa - F(1, 10 ** 6), 120)
+    report = ei.check(r.certificate)
+    assert report.ok, str(report)
+
+
+def test_kernel_rejects_a_wrong_balanced_tie():
+    def cert(num, den, value):
+        return {"format": "exactinv-certificate", "version": 2,
+                "problem": {"method": {"name": "rational", "numerator": [str(F(c)) for c in num],
+                                       "denominator": [str(F(c)) for c in den]}},
+                "claims": [{"type": "absolute_monotonicity_radius", "value": value, "reason": "balanced-tie",
+                            "attained": True}]}
+    assert ei.check(cert([1], [1, F(-2, 3), F(-1, 4)], "4/3")).ok
+    assert not ei.check(cert([1], [1, F(-2, 3), F(-1, 4)], "5/4")).ok   # not the tie
+    assert not ei.check(cert([1, F(1, 5)], [1, F(-2, 3), F(-1, 4)], "4/3")).ok  # residues do not balance
+    assert not ei.check(cert([1], [1, F(-1, 2), F(1, 16)], "2")).ok   # a double pole, no tie

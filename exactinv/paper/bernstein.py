@@ -11,6 +11,8 @@ Conversely, if f(t0) < 0 then c_j(j/t0) < 0 for j large enough (the weight t^j e
 at t0), so rho < oo, and an exact witness c_j(K) < 0 bounds rho <= K for the certified tail scan.
 
 Decided here (the kernel re-proves rho = oo: exactinv_check.bernstein):
+* simple rational poles: f(t) = F(e^(-t/L)) with F a polynomial (L the lcm of the poles' denominators), and
+  f >= 0 iff F >= 0 on (0, 1): exact, even where f touches 0 (e^(-t) (1 - 2 e^(-t))^2 at t = ln 2);
 * one distinct pole p (any multiplicity, any numerator): f(t) = e^(-p t) P(t), P a polynomial with exact
   rational coefficients; f >= 0 iff P >= 0 on (0, oo): an exact Sturm count;
 * p* (the smallest positive pole) of smallest real part, every other pole with Re z_k > p* (Arb): f > 0 near
@@ -25,13 +27,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from math import comb, factorial
+from math import comb, factorial, gcd
 
 import flint
 
 from ..core.polys import sign_at
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of
+from ..core.scalars import fmpq_of, fraction_of
 from .poles import PoleStructure
 
 __all__ = ["Verdict", "completely_monotone", "density_at_zero", "coefficient_at"]
@@ -42,13 +44,15 @@ _MAX_WITNESS_J = 1 << 13
 
 @dataclass(frozen=True)
 class Verdict:
-    """``infinite``: rho = oo proved (``how`` says why).  Otherwise ``bound`` = K with c_``j``(K) < 0 exactly
-    (rho < K), or both None: not decided (``how`` says why)."""
+    """``infinite``: rho = oo proved (``how`` says why).  ``finite``: r(-x) is proved not completely monotone
+    (rho < oo), with ``bound`` = K and c_``j``(K) < 0 exactly (rho < K) when a witness was found.  Neither:
+    not decided (``how`` says why)."""
 
     infinite: bool
     how: str
     bound: Fraction | None = None
     j: int | None = None
+    finite: bool = False
 
 
 def density_at_zero(g: list, h: list, count: int) -> tuple[Fraction, list[Fraction]]:
@@ -147,8 +151,8 @@ def _arb_coefficient(s: PoleStructure, kappa: Fraction, j: int) -> flint.arb:
 
 def _finite(g, h, witness, how) -> Verdict:
     if witness is None:
-        return Verdict(False, how + "; no exact witness c_j(kappa) < 0 was found")
-    return Verdict(False, how, witness[0], witness[1])
+        return Verdict(False, how + "; no exact witness c_j(kappa) < 0 was found", finite=True)
+    return Verdict(False, how, witness[0], witness[1], finite=True)
 
 
 def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> Verdict:
@@ -161,7 +165,37 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> 
         return _finite(g, h, _at_infinity_witness(g, h), f"r(-x) tends to c = {c} < 0")
     if len(s.balls) == 1:
         return _single_pole(g, h, s)
+    rational = _rational_exponents(g, h)
+    if rational is not None:
+        return rational
     return _general(g, h, s, bits)
+
+
+def _rational_exponents(g, h) -> Verdict | None:
+    """Simple rational poles p_k > 0: f(t) = F(e^(-t/L)) with F(u) = sum b_k u^(L p_k) a polynomial (L the lcm
+    of the denominators); rho = oo when F >= 0 on (0, 1) (exact).  None otherwise (the general route decides)."""
+    _, factors = flint.fmpq_poly([fmpq_of(c) for c in h]).factor()
+    if any(f.degree() != 1 or m != 1 for f, m in factors):
+        return None
+    ps = [Fraction(-fraction_of(f.coeffs()[0]) / fraction_of(f.coeffs()[1])) for f, _ in factors]
+    if min(ps) <= 0:
+        return None
+    L = 1
+    for p in ps:
+        L = L * p.denominator // gcd(L, p.denominator)
+    exponents = [int(p * L) for p in ps]
+    if max(exponents) > 2000:
+        return None
+    dh = [k * c for k, c in enumerate(h)][1:]
+    F = [Fraction(0)] * (max(exponents) + 1)
+    for p, n in zip(ps, exponents):
+        F[n] += -sum(c * p ** i for i, c in enumerate(g)) / sum(c * p ** i for i, c in enumerate(dh))
+    poly = flint.fmpq_poly([fmpq_of(c) for c in F])
+    if poly.is_zero() or next(c for c in F if c) <= 0:
+        return None
+    if any(0 < x < 1 and m % 2 for x, m in real_roots(poly)):
+        return None
+    return Verdict(True, f"simple rational poles {[str(p) for p in ps]}: f(t) = F(e^(-t/{L})), F >= 0 on (0, 1)")
 
 
 def _single_pole(g, h, s: PoleStructure) -> Verdict:
@@ -266,6 +300,16 @@ def _dominated_beyond(s: PoleStructure, T: flint.arb) -> bool:
     return bool(total < b_star[mu - 1].real)
 
 
+def _probes(a: Fraction, f: flint.arb, df: flint.arb) -> list[Fraction]:
+    """Points just beyond a where f may already be negative: Newton's guesses past the root, then a + 2^-k."""
+    out = []
+    if df < 0:
+        step = Fraction(f.mid().str(30, radius=False)) / Fraction(abs(df).mid().str(30, radius=False))
+        out += [a + step * k for k in (Fraction(3, 2), 2, 4)]
+    out += [a + Fraction(1, 2 ** k) for k in range(0, 50, 2)]
+    return [t for t in out if t > a]
+
+
 def _march(s: PoleStructure, fs, n0):
     """True (f > 0 on (0, oo) certified), a Fraction t0 with f(t0) < 0 (certified), or a reason string."""
     B = _bound(s, n0 + 1, flint.arb(0), flint.arb(1))
@@ -291,6 +335,9 @@ def _march(s: PoleStructure, fs, n0):
                 break
             d /= 2
             if d < Fraction(1, 2 ** 40):
+                for probe in _probes(a, f, df):
+                    if _f_and_derivative(s, flint.arb(fmpq_of(probe)))[0] < 0:
+                        return probe  # f crosses 0 just beyond a: rho < oo
                 return (f"f comes within working precision of 0 near t = {float(a):.6g}: deciding f >= 0 there is "
                         "the continuous positivity problem for linear differential equations (open in general)")
         a += d

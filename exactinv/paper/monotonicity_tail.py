@@ -190,7 +190,8 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     c_j(0) < 0 (Undecided without one)."""
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
-    if tie is not None and positive_tie is None:
+    balanced = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else None
+    if tie is not None and positive_tie is None and balanced is None:
         raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
                         "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
                         "inequality, and an exact balance needs a finer argument than the tail bound")
@@ -204,6 +205,9 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
+    if balanced is not None:  # c_j >= 0 on [0, kappa*] for j > deg q by the closed form: scan the first ones only
+        bound = exact_bound = balanced
+        N = max(len(method.numerator), len(method.denominator))
     verdict = None
     if tie is None:  # every other pole has Re z > p*: rho = oo or a witness c_j(K) < 0 (Bernstein)
         infinite = _infinite_radius_certificate(method, s.balls, s.star)
@@ -212,6 +216,10 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if not verdict.finite:
+            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo "
+                            f"iff r(-x) is completely monotone (Bernstein's theorem), and that is not decided: "
+                            f"{verdict.how}")
         if verdict.bound is not None:  # rho < K = verdict.bound: the tail on [0, K] has an index
             bound = exact_bound = verdict.bound
             N = tail_index(s, bound, first)
@@ -240,7 +248,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             value, binding, exact_bound = end, j, end
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
-    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None)
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -266,9 +274,29 @@ def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
                     "linear recurrence with several dominant characteristic roots (open in general)")
 
 
-def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None) -> AbsoluteMonotonicityRadius:
+def _balanced_tie_kappa(method: Method) -> Fraction | None:
+    """kappa* = -(a + p*)/2 when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
+    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); else None.  With s = sqrt(D) the
+    poles are (-h1 +- s)/(2 h2), g there is G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
+    h, g = method.denominator, method.numerator
+    if len(h) != 3:
+        return None
+    h0, h1, h2 = h
+    D = h1 * h1 - 4 * h0 * h2
+    if D <= 0 or h0 / h2 >= 0 or -h1 / h2 >= 0:
+        return None
+    x, y = Fraction(0), Fraction(0)
+    zr, zs = -h1 / (2 * h2), 1 / (2 * h2)
+    for c in reversed(g):
+        x, y = x * zr + y * zs * D + c, x * zs + y * zr
+    return h1 / (2 * h2) if x == 0 or y == 0 else None
+
+
+def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False) -> AbsoluteMonotonicityRadius:
     if value is None and tie is None:  # cannot happen: a witness c_j(K) < 0 has j < N
         raise Undecided(f"absolute monotonicity of {method.name}: no coefficient ends below the witness bound")
+    if value is None and balanced:  # the closed form covers every c_j beyond the scanned ones
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star)
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
