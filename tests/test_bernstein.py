@@ -295,3 +295,16 @@ def test_kernel_rejects_a_wrong_balanced_tie():
     assert not ei.check(cert([1], [1, F(-2, 3), F(-1, 4)], "5/4")).ok   # not the tie
     assert not ei.check(cert([1, F(1, 5)], [1, F(-2, 3), F(-1, 4)], "4/3")).ok  # residues do not balance
     assert not ei.check(cert([1], [1, F(-1, 2), F(1, 16)], "2")).ok   # a double pole, no tie
+
+
+@settings(deadline=None, max_examples=80)
+@given(st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=4), min_size=0, max_size=3),
+       st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=4), min_size=1, max_size=3),
+       st.fractions(min_value=0, max_value=20, max_denominator=7), st.integers(0, 14))
+def test_witness_sign_in_integers_matches_the_reference(g_tail, h_tail, kappa, j):
+    from exactinv.paper.bernstein import coefficient_at
+    g, h = [F(1)] + g_tail, [F(1)] + h_tail
+    c = coefficients_at(g, h, kappa, j + 1)
+    if c is None:
+        return
+    assert coefficient_at(g, h, kappa, j) == (c[j] > 0) - (c[j] < 0)

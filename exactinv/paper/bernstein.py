@@ -78,18 +78,28 @@ def density_at_zero(g: list, h: list, count: int) -> tuple[Fraction, list[Fracti
     return s[0], s[1:]
 
 
-def coefficient_at(g: list, h: list, kappa: Fraction, j: int) -> Fraction:
-    """c_j(kappa) = [w^j] r(w - kappa), exactly (series division of the shifted g and h)."""
+def coefficient_at(g: list, h: list, kappa: Fraction, j: int) -> int:
+    """The exact sign of c_j(kappa) = [w^j] r(w - kappa), in integers: with G, H the coefficients of
+    L g(w - kappa), L h(w - kappa) (L clears every denominator), c_n = u_n / H_0^(n+1) where
+    u_n = G_n H_0^n - sum_{i=1..n} H_i u_{n-i} H_0^(i-1) (no Fraction gcds)."""
     def shift(p):
         return [sum(p[k] * comb(k, i) * (-kappa) ** (k - i) for k in range(i, len(p))) for i in range(len(p))]
-    G, H = shift(g), shift(h)
-    c: list[Fraction] = []
+    Gq, Hq = shift(g), shift(h)
+    L = 1
+    for x in [*Gq, *Hq]:
+        L = L * x.denominator // gcd(L, x.denominator)
+    G, H = [int(x * L) for x in Gq], [int(x * L) for x in Hq]
+    powers = [1]
+    for _ in range(max(len(H), len(G))):
+        powers.append(powers[-1] * H[0])
+    u: list[int] = []
     for n in range(j + 1):
-        v = G[n] if n < len(G) else Fraction(0)
+        v = G[n] * powers[n] if n < len(G) else 0
         for i in range(1, min(n, len(H) - 1) + 1):
-            v -= H[i] * c[n - i]
-        c.append(v / H[0])
-    return c[j]
+            v -= H[i] * u[n - i] * powers[i - 1]
+        u.append(v)
+    sign = (u[j] > 0) - (u[j] < 0)
+    return sign if H[0] > 0 or j % 2 else -sign  # sign(H_0)^(j+1)
 
 
 def _witness(g, h, candidates) -> tuple[Fraction, int] | None:

@@ -29,16 +29,20 @@ the engine argues in four exact or certified steps:
    (reason ``"tie"``, attained).  If the tied poles outweigh p*, some c_j
    turns negative below kappa_A and the scan finds it.
 
-Undecided (documented, never a guess): (a) the tied poles' principal parts
-balance p*'s exactly (sum = b_{*,mu}; e.g. 1/(1 - 2z/3 - z^2/4)), where the
-strict tail bound fails; (b) the tied poles outweigh p* and no c_j with
-j < 600 turns negative below kappa_A -- for one dominant pair this happens
-only if its argument is a rational multiple of pi, and for several tied
-pairs it is the positivity problem of linear recurrences with several
-dominant characteristic roots, open in general; (c) no pole ever gets as
-close as p* but a non-real pole with Re z > p* approaches p*'s distance as
-kappa -> oo (e.g. 1/(1 - z + z^2/4 - z^3/40)): no tail index is uniform in
-kappa, and rho = oo would need the kappa -> oo asymptotics of c_j(kappa).
+6. No tie (every other pole has Re z > p*, so no tail index is uniform in
+   kappa): rho = oo iff r(-x) is completely monotone (Bernstein's theorem,
+   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); otherwise an
+   exact witness c_j(K) < 0 gives the bound K for step 4.
+7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
+   1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
+   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``).
+
+Undecided (documented, never a guess; docs/design.md): (a) an exact balance
+with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
+negative below kappa_A -- the positivity problem of linear recurrences with
+several dominant characteristic roots, open in general; (c) f touching 0 with
+exponents not all rational -- the continuous positivity problem, open in
+general; (d) a non-real pole with exactly p*'s real part (not implemented).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
