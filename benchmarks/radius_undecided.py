@@ -92,16 +92,20 @@ def run(count: int, seed: int, cap: float, check: bool) -> None:
     signal.signal(signal.SIGALRM, _alarm)
     outcome: dict[str, Counter] = {}
     reasons: Counter = Counter()
-    rejected = 0
+    rejected, kernel_max, engine_max = 0, 0.0, 0.0
     start = time.perf_counter()
     for kind, method in cases:
         signal.setitimer(signal.ITIMER_REAL, cap)
         try:
+            t = time.perf_counter()
             r = ei.absolute_monotonicity_radius(method)
+            engine_max = max(engine_max, time.perf_counter() - t)
             verdict = "decided"
             reasons[str(r.reason)] += 1
+            t = time.perf_counter()
             if check and not ei.check(r.certificate).ok:
                 rejected += 1
+            kernel_max = max(kernel_max, time.perf_counter() - t)
         except ei.Undecided:
             verdict = "undecided"
         except _Timeout:
@@ -123,8 +127,9 @@ def run(count: int, seed: int, cap: float, check: bool) -> None:
     print(f"{'all':<10} {n:>6} {total['decided']:>8} {total['undecided']:>10} {total['timeout']:>8} "
           f"{(total['undecided'] + total['timeout']) / max(n, 1):>14.1%}")
     print("reasons of the decided:", dict(sorted(reasons.items())))
+    print(f"slowest decided radius: engine {engine_max:.2f} s")
     if check:
-        print(f"certificates rejected by the kernel: {rejected}")
+        print(f"certificates rejected by the kernel: {rejected} (slowest kernel check {kernel_max:.2f} s)")
 
 
 def main() -> None:

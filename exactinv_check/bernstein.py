@@ -45,7 +45,8 @@ from .polys import count_roots, evaluate, integer_coefficients, mul, positive_ro
 from .rationals import require
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
-MAX_STEPS = 20000  # steps of the compact piece
+MAX_STEPS = 8000  # steps of the compact piece (the engine gives up after 4000)
+MAX_TRIALS = 40000  # step-size trials in all (a bounded verdict: each trial is a few disk operations per pole)
 MAX_DEGREE = 16  # the largest deg h the general proof takes
 MIN_STEP = Fraction(1, 2 ** 50)
 TAYLOR_TERMS = 28
@@ -266,7 +267,7 @@ def _positive(g, h, terms, mu, P_hi):
 
     a, d = t_a, t_a
     E = [_exp_of(z, a) for z, _, _, _ in terms]
-    steps_of = {}
+    steps_of, trials = {}, 0
     for step in range(MAX_STEPS):
         if dominated_beyond(a):
             return step
@@ -284,6 +285,8 @@ def _positive(g, h, terms, mu, P_hi):
         require(f_lo > 0, f"bernstein: f({float(a):.6g}) is not proved positive")
         e = [ball_abs_upper(x) for x in E]
         while True:
+            trials += 1
+            require(trials <= MAX_TRIALS, f"bernstein: more than {MAX_TRIALS} step trials (f is too close to 0)")
             B2 = derivative_bound(2, e, a + d)
             if f_lo + min(Fraction(0), df_lo * d) - d * d * B2 / 2 > 0:
                 break
