@@ -137,6 +137,16 @@ def _density_witness(g, h, ts: list, s: PoleStructure) -> tuple[Fraction, int] |
                     lo = mid
             return kappa, j
         j = max(j + 1, j * 3 // 2)
+    return _grid_witness(g, h, s)
+
+
+def _grid_witness(g, h, s: PoleStructure) -> tuple[Fraction, int] | None:
+    """A last search: c_j(kappa) < 0 for j < 64 and kappa = 2^(k/4) on a grid (Arb screen, exact check)."""
+    for j in range(1, 64):
+        for k in range(-16, 81):
+            kappa = _short(Fraction(2) ** (k // 4) * Fraction([4, 5, 6, 7][k % 4], 4))
+            if _arb_coefficient(s, kappa, j) < 0 and coefficient_at(g, h, kappa, j) < 0:
+                return kappa, j
     return None
 
 

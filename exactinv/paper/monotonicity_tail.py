@@ -220,6 +220,10 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if verdict.finite and verdict.bound is None:
+            raise Undecided(f"absolute monotonicity of {method.name}: rho < oo is proved (r(-x) is not completely "
+                            f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
+                            "scan (the binding coefficient index lies beyond the searched j <= 8192)")
         if not verdict.finite:
             raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo "
                             f"iff r(-x) is completely monotone (Bernstein's theorem), and that is not decided: "
