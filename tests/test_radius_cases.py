@@ -43,7 +43,9 @@ def test_case_is_decided_and_certified(name):
     below, above = _below_above(r.value)
     if below > 0:
         assert admissible(num, den, below, J)
-    if r.reason in ("tie", "balanced-tie"):  # the slow check of the upper side: a pole is closer than p* right after rho
+    if r.reason == "balanced-tie":  # two simple poles p*, a: kappa* = -(a + p*)/2, at which |a + kappa| = p* + kappa
+        assert abs(mpmath.mpf(float(r.value)) - tie_kappa(num, den)) < 1e-12
+    elif r.reason == "tie":  # the slow check of the upper side: a pole is closer than p* right after rho
         assert abs(mpmath.mpf(float(r.value)) - tie_kappa(num, den)) < 1e-12
         r.value.refine(120)
         with mpmath.workdps(50):

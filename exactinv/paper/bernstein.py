@@ -81,7 +81,16 @@ def density_at_zero(g: list, h: list, count: int) -> tuple[Fraction, list[Fracti
 def coefficient_at(g: list, h: list, kappa: Fraction, j: int) -> int:
     """The exact sign of c_j(kappa) = [w^j] r(w - kappa), in integers: with G, H the coefficients of
     L g(w - kappa), L h(w - kappa) (L clears every denominator), c_n = u_n / H_0^(n+1) where
-    u_n = G_n H_0^n - sum_{i=1..n} H_i u_{n-i} H_0^(i-1) (no Fraction gcds)."""
+    u_n = G_n H_0^n - sum_{i=1..n} H_i u_{n-i} H_0^(i-1) (no Fraction gcds).
+
+    The trapezoid r = (1 + z/2)/(1 - z/2) = -1 + 4/(2 - z): c_0(kappa) = -1 + 4/(2 + kappa) < 0 for kappa > 2,
+    and c_j(kappa) = 4 (2 + kappa)^-(j+1) > 0 for j >= 1.
+
+    >>> from fractions import Fraction as F
+    >>> g, h = [F(1), F(1, 2)], [F(1), F(-1, 2)]
+    >>> coefficient_at(g, h, F(3), 0), coefficient_at(g, h, F(2), 0), coefficient_at(g, h, F(3), 5)
+    (-1, 0, 1)
+    """
     def shift(p):
         return [sum(p[k] * comb(k, i) * (-kappa) ** (k - i) for k in range(i, len(p))) for i in range(len(p))]
     Gq, Hq = shift(g), shift(h)
@@ -177,7 +186,23 @@ def _finite(g, h, witness, how) -> Verdict:
 
 def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> Verdict:
     """Is rho = oo (module docstring)?  g, h coprime with h(0) = 1; s the pole structure (Arb) with p* = s.star,
-    every other pole's real part beyond p*'s (the caller's case: no pole ever gets as close as p*)."""
+    every other pole's real part beyond p*'s (the caller's case: no pole ever gets as close as p*).
+
+    (1 - z)/(1 - 2z)^4: one pole 1/2, f(t) = e^(-t/2) (t^2/32 + t^3/192) >= 0, so rho = oo (issue 22);
+    the trapezoid: r(-x) -> c = -1 < 0, and c_0(K) < 0 bounds rho.
+
+    >>> from fractions import Fraction as F
+    >>> from exactinv.paper.poles import pole_structure, precision
+    >>> g, h = [F(1), F(-1)], [F(1), F(-8), F(24), F(-32), F(16)]
+    >>> with precision(256):
+    ...     completely_monotone(g, h, pole_structure(g, h, F(1, 2))).infinite
+    True
+    >>> g, h = [F(1), F(1, 2)], [F(1), F(-1, 2)]
+    >>> with precision(256):
+    ...     v = completely_monotone(g, h, pole_structure(g, h, F(2)))
+    >>> v.infinite, v.finite, v.j, v.bound > 2
+    (False, True, 0, True)
+    """
     if len(g) > len(h):
         return _finite(g, h, _at_infinity_witness(g, h), "deg g > deg h: r(-x) is unbounded")
     c, _ = density_at_zero(g, h, 0)
