@@ -41,12 +41,12 @@ With l odd the denominator has exactly one real root p* > 0 and p* is dominant a
 ends either at a coefficient sign change (when the complex pair's principal part outweighs p*'s at
 the tie) or exactly at the tie (the rows marked `tie`: R_{k,3}, k >= 2, among them Radau IIA 3).
 
-Not in the table (no preset), and `Undecided` with a documented mathematical reason (see the docstring
-of `exactinv.paper.monotonicity`): r = 1/(1 - z + z^2/4 - z^3/40), whose complex poles have real part
-greater than p*, so p* is the nearest pole for every kappa but the ratio of distances tends to 1 as
-kappa -> oo -- no tail index is uniform in kappa, and rho = oo would need the asymptotics of c_j(kappa)
-as kappa -> oo; and r = 1/(1 - 2z/3 - z^2/4), whose two poles tie at kappa = 4/3 with principal parts
-of exactly equal size, where the strict dominance bound of the tail proof fails.
+Not in the table (no preset), and decided since issue 22 (docs/design.md, "Radius of absolute
+monotonicity"): r = 1/(1 - z + z^2/4 - z^3/40), whose complex poles have real part greater than p*, so
+no tail index is uniform in kappa -- rho = oo by Bernstein's theorem (r(-x) is completely monotone, reason
+`bernstein`); and r = 1/(1 - 2z/3 - z^2/4), whose two poles tie at kappa = 4/3 with principal parts of
+exactly equal size -- rho = 4/3 by the closed form of c_j (reason `balanced-tie`).  What stays `Undecided`
+and why (open positivity problems, or a pole with exactly p*'s real part) is listed there.
 
 """
 

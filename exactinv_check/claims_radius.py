@@ -9,6 +9,10 @@ c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
   fails (exact series of g/h at 0);
 * rho = oo for r = c / prod (1 - z/p_k)^(m_k), c > 0, every p_k real and
   positive: a product of absolutely monotonic factors (exact root counts);
+* rho = oo by Bernstein's theorem (reason "bernstein"): r(-x) = c + int e^(-xt) f(t) dt
+  with c >= 0 and the exponential polynomial f >= 0 on (0, oo), proved by
+  :func:`exactinv_check.bernstein.prove_completely_monotone` (exact Sturm count for one
+  pole; Taylor at 0, disk-arithmetic steps and a dominance bound otherwise);
 * otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
   rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
   and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)
@@ -25,12 +29,14 @@ from . import polys
 from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
 from .reals import Real
-from .tail import prove_tail
+from .bernstein import prove_completely_monotone
+from .tail import prove_tail, reduced
+from .tie import balanced_tie
 from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "tie"}
+           "dominance-at-0", "tie", "bernstein", "balanced-tie"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
 
 
@@ -163,7 +169,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(isinstance(reason, str) and reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie"},
             "binding belongs to the coefficient reasons only")
     require(not method.is_polynomial or reason in ("coefficient", "all-coefficients"),
             f"{reason!r} is not a reason for a polynomial")
@@ -182,6 +188,21 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(_all_roots_real_positive(den), "h has a root that is not real and positive")
         rho, rho_attained, d = Real(inf=1), True, []
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
+    elif reason == "bernstein":
+        require(claim.get("tail_index") is None, "a bernstein claim has no tail index")
+        how = prove_completely_monotone(num, den)
+        rho, rho_attained, d = Real(inf=1), True, []
+    elif reason == "balanced-tie":
+        require(claim.get("tail_index") is None, "a balanced-tie claim has no tail index")
+        g, h = reduced(num, den)
+        kappa = balanced_tie(g, h)
+        require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {kappa}")
+        count = max(len(num), len(den), 1)  # c_j for j > deg g - 2 are >= 0 on [0, kappa*] by the identity
+        first, attained, d = recompute(num, den, count, False, kappa)
+        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {kappa}")
+        rho, rho_attained = value, attained if first.compare(value) == 0 else True
+        how = (f"two simple real poles p* > 0 > a with balanced residues |b_a| = b_*: c_j >= 0 on [0, {kappa}] "
+               f"for j > deg q by the closed form, c_0 .. c_{count - 1} recomputed")
     elif reason == "tie":
         rho, rho_attained, d, N, count = _tie(num, den, value, claim)
         how = (f"a pole reaches p*'s distance from -kappa at kappa* = {value} (tie polynomial), so rho <= kappa*; "
@@ -199,7 +220,7 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

@@ -160,3 +160,7 @@ def _disks(f):
             require((x[0] - y[0]) ** 2 + (x[1] - y[1]) ** 2 > (x[2] + y[2]) ** 2,
                     "tail: the inclusion disks of two poles overlap (poles too close to separate)")
     return out
+
+
+# public names for the radius modules (tail, bernstein)
+ball, ball_mul, ball_abs_upper, round_up, sqrt_bounds, pole_disks = _ball, _bmul, _absup, _up, _sqrt_bounds, _disks

@@ -58,20 +58,10 @@ def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
     With ``tie`` (a Real kappa*, claimed to be the first kappa where another pole is as close to -kappa
     as p*): the range is [0, kappa*] instead, K is ignored, and the poles whose tie is proved to be
     kappa* (module tie) enter the dominance bound with ratio Q = 1."""
-    exact = all(isinstance(c, (int, Fraction)) and not isinstance(c, bool) for c in [*numerator, *denominator])
-    require(exact, "tail: coefficients must be exact rationals (int or Fraction)")
-    g = [Fraction(c) for c in trim(numerator)]
-    h = [Fraction(c) for c in trim(denominator)]
-    require(len(h) >= 2 and h[0] > 0, "tail: the denominator needs h(0) > 0 and degree >= 1")
-    require(len(g) >= 1 and g[0] == h[0], "tail: r(0) = g(0)/h(0) must be 1")
     require(K is None or (isinstance(K, (int, Fraction)) and not isinstance(K, bool) and K >= 0),
             "tail: K must be a rational >= 0 or None (infinity)")
     require(isinstance(N_hint, int) and not isinstance(N_hint, bool) and N_hint >= 0, "tail: bad N_hint")
-    common = gcd(g, h)
-    if len(common) > 1:  # r is unchanged; every remaining root of h is a pole of r
-        g, h = divmod_(g, common)[0], divmod_(h, common)[0]
-        g, h = ([-c for c in g], [-c for c in h]) if h[0] < 0 else (g, h)
-    require(len(h) >= 2, "tail: r = g/h is a polynomial after cancellation; it has no pole")
+    g, h = reduced(numerator, denominator)
     factors = _yun(h)
     poles = positive_roots(h)  # isolating intervals of the distinct positive poles, increasing
     require(poles, "tail: r has no positive real pole, so no pole dominates the tail")
@@ -90,6 +80,23 @@ def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
     require(K is not None, "tail: K = oo needs all poles real and positive, and g constant (product) or all "
                            "partial-fraction coefficients b_{k,m} >= 0 (termwise)")
     return _dominance(g, h, factors, f_star, mu, poles[0], Fraction(K), max(N_hint, first))
+
+
+def reduced(numerator, denominator):
+    """(g, h): r = g/h in lowest terms with h(0) > 0, checked exact, h(0) > 0 and r(0) = 1; every root of h
+    is then a pole of r (CheckFailure for a polynomial r)."""
+    exact = all(isinstance(c, (int, Fraction)) and not isinstance(c, bool) for c in [*numerator, *denominator])
+    require(exact, "tail: coefficients must be exact rationals (int or Fraction)")
+    g = [Fraction(c) for c in trim(numerator)]
+    h = [Fraction(c) for c in trim(denominator)]
+    require(len(h) >= 2 and h[0] > 0, "tail: the denominator needs h(0) > 0 and degree >= 1")
+    require(len(g) >= 1 and g[0] == h[0], "tail: r(0) = g(0)/h(0) must be 1")
+    common = gcd(g, h)
+    if len(common) > 1:  # r is unchanged; every remaining root of h is a pole of r
+        g, h = divmod_(g, common)[0], divmod_(h, common)[0]
+        g, h = ([-c for c in g], [-c for c in h]) if h[0] < 0 else (g, h)
+    require(len(h) >= 2, "tail: r = g/h is a polynomial after cancellation; it has no pole")
+    return g, h
 
 
 # ----------------------------------------------------------------- exact algebra
@@ -243,22 +250,7 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
     roots of the tie polynomial: a pole whose
     kappa_z enclosure lies in (lo, hi) has kappa_z = kappa*, so p* + kappa <= |z + kappa| on [0, kappa*]
     and it enters with Q = 1 (multiplicity <= mu required); at least one pole must be tied."""
-    disks = {id(f): _disks(f) for f, _ in factors}
-    lo, hi = iv
-    for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
-        hits = [i for i, (a, b, rho) in enumerate(disks[id(f_star)])
-                if (min(max(a, lo), hi) - a) ** 2 + b * b <= rho * rho]
-        if len(hits) == 1 and lo > 0:
-            break
-        require(lo != hi, "tail: p* lies in no inclusion disk")
-        a, _, rho = disks[id(f_star)][hits[0]] if hits else (lo, 0, 0)
-        cuts = [c for c in (a + 2 * rho, a - 2 * rho) if lo < c < hi]  # around a disk, or else halve
-        lo, hi = _halve(f_star, lo, hi, cuts[0] if cuts and step % 3 < 2 else None)
-    else:
-        raise CheckFailure("tail: could not match p* to its inclusion disk")
-    a, _, rho = disks[id(f_star)][hits[0]]
-    P_lo, P_hi = max(lo, a - rho), min(hi, a + rho)  # p* is in [lo, hi] and within rho of a
-    require(0 < P_lo <= P_hi, "tail: inconsistent enclosure of p*")
+    disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, iv)
     star = _b_balls(g, h, mu, ((P_lo + P_hi) / 2, Fraction(0), (P_hi - P_lo) / 2))
     b_mu = star[mu - 1][0] - star[mu - 1][2]  # b_{*,mu} is real: a lower bound
     require(b_mu > 0, "tail: the dominant principal part could not be bounded away from 0")
@@ -278,7 +270,34 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
             else:
                 Q = _ratio_bound(z, P_hi, K)
             others.append((Q, M, [_absup(b) for b in _b_balls(g, h, M, z)]))
-    require(tie is None or tied > 0, "tie: no pole is proved to reach p*'s distance at the claimed kappa*")
+    return _least_index(others, star, mu, b_mu, D_hi, P_lo, first, tie is None or tied > 0)
+
+
+def star_enclosure(factors, f_star, iv):
+    """(disks, hits, P_lo, P_hi): the inclusion disks of every squarefree factor (by id), the index
+    hits[0] of p*'s disk among f_star's, and rationals 0 < P_lo <= p* <= P_hi."""
+    disks = {id(f): _disks(f) for f, _ in factors}
+    lo, hi = iv
+    for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
+        hits = [i for i, (a, b, rho) in enumerate(disks[id(f_star)])
+                if (min(max(a, lo), hi) - a) ** 2 + b * b <= rho * rho]
+        if len(hits) == 1 and lo > 0:
+            break
+        require(lo != hi, "tail: p* lies in no inclusion disk")
+        a, _, rho = disks[id(f_star)][hits[0]] if hits else (lo, 0, 0)
+        cuts = [c for c in (a + 2 * rho, a - 2 * rho) if lo < c < hi]  # around a disk, or else halve
+        lo, hi = _halve(f_star, lo, hi, cuts[0] if cuts and step % 3 < 2 else None)
+    else:
+        raise CheckFailure("tail: could not match p* to its inclusion disk")
+    a, _, rho = disks[id(f_star)][hits[0]]
+    P_lo, P_hi = max(lo, a - rho), min(hi, a + rho)  # p* is in [lo, hi] and within rho of a
+    require(0 < P_lo <= P_hi, "tail: inconsistent enclosure of p*")
+    return disks, hits, P_lo, P_hi
+
+
+def _least_index(others, star, mu, b_mu, D_hi, P_lo, first, some_tied):
+    """The least N >= first with B(N) < b_mu (module docstring, dominance)."""
+    require(some_tied, "tie: no pole is proved to reach p*'s distance at the claimed kappa*")
     start = first
     for Q, M, _ in others:
         if M > mu:
@@ -305,3 +324,7 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
         mid = (bad + good) // 2
         bad, good = (bad, mid) if bound(mid) < b_mu else (mid, good)
     return good
+
+
+# public names for module bernstein
+squarefree_decomposition, factor_of, b_disks = _yun, _factor_of, _b_balls

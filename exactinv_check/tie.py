@@ -126,3 +126,30 @@ def kappa_enclosure(z, P_lo, P_hi, sqrt_bounds):
     lo = num_lo / (den_hi if num_lo >= 0 else den_lo)
     hi = num_hi / (den_lo if num_hi >= 0 else den_hi)
     return lo, hi
+
+
+def balanced_tie(g, h):
+    """kappa* for r = g/h (lowest terms, h(0) > 0) with exactly two simple poles p > 0 > a, |a| > p, whose residues
+    balance: |b_a| = b_p > 0 (b = -g(z)/h'(z)).  Then, for j > deg g - 2 and 0 <= kappa <= kappa* = -(a + p)/2,
+        c_j(kappa) = b_p (p + kappa)^-(j+1) + b_a (a + kappa)^-(j+1) >= b_p ((p + kappa)^-(j+1) - |a + kappa|^-(j+1)) >= 0
+    since |a + kappa| >= p + kappa exactly up to kappa*; beyond it the a-term dominates with alternating sign, so some
+    c_j < 0 and rho <= kappa*.  Exact: with s = sqrt(D), D = h1^2 - 4 h0 h2, the roots are (-h1 +- s)/(2 h2) and
+    g at them is G0 +- G1 s (rationals), h' = +-s, so b_+- = -+G0/s - G1: |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
+    require(len(h) == 3, "balanced tie: r needs exactly two poles (deg h = 2)")
+    h0, h1, h2 = h
+    D = h1 * h1 - 4 * h0 * h2
+    require(D > 0, "balanced tie: the poles are not real and distinct")
+    require(h0 / h2 < 0, "balanced tie: the poles do not have opposite signs")
+    require(-h1 / h2 < 0, "balanced tie: the negative pole is not farther from 0 than the positive one")
+    # g((-h1 + e s)/(2 h2)) = G0 + e G1 s for e = +-1: expand in the field Q(s), s^2 = D
+    x, y = Fraction(0), Fraction(0)  # running value x + y s of g at (-h1 + s)/(2 h2), Horner
+    zr, zs = -h1 / (2 * h2), 1 / (2 * h2)
+    for c in reversed(g):
+        x, y = x * zr + y * zs * D + c, x * zs + y * zr
+    G0, G1 = x, y
+    require(G0 == 0 or G1 == 0, "balanced tie: the residues at the two poles do not balance exactly")
+    e = 1 if h2 > 0 else -1  # the positive pole p = (-h1 + e s)/(2 h2)
+    # b_p = -g(p)/h'(p), h'(p) = e s: b_p = -(G0 + e G1 s)/(e s) = -e G0/s - G1
+    b_p_sign = polys.sign(-e * G0) if G1 == 0 else polys.sign(-G1)
+    require(b_p_sign > 0, "balanced tie: the principal part at p* has the wrong sign")
+    return h1 / (2 * h2)  # -(a + p)/2

@@ -1,5 +1,5 @@
 """Issue 14's cases: the Pade table k, l <= 6, Lobatto IIIC 2-4, Radau IIA 1-3, the SDIRK and SSP-SDIRK
-families and 1/(1 - z + z^2/4 - z^3/40).  Each is decided by the engine and its certificate re-proved by the
+families and 1/(1 - z + z^2/4 - z^3/40) (rho = oo by Bernstein's theorem, issue 22).  Each is decided by the engine and its certificate re-proved by the
 kernel (every one, in CI too: the largest tail index, N = 78 for Pade(1,3), takes about two seconds in
 the pure-Python kernel; a kernel budget once set too tight rejected six of them), and the value is checked against the slow reference of tests/radius_reference.py."""
 
@@ -19,7 +19,9 @@ CASES.update({name: (lambda name=name: M.preset(name)) for name in
               ["lobatto_iiic2", "lobatto_iiic3", "lobatto_iiic4", "radau_iia1", "radau_iia2", "radau_iia3", "sdirk4"]})
 CASES.update({f"sdirk2({g})": (lambda g=g: M.sdirk2(g)) for g in ["1/4", "1/3", "1/2", "2/3", "1"]})
 CASES.update({f"ssp_sdirk({s})": (lambda s=s: M.ssp_sdirk(s)) for s in range(1, 7)})
-UNDECIDED = {"1/(1-z+z^2/4-z^3/40)": lambda: M.rational([1], [1, -1, "1/4", "-1/40"])}
+CASES["1/(1-z+z^2/4-z^3/40)"] = lambda: M.rational([1], [1, -1, "1/4", "-1/40"])  # rho = oo by Bernstein
+CASES["1/(1-2z/3-z^2/4)"] = lambda: M.rational([1], [1, "-2/3", "-1/4"])  # balanced tie: rho = 4/3
+UNDECIDED = {"1/((1-z)(1-z+z^2/2))": lambda: M.rational([1], [1, -2, "3/2", "-1/2"])}
 J = 120  # coefficients in the slow check
 
 
@@ -41,7 +43,9 @@ def test_case_is_decided_and_certified(name):
     below, above = _below_above(r.value)
     if below > 0:
         assert admissible(num, den, below, J)
-    if r.reason == "tie":  # the slow check of the upper side: a pole is closer than p* right after rho
+    if r.reason == "balanced-tie":  # two simple poles p*, a: kappa* = -(a + p*)/2, at which |a + kappa| = p* + kappa
+        assert abs(mpmath.mpf(float(r.value)) - tie_kappa(num, den)) < 1e-12
+    elif r.reason == "tie":  # the slow check of the upper side: a pole is closer than p* right after rho
         assert abs(mpmath.mpf(float(r.value)) - tie_kappa(num, den)) < 1e-12
         r.value.refine(120)
         with mpmath.workdps(50):
@@ -53,8 +57,8 @@ def test_case_is_decided_and_certified(name):
 
 @pytest.mark.parametrize("name", sorted(UNDECIDED))
 def test_documented_undecided_case(name):
-    """p* is the nearest pole for every kappa, but the other poles' ratio tends to 1 as kappa -> oo."""
-    with pytest.raises(ei.Undecided, match="kappa -> oo"):
+    """Poles 1 +- i share p* = 1's real part: never closer, but the ratio tends to 1 (docs/design.md)."""
+    with pytest.raises(ei.Undecided, match="same real part"):
         ei.absolute_monotonicity_radius(UNDECIDED[name]())
 
 

@@ -64,6 +64,8 @@ class RadiusReason(Tag):
     TIE = "tie"  # p* wins the equal-modulus tie at rho = kappa_A (exact root of the tie polynomial)
     PRODUCT = "product"  # rho = INF: r is a product of absolutely monotonic factors
     TERMWISE = "termwise"  # rho = INF: every partial-fraction term is absolutely monotonic
+    BALANCED_TIE = "balanced-tie"  # two simple real poles whose residues balance exactly: rho = kappa* (closed form)
+    BERNSTEIN = "bernstein"  # rho = INF: r(-x) = c + Laplace transform of f >= 0 (Bernstein's theorem)
 
 
 class BisectionStep(Tag):

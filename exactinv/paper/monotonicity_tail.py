@@ -29,16 +29,20 @@ the engine argues in four exact or certified steps:
    (reason ``"tie"``, attained).  If the tied poles outweigh p*, some c_j
    turns negative below kappa_A and the scan finds it.
 
-Undecided (documented, never a guess): (a) the tied poles' principal parts
-balance p*'s exactly (sum = b_{*,mu}; e.g. 1/(1 - 2z/3 - z^2/4)), where the
-strict tail bound fails; (b) the tied poles outweigh p* and no c_j with
-j < 600 turns negative below kappa_A -- for one dominant pair this happens
-only if its argument is a rational multiple of pi, and for several tied
-pairs it is the positivity problem of linear recurrences with several
-dominant characteristic roots, open in general; (c) no pole ever gets as
-close as p* but a non-real pole with Re z > p* approaches p*'s distance as
-kappa -> oo (e.g. 1/(1 - z + z^2/4 - z^3/40)): no tail index is uniform in
-kappa, and rho = oo would need the kappa -> oo asymptotics of c_j(kappa).
+6. No tie (every other pole has Re z > p*, so no tail index is uniform in
+   kappa): rho = oo iff r(-x) is completely monotone (Bernstein's theorem,
+   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); otherwise an
+   exact witness c_j(K) < 0 gives the bound K for step 4.
+7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
+   1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
+   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``).
+
+Undecided (documented, never a guess; docs/design.md): (a) an exact balance
+with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
+negative below kappa_A -- the positivity problem of linear recurrences with
+several dominant characteristic roots, open in general; (c) f touching 0 with
+exponents not all rational -- the continuous positivity problem, open in
+general; (d) a non-real pole with exactly p*'s real part (not implemented).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
@@ -58,12 +62,14 @@ from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
+from .bernstein import completely_monotone
 from .poles import dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
+_MAX_INDEX = 4096  # the kernel's MAX_COEFFICIENTS: a longer scan could not be certified
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:
@@ -188,7 +194,8 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     c_j(0) < 0 (Undecided without one)."""
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
-    if tie is not None and positive_tie is None:
+    balanced = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else None
+    if tie is not None and positive_tie is None and balanced is None:
         raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
                         "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
                         "inequality, and an exact balance needs a finer argument than the tail bound")
@@ -202,16 +209,37 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         bound, tied = _short_upper(exact_bound), tie.tied
         N = tail_index(s, bound, first, tied)
+    if balanced is not None:  # c_j >= 0 on [0, kappa*] for j > deg q by the closed form: scan the first ones only
+        bound = exact_bound = balanced
+        N = max(len(method.numerator), len(method.denominator))
+    verdict = None
+    if tie is None:  # every other pole has Re z > p*: rho = oo or a witness c_j(K) < 0 (Bernstein)
+        infinite = _infinite_radius_certificate(method, s.balls, s.star)
+        if infinite is not None:
+            return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
+        if verdict.infinite:
+            return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if verdict.finite and verdict.bound is None:
+            raise Undecided(f"absolute monotonicity of {method.name}: rho < oo is proved (r(-x) is not completely "
+                            f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
+                            "scan (the binding coefficient index lies beyond the searched j <= 8192)")
+        if not verdict.finite:
+            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo "
+                            f"iff r(-x) is completely monotone (Bernstein's theorem), and that is not decided: "
+                            f"{verdict.how}")
+        if verdict.bound is not None:  # rho < K = verdict.bound: the tail on [0, K] has an index
+            bound = exact_bound = verdict.bound
+            N = tail_index(s, bound, first)
+            if N > _MAX_INDEX:
+                raise Undecided(f"absolute monotonicity of {method.name}: rho < {verdict.bound} (c_{verdict.j} < 0 "
+                                f"there), but the certified tail starts at j = {N} > {_MAX_INDEX} coefficients")
     value, binding, ds = None, None, []
     for j, d in enumerate(_coefficient_polynomials(method)):
         if N is not None and j >= max(N, first):
             break
-        if j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
-            return _undecided_scan(method, tie)
-        if tie is None and value is None and j == first + len(method.denominator):
-            infinite = _infinite_radius_certificate(method, s.balls, s.star)
-            if infinite is not None:
-                return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
+        if N is None and j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
+            return _undecided_scan(method, tie, verdict)
         ds.append(d)
         if _nonnegative_on(d, bound):
             continue
@@ -228,7 +256,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             value, binding, exact_bound = end, j, end
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
-    return _finish(method, exact_bound, p_star, value, binding, ds, N)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None)
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -242,20 +270,41 @@ def _ambiguous(end, ball: flint.arb) -> bool:
     return True
 
 
-def _undecided_scan(method, tie) -> AbsoluteMonotonicityRadius:
+def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
     if tie is None:
-        raise Undecided(f"absolute monotonicity of {method.name}: c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative "
-                        "for every kappa >= 0 and p* stays the nearest pole for every kappa, but a non-real pole with "
-                        "Re z > p* approaches p*'s distance as kappa -> oo (ratio -> 1), so no tail index is uniform "
-                        "in kappa; rho = oo would need the kappa -> oo asymptotics of c_j(kappa) uniformly in j/kappa "
-                        "(not implemented), and product/termwise certificates need all poles real")
+        raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo iff "
+                        "r(-x) is completely monotone (Bernstein), and that was not decided: "
+                        f"{verdict.how if verdict is not None else 'no verdict'}; "
+                        f"c_0 .. c_{_MAX_SCAN_NO_TIE - 1} are nonnegative for every kappa >= 0")
     raise Undecided(f"absolute monotonicity of {method.name}: rho <= kappa_A = {float(tie.kappa.mid()):.6g}, where "
                     f"{len(tie.tied)} other pole(s) reach p*'s distance from -kappa and outweigh it; no c_j with "
                     f"j < {_MAX_SCAN} turns negative below kappa_A.  Deciding this is the positivity problem for a "
                     "linear recurrence with several dominant characteristic roots (open in general)")
 
 
-def _finish(method, kappa_A, p_star, value, binding, ds, N) -> AbsoluteMonotonicityRadius:
+def _balanced_tie_kappa(method: Method) -> Fraction | None:
+    """kappa* = -(a + p*)/2 when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
+    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); else None.  With s = sqrt(D) the
+    poles are (-h1 +- s)/(2 h2), g there is G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
+    h, g = method.denominator, method.numerator
+    if len(h) != 3:
+        return None
+    h0, h1, h2 = h
+    D = h1 * h1 - 4 * h0 * h2
+    if D <= 0 or h0 / h2 >= 0 or -h1 / h2 >= 0:
+        return None
+    x, y = Fraction(0), Fraction(0)
+    zr, zs = -h1 / (2 * h2), 1 / (2 * h2)
+    for c in reversed(g):
+        x, y = x * zr + y * zs * D + c, x * zs + y * zr
+    return h1 / (2 * h2) if x == 0 or y == 0 else None
+
+
+def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False) -> AbsoluteMonotonicityRadius:
+    if value is None and tie is None:  # cannot happen: a witness c_j(K) < 0 has j < N
+        raise Undecided(f"absolute monotonicity of {method.name}: no coefficient ends below the witness bound")
+    if value is None and balanced:  # the closed form covers every c_j beyond the scanned ones
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star)
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
@@ -281,12 +330,14 @@ def _infinite_radius_certificate(method: Method, balls, star) -> str | None:
     """Why rho = INF, if a sufficient certificate applies:
     ``product``  -- r = prod (1 - z/p_k)^(-m_k) with all p_k > 0 (each factor and
                     so the product is absolutely monotonic on (-oo, 0]);
-    ``termwise`` -- deg g <= deg h, all poles real and positive and every
-                    b_{k,m} > 0: each c_j, j >= 1, is a sum of positive terms."""
+    ``termwise`` -- deg g <= deg h, all poles real and positive, every
+                    b_{k,m} > 0 and c = lim r >= 0: each c_j is a sum of terms >= 0."""
     if not all(z.imag.is_zero() and z.real > 0 for z, _, _ in balls):
         return None
     if len(method.numerator) == 1:
         return RadiusReason.PRODUCT
-    if len(method.numerator) <= len(method.denominator) and all(v.real > 0 for _, _, b in balls for v in b):
+    at_infinity = method.numerator[-1] / method.denominator[-1] if len(method.numerator) == len(method.denominator) else 0
+    if len(method.numerator) <= len(method.denominator) and at_infinity >= 0 \
+            and all(v.real > 0 for _, _, b in balls for v in b):
         return RadiusReason.TERMWISE
     return None

@@ -216,7 +216,9 @@ def dominance_tie(s: PoleStructure, h: flint.fmpq_poly, exact: bool = True) -> T
     lowest = min(values, key=lambda v: v[1].upper())
     cluster = [v for v in values if not v[1].lower() > lowest[1].upper()]
     if not all(exact for _, _, exact in cluster):
-        raise Undecided("a pole has the same real part as p* to working precision; its tie is not located")
+        raise Undecided("a non-real pole has the same real part as p* to working precision: it never gets closer to "
+                        "-kappa than p*, but its distance ratio tends to 1 as kappa -> oo; deciding rho here needs an "
+                        "exact proof that Re z = p* (not implemented; docs/design.md, radius: what stays undecided)")
     lo = min(dyadic_of(v[1].lower()) for v in cluster)
     hi = max(dyadic_of(v[1].upper()) for v in cluster)
     if any(not v[1].lower() > flint.arb(fmpq_of(hi)) for v in values if v not in cluster):

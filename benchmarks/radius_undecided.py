@@ -1,0 +1,147 @@
+"""The Undecided rate of the radius of absolute monotonicity over a random family of rational functions.
+
+The family (seeded, reproducible): r = g/h of degree <= 4 with r(0) = 1 and a positive real pole, in three
+equal parts --
+  * generic:   h = (1 - z/p) q(z), deg q <= 3, q(0) = 1, small random rational coefficients;
+  * repeated:  h = (1 - z/p)^m q(z), m = 2..4, deg h <= 4 (a repeated real pole, any numerator);
+  * bernstein: h = (1 - z/p) ((1 - z/a)^2 + (z/b)^2)-type, a complex pair with real part beyond p*
+               (the class where no tail index is uniform in kappa), numerator random;
+the numerator g has g(0) = 1 and degree <= 4.  Each radius runs under an alarm of --cap seconds (the
+engine only; a time-out is counted apart from Undecided).  For every decided case the
+certificate is checked by the trusted kernel (``--no-check`` skips it); a rejected certificate is counted.
+
+Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check]
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import signal
+import time
+from collections import Counter
+from fractions import Fraction
+
+import exactinv as ei
+from exactinv import methods as M
+
+
+def _small(rng: random.Random) -> Fraction:
+    return Fraction(rng.randint(-12, 12), rng.choice([1, 2, 3, 4, 6]))
+
+
+def _numerator_coefficient(rng: random.Random) -> Fraction:
+    return Fraction(rng.randint(-4, 4), rng.choice([1, 2, 3, 4, 6, 8]))
+
+
+def _mul(a: list, b: list) -> list:
+    out = [Fraction(0)] * (len(a) + len(b) - 1)
+    for i, x in enumerate(a):
+        for j, y in enumerate(b):
+            out[i + j] += x * y
+    return out
+
+
+def family(count: int, seed: int) -> list[tuple[str, list, list]]:
+    """count (kind, numerator, denominator) triples, low to high, h(0) = g(0) = 1."""
+    rng = random.Random(seed)
+    out = []
+    while len(out) < count:
+        kind = ("generic", "repeated", "bernstein")[len(out) % 3]
+        p = Fraction(rng.randint(1, 16), rng.choice([2, 4, 8]))
+        factor = [Fraction(1), -1 / p]
+        if kind == "generic":
+            den = _mul(factor, [Fraction(1)] + [_small(rng) for _ in range(rng.randint(0, 3))])
+        elif kind == "repeated":
+            m = rng.randint(2, 4)
+            den = [Fraction(1)]
+            for _ in range(m):
+                den = _mul(den, factor)
+            if m < 4 and rng.random() < 0.5:
+                den = _mul(den, [Fraction(1)] + [_small(rng) for _ in range(rng.randint(1, 4 - m))])
+        else:  # 1/((1 - z/w)(1 - z/w-bar)) with Re w > p
+            re = p + Fraction(rng.randint(1, 12), 4)
+            im = Fraction(rng.randint(1, 12), 4)
+            n2 = re * re + im * im
+            den = _mul(factor, [Fraction(1), -2 * re / n2, 1 / n2])
+        num = [Fraction(1)] + [_numerator_coefficient(rng) for _ in range(rng.randint(0, 4))]
+        while len(num) > 1 and num[-1] == 0:
+            num.pop()
+        if len(den) > 5 or len(num) > 5:
+            continue
+        try:
+            method = M.rational(num, den, name=f"r{len(out)}")
+        except ei.ExactinvError:
+            continue
+        if method.is_polynomial:
+            continue
+        out.append((kind, method))
+    return out
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _alarm(*_):
+    raise _Timeout
+
+
+def run(count: int, seed: int, cap: float, check: bool) -> None:
+    cases = family(count, seed)
+    signal.signal(signal.SIGALRM, _alarm)
+    outcome: dict[str, Counter] = {}
+    reasons: Counter = Counter()
+    rejected, kernel_max, engine_max = 0, 0.0, 0.0
+    start = time.perf_counter()
+    for kind, method in cases:
+        signal.setitimer(signal.ITIMER_REAL, cap)
+        r = None
+        try:
+            t = time.perf_counter()
+            r = ei.absolute_monotonicity_radius(method)
+            engine_max = max(engine_max, time.perf_counter() - t)
+            verdict = "decided"
+            reasons[str(r.reason)] += 1
+        except ei.Undecided:
+            verdict = "undecided"
+        except _Timeout:
+            verdict = "timeout"
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+        if r is not None and check:  # the kernel is timed apart (the cap is the engine's)
+            t = time.perf_counter()
+            rejected += not ei.check(r.certificate).ok
+            kernel_max = max(kernel_max, time.perf_counter() - t)
+        outcome.setdefault(kind, Counter())[verdict] += 1
+    total = Counter()
+    for c in outcome.values():
+        total.update(c)
+    print(f"{count} random r = g/h, degree <= 4, seed {seed}, cap {cap:g} s, {time.perf_counter() - start:.1f} s")
+    print(f"{'family':<10} {'cases':>6} {'decided':>8} {'undecided':>10} {'timeout':>8} {'undecided rate':>15}")
+    for kind in ("generic", "repeated", "bernstein"):
+        c = outcome.get(kind, Counter())
+        n = sum(c.values())
+        print(f"{kind:<10} {n:>6} {c['decided']:>8} {c['undecided']:>10} {c['timeout']:>8} "
+              f"{(c['undecided'] + c['timeout']) / max(n, 1):>14.1%}")
+    n = sum(total.values())
+    print(f"{'all':<10} {n:>6} {total['decided']:>8} {total['undecided']:>10} {total['timeout']:>8} "
+          f"{(total['undecided'] + total['timeout']) / max(n, 1):>14.1%}")
+    print("reasons of the decided:", dict(sorted(reasons.items())))
+    print(f"slowest decided radius: engine {engine_max:.2f} s")
+    if check:
+        print(f"certificates rejected by the kernel: {rejected} (slowest kernel check {kernel_max:.2f} s)")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--count", type=int, default=300)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--cap", type=float, default=20.0)
+    parser.add_argument("--no-check", action="store_true")
+    args = parser.parse_args()
+    run(args.count, args.seed, args.cap, not args.no_check)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,300 @@
+"""rho = oo by Bernstein's theorem -- proved exactly.
+
+r = g/h is absolutely monotonic on all of (-oo, 0] (rho = oo) iff F(x) = r(-x) is completely monotone on
+[0, oo), since c_j(kappa) = r^(j)(-kappa)/j! = (-1)^j F^(j)(kappa)/j!.  The kernel needs only the sufficient
+direction.  If deg g <= deg h and every pole z_k of r has Re z_k > 0, then with r = c + sum_k sum_m
+a_{k,m} (z - z_k)^(-m) (c = lim r at oo), b_{k,m} = (-1)^m a_{k,m} and (x + z)^(-m) = int_0^oo
+t^(m-1) e^(-(x+z) t) dt/(m-1)! (Re z > 0):
+
+    F(x) = c + int_0^oo e^(-x t) f(t) dt,     f(t) = sum_k sum_m b_{k,m} t^(m-1) e^(-z_k t)/(m-1)!,
+
+so c_0(kappa) = c + int e^(-kappa t) f(t) dt and c_j(kappa) = int t^j e^(-kappa t) f(t) dt / j! (j >= 1).
+Hence c >= 0 and f >= 0 on (0, oo) give c_j(kappa) >= 0 for every j and kappa >= 0, and no pole lies on
+(-oo, 0]: rho = oo.  (Conversely Bernstein's theorem and the uniqueness of the Laplace transform make these
+conditions necessary, which is why the engine can decide rho = oo this way.)
+
+The proof of f >= 0:
+ * simple rational poles p_k > 0 (found exactly: a rational root k/q of H has q | lc(H)): with u = e^(-t/L),
+   L the lcm of their denominators, f(t) = F(u) = sum b_k u^(L p_k), a polynomial; f >= 0 iff F >= 0 on (0, 1),
+   an exact Sturm count (this decides f touching 0, e.g. e^(-t) (1 - 2 e^(-t))^2);
+ * one distinct pole p (h = lc (z - p)^mu, p rational > 0): f(t) = e^(-p t) P(t) with
+   P(t) = sum_m b_m t^(m-1)/(m-1)! and b_m = (-1)^m [w^(mu-m)] g(p + w)/lc exact rationals; P >= 0 on
+   (0, oo) is exact: P positive right of 0 and no positive root of odd multiplicity (Yun + Sturm).
+ * otherwise, with p* the smallest positive pole (multiplicity mu) and every other pole certified to have
+   Re z_k > p* (inclusion disks, module disks), in three pieces:
+   - near 0: f(t) = sum_n f_n t^n/n! with f_n = [x^(-n-1)] r(-x) exact rationals (r at infinity).  The first
+     f_n0 != 0 (n0 < deg h, as f solves a linear ODE of order deg h) must be > 0; with B >= |f^(n0+1)| on
+     [0, 1], f(t) >= t^n0 (f_n0/n0! - t B/(n0+1)!) > 0 on (0, t_a], t_a = min(1, (n0+1) f_n0 / (2B)).
+   - far: for t >= T, f(t) e^(p* t) (mu-1)!/t^(mu-1) = b_{*,mu} + sum_{m<mu} b_{*,m} (mu-1)!/(m-1)! t^(m-mu)
+     + sum_{k != *} sum_m b_{k,m} (mu-1)!/(m-1)! t^(m-mu) e^(-(z_k - p*) t), and
+     |e^(-(z_k - p*) t)| <= n!/(delta_k t)^n for any n >= 0, delta_k <= Re z_k - p*.  With n >= M_k - mu every
+     term's bound is nonincreasing in t, so the bound at T holds on [T, oo): b_{*,mu} > (sum at T) proves
+     f > 0 there.
+   - between: from a = t_a step by dyadic d, with disks E_k = e^(-z_k a) (exp of a disk: scaling and
+     squaring of an exact Taylor sum with its remainder; e^(-z_k (a + d)) = E_k e^(-z_k d)):
+     f(a + s) >= f(a) + min(0, f'(a) d) - d^2/2 max|f''| on [0, d], with
+     |f^(n)(t)| <= sum_k |E_k| sum_m |b_{k,m}| sum_i C(n,i) t^(m-1-i) |z_k|^(n-i)/(m-1-i)! (Re z_k > 0).
+Every number is an exact rational; disks round outward; what is not proved within MAX_STEPS steps is rejected.
+"""
+
+from fractions import Fraction
+from math import ceil, comb, factorial, gcd
+
+from .disks import ball, ball_abs_upper, ball_mul, pole_disks
+from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
+from .rationals import require
+from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
+
+MAX_STEPS = 8000  # steps of the compact piece (the engine gives up after 4000)
+MAX_TRIALS = 40000  # step-size trials in all (a bounded verdict: each trial is a few disk operations per pole)
+MAX_DEGREE = 16  # the largest deg h the general proof takes
+MIN_STEP = Fraction(1, 2 ** 50)
+TAYLOR_TERMS = 28
+MAX_RATIONAL_BISECTIONS = 4000  # bisections to pin a rational pole
+MAX_EXPONENT = 2000  # the largest degree of F(u) for rational poles
+
+__all__ = ["prove_completely_monotone", "density_at_zero"]
+
+
+def density_at_zero(g, h, count):
+    """(c, [f_0 .. f_{count-1}]): r(-x) = c + sum_n f_n x^(-n-1) at x = oo (deg g <= deg h), exactly:
+    with u = 1/x, r(-1/u) = A(u)/B(u), A = sum g_i (-1)^i u^(D-i), B likewise (D = deg h, B(0) != 0)."""
+    D = len(h) - 1
+    A = [Fraction(0)] * (D + 1)
+    B = [Fraction(0)] * (D + 1)
+    for i, c in enumerate(g):
+        A[D - i] = c * (-1) ** i
+    for i, c in enumerate(h):
+        B[D - i] = c * (-1) ** i
+    s = []
+    for n in range(count + 1):
+        v = A[n] if n <= D else Fraction(0)
+        for i in range(1, min(n, D) + 1):
+            v -= B[i] * s[n - i]
+        s.append(v / B[0])
+    return s[0], s[1:]
+
+
+def prove_completely_monotone(numerator, denominator):
+    """A sentence saying why rho = oo (c >= 0 and f >= 0 on (0, oo), module docstring), or CheckFailure."""
+    g, h = reduced(numerator, denominator)
+    require(len(g) <= len(h), "bernstein: deg g > deg h, so r(-x) is unbounded and not completely monotone")
+    c, _ = density_at_zero(g, h, 0)
+    require(c >= 0, f"bernstein: r(-x) tends to c = {c} < 0")
+    factors = squarefree_decomposition(h)
+    poles = positive_roots(h)
+    require(poles, "bernstein: r has no positive real pole")
+    if len(factors) == 1 and len(factors[0][0]) == 2:
+        return _single_pole(g, h, factors[0][1])
+    rational = _rational_simple_poles(h, factors, poles)
+    if rational is not None:
+        how = _rational_exponents(g, h, rational)
+        if how is not None:
+            return how
+    require(len(h) - 1 <= MAX_DEGREE, f"bernstein: deg h > {MAX_DEGREE}")
+    f_star, mu = factor_of(factors, poles[0])
+    disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, poles[0])
+    terms = []  # (z disk, M, b disks, is p*)
+    for f, M in factors:
+        for k, z in enumerate(disks[id(f)]):
+            star = f is f_star and k == hits[0]
+            if star:
+                z = ((P_lo + P_hi) / 2, Fraction(0), (P_hi - P_lo) / 2)
+            else:
+                require(z[0] - z[2] > P_hi, "bernstein: a pole is not proved to have Re z > p* (then it is as "
+                                            "close to -kappa as p* for large kappa, or f is not proved dominated)")
+            terms.append((z, M, b_disks(g, h, M, z), star))
+    star_b = next(b for _, _, b, s in terms if s)
+    require(star_b[mu - 1][0] - star_b[mu - 1][2] > 0, "bernstein: b_{*,mu} is not proved positive")
+    steps = _positive(g, h, terms, mu, P_hi)
+    return (f"c = {c} >= 0 and f > 0 on (0, oo): Taylor at 0, {steps} certified steps, dominance of p* beyond "
+            f"(Bernstein: r(-x) completely monotone)")
+
+
+def _single_pole(g, h, mu):
+    f = squarefree_decomposition(h)[0][0]
+    p = -f[0] / f[1]
+    require(p > 0, "bernstein: the pole is not positive")
+    lc = h[-1]
+    taylor = [sum(comb(k, i) * g[k] * p ** (k - i) for k in range(i, len(g))) for i in range(mu)]
+    P = trim([(-1) ** m * taylor[mu - m] / lc / factorial(m - 1) for m in range(1, mu + 1)])
+    require(P and sign_right_of(P, Fraction(0)) > 0, "bernstein: P(t) = e^(p t) f(t) is not positive right of 0")
+    if len(P) > 1:
+        odd = [Fraction(1)]
+        for q, M in squarefree_decomposition(P):
+            if M % 2:
+                odd = mul(odd, q)
+        require(len(odd) == 1 or count_roots(odd, Fraction(0), None) == 0,
+                "bernstein: P(t) = e^(p t) f(t) changes sign on (0, oo)")
+    return (f"one pole p = {p} of multiplicity {mu}: f(t) = e^(-p t) P(t), P = {[str(x) for x in P]} >= 0 on "
+            f"(0, oo) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+
+
+def _rational_simple_poles(h, factors, poles):
+    """The poles as exact rationals when every pole is simple, real, positive and rational; else None.  A
+    rational root k/q of the integer polynomial H has q | lc(H): an isolating interval narrower than 1/lc^2
+    holds at most one fraction with such a denominator, the candidate ceil(lo lc)/lc, tested exactly."""
+    if len(factors) != 1 or factors[0][1] != 1 or len(poles) != len(h) - 1:
+        return None
+    H = integer_coefficients(h)
+    lc = abs(H[-1])
+    out = []
+    for lo, hi in poles:
+        if lo != hi:
+            for _ in range(MAX_RATIONAL_BISECTIONS):
+                if (hi - lo) * lc * lc < 1:
+                    break
+                mid = (lo + hi) / 2
+                if sign_at(H, mid) == 0:
+                    lo = hi = mid
+                    break
+                lo, hi = (lo, mid) if sign_at(H, lo) * sign_at(H, mid) < 0 else (mid, hi)
+            else:
+                return None
+        q = lo if lo == hi else Fraction(ceil(lo * lc), lc)
+        if not lo <= q <= hi or sign_at(H, q) != 0:
+            return None
+        out.append(q)
+    return out
+
+
+def _rational_exponents(g, h, ps):
+    """Simple rational poles p_k > 0: f(t) = sum b_k e^(-p_k t) = F(u) with u = e^(-t/L), L the lcm of the
+    denominators, F(u) = sum b_k u^(L p_k) exactly (b_k = -g(p_k)/h'(p_k)); f >= 0 on (0, oo) iff F >= 0 on
+    (0, 1): F positive right of 0 and no root of odd multiplicity in (0, 1) (Yun + Sturm).  None when F does
+    not show it (the general proof may still)."""
+    L = 1
+    for p in ps:
+        L = L * p.denominator // gcd(L, p.denominator)
+    exponents = [int(p * L) for p in ps]
+    if max(exponents) > MAX_EXPONENT:
+        return None
+    dh = [k * c for k, c in enumerate(h)][1:]
+    F = [Fraction(0)] * (max(exponents) + 1)
+    for p, n in zip(ps, exponents):
+        F[n] += -evaluate(g, p) / evaluate(dh, p)
+    F = trim(F)
+    if not F or sign_right_of(F, Fraction(0)) <= 0:
+        return None
+    odd = [Fraction(1)]
+    for q, M in squarefree_decomposition(F[next(i for i, c in enumerate(F) if c):]):
+        if M % 2:
+            odd = mul(odd, q)
+    inside = count_roots(odd, Fraction(0), Fraction(1)) - (1 if evaluate(odd, Fraction(1)) == 0 else 0)
+    if len(odd) > 1 and inside:
+        return None
+    return (f"simple rational poles {[str(p) for p in ps]}: f(t) = F(e^(-t/{L})) with the polynomial F >= 0 on "
+            f"(0, 1) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+
+
+# ----------------------------------------------------------------- disk helpers
+def _add(x, y):
+    return ball(x[0] + y[0], x[1] + y[1], x[2] + y[2])
+
+
+def _scale(x, q):
+    return ball(x[0] * q, x[1] * q, x[2] * abs(q))
+
+
+def _exp_point(x, y):
+    """A disk holding e^(x + iy) (x, y rational): an exact Taylor sum at (x + iy)/2^s, |.| <= 1/16, with its
+    remainder 2|v|^(N+1)/(N+1)!, then s squarings."""
+    s, size = 0, abs(x) + abs(y)
+    while size > Fraction(2 ** s, 16):
+        s += 1
+    vr, vi = x / 2 ** s, y / 2 ** s
+    sr, si = Fraction(1), Fraction(0)
+    for n in range(TAYLOR_TERMS, 0, -1):  # 1 + v/n (1 + v/(n+1) (...))
+        sr, si = 1 + (vr * sr - vi * si) / n, (vr * si + vi * sr) / n
+    rem = 2 * Fraction(1, 16) ** (TAYLOR_TERMS + 1) / factorial(TAYLOR_TERMS + 1)
+    E = ball(sr, si, rem)
+    for _ in range(s):
+        E = ball_mul(E, E)
+    return E
+
+
+def _exp(w):
+    """A disk holding e^u for every u in the disk w (radius <= 1: |e^(u-c) - 1| <= e^rad - 1 <= 2 rad)."""
+    require(w[2] <= 1, "bernstein: an exponent's enclosure is too wide")
+    return ball_mul(_exp_point(w[0], w[1]), (Fraction(1), Fraction(0), 2 * w[2]))
+
+
+def _exp_of(z, t):
+    """A disk holding e^(-z t) for every z in the disk z, t >= 0 rational."""
+    return _exp((-z[0] * t, -z[1] * t, z[2] * t))
+
+
+# ----------------------------------------------------------------- f > 0 on (0, oo)
+def _positive(g, h, terms, mu, P_hi):
+    babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _ in terms]
+    zabs = [ball_abs_upper(z) for z, _, _, _ in terms]
+
+    def derivative_bound(n, e, t_hi):  # >= |f^(n)(t)| for t in [t_lo, t_hi]; e[k] >= |e^(-z_k t_lo)|
+        total = Fraction(0)
+        for k, (_, M, _, _) in enumerate(terms):
+            for m in range(1, M + 1):
+                part = sum(comb(n, i) * t_hi ** (m - 1 - i) * zabs[k] ** (n - i) / factorial(m - 1 - i)
+                           for i in range(min(n, m - 1) + 1))
+                total += e[k] * babs[k][m - 1] * part
+        return total
+
+    _, fs = density_at_zero(g, h, len(h))
+    n0 = next((n for n, v in enumerate(fs) if v != 0), None)
+    require(n0 is not None, "bernstein: f vanishes to order deg h at 0")
+    require(fs[n0] > 0, f"bernstein: f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near t = 0")
+    B = derivative_bound(n0 + 1, [Fraction(1)] * len(terms), Fraction(1))
+    t_a = min(Fraction(1), (n0 + 1) * fs[n0] / (2 * B)) if B else Fraction(1)
+    t_a = Fraction(1, 2 ** max(0, (1 / t_a).__ceil__().bit_length()))  # a dyadic <= t_a
+
+    star = next(k for k, t in enumerate(terms) if t[3])
+    b_mu = terms[star][2][mu - 1][0] - terms[star][2][mu - 1][2]
+    delta = [None if k == star else z[0] - z[2] - P_hi for k, (z, _, _, _) in enumerate(terms)]
+
+    def dominated_beyond(T):
+        total = sum(babs[star][m - 1] * Fraction(factorial(mu - 1), factorial(m - 1)) * T ** (m - mu)
+                    for m in range(1, mu))
+        for k, (_, M, _, _) in enumerate(terms):
+            if k == star:
+                continue
+            x = delta[k] * T
+            n = max(M - mu, 0, min(int(x), 60))
+            decay = Fraction(factorial(n)) / x ** n
+            total += decay * sum(babs[k][m - 1] * Fraction(factorial(mu - 1), factorial(m - 1)) * T ** (m - mu)
+                                 for m in range(1, M + 1))
+            if total >= b_mu:
+                return False
+        return total < b_mu
+
+    a, d = t_a, t_a
+    E = [_exp_of(z, a) for z, _, _, _ in terms]
+    steps_of, trials = {}, 0
+    for step in range(MAX_STEPS):
+        if dominated_beyond(a):
+            return step
+        F0 = F1 = (Fraction(0), Fraction(0), Fraction(0))
+        for k, (z, M, bs, _) in enumerate(terms):
+            S0 = S1 = (Fraction(0), Fraction(0), Fraction(0))
+            for m in range(1, M + 1):
+                S0 = _add(S0, _scale(bs[m - 1], a ** (m - 1) / factorial(m - 1)))
+                if m >= 2:
+                    S1 = _add(S1, _scale(bs[m - 1], a ** (m - 2) / factorial(m - 2)))
+            zS0 = ball_mul(z, S0)
+            F0 = _add(F0, ball_mul(S0, E[k]))
+            F1 = _add(F1, ball_mul(ball(S1[0] - zS0[0], S1[1] - zS0[1], S1[2] + zS0[2]), E[k]))
+        f_lo, df_lo = F0[0] - F0[2], F1[0] - F1[2]
+        require(f_lo > 0, f"bernstein: f({float(a):.6g}) is not proved positive")
+        e = [ball_abs_upper(x) for x in E]
+        while True:
+            trials += 1
+            require(trials <= MAX_TRIALS, f"bernstein: more than {MAX_TRIALS} step trials (f is too close to 0)")
+            B2 = derivative_bound(2, e, a + d)
+            if f_lo + min(Fraction(0), df_lo * d) - d * d * B2 / 2 > 0:
+                break
+            d /= 2
+            require(d >= MIN_STEP, f"bernstein: f is not proved positive near t = {float(a):.6g} (it may touch 0)")
+        if d not in steps_of:
+            steps_of[d] = [_exp_of(z, d) for z, _, _, _ in terms]
+        E = [ball_mul(x, y) for x, y in zip(E, steps_of[d])]
+        a += d
+        d = min(2 * d, Fraction(8))
+    require(False, f"bernstein: f not proved positive within {MAX_STEPS} steps (p* dominates too weakly)")
