@@ -48,7 +48,7 @@ def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> str | No
 
 def _decade(q: Fraction) -> int:
     """e with 10**e <= q < 10**(e+1), for q > 0."""
-    e = len(str(q.numerator)) - len(str(q.denominator))
+    e = (q.numerator.bit_length() - q.denominator.bit_length()) * 30103 // 100000  # within 1 of log10 q
     while Fraction(10) ** e > q:
         e -= 1
     while Fraction(10) ** (e + 1) <= q:

@@ -19,6 +19,7 @@ import flint
 
 from ..errors import InvalidInput
 from .digits import _floor, significant_digits
+from .float_hint import float_hint
 from .polys import count_real_roots, no_root_between, poly_latex, poly_text, sign_at
 from .scalars import Infinity, frac_latex, to_rational
 
@@ -223,8 +224,10 @@ class RealAlgebraic:
         return RealAlgebraic(self.poly, self._lower, self._upper, _trusted=True)
 
     def __float__(self) -> float:
-        c = self._copy().refine(64)
-        return float((c._lower + c._upper) / 2)
+        """The nearest double, up to rounding (+-inf beyond the double range, 0.0 below it);
+        never raises.  Relative precision, so 1e-30-sized values keep their digits."""
+        c = self._copy().refine_relative(60)
+        return float_hint((c._lower + c._upper) / 2)
 
     def refine_relative(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval until it excludes 0 and its width is at
@@ -257,7 +260,7 @@ class RealAlgebraic:
                 return text
             for _ in range(32):
                 c._bisect()
-        return f"({float(c._lower)} .. {float(c._upper)})"
+        return f"({float_hint(c._lower)} .. {float_hint(c._upper)})"
 
     def __str__(self) -> str:
         return self.certified_digits(17)
