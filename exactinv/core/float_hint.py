@@ -51,14 +51,11 @@ def float_hint(x: Any) -> float:
     >>> float_hint(Fraction(1, 10**400)), float_hint(flint.fmpq(-1, 10**400))
     (0.0, -0.0)
     """
-    if isinstance(x, float):
-        return x
-    p, q = _ratio(x)
     try:
-        return p / q  # int / int is correctly rounded; it raises only on overflow
+        return float(x)  # FLINT, Fraction and int: correctly rounded; they raise only on overflow
     except OverflowError:
-        return math.inf if p > 0 else -math.inf
-    except ZeroDivisionError:  # not a rational: no hint
+        return math.inf if _ratio(x)[0] > 0 else -math.inf
+    except (TypeError, ValueError, ZeroDivisionError):  # not a number: no hint
         return math.nan
 
 
