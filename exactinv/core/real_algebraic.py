@@ -183,15 +183,16 @@ class RealAlgebraic:
             return Fraction(0)
         if q < 0:
             return (-self) * (-q)
-        # x = q a  <=>  p(x/q) = 0 ; clear denominators of q^-k coefficients.
-        d = self.degree
-        coeffs = [Fraction(int(c)) / q**k for k, c in enumerate(self.poly.coeffs())]
-        scale = q**d
-        ints = [c * scale for c in coeffs]
-        den = 1
-        for c in ints:
-            den = den * c.denominator // _gcd(den, c.denominator)
-        p = flint.fmpz_poly([int(c * den) for c in ints])
+        # x = q a, q = s/t  <=>  p(t x/s) = 0  <=>  sum_k c_k t^k s^(d-k) x^k = 0: integers throughout
+        # (FLINT's fmpz: no Fraction gcds, so a q near 10^300 on a degree-87 p costs milliseconds).
+        d, s, t = self.degree, flint.fmpz(q.numerator), flint.fmpz(q.denominator)
+        coeffs, power_t, power_s = [], flint.fmpz(1), [flint.fmpz(1)]
+        for _ in range(d):
+            power_s.append(power_s[-1] * s)
+        for k, c in enumerate(self.poly.coeffs()):
+            coeffs.append(c * power_t * power_s[d - k])
+            power_t *= t
+        p = flint.fmpz_poly(coeffs)
         p = p // p.content()
         if p.leading_coefficient() < 0:
             p = -p
