@@ -14,7 +14,7 @@ Each cell is a fresh subprocess: seconds of the threshold computation and its pe
 (growth of the peak resident set over the resident set before it, MB; FLINT's allocations
 included).  `kernel s`: exactinv_check re-proving the certificate of the after run.
 
-Run:  python benchmarks/e2_polygon.py [--sizes 50 100 ...] [--cap 120]
+Run:  python benchmarks/e2_polygon.py [--sizes 50 100 ...] [--cap 120] [--after-only]
 """
 
 from __future__ import annotations
@@ -93,9 +93,10 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--sizes", type=int, nargs="*", default=[50, 100, 150, 233, 500, 1000])
     parser.add_argument("--cap", type=float, default=120.0, help="seconds before a 'before' run is given up")
+    parser.add_argument("--after-only", action="store_true", help="skip the before route")
     args = parser.parse_args()
     print(f"{'facets':>7} {'before s':>10} {'before MB':>10} {'after s':>9} {'after MB':>9} {'kernel s':>9}  tau")
-    skip_before = False
+    skip_before = args.after_only
     for N in args.sizes:
         before = None if skip_before else measure(N, "before", args.cap)
         skip_before = before is None  # larger sizes take longer still
