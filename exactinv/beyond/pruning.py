@@ -50,6 +50,7 @@ import flint
 import numpy as np
 
 from ..core.algebraic import upper_bound
+from ..core.float_hint import float_hints
 from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
 from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
@@ -266,7 +267,8 @@ def vertex_order(W: flint.fmpq_mat) -> list[int]:
     """
     n, V = W.nrows(), W.ncols()
     dims = min(n, max(1, 48 // 12))
-    x = np.array([float(e) for e in W.entries()[: dims * V]]).reshape(dims, V)
+    x = float_hints(W.entries()[: dims * V]).reshape(dims, V)
+    x[~np.isfinite(x)] = 0.0  # beyond double range: any order is correct
     lo, hi = x.min(axis=1, keepdims=True), x.max(axis=1, keepdims=True)
     q = ((x - lo) / np.where(hi > lo, hi - lo, 1) * 4095).astype(np.int64)
     key = np.zeros(V, dtype=np.int64)

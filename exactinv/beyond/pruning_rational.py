@@ -37,13 +37,13 @@ all of it exactly (:mod:`exactinv_check.pruning_rational`).
 
 from __future__ import annotations
 
-import math
 import time
 from fractions import Fraction
 from math import comb
 
 import flint
 
+from ..core.float_hint import log2_hint
 from ..core.roots import positive_roots
 from ..core.scalars import fmpq_of, fraction_of
 from .conditions import Kind
@@ -66,8 +66,9 @@ def scale_of(D: flint.fmpq_poly) -> Fraction:
     c = D.coeffs()
     if len(c) < 2 or c[-1] == 0:
         return Fraction(1)
-    ratio = abs(fraction_of(c[0]) / fraction_of(c[-1]))
-    return Fraction(2) ** round(math.log2(ratio) / (len(c) - 1))
+    if c[0] == 0:
+        return Fraction(1)
+    return Fraction(2) ** round((log2_hint(c[0]) - log2_hint(c[-1])) / (len(c) - 1))  # never overflows
 
 
 def lifted(D: flint.fmpq_poly, N: list[flint.fmpq_mat], s: Fraction) -> list[flint.fmpq_mat]:

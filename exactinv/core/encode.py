@@ -12,7 +12,10 @@ import json
 from fractions import Fraction
 from typing import Any, Iterable
 
+import flint
+
 from .algebraic import Real, RealAlgebraic
+from .flintq import exact_text
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
 __all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "envelope", "dumps"]
@@ -21,7 +24,7 @@ FORMAT = "exactinv-certificate"
 VERSION = 2  # v2 = v1 + optional data (e.g. dt on discrete claims); the kernel checks both
 
 def encode_real(v: Real) -> str | dict:
-    """Fraction -> "p/q"; INF -> "oo"; RealAlgebraic -> {"poly", "interval"}.
+    """Fraction -> "p/q" (any size); INF -> "oo"; RealAlgebraic -> {"poly", "interval"}.
 
     >>> encode_real(Fraction(-3, 4)), encode_real(INF)
     ('-3/4', 'oo')
@@ -32,9 +35,9 @@ def encode_real(v: Real) -> str | dict:
         return "oo" if v.sign > 0 else "-oo"
     if isinstance(v, RealAlgebraic):
         v.tidy()
-        return {"poly": [str(int(c)) for c in v.poly.coeffs()], "interval": [str(v.lower), str(v.upper)]}
+        return {"poly": [exact_text(c) for c in v.poly.coeffs()], "interval": [exact_text(v.lower), exact_text(v.upper)]}
     if isinstance(v, (int, Fraction)):
-        return str(Fraction(v))
+        return exact_text(Fraction(v))
     raise TypeError(f"cannot encode {v!r}")
 
 
@@ -44,7 +47,7 @@ def vec(v: Iterable[Any]) -> list[str]:
     >>> vec([Fraction(1, 2), 3])
     ['1/2', '3']
     """
-    return [str(x) for x in v]
+    return [exact_text(x) if isinstance(x, (int, Fraction, flint.fmpz, flint.fmpq)) else str(x) for x in v]
 
 
 def mat(M: Iterable[Iterable[Any]]) -> list[list[str]]:

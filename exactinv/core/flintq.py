@@ -13,7 +13,7 @@ from typing import Sequence
 import flint
 
 __all__ = ["Vector", "Matrix", "fmpq_of", "fraction_of", "fmpq_matrix", "fmpq_column", "matrix_of", "vector_of",
-           "dyadic_of"]
+           "dyadic_of", "exact_text"]
 
 Vector = tuple[Fraction, ...]
 Matrix = tuple[tuple[Fraction, ...], ...]
@@ -94,3 +94,17 @@ def dyadic_of(a: flint.arb) -> Fraction:
     man, exp = a.mid().man_exp()
     man, exp = int(man), int(exp)
     return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
+def exact_text(x: Fraction | int | flint.fmpz | flint.fmpq) -> str:
+    """The exact decimal text "p" or "p/q" of a rational of any size (str(Fraction) and str(int)
+    stop at Python's 4300-digit limit; FLINT's decimal conversion has none).
+
+    >>> exact_text(Fraction(-3, 4)), exact_text(7), len(exact_text(Fraction(10**5000, 3)))
+    ('-3/4', '7', 5003)
+    """
+    if isinstance(x, (flint.fmpz, flint.fmpq)):
+        return str(x)
+    if isinstance(x, int):
+        return str(flint.fmpz(x))
+    return str(flint.fmpz(x.numerator)) if x.denominator == 1 else f"{flint.fmpz(x.numerator)}/{flint.fmpz(x.denominator)}"

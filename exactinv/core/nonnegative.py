@@ -14,6 +14,7 @@ This mirrors the kernel's valid set (exactinv_check/validset.py).
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Callable, Iterable, Iterator
 
@@ -21,12 +22,13 @@ import flint
 import numpy as np
 
 from .algebraic import ExactKey, Real, upper_bound
+from .float_hint import ldexp_hint, log2_hint
 from .intervals import IntervalUnion, complement_of_open
 from .polys import positive_below
 from .roots import negative_segments, nonnegative_until
 from .scalars import INF, Infinity
 
-__all__ = ["nonnegative_set", "first_end", "tightest_first", "earliest_first"]
+__all__ = ["nonnegative_set", "first_end", "tightest_first", "earliest_first", "time_scale"]
 
 _FIRST_CHUNK = 16
 _GRID = 512  # points of earliest_first's grid (ratio 1.037)
@@ -46,24 +48,58 @@ def tightest_first(polys: Iterable[flint.fmpq_poly]) -> list[flint.fmpq_poly]:
 
 
 def earliest_first(polys: Iterable[flint.fmpq_poly]) -> list[flint.fmpq_poly]:
-    """The polynomials by the first point of a geometric grid on [10^-4, 10^4] where a float
+    """The polynomials by the first point of a geometric grid on s [10^-4, 10^4] where a float
     evaluation is negative (never negative: last), :func:`tightest_first` among equals: the
     condition likely to end the set first comes first.  The floats only choose the order --
-    any order gives the same set, exactly.
+    any order gives the same set, exactly.  The scale s is a power of two read off the
+    coefficients (:func:`time_scale`), and each p(s t) is evaluated with its coefficients
+    scaled by a power of two (:func:`~exactinv.core.float_hint.ldexp_hint`): no coefficient
+    is too large or too small for a double, nothing raises, and p(2^k t) gets the order of p(t).
 
     >>> earliest_first([flint.fmpq_poly([3, -1]), flint.fmpq_poly([0, 1]), flint.fmpq_poly([1, -4])])
     [(-4)*x + 1, (-1)*x + 3, x]
+    >>> big = [flint.fmpq_poly([3, -10**300]), flint.fmpq_poly([0, 1]), flint.fmpq_poly([1, -4 * 10**300])]
+    >>> earliest_first(big)[0] == big[2]
+    True
     """
     polys = tightest_first(polys)
     if not polys:
         return polys
+    e = time_scale(polys)
     width = max(p.degree() for p in polys) + 1
-    C = np.array([[float(c) for c in p.coeffs()] + [0.0] * (width - len(p.coeffs())) for p in polys])
+    C = np.zeros((len(polys), width))
+    for i, p in enumerate(polys):
+        cs = p.coeffs()
+        logs = [log2_hint(c) + k * e for k, c in enumerate(cs)]
+        top = max(logs, default=-math.inf)
+        shift = 0 if top == -math.inf else int(top)  # row i / 2^shift: the largest |c_k s^k| near 1
+        C[i, :len(cs)] = [ldexp_hint(c, k * e - shift) for k, c in enumerate(cs)]
     grid = np.geomspace(1e-4, 1e4, _GRID)
     with np.errstate(all="ignore"):
         negative = C @ grid[None, :] ** np.arange(width)[:, None] < 0
     first = np.where(negative.any(axis=1), negative.argmax(axis=1), _GRID)
     return [polys[i] for i in np.argsort(first, kind="stable")]
+
+
+def time_scale(polys: Iterable[flint.fmpq_poly]) -> int:
+    """e with 2^e a typical scale of t at which the polynomials turn (a hint, never raises):
+    the median over p of min_k log2 |c_j/c_k|^(1/(k-j)), c_j the lowest nonzero coefficient
+    (where a higher term overtakes the lowest one), from bit lengths -- so p(2^k t) gives e - k.
+
+    >>> time_scale([flint.fmpq_poly([1, -4]), flint.fmpq_poly([1, 0, -16])])   # 1/4 and 1/4
+    -2
+    >>> time_scale([flint.fmpq_poly([1, -4 * 10**300])]), time_scale([flint.fmpq_poly([2])])
+    (-999, 0)
+    """
+    turns = []
+    for p in polys:
+        logs = [(k, log2_hint(c)) for k, c in enumerate(p.coeffs()) if c != 0]
+        if len(logs) > 1:
+            j, low = logs[0]
+            turns.append(min((low - lk) / (k - j) for k, lk in logs[1:]))
+    if not turns:
+        return 0
+    return int(round(float(np.median(turns))))
 
 
 def _bound(V: IntervalUnion):

@@ -19,6 +19,7 @@ import flint
 
 from ..errors import InvalidInput
 from .digits import _floor, significant_digits
+from .float_hint import float_hint
 from .polys import count_real_roots, no_root_between, poly_latex, poly_text, sign_at
 from .scalars import Infinity, frac_latex, to_rational
 
@@ -186,15 +187,16 @@ class RealAlgebraic:
             return Fraction(0)
         if q < 0:
             return (-self) * (-q)
-        # x = q a  <=>  p(x/q) = 0 ; clear denominators of q^-k coefficients.
-        d = self.degree
-        coeffs = [Fraction(int(c)) / q**k for k, c in enumerate(self.poly.coeffs())]
-        scale = q**d
-        ints = [c * scale for c in coeffs]
-        den = 1
-        for c in ints:
-            den = den * c.denominator // _gcd(den, c.denominator)
-        p = flint.fmpz_poly([int(c * den) for c in ints])
+        # x = q a, q = s/t  <=>  p(t x/s) = 0  <=>  sum_k c_k t^k s^(d-k) x^k = 0: integers throughout
+        # (FLINT's fmpz: no Fraction gcds, so a q near 10^300 on a degree-87 p costs milliseconds).
+        d, s, t = self.degree, flint.fmpz(q.numerator), flint.fmpz(q.denominator)
+        coeffs, power_t, power_s = [], flint.fmpz(1), [flint.fmpz(1)]
+        for _ in range(d):
+            power_s.append(power_s[-1] * s)
+        for k, c in enumerate(self.poly.coeffs()):
+            coeffs.append(c * power_t * power_s[d - k])
+            power_t *= t
+        p = flint.fmpz_poly(coeffs)
         p = p // p.content()
         if p.leading_coefficient() < 0:
             p = -p
@@ -227,8 +229,10 @@ class RealAlgebraic:
         return RealAlgebraic(self.poly, self._lower, self._upper, _trusted=True)
 
     def __float__(self) -> float:
-        c = self._copy().refine(64)
-        return float((c._lower + c._upper) / 2)
+        """The nearest double, up to rounding (+-inf beyond the double range, 0.0 below it);
+        never raises.  Relative precision, so 1e-30-sized values keep their digits."""
+        c = self._copy().refine_relative(60)
+        return float_hint((c._lower + c._upper) / 2)
 
     def refine_relative(self, bits: int = 53) -> "RealAlgebraic":
         """Shrink the isolating interval until it excludes 0 and its width is at
@@ -261,7 +265,7 @@ class RealAlgebraic:
                 return text
             for _ in range(32):
                 c._bisect()
-        return f"({float(c._lower)} .. {float(c._upper)})"
+        return f"({float_hint(c._lower)} .. {float_hint(c._upper)})"
 
     def __str__(self) -> str:
         return self.certified_digits(17)

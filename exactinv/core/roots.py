@@ -48,6 +48,7 @@ __all__ = [
     "no_root_between",
     "sign_variations",
     "first_sign_change",
+    "root_bound_exponent",
     "nonnegative_until",
     "sign_right_of",
     "positive_roots",
@@ -89,6 +90,29 @@ def real_roots(f: Any) -> list[tuple[FiniteReal, int]]:
     return roots
 
 
+def root_bound_exponent(coeffs: list[int]) -> int:
+    """An integer k (of any sign) with every complex root of sum_i c_i x^i (c_d != 0, d >= 1) of
+    modulus < 2^k: Fujiwara's bound 2 max_i |c_(d-i)/c_d|^(1/i), each ratio bounded by bit
+    lengths (|c_(d-i)/c_d| < 2^(bits(c_(d-i)) - bits(c_d) + 1)).  Unlike Cauchy's bound
+    1 + max |c_i/c_d| it scales with the roots: q(t/2^j) gets k + j, so bisecting below 2^k
+    costs the same for roots near 10^60, 1 or 10^-60.
+
+    >>> root_bound_exponent([-2, 0, 1]), root_bound_exponent([-(2**400), 0, 1])   # +-sqrt(2), +-2^200
+    (2, 202)
+    >>> root_bound_exponent([-1, 0, 2**400]), root_bound_exponent([0, 0, 1])      # +-2^-200; only 0
+    (-198, 0)
+    """
+    d, top = len(coeffs) - 1, abs(coeffs[-1]).bit_length()
+    k = None
+    for i in range(1, d + 1):
+        c = coeffs[d - i]
+        if c:
+            e = abs(c).bit_length() - top + 1
+            bound = 1 - (-e // i)  # 1 + ceil(e / i)
+            k = bound if k is None else max(k, bound)
+    return 0 if k is None else k
+
+
 def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fraction] | Fraction | None:
     """The smallest positive root of a squarefree integer polynomial with
     q(0) != 0: an isolating open interval (a, b), a Fraction if it is a dyadic
@@ -99,10 +123,12 @@ def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fractio
     if d < 1:
         return None
     coeffs = [int(c) for c in q.coeffs()]
-    lead = abs(coeffs[-1])
-    bound = 1 + max(abs(c) for c in coeffs[:-1]) // lead + 1  # Cauchy: every root has |z| < bound
-    k = max(bound.bit_length(), 1)
-    P0 = flint.fmpz_poly([c << (k * i) for i, c in enumerate(coeffs)])  # q(2^k x): roots in (0, 1)
+    k = root_bound_exponent(coeffs)  # every root has |z| < 2^k
+    if k >= 0:  # q(2^k x), times 2^(-k d) when k < 0: integral, its roots in (0, 1)
+        P0 = flint.fmpz_poly([c << (k * i) for i, c in enumerate(coeffs)])
+    else:
+        P0 = flint.fmpz_poly([c << (-k * (d - i)) for i, c in enumerate(coeffs)])
+    unit = Fraction(2) ** k
     one_plus_x = flint.fmpz_poly([1, 1])
     stack = [(0, 0, P0)]  # interval (a/2^level, (a+1)/2^level) * 2^k, P maps (0, 1) onto it
     while stack:
@@ -113,14 +139,14 @@ def _first_positive_root_interval(q: flint.fmpz_poly) -> tuple[Fraction, Fractio
         variations = sign_variations(rev(one_plus_x).coeffs())
         if variations == 0:
             continue
-        scale = Fraction(2**k, 2**level)
+        scale = unit / 2**level
         if variations == 1:
             return a * scale, (a + 1) * scale
         left = flint.fmpz_poly([int(c) << (d - i) for i, c in enumerate(P.coeffs())])  # 2^d P(x/2)
         right = left(one_plus_x)
         stack.append((2 * a + 1, level + 1, right))
         if right(0) == 0:  # P(1/2) = 0: the midpoint is a root (after everything left of it)
-            stack.append((None, None, Fraction(2 * a + 1, 2 ** (level + 1)) * 2**k))
+            stack.append((None, None, Fraction(2 * a + 1, 2 ** (level + 1)) * unit))
         stack.append((2 * a, level + 1, left))
     return None
 

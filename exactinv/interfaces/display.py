@@ -19,6 +19,7 @@ from ..beyond.ellipsoid_thresholds import ellipsoid_largest_threshold, ellipsoid
 from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
 from ..core.digits import significant_digits
+from ..core.float_hint import float_hint
 from ..core.latex import latex_matrix, latex_real
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
@@ -63,7 +64,8 @@ def _plt():
 
 
 def _f(v) -> float:
-    return float(v)
+    """A float to draw with (+-inf beyond the double range; never raises)."""
+    return float(v) if isinstance(v, (RealAlgebraic, Infinity, float)) else float_hint(v)
 
 
 def _finite(v) -> bool:
@@ -88,7 +90,7 @@ def _short(v, digits: int = 5) -> str:
 def _polyval(coeffs, x):
     acc = 0.0
     for c in reversed(coeffs):
-        acc = acc * x + float(c)
+        acc = acc * x + _f(c)
     return acc
 
 
@@ -119,7 +121,7 @@ def plot_f_i(threshold, upto: float | None = None):
     marks = [_f(r.tau) for r in threshold.table if _finite(r.tau) and r.tau != 0]
     if _finite(threshold.value) and threshold.value != 0:
         marks.append(_f(threshold.value))
-    top = float(upto) if upto else 1.25 * max(marks + [1.0])
+    top = _f(upto) if upto else 1.25 * max(marks + [1.0])
     xs = np.linspace(0.0, top, 600)[1:]
     colors = plt.get_cmap("tab10").colors
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
@@ -128,7 +130,7 @@ def plot_f_i(threshold, upto: float | None = None):
         low = next((j for j, c in enumerate(r.f) if c != 0), None)
         if low is None:
             continue  # f_i = 0: no condition
-        lead = abs(float(r.f[low]))
+        lead = abs(_f(r.f[low]))
         ys = np.array([_polyval(r.f[low:], x) / lead for x in xs])
         tau_text = _short(r.tau)
         ax.plot(xs, ys, color=color, lw=1.4, label=rf"$f_{{{r.i}}}$,  $\tau_{{{r.i}}} = {tau_text}$")
@@ -175,11 +177,11 @@ def plot_coefficients(method, count: int = 6, upto: float | None = None):
     d = taylor_coefficient_polynomials(method, count)
     xs = np.linspace(0, top, 400)
     fig, ax = plt.subplots(figsize=(6, 3.6))
-    h = [float(c) for c in method.denominator]
+    h = [_f(c) for c in method.denominator]
     h_minus = np.array([_polyval([c * (-1) ** k for k, c in enumerate(h)], x) for x in xs])
     with np.errstate(divide="ignore", invalid="ignore"):
         for j, p in enumerate(d):
-            coeffs = [float(c) for c in p.coeffs()] or [0.0]
+            coeffs = [_f(c) for c in p.coeffs()] or [0.0]
             vals = np.array([_polyval(coeffs, x) for x in xs]) / h_minus ** (j + 1)  # c_j = d_j / h(-kappa)^(j+1)
             finite = np.abs(vals[np.isfinite(vals)])
             scale = max(finite.max() if finite.size else 1.0, 1e-300)
@@ -217,7 +219,7 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
              (L.value, "largest", "crimson", -0.35)]
     ends = [_f(x) for iv in V for x in (iv.lo, iv.hi) if _finite(x)]
     ends += [_f(v) for v, *_ in marks if v is not None and _finite(v)]
-    top = float(upto) if upto else 1.25 * max(ends + [1.0])
+    top = _f(upto) if upto else 1.25 * max(ends + [1.0])
     fig, ax = plt.subplots(figsize=(7, 1.9))
     _draw_intervals(ax, V, top)
     _draw_marks(ax, marks, why_not, top)
@@ -303,7 +305,7 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
         return sorted(points, key=lambda p: math.atan2(p[1] - cy, p[0] - cx))
 
     steps = [to_rational(dt, f"dts[{k}]") for k, dt in enumerate(dts)]  # exact steps only: no floats
-    V = [(float(v[0]), float(v[1])) for v in polyhedron.vertices]
+    V = [(_f(v[0]), _f(v[1])) for v in polyhedron.vertices]
     fig, ax = plt.subplots(figsize=(4.6, 4.6))
     poly = ordered(V)
     ax.fill(*zip(*poly), color="lightgray", alpha=0.7, label="P")
@@ -311,10 +313,10 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     for k, dt in enumerate(steps):
         Ad = method.matrix(system, dt)
         images = [(sum(Ad[0][j] * v[j] for j in range(2)), sum(Ad[1][j] * v[j] for j in range(2))) for v in polyhedron.vertices]
-        pts = ordered([(float(x), float(y)) for x, y in images])
+        pts = ordered([(_f(x), _f(y)) for x, y in images])
         color = cmap(0.85 * k / max(len(steps) - 1, 1))  # the palest end of viridis is hard to see
         ax.plot(*zip(*(pts + pts[:1])), color=color, lw=1.2, label=rf"$A_d({_short(dt)})\,P$")
-        outside = [(float(x), float(y)) for x, y in images if not polyhedron.contains([x, y])]
+        outside = [(_f(x), _f(y)) for x, y in images if not polyhedron.contains([x, y])]
         if outside:
             ax.plot(*zip(*outside), "o", color="crimson", ms=5)
     ax.set_aspect("equal")
@@ -330,7 +332,7 @@ def _plot_ellipse_images(plt, system, E: Ellipsoid, method, dts: Sequence[Any]):
     if E.n != 2:
         raise InvalidInput("ellipsoid: plot_images draws ellipses in the plane")
     steps = [to_rational(dt, f"dts[{k}]") for k, dt in enumerate(dts)]
-    Q = np.array([[float(v) for v in row] for row in E.Q])
+    Q = np.array([[_f(v) for v in row] for row in E.Q])
     C = np.linalg.inv(np.linalg.cholesky(Q)).T  # x = C u with |u| = 1 is the boundary of E
     u = np.array([np.cos(np.linspace(0, 2 * np.pi, 200)), np.sin(np.linspace(0, 2 * np.pi, 200))])
     boundary = C @ u
@@ -338,13 +340,13 @@ def _plot_ellipse_images(plt, system, E: Ellipsoid, method, dts: Sequence[Any]):
     ax.fill(*boundary, color="lightgray", alpha=0.7, label="E")
     cmap = plt.get_cmap("viridis")
     for k, dt in enumerate(steps):
-        Ad = np.array([[float(v) for v in row] for row in method.matrix(system, dt)])
+        Ad = np.array([[_f(v) for v in row] for row in method.matrix(system, dt)])
         color = cmap(0.85 * k / max(len(steps) - 1, 1))
         ax.plot(*(Ad @ boundary), color=color, lw=1.2, label=rf"$A_d({_short(dt)})\,E$")
         decision = ellipsoid_discrete_invariance(system, E, method, dt)
         if not decision.holds:
             w = decision.witness
-            x = np.array([float(c) for c in w.v]) / math.sqrt(float(w.norm))
+            x = np.array([_f(c) for c in w.v]) / math.sqrt(_f(w.norm))
             ax.plot(*x, "o", color="crimson", ms=5)
             ax.plot(*(Ad @ x), "x", color="crimson", ms=6)
     ax.set_aspect("equal")

@@ -14,6 +14,7 @@ from fractions import Fraction
 from typing import Any
 
 from ..core.algebraic import Real, RealAlgebraic
+from ..core.float_hint import float_hint
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput
@@ -73,7 +74,7 @@ def _gap(claimed, exact) -> Fraction | None:
     if isinstance(exact, Infinity) or isinstance(claimed, Infinity) or exact == 0:
         return None
     if isinstance(exact, RealAlgebraic):
-        exact.refine(80)
+        exact.refine_relative(80)  # relative: a tiny exact value keeps its sign and digits
         exact = exact.lower
     return (exact - claimed) / exact
 
@@ -83,7 +84,7 @@ def _within(claimed, exact, tolerance: Fraction) -> bool:
     if isinstance(exact, Infinity):
         return claimed == exact
     if isinstance(exact, RealAlgebraic):
-        exact.refine(80)
+        exact.refine_relative(80)  # relative: a tiny exact value keeps its sign and digits
         return claimed >= exact.lower - tolerance * abs(exact.upper)
     return abs(exact - claimed) <= tolerance * abs(exact)
 
@@ -131,7 +132,7 @@ def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method
         return Verdict(TIGHT, "threshold", c, tau, gap, None, f"claimed {claimed} is within {tol} of the exact {tau}")
     return Verdict(VALID, "threshold", c, tau, gap, None,
                    f"claimed {claimed} is safe; the exact largest threshold is {tau}"
-                   + ("" if gap is None else f" (relative gap {float(gap):.3g})"))
+                   + ("" if gap is None else f" (relative gap {float_hint(gap):.3g})"))
 
 
 def _invalid_step(system, polyhedron, method, claimed) -> Fraction:

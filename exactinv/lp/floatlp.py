@@ -14,6 +14,7 @@ from typing import Any, Callable, Sequence
 import flint
 import numpy as np
 
+from ..core.float_hint import float_hints
 from .hint import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
 
 __all__ = ["FloatLP", "floats_of"]
@@ -112,7 +113,5 @@ def floats_of(values: Sequence[Any]) -> np.ndarray | None:
     >>> floats_of([flint.fmpq(1, 4), 3]).tolist(), floats_of([flint.fmpz(10) ** 400])
     ([0.25, 3.0], None)
     """
-    try:
-        return np.array([float(v) for v in values], dtype=float)
-    except OverflowError:
-        return None
+    floats = float_hints(values)
+    return floats if np.all(np.isfinite(floats)) else None

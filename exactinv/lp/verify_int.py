@@ -67,7 +67,7 @@ def optimal_values_int(data: LPData, C: flint.fmpq_mat, B: flint.fmpq_mat, signs
     bounds = (dB * N * mA * mX + mB * dA * d,  # slack numerators
               dC * R * mA * mY + mC * dA * d,  # reduced-cost numerators
               N * mC * mX, R * mB * mY)  # objectives
-    if max(bounds) >= _EXACT:
+    if max(bounds) >= _EXACT or max(dA * d, dB, dC) >= _EXACT:  # the factors enter float arrays too
         return None
     nonneg = np.array(signs, dtype=bool).T if len(signs) and N else np.zeros((N, len(signs)), dtype=bool)
     slack = Bn * (dA * d) - dB * (A @ Xn)  # (b - A x) * dA dB d

@@ -14,6 +14,7 @@ from typing import Any, Sequence
 import flint
 import numpy as np
 
+from ..core.float_hint import ldexp_hint, log2_hint
 from ..core.latex import LatexMixin, latex_matrix
 from ..core.psd import LDLT, psd_decision, quadratic_form, symmetric_matrix
 from ..core.scalars import Matrix, fmpq_matrix, matrix_text, nearest_rational, to_matrix, to_vector
@@ -77,7 +78,9 @@ class Ellipsoid(LatexMixin):
 
         Am = A.A if isinstance(A, LinearSystem) else to_matrix(A, "A", square=True)
         n = len(Am)
-        Af = np.array([[float(v) for v in row] for row in Am])
+        # the SDP for A / 2^e, 2^e ~ max |a_ij| (a hint; A^T Q + Q A < 0 is scale-free and is proved for A itself)
+        e = int(max((log2_hint(v) for row in Am for v in row if v != 0), default=0.0))
+        Af = np.array([[ldexp_hint(v, -e) for v in row] for row in Am])
         X = cp.Variable((n, n), symmetric=True)
         eye = np.eye(n)
         problem = cp.Problem(cp.Minimize(cp.trace(X)), [X >> eye, Af.T @ X + X @ Af << -eye])

@@ -16,6 +16,7 @@ infinity instead of 1).  ``repaired=True`` uses Cauchy's bound
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Sequence
@@ -24,6 +25,7 @@ import flint
 import numpy as np
 
 from ..errors import InvalidInput
+from ..core.float_hint import float_hints
 from ..core.scalars import INF, Infinity, fmpq_of, to_rational, to_vector
 from ..core.tags import BisectionStep
 
@@ -103,7 +105,10 @@ def paper_bisection_float(alphas: Sequence[Any], epsilon: float = 2.0**-30, repa
     >>> abs(res.tau - 0.5) < 1e-8, res.terminated_by
     (True, 'step 5')
     """
-    a = [float(x) for x in _normalised(alphas)]
+    a = float_hints(_normalised(alphas)).tolist()
+    if not all(math.isfinite(x) for x in a):
+        raise InvalidInput("alphas: a normalised coefficient is beyond the double range; the float algorithm "
+                           "cannot represent it (use paper_bisection, exact)")
     f = np.polynomial.Polynomial(a)
     seq = [f, f.deriv()]
     while seq[-1].degree() > 0 or abs(seq[-1].coef[0]) > 0:

@@ -27,6 +27,7 @@ from operator import mul
 import flint
 import numpy as np
 
+from ..core.float_hint import float_hints
 from ..lp import OPTIMAL, LPResult
 from ..lp.floatlp import FloatLP
 from ..lp.hint import HighsHint
@@ -126,7 +127,9 @@ def dense_rows(system: LinearSystem, polyhedron: Polyhedron) -> DenseRows | None
     float_lp = FloatLP(constraint, data.equality, HighsHint())
     GA = G * A
     GA_rows = GA.entries()
-    GA_float = np.array([float(v) for v in GA_rows]).reshape(m, n) if n else np.zeros((m, 0))
+    GA_float = float_hints(GA_rows).reshape(m, n) if n else np.zeros((m, 0))
+    if not np.all(np.isfinite(GA_float)):  # beyond double range: no float hints, the exact route
+        return None
     rows = []
     for j in range(m):
         cost = np.zeros(m)

@@ -39,22 +39,9 @@ from ..model.methods import Method, matrix_polynomial
 from .gamma_star import OptimalGamma
 from .monotonicity import absolute_monotonicity_radius
 from .polynomial import SteplengthThreshold
+from .spectral import abscissa_is_nonpositive, collatz_wielandt_upper, spectral_abscissa
 
-__all__ = ["rational_threshold", "spectral_abscissa", "smallest_positive_pole"]
-
-
-def spectral_abscissa(H: flint.fmpq_mat) -> Fraction | RealAlgebraic:
-    """alpha(H) = max Re(lambda) over the eigenvalues of a Metzler matrix H
-    (off-diagonal >= 0).  By Perron-Frobenius applied to H + cI >= 0 it is the
-    largest real eigenvalue: the largest real root of the characteristic polynomial, exact.
-
-    >>> spectral_abscissa(flint.fmpq_mat([[-2, 1], [1, -2]]))   # eigenvalues -1 and -3
-    Fraction(-1, 1)
-    >>> spectral_abscissa(flint.fmpq_mat([[0, 1], [2, 0]])).poly  # +-sqrt(2): the root of x^2 - 2
-    x^2 + (-2)
-    """
-    roots = real_roots(H.charpoly())
-    return roots[-1][0]
+__all__ = ["rational_threshold", "spectral_abscissa", "smallest_positive_pole", "first_singular_steplength"]
 
 
 def smallest_positive_pole(method: Method) -> Fraction | RealAlgebraic | None:
@@ -149,11 +136,12 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
         return SteplengthThreshold(Fraction(0), True, "Theorem 3.12 (rho = 0)", method, gamma, radius=radius)
     paper = _rho_over(rho, g)  # the paper, literally (Theorems 3.12, 3.13)
     z_p = smallest_positive_pole(method)
+    nonpositive = _NonPositive(gamma)
     best = None
     for H, g_H in _certificate_candidates(gamma):
         value, attained, notes = _rho_over(rho, g_H), True, []
-        alpha = spectral_abscissa(H) if z_p is not None else None
-        if z_p is not None and alpha > 0:
+        alpha = spectral_abscissa(H) if _e2_may_bind(H, gamma, z_p, value, nonpositive) else None
+        if alpha is not None and alpha > 0:
             pole_bound = _quotient(z_p, alpha)
             if isinstance(z_p, RealAlgebraic) and isinstance(alpha, RealAlgebraic):
                 notes.append("z_p/alpha(H) replaced by a certified rational lower bound (both irrational)")
@@ -177,6 +165,37 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
     certificate_H = None if H is gamma.H_flint else (H, g_H)
     return SteplengthThreshold(value, attained, theorem, method, gamma, notes=tuple(notes), radius=radius,
                                pole=z_p, spectral_abscissa=alpha, paper_value=paper, certificate_H=certificate_H)
+
+
+class _NonPositive:
+    """Whether alpha(H) <= 0 for every certificate H of gamma's problem (A has no positive real
+    eigenvalue and P is full-dimensional: :func:`~exactinv.paper.spectral.abscissa_is_nonpositive`),
+    decided once, on first use."""
+
+    def __init__(self, gamma: OptimalGamma):
+        self.gamma, self.value = gamma, None
+
+    def __bool__(self) -> bool:
+        if self.value is None:
+            P = self.gamma.polyhedron
+            self.value = abscissa_is_nonpositive(self.gamma.system.A_flint, P.dimension == P.n)
+        return self.value
+
+
+def _e2_may_bind(H, gamma: OptimalGamma, z_p, value, nonpositive) -> bool:
+    """False when exact bounds show that z_p/alpha(H) cannot be below ``value`` (then alpha(H) is
+    not needed, and not computed): no pole; alpha(H) <= U = max_i (Hv)_i / v_i (Collatz-Wielandt,
+    v = b when b > 0, else 1, as the kernel does) with U <= 0 or z_p/U > value; or alpha(H) <= 0
+    because A has no positive real eigenvalue on a full-dimensional P (paper/spectral.py)."""
+    if z_p is None or H.nrows() == 0:
+        return False
+    b = gamma.polyhedron.b
+    U = collatz_wielandt_upper(H, b if all(x > 0 for x in b) else [Fraction(1)] * len(b))
+    if U <= 0:
+        return False
+    if not isinstance(value, Infinity) and ExactKey(value) < ExactKey(_quotient(z_p, U)):
+        return False
+    return not nonpositive
 
 
 def _rho_over(rho, g):
