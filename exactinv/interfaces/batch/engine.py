@@ -106,6 +106,8 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     cert_dir = os.fspath(cert_dir) if isinstance(cert_dir, (str, os.PathLike)) else cert_dir
     if cert_dir is not None and (not isinstance(cert_dir, str) or not cert_dir):
         raise InvalidInput(f"cert_dir: expected a directory name, got {cert_dir!r}")
+    if cert_dir is not None:
+        _refuse_cert_dir_over_inputs(cert_dir, inputs)
     corpus = scan_corpus(inputs, out=out, cert_dir=cert_dir)
     refuse_inputs(out, "--out", corpus.files)
     refuse_foreign(out, "--out", is_results_file, "an exactinv batch results file")
@@ -133,6 +135,17 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
         tally.add(record)
     return tally.summary(str(out), len(corpus.tasks), len(corpus.tasks) - len(todo), ran,
                          time.monotonic() - start, threads, corpus.ignored)
+
+
+def _refuse_cert_dir_over_inputs(cert_dir: str, inputs: Any) -> None:
+    """--cert-dir may lie inside an input directory (its files are then not read), but may not be
+    an input or hold one: its files are never read as problems."""
+    folder = os.path.realpath(cert_dir)
+    for given in [inputs] if isinstance(inputs, (str, os.PathLike)) else list(inputs):
+        here = os.path.realpath(given)
+        if os.path.commonpath([here, folder]) == folder:
+            raise InvalidInput(f"--cert-dir {cert_dir}: holds the input {os.fspath(given)}; give the certificates "
+                               "a directory of their own")
 
 
 class _Interrupted(Exception):
