@@ -41,7 +41,7 @@ from ..files import atomic_write, check_writable, is_results_file, refuse_foreig
 from .certdir import prepare_cert_dir
 from .corpus import Task, scan_corpus
 from .results import ResultsFile, read_records
-from .signals import sigint_deferred, sigint_ignored
+from .signals import CtrlC, sigint_ignored
 from .summary import BatchSummary, Tally
 from .task import Limits, engine_version, run_task
 
@@ -203,8 +203,10 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
     client = cluster = sink = None
     futures: dict[Any, Task] = {}
     written, interrupted = 0, False
+    ctrl_c = CtrlC()
     try:
         client, cluster = _connect(dask, workers, scheduler)
+        ctrl_c.__enter__()
         _same_engine(client)
         sink = ResultsFile(out)
         pending, stream = iter(todo), dask.as_completed()
@@ -220,7 +222,7 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
         top_up()
         for future in stream:
             record = _record(future, futures.pop(future))
-            with sigint_deferred():  # the certificate, then its record: both whole or neither
+            with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
                 _keep_certificate(record, targets)
                 sink.append(record)
                 written += 1
@@ -234,6 +236,7 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
         interrupted = True
         raise _Interrupted(written) from None
     finally:
+        ctrl_c.__exit__()
         _shutdown(client, cluster, sink, list(futures), quiet=interrupted)
 
 
@@ -296,7 +299,7 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     # This process alone handles Ctrl-C and shuts the cluster down quietly: no worker traceback.
     with sigint_ignored():
         cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                    dashboard_address=None, silence_logs=logging.ERROR, preload=[_WORKER_PRELOAD])
+                                    dashboard_address=None, silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
     try:
         return dask.Client(cluster), cluster
     except BaseException:

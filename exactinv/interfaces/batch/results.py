@@ -3,8 +3,8 @@
 Appends are safe: the file is opened with ``O_APPEND`` and locked
 (``flock``, so a second batch on the same file is refused instead of
 interleaving); each record is one complete line handed to the operating
-system in one ``write`` with Ctrl-C held back until it is done, so an
-interruption never tears a line; a crash of the machine can tear at most
+system in one ``write`` (the engine holds Ctrl-C back meanwhile:
+:class:`.signals.CtrlC`), so an interruption never tears a line; a crash of the machine can tear at most
 the last line, which a reader ignores (and a re-run redoes: it starts on a
 fresh line).  The file is fsync'ed when the batch ends.  Existing lines are
 never changed.
@@ -27,7 +27,6 @@ import json
 import os
 
 from ...errors import InvalidInput
-from .signals import sigint_deferred
 
 __all__ = ["ResultsFile", "read_records"]
 
@@ -57,9 +56,7 @@ class ResultsFile:
 
     def append(self, record: dict) -> None:
         """One record, as one whole line."""
-        data = (json.dumps(record) + "\n").encode()
-        with sigint_deferred():
-            self._write(data)
+        self._write((json.dumps(record) + "\n").encode())
 
     def close(self) -> None:
         if self.fd >= 0:

@@ -1,11 +1,15 @@
 """Ctrl-C (SIGINT) around the batch's critical moments.
 
-* :func:`sigint_deferred`: a record and its certificate are written whole --
-  a Ctrl-C pressed meanwhile arrives right after;
+* :class:`CtrlC`: while a batch runs, Ctrl-C raises KeyboardInterrupt in the
+  main thread -- except inside :meth:`CtrlC.deferred` (a record and its
+  certificate are written whole), where it is noted and raised right after.
+  A Python-level handler, so it works whichever thread the operating system
+  delivers the signal to (the Dask client runs threads of its own);
 * :func:`sigint_ignored`: while a local cluster starts (its worker processes
   inherit the ignored signal) and while an interrupted batch shuts down.
-  The previous handler is restored afterwards, re-armed if it is
-  cysignals' (pplpy's), whose C-level handler a plain restore would lose.
+
+Both restore the previous handler afterwards, re-armed if it is cysignals'
+(pplpy's), whose C-level handler a plain restore would lose.
 """
 
 from __future__ import annotations
@@ -16,26 +20,7 @@ import sys
 import threading
 from typing import Iterator
 
-__all__ = ["sigint_deferred", "sigint_ignored"]
-
-
-@contextlib.contextmanager
-def sigint_deferred() -> Iterator[None]:
-    """Hold SIGINT back in this thread for the block; a Ctrl-C pressed meanwhile arrives right after it.
-
-    >>> with sigint_deferred():
-    ...     signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, set())
-    True
-    """
-    try:
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    except (AttributeError, OSError, ValueError):  # no POSIX signal masks here
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+__all__ = ["CtrlC", "sigint_ignored"]
 
 
 @contextlib.contextmanager
@@ -56,7 +41,59 @@ def sigint_ignored() -> Iterator[None]:
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
-        cysignals = sys.modules.get("cysignals.signals")
-        if cysignals is not None and str(getattr(previous, "__module__", "")).startswith("cysignals"):
-            cysignals.init_cysignals()  # re-arm its C-level handler (a plain restore loses it)
+        _restore(previous)
+
+
+def _restore(previous) -> None:
+    signal.signal(signal.SIGINT, previous)
+    cysignals = sys.modules.get("cysignals.signals")
+    if cysignals is not None and str(getattr(previous, "__module__", "")).startswith("cysignals"):
+        cysignals.init_cysignals()  # re-arm its C-level handler (a plain restore loses it)
+
+
+class CtrlC:
+    """A context manager: Ctrl-C raises KeyboardInterrupt, but not inside :meth:`deferred`.
+
+    >>> import os
+    >>> with CtrlC() as ctrl_c:
+    ...     try:
+    ...         with ctrl_c.deferred():
+    ...             os.kill(os.getpid(), signal.SIGINT)
+    ...             written = True
+    ...     except KeyboardInterrupt:
+    ...         print("interrupted after the block:", written)
+    interrupted after the block: True
+    """
+
+    def __init__(self) -> None:
+        self.critical = 0
+        self.pending = False
+        self.previous = None
+
+    def _handler(self, signum, frame) -> None:
+        if self.critical:
+            self.pending = True
+        else:
+            raise KeyboardInterrupt
+
+    def __enter__(self) -> "CtrlC":
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.previous is not None:
+            _restore(self.previous)
+            self.previous = None
+
+    @contextlib.contextmanager
+    def deferred(self) -> Iterator[None]:
+        """The block runs whole; a Ctrl-C meanwhile raises KeyboardInterrupt right after it."""
+        self.critical += 1
+        try:
+            yield
+        finally:
+            self.critical -= 1
+        if self.pending and not self.critical:
+            self.pending = False
+            raise KeyboardInterrupt
