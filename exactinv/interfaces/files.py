@@ -78,7 +78,16 @@ def refuse_inputs(path: str, label: str, inputs: Iterable[str | os.PathLike]) ->
 
 def refuse_foreign(path: str, label: str, ours: Callable[[str], bool], what: str) -> None:
     """Raise :class:`InvalidInput` if ``path`` exists, is not empty and ``ours(path)`` is false:
-    exactinv replaces (or appends to) only a file of its own kind (``what`` names it)."""
+    exactinv replaces (or appends to) only a file of its own kind (``what`` names it).
+
+    >>> import tempfile
+    >>> d = tempfile.mkdtemp(); p = os.path.join(d, "notes.txt")
+    >>> _ = open(p, "w").write("my notes")
+    >>> refuse_foreign(p, "-o", is_certificate, "an exactinv certificate")
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: -o ...notes.txt: the file exists and is not an exactinv certificate; exactinv does not overwrite it (delete it or choose another file name)
+    """
     try:
         if os.path.getsize(path) == 0:
             return

@@ -80,7 +80,13 @@ class Report:
         return "refuted" if self.refuted else "undecided" if self.undecided else "proved"
 
     def values(self) -> dict[str, Any]:
-        """The exact values of the results, encoded as the certificate encodes them (:func:`result_values`)."""
+        """The exact values of the results, encoded as the certificate encodes them (:func:`result_values`).
+
+        >>> import exactinv as ei
+        >>> from exactinv.interfaces.problem import Problem
+        >>> certify(Problem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])), check=False).values()
+        {'gamma_star': '1/2', 'forward_euler': '2'}
+        """
         return result_values(self.results)
 
 

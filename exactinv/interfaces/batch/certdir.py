@@ -42,7 +42,11 @@ def _encode(text: str) -> str:
 
 
 def certificate_names(ids: Iterable[str]) -> dict[str, str]:
-    """The file name of each id's certificate (distinct for distinct ids; see the module docstring)."""
+    """The file name of each id's certificate (distinct for distinct ids; see the module docstring).
+
+    >>> certificate_names(["a.json", "../up", ".hidden"])
+    {'a.json': 'a.cert.json', '../up': '%2E.%2Fup.cert.json', '.hidden': '%2Ehidden.cert.json'}
+    """
     ids = list(ids)
     short = {i: _encode(i[:-5] if i.lower().endswith(".json") else i) for i in ids}
     full = {i: _encode(i) for i in ids}
@@ -59,7 +63,18 @@ def prepare_cert_dir(cert_dir: str, ids: Iterable[str], inputs: Iterable[str], o
     """The path of each id's certificate in ``cert_dir``, after refusing (InvalidInput) a
     ``cert_dir`` that is a file or an input, and any target that is an input, the
     results file, or an existing file other than an exactinv certificate.  Creates
-    ``cert_dir`` (not its parents) if missing -- after every check has passed."""
+    ``cert_dir`` (not its parents) if missing -- after every check has passed.
+
+    >>> import tempfile
+    >>> d = tempfile.mkdtemp(); problem = os.path.join(d, "box.json"); open(problem, "w").close()
+    >>> paths = prepare_cert_dir(os.path.join(d, "certs"), ["box.json"], [problem], os.path.join(d, "r.jsonl"))
+    >>> os.path.relpath(paths["box.json"], d), os.path.isdir(os.path.join(d, "certs"))
+    ('certs/box.cert.json', True)
+    >>> prepare_cert_dir(d, ["box"], [os.path.join(d, "box.cert.json")], "r.jsonl")  # a problem named box.cert.json
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: --cert-dir ...box.cert.json: this is the input ...box.cert.json; exactinv never overwrites an input (choose another file name)
+    """
     if os.path.exists(cert_dir) and not os.path.isdir(cert_dir):
         raise InvalidInput(f"--cert-dir {cert_dir}: exists and is not a directory")
     parent = os.path.dirname(os.path.abspath(cert_dir))

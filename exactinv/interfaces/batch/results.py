@@ -55,10 +55,25 @@ class ResultsFile:
             view = view[os.write(self.fd, view):]
 
     def append(self, record: dict) -> None:
-        """One record, as one whole line."""
+        """One record, as one whole line.
+
+        >>> import os, tempfile
+        >>> out = os.path.join(tempfile.mkdtemp(), "r.jsonl")
+        >>> with ResultsFile(out) as sink:
+        ...     sink.append({"id": "a", "status": "ok"})
+        >>> open(out).read()
+        '{"id": "a", "status": "ok"}\\n'
+        """
         self._write((json.dumps(record) + "\n").encode())
 
     def close(self) -> None:
+        """Flush to disk (fsync) and close, releasing the lock; a second close does nothing.
+
+        >>> import os, tempfile
+        >>> sink = ResultsFile(os.path.join(tempfile.mkdtemp(), "r.jsonl"))
+        >>> sink.close(); sink.close(); sink.fd
+        -1
+        """
         if self.fd >= 0:
             with contextlib.suppress(OSError):
                 os.fsync(self.fd)
@@ -74,7 +89,14 @@ class ResultsFile:
 
 def read_records(out: str) -> dict[str, dict]:
     """Every record of ``out`` by id (the last one of an id wins); torn lines and lines that are
-    not records are skipped; an absent file has none."""
+    not records are skipped; an absent file has none.
+
+    >>> import os, tempfile
+    >>> out = os.path.join(tempfile.mkdtemp(), "r.jsonl")
+    >>> _ = open(out, "w").write('{"id": "a", "status": "error"}\\n[1]\\n{"id": "a", "status": "ok"}\\n{"id": "b"')
+    >>> read_records(out), read_records(out + ".absent")
+    ({'a': {'id': 'a', 'status': 'ok'}}, {})
+    """
     records: dict[str, dict] = {}
     try:
         with open(out, encoding="utf-8") as fh:

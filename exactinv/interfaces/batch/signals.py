@@ -88,7 +88,12 @@ class CtrlC:
 
     @contextlib.contextmanager
     def deferred(self) -> Iterator[None]:
-        """The block runs whole; a Ctrl-C meanwhile raises KeyboardInterrupt right after it."""
+        """The block runs whole; a Ctrl-C meanwhile raises KeyboardInterrupt right after it.
+
+        >>> with CtrlC() as ctrl_c, ctrl_c.deferred():
+        ...     ctrl_c.critical
+        1
+        """
         self.critical += 1
         try:
             yield
