@@ -264,7 +264,8 @@ def _batch_parser(sub, fmt) -> None:
     b.add_argument("inputs", nargs="+", metavar="INPUT", help="problem directory, .json, .jsonl or oracle .csv")
     b.add_argument("-o", "--out", required=True, help="results file (JSON lines); appended to, done ids skipped")
     b.add_argument("--cert-dir", metavar="DIR", help="keep each problem's certificate in DIR (created if missing): "
-                                                     "ID.cert.json, written only once the kernel verified it")
+                                                     "ID.cert.json, written once the kernel verified it "
+                                                     "(with --no-check: unverified, as asked)")
     where = b.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_positive(int), metavar="N", help="local worker processes (default: every core)")
     where.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask scheduler, e.g. tcp://10.0.0.1:8786")

@@ -111,9 +111,9 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     corpus = scan_corpus(inputs, out=out, cert_dir=cert_dir)
     refuse_inputs(out, "--out", corpus.files)
     refuse_foreign(out, "--out", is_results_file, "an exactinv batch results file")
-    for path, why in corpus.ignored:
-        if notice is not None:
-            notice(f"skipped {path}: {why}")
+    if notice is not None:
+        for line in _skipped_lines(corpus.ignored):
+            notice(line)
     done = set(read_records(out))
     todo = [t for t in corpus.tasks if t.id not in done]
     targets: dict[str, str] = {}
@@ -135,6 +135,24 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
         tally.add(record)
     return tally.summary(str(out), len(corpus.tasks), len(corpus.tasks) - len(todo), ran,
                          time.monotonic() - start, threads, corpus.ignored)
+
+
+def _skipped_lines(ignored: Sequence[tuple[str, str]]) -> list[str]:
+    """One line per file not read, or one per folder and reason when more than three share them.
+
+    >>> _skipped_lines([("d/a.json", "why"), ("c/1.cert.json", "cert")] + [(f"c/{k}.cert.json", "cert") for k in range(2, 5)])
+    ['skipped d/a.json: why', 'skipped 4 files in c: cert']
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    for path, why in ignored:
+        groups.setdefault((os.path.dirname(path), why), []).append(path)
+    lines = []
+    for (folder, why), paths in groups.items():
+        if len(paths) > 3:
+            lines.append(f"skipped {len(paths)} files in {folder}: {why}")
+        else:
+            lines.extend(f"skipped {path}: {why}" for path in paths)
+    return lines
 
 
 def _refuse_cert_dir_over_inputs(cert_dir: str, inputs: Any) -> None:
