@@ -9,9 +9,9 @@ equality are then decided exactly (bisection and gcds), never by tolerance.
 
 from fractions import Fraction
 
-from . import polys
+from . import polys, text
 from .polys import evaluate, sign
-from .rationals import CheckFailure, describe, rational, require
+from .rationals import CheckFailure, rational, require
 
 MAX_REFINEMENTS = 20000
 STURM_BUDGET = polys.STURM_BUDGET  # degree^4 * bits^2 of a certificate's polynomial: about seconds of Sturm work
@@ -190,8 +190,8 @@ class Real:
         if self.inf:
             return "oo" if self.inf > 0 else "-oo"
         if self.poly is None:
-            return describe(self.q)
-        return f"root of {[describe(c) for c in self.poly]} in ({describe(self.lo)}, {describe(self.hi)})"
+            return text.rational_text(self.q)
+        return text.algebraic_text(self._ints, self.lo, self.hi)  # the engine's format (exactinv.core.digits)
 
 
 def separate(a, b):

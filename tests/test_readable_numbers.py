@@ -1,6 +1,7 @@
 """Exact numbers as a user reads them: certified significant digits, tight
 enclosures of every threshold, polynomials in plain text (issue 12)."""
 
+import math
 from fractions import Fraction
 
 import pytest
@@ -54,10 +55,12 @@ def test_threshold_enclosures_are_tight_and_lower_is_valid(P, method):
     L = ei.largest_threshold(BOX_S, P, method)
     assert isinstance(L.value, RealAlgebraic)
     assert 0 < L.lower < L.value < L.upper
-    assert (L.upper - L.lower) <= L.lower / 2**53
+    # lower and upper are adjacent doubles (the value is irrational, so neither equals it)
+    assert float(L.lower) == L.lower and float(L.upper) == L.upper
+    assert math.nextafter(float(L.lower), math.inf) == float(L.upper)
     assert ei.discrete_invariance(BOX_S, P, method, L.lower).holds
     L.value.tidy()  # a wide, decimal enclosure for a report does not loosen .lower/.upper
-    assert (L.upper - L.lower) <= L.lower / 2**53
+    assert math.nextafter(float(L.lower), math.inf) == float(L.upper)
 
 
 def test_a_rational_threshold_that_is_not_attained_has_lower_below_it():
@@ -65,7 +68,8 @@ def test_a_rational_threshold_that_is_not_attained_has_lower_below_it():
     orthant = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
     L = ei.largest_threshold(S, orthant, ei.methods.backward_euler())
     assert L.value == 1 and not L.attained
-    assert L.lower < 1 == L.upper and 1 - L.lower <= Fraction(1, 2**53)
+    assert L.lower < 1 == L.upper and L.lower == Fraction(math.nextafter(1.0, 0))   # the double below 1
+    assert L.safe_float == L.lower
     assert ei.discrete_invariance(S, orthant, ei.methods.backward_euler(), L.lower).holds
     t = ei.steplength_threshold(BOX_S, BOX, ei.methods.taylor(3))
     assert t.attained and t.lower == t.upper == 1

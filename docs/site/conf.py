@@ -15,6 +15,7 @@ their outputs while the repository keeps them output-free.
 
 from __future__ import annotations
 
+import re
 import shutil
 import sys
 from pathlib import Path
@@ -24,7 +25,7 @@ ROOT = SITE.parent.parent
 sys.path.insert(0, str(ROOT))  # document this checkout, not an installed copy
 
 GENERATED = SITE / "generated"
-REPO_LINKS = {"../exactinv_check": "../api.md#api-kernel"}
+REPO_LINKS = {"../exactinv_check": "api-kernel"}  # a link target -> the label of the page section on it
 
 
 def _copy_sources() -> None:
@@ -37,8 +38,11 @@ def _copy_sources() -> None:
         text = (ROOT / "docs" / name).read_text(encoding="utf-8")
         # A link into the repository outside docs/ (read on a code host) points
         # here to the page that documents it.
-        for target, page in REPO_LINKS.items():
-            text = text.replace(f"]({target})", f"]({page})")
+        for target, label in REPO_LINKS.items():
+            # [text](target) -> {ref}`text <label>`: a plain Sphinx reference,
+            # resolved the same by every myst-parser (a #label link is not, in 5.0)
+            text = re.sub(rf"\[([^\]]*)\]\({re.escape(target)}\)",
+                          lambda m: "{ref}`" + m.group(1).replace("`", "") + f" <{label}>`", text)
         (GENERATED / name).write_text(text, encoding="utf-8")
     shutil.copytree(ROOT / "docs" / "img", GENERATED / "img")
     for nb in sorted((ROOT / "notebooks").glob("*.ipynb")):

@@ -26,7 +26,7 @@ def encode_real(v: Real) -> str | dict:
     >>> encode_real(Fraction(-3, 4)), encode_real(INF)
     ('-3/4', 'oo')
     >>> encode_real(RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2))
-    {'poly': ['-2', '0', '1'], 'interval': ['353553390593/250000000000', '707106781187/500000000000']}
+    {'poly': ['-2', '0', '1'], 'interval': ['1414213562373/1000000000000', '707106781187/500000000000']}
     """
     if isinstance(v, Infinity):
         return "oo" if v.sign > 0 else "-oo"

@@ -94,18 +94,22 @@ class RealAlgebraic:
             self._upper = mid
 
     def tidy(self, digits: int = 12) -> "RealAlgebraic":
-        """Replace the isolating interval by a short decimal one (for readable
-        output and certificates); the added slivers are proved root-free by
-        Descartes' rule, so the new interval still isolates the same root.
+        """Replace the isolating interval by the cell [k, k + 1] / 10**digits of the
+        decimal grid that holds the root (for readable output and certificates): a
+        function of the number alone, so the engine and the kernel print the same
+        interval (exactinv_check.text).  The added slivers are proved root-free by
+        Descartes' rule, so the new interval still isolates the same root; where
+        that proof fails, the refined interval is kept.
 
         >>> r = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2).tidy(6)
-        >>> r.lower ** 2 < 2 < r.upper ** 2, r.upper - r.lower <= Fraction(1, 10**5)
-        (True, True)
+        >>> r.lower == Fraction(1414213, 10**6) and r.upper == Fraction(1414214, 10**6)   # sqrt 2 = 1.41421356...
+        True
         """
-        self.refine(int(digits * 3.33) + 4)
         scale = 10**digits
+        while _floor(self._lower * scale) != -_floor(-self._upper * scale) - 1:  # not yet inside one cell
+            self._bisect()
         lo = Fraction(_floor(self._lower * scale), scale)
-        hi = Fraction(-_floor(-self._upper * scale), scale)
+        hi = lo + Fraction(1, scale)
         # the widened interval adds the slivers (lo, lower] and [upper, hi): prove them root-free
         if (lo == self._lower or no_root_between(self.poly, lo, self._lower)) and \
                 (hi == self._upper or no_root_between(self.poly, self._upper, hi)):

@@ -115,8 +115,8 @@ def _certify(args) -> int:
         print(report.text)
         if written:
             print(f"certificate written to {written}")
-    for why in report.undecided:
-        print(f"exactinv: undecided: {why}", file=sys.stderr)
+    for what, why in report.undecided:  # a partial answer: every decided claim certified, this question open
+        print(f"exactinv: undecided: {what}: {why}", file=sys.stderr)
     return CODES[report.outcome]
 
 

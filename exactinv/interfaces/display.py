@@ -18,6 +18,7 @@ from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
 from ..beyond.ellipsoid_thresholds import ellipsoid_largest_threshold, ellipsoid_valid_steplengths
 from ..beyond.largest import largest_threshold, valid_steplengths
 from ..core.algebraic import RealAlgebraic
+from ..core.digits import significant_digits
 from ..core.latex import latex_matrix, latex_real
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
@@ -81,7 +82,7 @@ def _short(v, digits: int = 5) -> str:
         return str(v.numerator)
     if v.denominator < 1000 and abs(v.numerator) < 1000:
         return rf"{v.numerator}/{v.denominator}"
-    return f"{float(v):.{digits}g}" + r"\ldots"
+    return significant_digits(v, v, digits) + r"\ldots"  # certified (truncated) digits, as everywhere
 
 
 def _polyval(coeffs, x):

@@ -12,17 +12,10 @@ from ..beyond.ellipsoid_thresholds import (
     ellipsoid_largest_threshold,
     ellipsoid_valid_steplengths,
 )
-from ..core.algebraic import RealAlgebraic
+from ..core.text import exact_text, safe_step_text
 from ..model import Ellipsoid, LinearSystem, Method
 
 __all__ = ["ellipsoid_results"]
-
-
-def _text(v: Any) -> str:
-    if isinstance(v, RealAlgebraic):
-        v.tidy()
-        return f"{v}  (a root of {v.poly} in [{v.lower}, {v.upper}])"
-    return str(v)
 
 
 def ellipsoid_results(S: LinearSystem, E: Ellipsoid, method: Method | None, lines: list[str],
@@ -33,8 +26,8 @@ def ellipsoid_results(S: LinearSystem, E: Ellipsoid, method: Method | None, line
     >>> lines = []
     >>> _ = ellipsoid_results(ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]]), None,
     ...                       lines, lambda s: None)
-    >>> lines[-1]
-    'largest forward-Euler step on E: 2/5  (generalised eigenvalue and valid set agree)'
+    >>> lines[-1]     # the double 0.4 is above 2/5: the safe float is the one below
+    'largest forward-Euler step on E: 2/5; use dt <= 0.39999999999999996  (generalised eigenvalue and valid set agree)'
     """
     step("continuous invariance (exact LDL^T)")
     inv = ellipsoid_continuous_invariance(S, E)
@@ -46,7 +39,8 @@ def ellipsoid_results(S: LinearSystem, E: Ellipsoid, method: Method | None, line
                      f"v^T (A^T Q + Q A) v = {w.value} > 0: the boundary point v/||v||_Q leaves E")
     step("forward Euler (generalised eigenvalue)")
     fe = ellipsoid_forward_euler_threshold(S, E)
-    lines.append(f"largest forward-Euler step on E: {_text(fe.value)}  (generalised eigenvalue and valid set agree)")
+    lines.append(f"largest forward-Euler step on E: {exact_text(fe.value)}{safe_step_text(fe)}  "
+                 "(generalised eigenvalue and valid set agree)")
     results: list[Any] = [inv, fe]
     if method is not None:
         step("exact valid steplengths")
@@ -54,6 +48,7 @@ def ellipsoid_results(S: LinearSystem, E: Ellipsoid, method: Method | None, line
         step("exact largest threshold")
         L = ellipsoid_largest_threshold(S, E, method)
         lines.append(f"exact valid steplengths for {method.name}: {V.intervals!r}")
-        lines.append(f"exact largest threshold: {_text(L.value)}" + ("" if L.attained else "  (not attained)"))
+        lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)")
+                     + safe_step_text(L))
         results += [L, V]
     return results

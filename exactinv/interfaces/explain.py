@@ -9,7 +9,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-from ..core.algebraic import significant_digits
+from ..core.digits import decimal_text, rational_text, root_text, significant_digits
 from ..core.polys import poly_text
 from ..core.tags import ClaimType
 
@@ -49,12 +49,17 @@ def _real(v: Any) -> str:
     """An exact value of a certificate in words."""
     if v is None:
         return "none"
-    if isinstance(v, dict):
-        poly = poly_text(v["poly"], "t")
+    if isinstance(v, dict):  # the one number format (exactinv.core.digits), as reports and the kernel print
+        coeffs = [_q(c) for c in v["poly"]]
+        poly = poly_text(coeffs if coeffs[-1] > 0 else [-c for c in coeffs])
         lo, hi = _q(v["interval"][0]), _q(v["interval"][1])
         digits = _digits(v["poly"], lo, hi)
-        return (f"{digits} " if digits else "") + f"(the root of {poly} in ({v['interval'][0]}, {v['interval'][1]}))"
-    return {"oo": "infinity", "-oo": "minus infinity"}.get(v, v)
+        if digits is None:
+            return f"the root of {poly} in [{decimal_text(lo)}, {decimal_text(hi)}]"
+        return root_text(digits, poly, lo, hi)
+    if v in ("oo", "-oo"):
+        return {"oo": "infinity", "-oo": "minus infinity"}[v]
+    return rational_text(_q(v))
 
 
 def _vec(v) -> str:

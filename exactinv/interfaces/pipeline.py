@@ -15,16 +15,15 @@ The command line, the notebooks and a batch runner all call :func:`certify`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from fractions import Fraction
 from typing import Any, Callable
 
 import exactinv_check
 
 from ..beyond.ellipsoid_thresholds import EllipsoidForwardEulerThreshold
 from ..beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
-from ..core.algebraic import RealAlgebraic, significant_digits
 from ..core.encode import encode_real
-from ..core.polys import poly_text
+from ..core.text import exact_text, safe_step_text
+from ..errors import Undecided
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import ForwardEulerThreshold, _forward_euler_threshold
@@ -34,7 +33,7 @@ from ..paper.threshold import _steplength_threshold
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
-__all__ = ["Report", "certify", "VERTEX_LIMIT", "result_values"]
+__all__ = ["Report", "certify", "VERTEX_LIMIT", "exact_text", "safe_step_text", "result_values"]
 
 VERTEX_LIMIT = 12  # dimension above which the vertex enumeration is not attempted by default
 
@@ -44,9 +43,11 @@ class Report:
     """What :func:`certify` found: the ``results`` (in certificate order), the
     JSON ``certificate``, the kernel's ``check`` report (None when skipped)
     and the human-readable ``lines``.  ``ok``: the kernel verified the
-    certificate (False when the check was skipped).  ``undecided``: one line
-    per question that could not be decided (what and why), the other results
-    certified nonetheless."""
+    certificate (False when the check was skipped).  ``outcome``: for the
+    exit code (:mod:`exactinv.interfaces.exit_codes`).  ``undecided``: the
+    questions exactinv could neither prove nor refute, as (what, why) pairs;
+    their claims are absent from the certificate, every other claim is in it
+    (a partial answer, never all-or-nothing)."""
 
     problem: Problem
     method: Method | None
@@ -54,11 +55,17 @@ class Report:
     certificate: dict = field(repr=False)
     check: Any = None
     lines: tuple[str, ...] = field(default=(), repr=False)
-    undecided: tuple[str, ...] = field(default=(), repr=False)
+    undecided: tuple[tuple[str, str], ...] = ()
 
     @property
     def ok(self) -> bool:
+        """The kernel verified the certificate (of every claim that was decided)."""
         return self.check is not None and self.check.ok
+
+    @property
+    def complete(self) -> bool:
+        """``ok`` and every question decided: nothing was left out of the certificate."""
+        return self.ok and not self.undecided
 
     @property
     def text(self) -> str:
@@ -133,41 +140,6 @@ def stages(method: Method | None, check: bool) -> int:
     return (5 if method is not None else 3) - (not check)
 
 
-def exact_text(v: Any) -> str:
-    """An exact value for a report line: a rational as it is (with its leading
-    significant digits when it is long), an algebraic number by its certified
-    significant digits, its polynomial and an isolating interval.
-
-    >>> exact_text(RealAlgebraic.from_isolating_interval([-12, 12, -6, 0, 1], 1, 2))
-    '1.7496858314598103  (the root of x^4 - 6x^2 + 12x - 12 in [1.749685831459, 1.74968583146])'
-    >>> exact_text(Fraction(1, 3 * 10**20))
-    '1/300000000000000000000  (= 3.3333333333333333e-21...)'
-    """
-    if isinstance(v, RealAlgebraic):
-        v.tidy()
-        return f"{v}  (the root of {poly_text(v.poly)} in [{_decimal(v.lower)}, {_decimal(v.upper)}])"
-    if isinstance(v, Fraction) and len(str(v)) > 12 and v.denominator != 1:
-        digits = significant_digits(v, v, 17)
-        exact = Fraction(digits) == v
-        return f"{v}  (= {digits}{'' if exact else '...'})"
-    return str(v)
-
-
-def _decimal(q: Fraction) -> str:
-    """q as an exact decimal when its denominator divides a power of ten, else as a fraction."""
-    d, twos, fives = q.denominator, 0, 0
-    while d % 2 == 0:
-        d, twos = d // 2, twos + 1
-    while d % 5 == 0:
-        d, fives = d // 5, fives + 1
-    k = max(twos, fives)
-    if d != 1 or k == 0:
-        return str(q)
-    digits = str(abs(q.numerator * 10**k // q.denominator)).rjust(k + 1, "0")
-    text = (digits[:-k] + "." + digits[-k:]).rstrip("0").rstrip(".")
-    return ("-" if q < 0 else "") + text
-
-
 def certify(problem: Problem, method: Method | None = None, check: bool = True,
             progress: Callable[[str], None] | None = None) -> Report:
     """Compute and certify everything that applies to ``problem`` (``method``
@@ -183,10 +155,10 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     >>> report = certify(decay, ei.methods.forward_euler())
     >>> for line in report.lines[3:]:
     ...     print(line)
-    largest forward-Euler step: 2  (1/gamma* and the vertex ratio tests agree)
-    paper's threshold for forward_euler (Theorem 3.4 (polynomial methods)): 2
+    largest forward-Euler step: 2; use dt <= 2  (1/gamma* and the vertex ratio tests agree)
+    paper's threshold for forward_euler (Theorem 3.4 (polynomial methods)): 2; use dt <= 2
     exact valid steplengths for forward_euler: [0, 2]
-    exact largest threshold: 2
+    exact largest threshold: 2; use dt <= 2
     independent check: VERIFIED (5 claims)
     >>> report.ok, certify(decay, check=False).ok  # unchecked: not ok
     (True, False)
@@ -198,6 +170,7 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         lines = [f"problem {problem.name}: n = {S.n}, ellipsoid x^T Q x <= 1" + (f", method {method.name}" if method else "")]
         return _finish(problem, method, ellipsoid_results(S, P, method, lines, step), lines, check, step)
     lines = [f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities" + (f", method {method.name}" if method else "")]
+    undecided: list[tuple[str, str]] = []
     step("gamma* (verified row LPs)")
     gamma = optimal_gamma(S, P)
     results: list[Any] = [gamma]
@@ -213,15 +186,30 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
         results += _forward_euler(S, P, gamma, lines)
         if method is not None:
             step(f"paper's threshold for {method.name}")
-            results += _paper_threshold(S, P, method, gamma, lines)
+            results += _decided(f"paper's threshold for {method.name}", lines, undecided,
+                                lambda: _paper_threshold(S, P, method, gamma, lines))
     if method is not None and P.n <= VERTEX_LIMIT:
         step("exact valid steplengths")
-        results += _largest(S, P, method, lines)
-    return _finish(problem, method, results, lines, check, step)
+        results += _decided(f"exact valid steplengths and largest threshold for {method.name}", lines, undecided,
+                            lambda: _largest(S, P, method, lines))
+    return _finish(problem, method, results, lines, check, step, tuple(undecided))
+
+
+def _decided(what: str, lines: list[str], undecided: list[tuple[str, str]],
+             stage: Callable[[], list[Any]]) -> list[Any]:
+    """The results of one stage, or none if it raises :class:`~exactinv.Undecided`: then
+    the question and the reason are recorded (``undecided``, a report line) and the
+    other stages go on -- the certificate simply holds no claim for it."""
+    try:
+        return stage()
+    except Undecided as exc:
+        undecided.append((what, str(exc)))
+        lines.append(f"{what}: UNDECIDED -- {exc}")
+        return []
 
 
 def _finish(problem: Problem, method: Method | None, results: list[Any], lines: list[str], check: bool,
-            step: Callable[[str], None]) -> Report:
+            step: Callable[[str], None], undecided: tuple[tuple[str, str], ...] = ()) -> Report:
     """The certificate of ``results`` and, if ``check``, the trusted kernel's verdict on it."""
     cert = make_certificate(problem.system, problem.polyhedron, method, results)
     report = None
@@ -232,7 +220,9 @@ def _finish(problem: Problem, method: Method | None, results: list[Any], lines: 
     else:
         lines.append(f"independent check: skipped (--no-check); run `exactinv check` on the certificate "
                      f"({len(cert['claims'])} claims)")
-    return Report(problem, method, tuple(results), cert, report, tuple(lines))
+    if undecided:
+        lines.append(f"undecided ({len(undecided)}, not in the certificate): " + "; ".join(w for w, _ in undecided))
+    return Report(problem, method, tuple(results), cert, report, tuple(lines), undecided)
 
 
 def _routes(paths: Any) -> str:
@@ -247,14 +237,15 @@ def _forward_euler(S, P, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
         lines.append("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
         return []
     fe = _forward_euler_threshold(S, P, gamma)
-    lines.append(f"largest forward-Euler step: {fe.value}  (1/gamma* and the vertex ratio tests agree)")
+    lines.append(f"largest forward-Euler step: {exact_text(fe.value)}{safe_step_text(fe)}  "
+                 "(1/gamma* and the vertex ratio tests agree)")
     return [fe]
 
 
 def _paper_threshold(S, P, method: Method, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
     t = _steplength_threshold(method, gamma)
     lines.append(f"paper's threshold for {method.name} ({t.theorem}): {exact_text(t.value)}"
-                 + ("" if t.attained else "  (not attained: valid on [0, tau))"))
+                 + ("" if t.attained else "  (not attained: valid on [0, tau))") + safe_step_text(t))
     if t.paper != t.value:
         lines.append(f"  the paper, taken literally, gives {exact_text(t.paper)}")
     lines.extend(f"  note: {note}" for note in t.notes)
@@ -266,5 +257,6 @@ def _largest(S, P, method: Method, lines: list[str]) -> list[Any]:
     V = valid_steplengths(S, P, method, conditions=conditions)
     L = largest_threshold(S, P, method, conditions=conditions)
     lines.append(f"exact valid steplengths for {method.name}: {V.intervals!r}")
-    lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)"))
+    lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)")
+                 + safe_step_text(L))
     return [L, V]

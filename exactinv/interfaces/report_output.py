@@ -29,7 +29,7 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
     """The report as a JSON-able dict: ``format`` (``"exactinv-report"``), ``version`` (1),
     ``problem``, ``method``, ``outcome`` and ``exit_code``, ``invariant`` (and the exact
     ``witness`` when the set is not invariant), ``values`` (exact, as the certificate
-    encodes them), ``undecided`` (what could not be decided, and why), ``check`` (the
+    encodes them), ``undecided`` (each open question and why: ``{"question", "why"}``), ``check`` (the
     kernel's verdict per claim; ``verified`` None when skipped) and ``certificate`` (the
     file it was written to, or None).
 
@@ -55,7 +55,7 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
     if report.refuted:
         out["witness"] = witness
     out["values"] = report.values()
-    out["undecided"] = list(report.undecided)
+    out["undecided"] = [{"question": what, "why": why} for what, why in report.undecided]
     out["check"] = {"verified": None if check is None else bool(check.ok),
                     "claims": len(report.certificate.get("claims", ())),
                     "verdicts": [] if check is None else
@@ -110,7 +110,7 @@ def report_latex(report: Report) -> str:
         elif isinstance(r, LargestThreshold):
             rows.append((5, f"largest threshold{method}",
                          f"${latex_real(r.value)}$" + ("" if r.attained else " (not attained)")))
-    rows += [(6, "undecided", f"${latex_text(why)}$") for why in report.undecided]
+    rows += [(6, f"undecided: ${latex_text(what)}$", "not in the certificate") for what, _ in report.undecided]
     rows.sort(key=lambda row: row[0])
     lines = [f"% exactinv certify: problem {name}, method {report.method.name if report.method else 'none'}",
              f"% {verdict}; needs \\usepackage{{amsmath}}",

@@ -11,6 +11,7 @@ from typing import Any, Sequence
 import highspy
 import numpy as np
 
+from .highs import silence_banner, silent_highs
 from .hint_types import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
 
 __all__ = ["HighsHint", "CvxpyHint"]
@@ -62,8 +63,7 @@ class _HighsModel(HintModel):
         return UNKNOWN_HINT
 
     def _build(self, cost, lower, row_lower, rhs) -> highspy.Highs:
-        h = highspy.Highs()
-        h.setOptionValue("output_flag", False)
+        h = silent_highs()
         h.setOptionValue("presolve", "off")
         lp = highspy.HighsLp()
         lp.num_col_, lp.num_row_ = self.N, self.R
@@ -172,6 +172,7 @@ class _CvxpyModel(HintModel):
             self.b_eq.value = rhs[self.eq_rows]
         if self.b_le is not None:
             self.b_le.value = rhs[self.le_rows]
+        silence_banner()  # cvxpy's HiGHS interface constructs highspy.Highs itself
         try:
             self.problem.solve(solver=self.solver, **self.options)
         except (cp.SolverError, ValueError, ArithmeticError):

@@ -18,6 +18,7 @@ from typing import NamedTuple
 import highspy
 import numpy as np
 
+from .highs import silent_highs
 from .hint_types import LPStatus
 
 __all__ = ["BlockHint", "block_hints"]
@@ -61,8 +62,7 @@ def block_hints(A: np.ndarray, equality: np.ndarray, costs: np.ndarray, rhss: np
     inf = highspy.kHighsInf
     rhs = (rhss * scale[None, :]).ravel()
     row_lower = np.where(np.tile(equality, K), rhs, -inf)
-    h = highspy.Highs()
-    h.setOptionValue("output_flag", False)
+    h = silent_highs()
     h.setOptionValue("presolve", "on" if presolve else "off")
     status = h.passModel(K * N, K * R, len(index), int(highspy.MatrixFormat.kColwise),
                          int(highspy.ObjSense.kMinimize), 0.0, -costs.ravel().astype(float),

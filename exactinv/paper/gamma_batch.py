@@ -30,7 +30,6 @@ from typing import Sequence
 
 import flint
 import numpy as np
-import scipy.sparse as sp
 
 from ..lp import OPTIMAL, LPResult
 from ..lp.block import block_hints
@@ -83,7 +82,7 @@ class IntegerData:
         n = Gn.shape[1]
         if n * _max(Gn) * _max(An) >= _EXACT:
             return None
-        return cls(Gn, dG, bn[0], db, An, dA, sp.csr_matrix(Gn) @ An + 0.0)  # + 0.0: no -0.0 entries
+        return cls(Gn, dG, bn[0], db, An, dA, _sparse_times(Gn, An) + 0.0)  # + 0.0: no -0.0 entries
 
 
 @dataclass(frozen=True)
@@ -216,10 +215,10 @@ def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarra
               n * mGA * mY + mH * dG * dA)  # the objectives
     if max(bounds) >= _EXACT:
         return None
-    off, Gs = ~np.eye(m, dtype=bool), sp.csr_matrix(Gn)  # sparse products: fewer, equally exact sums
-    ok = ~((Gs.T @ Hn.T).T * dA != D * GAn).any(axis=1)
+    off = ~np.eye(m, dtype=bool)
+    ok = ~(_times_sparse(Hn, Gn) * dA != D * GAn).any(axis=1)
     ok &= (Hn @ bn <= 0) & ~((Hn < 0) & off).any(axis=1)
-    K = (Gs @ Yn.T) * db + np.outer(bn, Ln) * dG  # column j: (g_k.y_j + lam_j b_k) dG db D
+    K = _sparse_times(Gn, Yn.T) * db + np.outer(bn, Ln) * dG  # column j: (g_k.y_j + lam_j b_k) dG db D
     ok &= (Ln >= 0) & (np.diagonal(K) == dG * db * D) & ~((K < 0) & off).any(axis=0)
     ok &= (GAn * Yn).sum(axis=1) == np.diagonal(Hn) * (dG * dA)
     return ok
@@ -235,6 +234,35 @@ def _integers(rows: Sequence[Sequence[Fraction]]) -> tuple[np.ndarray, int] | No
     if any(abs(x) >= _EXACT for row in ints for x in row):  # checked as integers: no float overflow
         return None
     return np.array(ints, dtype=float).reshape(len(rows), -1), d
+
+
+def _sparse_times(G: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """G Z for a sparse G, column by column of G: the nonzero products only.
+
+    Every partial sum is a partial sum of the full product, so the callers'
+    bounds (< 2^53) keep it exact on doubles, in any order of summation.
+
+    >>> _sparse_times(np.array([[2.0, 0.0], [0.0, -1.0], [1.0, 1.0]]), np.array([[1.0, 2.0], [3.0, 4.0]])).tolist()
+    [[2.0, 4.0], [-3.0, -4.0], [4.0, 6.0]]
+    """
+    out = np.zeros((G.shape[0], Z.shape[1]))
+    for j in range(G.shape[1]):
+        rows = np.flatnonzero(G[:, j])  # distinct rows: a plain += is exact
+        out[rows] += G[rows, j][:, None] * Z[j][None, :]
+    return out
+
+
+def _times_sparse(Z: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """Z G for a sparse G (as :func:`_sparse_times`, exact under the same bounds).
+
+    >>> _times_sparse(np.array([[1.0, 2.0, 3.0]]), np.array([[2.0, 0.0], [0.0, -1.0], [1.0, 1.0]])).tolist()
+    [[5.0, 1.0]]
+    """
+    out = np.zeros((Z.shape[0], G.shape[1]))
+    for j in range(G.shape[1]):
+        rows = np.flatnonzero(G[:, j])
+        out[:, j] = Z[:, rows] @ G[rows, j]
+    return out
 
 
 def _max(M: np.ndarray) -> int:

@@ -61,6 +61,8 @@ def record_outcome(record: dict) -> str:
     outcome = record.get("outcome")
     if outcome in CODES:
         return outcome
+    if record.get("status") == "undecided":
+        return "undecided"
     if record.get("status") != "ok":
         return "error"
     verdict, values = record.get("verdict"), record.get("values")
@@ -154,12 +156,13 @@ def _certify(task: Task, check: bool, keep: bool = False) -> dict:
     record = {"status": "ok" if not check or report.ok else "rejected", "outcome": report.outcome,
               "name": report.problem.name, "method": report.method.name if report.method else None,
               "checked": check, "claims": len(report.certificate["claims"]), "values": report.values()}
-    if report.undecided:
-        record["undecided"] = list(report.undecided)
     if check and not report.ok:
         record["error"] = f"the kernel rejected the certificate: {report.check}"
-    elif keep:
+    elif keep:  # verified (or unchecked, as asked): the machine that writes the results keeps it
         record["certificate_json"] = dumps(report.certificate)
+    if report.undecided:  # a partial answer: status "undecided", the decided claims in "values"
+        record["undecided"] = {what: why for what, why in report.undecided}
+        record["status"] = "undecided" if record["status"] == "ok" else record["status"]
     return record
 
 
