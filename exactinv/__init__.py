@@ -9,7 +9,7 @@ standard-library-only package :mod:`exactinv_check` -- re-verifies
 (``exactinv.check`` is ``exactinv_check.check``).
 
 The package is layered; imports point one way only (tests/test_layering.py):
-errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces.
+errors <- core <- lp <- model <- {paper, beyond} <- {control, certificates} <- interfaces.
 
 >>> import exactinv as ei
 >>> S = ei.LinearSystem([[-1, 1], [-1, -1]])
@@ -29,6 +29,7 @@ from .beyond.ellipsoid_thresholds import (
     EllipsoidValidSteplengths,
 )
 from .beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths
+from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
@@ -108,6 +109,10 @@ __all__ = [
     "nearest_rational",
     "nonnegative_until",
     "optimal_gamma",
+    "optimal_gain",
+    "OptimalGain",
+    "robust_threshold",
+    "RobustThreshold",
     "real_roots",
     "steplength_threshold",
 ]

@@ -8,7 +8,8 @@ bound or flag the engine wrote: generator lists are proved complete,
 thresholds, radii and valid sets are recomputed, and what it cannot prove it
 rejects.  Run it as ``python3 -S -m exactinv_check CERT.json``.
 
-Modules, bottom up: rationals (strict parsing, matrices), polys (Q[x], Sturm,
+Modules, bottom up: failure (CheckFailure), budget (every work budget and the
+one account of a certificate), rationals (strict parsing, matrices), polys (Q[x], Descartes and Sturm,
 root isolation), reals (rationals, infinities, algebraic numbers), linalg
 (characteristic polynomials), polyhedra (generators proved complete),
 conditions (the polynomial conditions of A_d(h)P in P), validset (the exact

@@ -14,7 +14,7 @@ from the box route.  The kernel trusts none of it:
 (b) with c = (lo + hi)/2, w = (hi - lo)/2 > 0 and D, N = D r(hA) rebuilt
     (:func:`exactinv_check.conditions.method_matrices`), row j's n + 1 entry
     polynomials are v_j0 = (N c)_j - D c_j and v_jl = N_jl w_l.
-(c) every positive root of every entry is isolated (Sturm), the roots of a row
+(c) every positive root of every entry is isolated (Descartes), the roots of a row
     are merged in exact order, a rational sample is taken in each open cell
     between consecutive roots (and right of the last), and the sign pattern
     s (s_l = sign v_jl(sample); +1 for an identically zero entry) is recorded;
@@ -26,8 +26,9 @@ from the box route.  The kernel trusts none of it:
     is exactly that vertex-facet condition.  The valid set (or first end) of
     these conditions is recomputed by :mod:`exactinv_check.validset`.
 Pricing: the rebuild of D, N and the conditions against the work budget before
-it starts; the root isolation of the entries, then of the conditions, against
-the Sturm budget (degree^4 bits^2 summed) before any Sturm sequence.
+it starts; the root isolation of the entries, then of the conditions, by
+Descartes' rule with bisection, each node charged to the certificate's account
+as it runs (at least one node per polynomial is priced before any starts).
 
 Why these conditions give the valid set of all 2n 2^n vertex-facet pairs.
 Each is one of those pairs, so the set V_S they cut out contains the true
@@ -47,6 +48,7 @@ from math import gcd
 
 from . import polys
 from .conditions import method_matrices, rebuild_size
+from .budget import affordable, descartes_node_cost
 from .rationals import require, vector, within_budget
 from .reals import Real, separate
 from .validset import breakpoints
@@ -92,15 +94,17 @@ def _price(A, numerator, denominator):
 
 
 def _price_roots(polynomials, what):
-    """Reject, before any Sturm sequence, polynomials whose root isolation together exceeds the Sturm
-    budget (degree^4 bits^2 summed over those with a sign variation: about half a minute of work)."""
-    total = 0
+    """Reject, before any root isolation, polynomials whose isolation cannot fit in what is left of the
+    certificate's account: at least one Descartes node (a Moebius transform, O(d^2) additions) per
+    polynomial with a sign variation.  The isolation itself (Descartes' rule with bisection, no Sturm
+    sequence) is then charged node by node as it runs (:func:`exactinv_check.polys.isolate`)."""
+    least = 0
     for p in {tuple(p) for p in polynomials if len(p) > 1}:
         ints = polys.integer_coefficients(list(p))
         if len({c > 0 for c in ints if c}) > 1:  # no sign variation: no positive root, no isolation (Descartes)
-            total += (len(ints) - 1) ** 4 * max(abs(c).bit_length() for c in ints) ** 2
-    require(total <= polys.STURM_BUDGET, f"over the kernel's work budget: root isolation of {what} "
-            f"(degree^4 bits^2 summed: {total:.1e} > {polys.STURM_BUDGET:.0e})")
+            least += descartes_node_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints))
+    require(affordable(least), f"over the certificate's work budget: root isolation of {what} "
+            f"(at least {least:.1e} word operations, more than the certificate has left)")
 
 
 def _entries(D, N, lo, hi):

@@ -80,6 +80,10 @@ def discrete_invariance(problem, claim, context):
 
 def gamma_star(problem, claim, context):
     A, G, b, m, n = problem.A, problem.G, problem.b, problem.m, problem.n
+    # the cheap structural test first: gamma* is rational or infinite, so an algebraic value
+    # ({"poly", "interval"}) is rejected before any root isolation could prove it well defined
+    require(isinstance(claim["value"], (str, int)) and not isinstance(claim["value"], bool),
+            "gamma* is rational or infinite: its value is a number string, oo or -oo")
     value = Real.parse(claim["value"], "gamma* value")
     allowed = {"oo": {"witness"}, "-oo": {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
     extra = set(claim) - allowed - {"type", "value", "paths"}

@@ -8,7 +8,7 @@ c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
 * rho = 0 (not attained) by an index j with c_j(0) < 0: then kappa = 0 itself
   fails (exact series of g/h at 0);
 * rho = oo for r = c / prod (1 - z/p_k)^(m_k), c > 0, every p_k real and
-  positive: a product of absolutely monotonic factors (Sturm counts);
+  positive: a product of absolutely monotonic factors (exact root counts);
 * otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
   rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
   and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)
@@ -159,13 +159,15 @@ def absolute_monotonicity_radius(problem, claim, context):
     method = problem.method
     require(method is not None, "a method is needed")
     num, den = method.numerator, method.denominator
-    value = Real.parse(claim["value"], "rho")
     attained = claim["attained"]
     reason = claim["reason"]
-    require(reason in REASONS, f"unknown reason {reason!r}")
+    require(isinstance(reason, str) and reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
     require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie"},
             "binding belongs to the coefficient reasons only")
+    require(not method.is_polynomial or reason in ("coefficient", "all-coefficients"),
+            f"{reason!r} is not a reason for a polynomial")
+    value = Real.parse(claim["value"], "rho")  # after the cheap tests: parsing may isolate a root
     if method.is_polynomial:
         require(reason in ("coefficient", "all-coefficients"), f"{reason!r} is not a reason for a polynomial")
         rho, rho_attained, d = recompute(num, den, len(num), True)

@@ -9,13 +9,16 @@ the claim must equal the recomputation, end by end and flag by flag.  A claim
 with a ``box`` record instead of generator lists is about a box; its conditions
 come from :mod:`exactinv_check.boxes` (P proved to be that box from G and b, no
 vertex list: the sign patterns of the rows of N(h) on the cells between their
-entries' roots, each one vertex-facet condition, together exact).
+entries' roots, each one vertex-facet condition, together exact).  A claim with
+an ``lp`` record is decided on the LP route's pieces (:mod:`exactinv_check.lp_pieces`:
+per facet, the pieces of [0, oo) with a basis each, proved optimal by weak
+duality; the pieces' vertices give the conditions, no vertex enumeration).
 """
 
 from fractions import Fraction
 from types import SimpleNamespace
 
-from . import boxes, polys, pruning, pruning_rational
+from . import boxes, lp_pieces, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
@@ -36,12 +39,28 @@ class _BoxVertices:
 def _generators(problem, claim):
     """(count, vectors) per kind of a box claim or of generator lists (shape-checked), and whether a box."""
     has_box, has_lists = "box" in claim, {"vertices", "rays", "lines"} & set(claim)
+    if "lp" in claim:
+        require(not has_box and not has_lists and "pruning" not in claim,
+                "an lp claim names neither a box nor generators nor a pruning record")
+        return None, None
     require(has_box != bool(has_lists), "a claim names either the box or the vertices, rays and lines")
     if not has_box:
         require(set(claim) >= {"vertices", "rays", "lines"}, "missing keys: vertices, rays and lines go together")
         return None, tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
     require("pruning" not in claim, "a box claim needs no pruning record")
     return claim["box"], None
+
+
+def _pruning_variable(method, record):
+    """The cheap test of a pruning record's variable against the method, before any generator is proved:
+    a record in h (no variable) belongs to a polynomial method, one in u = h/(s+h) to a rational method."""
+    if record is None:
+        return
+    rational = pruning_rational.is_rational_record(record)
+    require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
+            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
+    require(not (rational and method.is_polynomial), f"pruning in u = {pruning_rational.VARIABLE} is written "
+            "for rational methods only: a polynomial method's record is in h (no variable)")
 
 
 def _conditions(problem, claim, context, first_end_claim=False):
@@ -53,8 +72,17 @@ def _conditions(problem, claim, context, first_end_claim=False):
     :func:`valid_set` (:func:`first_end`) to start from (None otherwise).
     A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
     require(problem.method is not None, "a method is needed")
+    _pruning_variable(problem.method, claim.get("pruning"))
     box, lists = _generators(problem, claim)
-    if box is not None:
+    if "lp" in claim:
+        key = ("lp", repr(claim["lp"]))
+        if key not in context:
+            gens, D, inequalities, horizon = lp_pieces.lp_conditions(problem, claim["lp"])
+            lp_pieces.require_horizon(D, inequalities, horizon, context, key + ("set",))
+            context[key] = (gens, D, inequalities, {})
+        gens, D, inequalities, equalities = context[key]
+        start = None
+    elif box is not None:
         key = ("box", repr(box))
         if key not in context:
             D, inequalities, (lo, hi) = boxes.box_conditions(problem.A, problem.G, problem.b, problem.method.numerator,
@@ -94,8 +122,7 @@ def _pruned(problem, gens, record, first_end_claim):
     vertex k's own set (first end) with its conditions (:func:`_require_bound`)."""
     method = problem.method
     rational = pruning_rational.is_rational_record(record)
-    require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
-            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
+    _pruning_variable(method, record)
     if rational:
         s, U, count, k, _ = pruning_rational.parse(record, len(gens.vertices), problem.n)  # the kernel orders the vertices itself
         T = pruning_rational.horizon(s, U)
@@ -138,7 +165,7 @@ def _first_vertex(inequalities, claim, n):
     for a bounded P, which lets the others be pruned (validset.valid_set).  A box claim
     rarely has vertex 0's conditions: there the n tightest ones (smallest p(0) relative
     to p's size) serve -- any subset is sound, a bounding one is faster."""
-    if "box" in claim:
+    if "box" in claim or "lp" in claim:
         return sorted(inequalities, key=lambda p: Fraction(abs(p[0]), max(map(abs, p))))[:n]
     return [p for p, origin in inequalities.items() if origin[:2] == ("vertex", 0)]
 
@@ -173,6 +200,9 @@ def largest_threshold(problem, claim, context):
 
 
 def _over(claim, gens):
+    if "lp" in claim:
+        return (f"the LP route's {gens.counts[0]} pieces (each basis proved optimal on its piece by weak "
+                f"duality, no vertex list)")
     if "box" in claim:
         return f"the box P proved from G and b (its {gens.counts[0]} vertices covered by the row sign patterns)"
     return f"{gens.counts[0]} vertices, {gens.counts[1]} rays and {gens.counts[2]} lines proved complete"

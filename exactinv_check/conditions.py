@@ -19,6 +19,7 @@ from math import gcd
 
 from . import polys
 from .linalg import integer_solve
+from .budget import charge, condition_cost
 from .rationals import integer_matrix, require, within_budget
 
 MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
@@ -200,8 +201,10 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
     dD = _common_denominator(D)
     D_int = [int(c * dD) for c in D]
     inequalities, equalities = {}, {}
+    each = condition_cost(len(GN_int), len(G[0]) if G else 0, len(D_int))
     for kind, vectors in (("vertex", generators.vertices), ("ray", generators.rays), ("line", generators.lines)):
         for index, w in enumerate(vectors):
+            charge(each * len(facet_lists[kind, index]), "the generator-facet conditions")
             dw = _common_denominator(w)
             w_int = [int(x * dw) for x in w]
             for j in facet_lists[kind, index]:

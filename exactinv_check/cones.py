@@ -11,6 +11,7 @@ primitive (divided by the gcd of its entries, a positive factor).
 
 from math import gcd, lcm
 
+from .budget import PYTHON_OP, charge
 from .rationals import CheckFailure, require
 
 MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
@@ -138,6 +139,7 @@ def _cone_rays(A, basis, r):
                 kept.append((y, Z))
             else:
                 kept.append((y, Z | bit))
+        charge(len(pos) * len(neg) * PYTHON_OP * (4 + r * r), "the adjacency tests at a degenerate vertex")
         for vp, p, Zp in pos:
             for vq, q, Zq in neg:
                 pairs += 1

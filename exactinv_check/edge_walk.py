@@ -13,6 +13,7 @@ from math import gcd
 from operator import mul
 
 from .cones import _basis_rays, _cone_rays, _primitive, _reduce, _scaled
+from .budget import PYTHON_OP, charge
 from .rationals import CheckFailure, require
 
 
@@ -88,6 +89,7 @@ class _EdgeWalk:
         """(slacks, active rows, integer edge directions) at listed point i, or
         None if the point is not a vertex (its active rows have rank < r)."""
         P = self.P
+        charge(PYTHON_OP * len(P.rows) * (P.rank + 2) * 4, "the edge walk")  # the slacks and the active rows of a point
         s = self.slacks_in_P(i)
         active = [j for j, x in enumerate(s) if x == 0]
         A = [P.rows[j] for j in active]

@@ -6,17 +6,25 @@ name; an unknown key, a missing key or a value of the wrong JSON type rejects
 the claim.  Claims are checked in order and may use what an earlier claim
 proved (a threshold uses the gamma* and the radius verified before it); the
 context holds only such proved facts, never data the certificate asserts.
+
+The whole certificate shares one work budget (:mod:`exactinv_check.budget`):
+every claim is charged to one account, and the kernel stops at the first
+rejected claim -- the certificate is rejected then, whatever the later claims
+say, and they may depend on the rejected one; they are reported as not checked.
+Within a claim, cheap structural checks (keys, types, shapes) come before any
+root isolation or elimination.
 """
 
 import json
 import os
 from fractions import Fraction
 
-from . import claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
-from .rationals import CheckFailure, matrix, require, vector
+from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
+from .rationals import CheckFailure, matrix, rank_and_nullspace, require, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2)
+V2_KEYS = {"discrete_invariance": {"dt"}}  # keys version 1 does not have (docs/certificate-format.md)
 MAX_METHOD_DEGREE = 64
 _ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
            RecursionError, OverflowError, MemoryError)
@@ -32,9 +40,9 @@ CLAIMS = {
     "rational_threshold": (claims_thresholds.rational_threshold, {"value", "attained", "rho"},
                            {"pole", "alpha", "H", "gamma_H"}),
     "largest_threshold": (claims_sets.largest_threshold, {"value", "attained"},
-                          {"vertices", "rays", "lines", "box", "determinant", "binding", "pruning"}),
+                          {"vertices", "rays", "lines", "box", "lp", "determinant", "binding", "pruning"}),
     "valid_steplengths": (claims_sets.valid_steplengths, {"intervals"},
-                          {"vertices", "rays", "lines", "box", "determinant", "pruning"}),
+                          {"vertices", "rays", "lines", "box", "lp", "determinant", "pruning"}),
     "forward_euler_threshold": (claims_thresholds.forward_euler_threshold, {"value", "vertices", "rays", "lines"},
                                 {"attained"}),
     "ellipsoid_continuous_invariance": (claims_ellipsoid.continuous_invariance, {"holds"}, {"witness"}),
@@ -42,6 +50,9 @@ CLAIMS = {
     "ellipsoid_valid_steplengths": (claims_ellipsoid.valid_steplengths, {"intervals"}, {"determinant"}),
     "ellipsoid_largest_threshold": (claims_ellipsoid.largest_threshold, {"value", "attained"}, {"determinant", "binding"}),
     "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
+    "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas"}),
+    "robust_threshold": (claims_control.robust_threshold, {"value", "attained", "gamma", "rho", "forward_euler",
+                                                           "vertices"}, {"beta", "v"}),
 }
 _BOOLEAN_KEYS = {"holds", "attained"}
 
@@ -81,10 +92,16 @@ class Problem:
     symmetric positive definite) and the method; radius certificates have only the method."""
 
     def __init__(self, record):
-        require(isinstance(record, dict) and set(record) <= {"A", "G", "b", "Q", "method"},
-                "problem has the keys A, G, b (or Q), method")
+        require(isinstance(record, dict) and set(record) <= {"A", "B", "inputs", "hull", "G", "b", "Q", "method"},
+                "problem has the keys A, G, b (or Q), method; B and inputs (a gain); hull, G, b, method (robust)")
         self.method = Method(record["method"]) if record.get("method") is not None else None
-        self.Q = None
+        self.Q = self.B = self.hull = None
+        self.E, self.e, self.p = [], [], 0
+        if "hull" in record:
+            self._hull(record)
+            return
+        require(not {"B", "inputs"} & set(record) or {"A", "G", "b", "B"} <= set(record) and "method" not in record,
+                "a gain problem has the keys A, B, G, b (and inputs)")
         if "Q" in record:
             require(set(record) <= {"A", "Q", "method"} and "A" in record, "an ellipsoid problem has the keys A, Q, method")
             self.A = matrix(record["A"], "A")
@@ -109,14 +126,40 @@ class Problem:
         else:
             self.A = self.G = self.b = None
             self.n = self.m = 0
+        if "B" in record:
+            self.B = matrix(record["B"], "B", self.n)
+            self.p = len(self.B[0]) if self.B else 0
+            require(self.p >= 1, "B has no column")
+            if "inputs" in record:
+                U = record["inputs"]
+                require(isinstance(U, dict) and set(U) == {"E", "e"}, "inputs has the keys E, e")
+                self.E = matrix(U["E"], "inputs E", cols=self.p)
+                self.e = vector(U["e"], "inputs e", len(self.E))
+                require(self.E and all(any(row) for row in self.E), "inputs E is empty or has a zero row")
+
+    def _hull(self, record):
+        """conv{A_1, ..., A_k} on P = {x : Gx <= b}: the vertices, G, b and the method."""
+        require(set(record) <= {"hull", "G", "b", "method"} and {"G", "b"} <= set(record),
+                "a robust problem has the keys hull, G, b, method")
+        require(isinstance(record["hull"], list) and record["hull"], "hull is a nonempty list of matrices")
+        self.G = matrix(record["G"], "G")
+        self.m = len(self.G)
+        self.n = len(self.G[0]) if self.G else 0
+        require(self.m >= 1 and self.n >= 1, "G is empty")
+        self.b = vector(record["b"], "b", self.m)
+        require(all(any(row) for row in self.G), "G has a zero row (void or infeasible; exactinv never writes one)")
+        self.hull = [matrix(A, f"hull[{i}]", self.n, self.n) for i, A in enumerate(record["hull"])]
+        self.A = None
+        self.lines_possible = rank_and_nullspace(self.G, self.n)[0] < self.n
 
 
 class CheckReport:
     """The verdict per claim; ``ok`` is True only if there is a claim and every claim verified."""
 
-    def __init__(self, verdicts, bad_input=False):
+    def __init__(self, verdicts, bad_input=False, work=0):
         self.verdicts = verdicts  # list of (claim type, ok, message)
         self.bad_input = bad_input
+        self.work = work  # the certificate's charged work, in word operations (exactinv_check.budget)
 
     @property
     def ok(self):
@@ -166,26 +209,37 @@ def _no_float(text):
     raise CheckFailure(f"the JSON number {text} is not exact: certificates write numbers as strings")
 
 
-def _check_keys(claim, kind):
+def _check_keys(claim, kind, version):
     _, required, optional = CLAIMS[kind]
     keys = set(claim) - {"type"}
     require(required <= keys, f"missing keys {sorted(required - keys)}")
     require(keys <= required | optional, f"unknown keys {sorted(keys - required - optional)}")
+    newer = keys & V2_KEYS.get(kind, set())
+    require(version >= 2 or not newer, f"the keys {sorted(newer)} belong to certificate version 2, not {version}")
     for key in _BOOLEAN_KEYS & keys:
         require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
 
 
-def check(certificate, progress=None):
+def check(certificate, progress=None, time_limit=budget.TIME_LIMIT):
     """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
 
     Returns a :class:`CheckReport`, truthy only if every claim was proved.
-    ``progress(k, total, claim_type)``, if given, is called before each claim."""
+    ``progress(k, total, claim_type)``, if given, is called before each claim.
+    The whole certificate shares one work budget (budget.CERTIFICATE_BUDGET word
+    operations) and, as a safety net, ``time_limit`` seconds (None: no clock)."""
     try:
         cert = load(certificate)
     except BadInput as exc:
         return CheckReport([("input", False, str(exc))], bad_input=True)
     if cert.get("format") != FORMAT:
         return CheckReport([("input", False, "not an exactinv certificate (format is missing or wrong)")], bad_input=True)
+    with budget.account(time_limit=time_limit) as account:
+        verdicts = _check_claims(cert, progress)
+    return CheckReport(verdicts, work=account.spent)
+
+
+def _check_claims(cert, progress):
+    """The verdicts: the problem, then the claims in order, stopping at the first rejected one."""
     try:
         require(set(cert) == {"format", "version", "problem", "claims"}, "a certificate has exactly the keys "
                 "format, version, problem, claims")
@@ -194,20 +248,27 @@ def check(certificate, progress=None):
         problem = Problem(cert["problem"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
     except _ERRORS as exc:
-        return CheckReport([("problem", False, f"{type(exc).__name__}: {exc}")])
+        return [("problem", False, f"{type(exc).__name__}: {exc}")]
     context, verdicts = {}, []
-    for k, claim in enumerate(cert["claims"]):
+    claims = cert["claims"]
+    for k, claim in enumerate(claims):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
         if progress is not None:
-            progress(k, len(cert["claims"]), kind)
+            progress(k, len(claims), kind)
         try:
             require(kind in CLAIMS, f"unknown claim type {kind!r}")
-            _check_keys(claim, kind)
+            _check_keys(claim, kind, cert["version"])
             if kind.startswith("ellipsoid_"):
                 require(problem.Q is not None, f"a {kind} claim needs A and Q in the problem")
+            elif kind == "robust_threshold":
+                require(problem.hull is not None, "a robust_threshold claim needs hull, G and b in the problem")
             elif kind != "absolute_monotonicity_radius":
                 require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
             verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
         except _ERRORS as exc:
             verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))
-    return CheckReport(verdicts)
+            for later in claims[k + 1:]:  # stop: the certificate is rejected, and later claims may use this one
+                verdicts.append((later.get("type", "?") if isinstance(later, dict) else "?", False,
+                                 f"not checked: claim {k} ({kind}) was rejected"))
+            break
+    return verdicts

@@ -7,6 +7,7 @@ kernel builds from a certificate bounded by MAX_DEGREE.  Re-exported by
 from fractions import Fraction
 from math import gcd as _igcd
 
+from .budget import active, charge, fraction_products_cost, remainder_step_cost
 from .rationals import require
 
 MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
@@ -24,6 +25,11 @@ def degree(p):
 
 
 def evaluate(p, x):
+    """p(x) over Q (Horner), charged to the certificate's account by the size of x."""
+    if active():
+        x = Fraction(x)
+        charge(fraction_products_cost(len(p), len(p) * max(abs(x.numerator).bit_length(), x.denominator.bit_length())),
+               "a value of a polynomial")
     acc = Fraction(0)
     for c in reversed(p):
         acc = acc * x + c
@@ -58,14 +64,22 @@ def scale(p, c):
 
 
 def mul(p, q):
+    """p q over Q, charged to the certificate's account by the sizes of the numbers (Fraction products)."""
     if not p or not q:
         return []
+    if active():
+        charge(fraction_products_cost(len(p) * len(q), _bits(p) + _bits(q)), "a polynomial product")
     out = [Fraction(0)] * (len(p) + len(q) - 1)
     for i, a in enumerate(p):
         if a:
             for j, b in enumerate(q):
                 out[i + j] += a * b
     return trim(out)
+
+
+def _bits(p):
+    """The largest numerator or denominator of p's coefficients, in bits."""
+    return max(max(abs(Fraction(c).numerator).bit_length(), Fraction(c).denominator.bit_length()) for c in p)
 
 
 def mul_integers(p, q):
@@ -129,8 +143,10 @@ def _pseudo_remainder(a, b):
     so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
     s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
     r = list(a)
+    s_bits = s.bit_length()
     while len(r) >= len(b) and r:
         shift, c = len(r) - len(b), r[-1] * sgn
+        charge(remainder_step_cost(len(r), s_bits, c.bit_length()), "a pseudo-remainder sequence")
         r = [s * x for x in r]
         for k, bk in enumerate(b):
             r[k + shift] -= c * bk

@@ -160,7 +160,7 @@ def prove_polygon(G, b, vertices):
     >>> prove_polygon(square, [F(1)] * 4, corners[:3])
     Traceback (most recent call last):
     ...
-    exactinv_check.rationals.CheckFailure: incomplete generators: the vertex (1, -1) of P is not listed
+    exactinv_check.failure.CheckFailure: incomplete generators: the vertex (1, -1) of P is not listed
     >>> prove_polygon(square[:3], [F(1)] * 3, corners) is None   # unbounded: the general proof decides
     True
     """

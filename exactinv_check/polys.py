@@ -1,8 +1,17 @@
 """Polynomials over Q, coefficient lists from x^0 up, and their real roots.
 
-Everything the kernel knows about roots comes from Sturm sequences: exact
-counts of distinct real roots in half-open intervals, with no tolerance and no
-float.  Root isolation bisects until each interval holds one root.
+Real roots are isolated by Descartes' rule of signs with bisection (the
+Vincent-Collins-Akritas method) on squarefree integer polynomials: after the
+Moebius map (0, oo) -> (a, b), zero sign variations prove no root in the open
+(a, b), one proves exactly one (and a simple one), and bisection at rational
+midpoints (each tested for being a root) makes every interval of a squarefree
+polynomial end with 0 or 1.  Each node costs O(d^2) integer additions -- no
+pseudo-remainder sequence, so it is far cheaper than Sturm sequences at high
+degree -- and is charged to the certificate's account as it runs
+(:mod:`exactinv_check.budget`).  The squarefree part is proved by a gcd modulo
+a prime when it is the polynomial itself (the usual case), else computed by a
+priced pseudo-remainder sequence.  Sturm sequences remain for the callers that
+need exact counts on many intervals of one polynomial.  No tolerance, no float.
 
 The arithmetic (:mod:`exactinv_check.poly_arithmetic`) and the resultants
 (:mod:`exactinv_check.resultants`) are re-exported here: the kernel reaches
@@ -38,18 +47,26 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     sub,
     trim,
 )
+from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
+from .budget import active, within_sturm_budget
+from .budget import memo as _memo
 from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
 MAX_BISECTIONS = 4000
-STURM_BUDGET = 5 * 10**12  # degree^4 * bits^2 of a polynomial to isolate: up to about half a minute of gcd / Sturm work
-# (measured: 1.5e12 ~ 8 s, 5e12 ~ 23 s on random polynomials); the tail polynomials of Pade(6,5) need 4e12
+# STURM_BUDGET (degree^4 bits^2 of one pseudo-remainder sequence) lives in exactinv_check.budget (re-exported)
+_PRIMES = (2**61 - 1, 2**31 - 1, 1000000007)  # for the modular squarefree test
 
 
 def sign_at(ints, x):
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
     (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
     n, d = x.numerator, x.denominator
+    if not ints:  # the zero polynomial
+        return 0
+    if active():
+        charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
+               "a sign of a polynomial at a rational")
     acc, power = 0, 1
     for c in ints:  # low to high: acc = sum_{k<=i} c_k n^k d^(i-k), rescaled as i grows
         acc = acc * d + c * power
@@ -63,6 +80,11 @@ def descartes_variations(ints, a, b):
     rule after the Moebius map (0, oo) -> (a, b)).  Integer arithmetic throughout."""
     D = len(ints) - 1
     w = b - a
+    size = a.numerator.bit_length() + a.denominator.bit_length() + b.numerator.bit_length() + b.denominator.bit_length()
+    if D < 1:  # a constant: no root, no variation
+        return 0
+    charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size, size),
+           "root isolation (Descartes' rule)")
     s = a.denominator * w.denominator
     u, v = a.numerator * w.denominator, w.numerator * a.denominator  # a + w y = (u + v y) / s
     q = [ints[-1]]
@@ -102,11 +124,9 @@ def no_root_between(p, a, b, depth=4):
 def _affordable(ints):
     """Reject, before any pseudo-remainder sequence, an integer polynomial whose
     degree^4 * bits^2 (the cost of its gcd or Sturm sequence) is over the budget,
-    whether a certificate wrote it or the kernel built it."""
+    or more than the certificate has left, whether a certificate wrote it or the kernel built it."""
     bits = max((abs(c).bit_length() for c in ints), default=0)
-    require((len(ints) - 1) ** 4 * bits ** 2 <= STURM_BUDGET,
-            f"over the kernel's work budget: root isolation of a polynomial of degree {len(ints) - 1} "
-            f"with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
+    within_sturm_budget(len(ints) - 1, bits, "root isolation")
     return ints
 
 
@@ -127,12 +147,89 @@ def affordable_gcd(p, q):
 
 
 def squarefree(p):
-    """The squarefree part p / gcd(p, p') as coprime integers, with p's leading sign."""
+    """The squarefree part p / gcd(p, p') as coprime integers, with p's leading sign.
+
+    p itself when a gcd modulo a prime proves it squarefree (if p = f^2 g over Z with
+    deg f >= 1 and the prime does not divide lc(p), f mod the prime has f's degree and
+    divides both p and p' there, so their gcd there is not constant); else the priced
+    pseudo-remainder sequence.  Within a certificate each polynomial's part is computed once."""
     a = integer_coefficients(_bounded(trim(p)))
     if len(a) <= 2:
         return a
+    return list(_memo(("squarefree", tuple(a)), lambda: _squarefree_integers(a)))
+
+
+def _squarefree_integers(a):
+    if is_squarefree_mod_prime(a):
+        return a
     g = _integer_gcd(_affordable(a), _integer_derivative(a))
     return _exact_quotient(a, g) if len(g) > 1 else a
+
+
+def is_squarefree_mod_prime(a):
+    """True proves the integer polynomial a (degree >= 1) squarefree over Q: gcd(a, a') = 1
+    modulo a prime not dividing its leading coefficient (see :func:`squarefree`).  False
+    says nothing (a may be squarefree and every prime tried unlucky)."""
+    charge(modular_squarefree_cost(len(a) - 1, max(abs(c).bit_length() for c in a)), "a modular squarefree test")
+    for prime in _PRIMES:
+        if a[-1] % prime == 0:
+            continue
+        f = [c % prime for c in a]
+        df = [k * f[k] % prime for k in range(1, len(f))]
+        return len(_gcd_mod(f, df, prime)) == 1
+    return False
+
+
+def _trim_mod(f):
+    while f and f[-1] == 0:
+        f.pop()
+    return f
+
+
+def _gcd_mod(f, g, prime):
+    """The gcd of f and g over the integers modulo a prime (Euclid; a constant: [1])."""
+    f, g = _trim_mod(list(f)), _trim_mod(list(g))
+    while g:
+        inv = pow(g[-1], -1, prime)
+        while len(f) >= len(g) and f:
+            c, shift = f[-1] * inv % prime, len(f) - len(g)
+            for k, x in enumerate(g):
+                f[k + shift] = (f[k + shift] - c * x) % prime
+            _trim_mod(f)
+        f, g = g, f
+    return f
+
+
+def isolate(q, a, b):
+    """The real roots of the squarefree integer polynomial q in the open (a, b), a < b, in
+    increasing order: (lo, hi) with exactly one root in the open (lo, hi) and none at lo or hi,
+    or (r, r) for a rational root r -- by Descartes' rule with bisection (see the module
+    docstring).  Priced first like a Sturm sequence (degree^4 bits^2 at most STURM_BUDGET: genuine
+    isolations stay below 4e12, where Descartes costs about 10^-5 of that in word operations), then each
+    node is charged to the certificate's account as it runs; the number of nodes is bounded."""
+    if len(q) < 2:
+        return []
+    bits = max(abs(c).bit_length() for c in q)
+    require(sturm_cost(len(q) - 1, bits) <= STURM_BUDGET, f"over the kernel's work budget: root isolation of a "
+            f"polynomial of degree {len(q) - 1} with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
+    out, stack, nodes = [], [(Fraction(a), Fraction(b))], 0
+    while stack:
+        lo, hi = stack.pop()
+        nodes += 1
+        require(nodes <= MAX_BISECTIONS * len(q), "root isolation does not terminate (is the polynomial squarefree?)")
+        v = descartes_variations(q, lo, hi)  # charged there
+        if v == 0:
+            continue
+        if v == 1 and sign_at(q, lo) != 0 and sign_at(q, hi) != 0:
+            out.append((lo, hi))  # an end that is a root (a midpoint found exactly): bisect on, away from it
+            continue
+        m = (lo + hi) / 2
+        if sign_at(q, m) == 0:
+            out.append((m, m))
+        stack.append((m, hi))
+        stack.append((lo, m))
+    out.sort(key=lambda iv: iv[0])
+    return out
 
 
 def sign_right_of(p, x):
@@ -173,10 +270,16 @@ class Sturm:
 
 
 def count_roots(p, a, b):
-    """Distinct real roots of p in (a, b] (b = None: +oo)."""
+    """Distinct real roots of p in (a, b] (b = None: +oo), by Descartes isolation of p's
+    squarefree part (:func:`isolate`)."""
     if len(trim(p)) <= 1:
         return 0
-    return Sturm(p).count(a, b)
+    q = squarefree(p)
+    if b is None:
+        b = max(cauchy_bound(p), abs(Fraction(a)) + 1)
+    if b <= a:
+        return 0
+    return len(isolate(q, a, b)) + (sign_at(q, Fraction(b)) == 0)
 
 
 def cauchy_bound(p):
@@ -190,35 +293,19 @@ def cauchy_bound(p):
 def positive_roots(p, upper=None):
     """The distinct real roots of p in (0, upper] (upper = None: all positive roots)
     as isolating data, in increasing order: a list of (lo, hi) with lo < hi (one root
-    in the open (lo, hi), none at the ends) or (q, q) for an exact rational root q."""
+    in the open (lo, hi), none at the ends) or (q, q) for an exact rational root q.
+    Descartes isolation (:func:`isolate`) of the squarefree part on (0, top), top the
+    Cauchy bound (no root at or above it) or upper (tested for being a root)."""
     p = strip_zero_roots(p)
     if len(p) <= 1:
         return []
-    sturm = Sturm(squarefree(p))
-    q = sturm.ints[0]
+    q = squarefree(p)
     out = []
     top = cauchy_bound(p)  # every root is below the Cauchy bound
     if upper is not None and upper < top:
-        top = upper
-        if sign_at(q, upper) == 0:
-            out.append((upper, upper))
-    stack = [(Fraction(0), top)]  # open intervals
-    steps = 0
-    while stack:
-        a, b = stack.pop()
-        steps += 1
-        require(steps <= MAX_BISECTIONS * len(p), "root isolation does not terminate")
-        b_root = sign_at(q, b) == 0
-        k = sturm.count(a, b) - b_root  # roots in the open (a, b)
-        if k == 0:
-            continue
-        if k == 1 and not b_root and sign_at(q, a) != 0:
-            out.append((a, b))
-            continue
-        m = (a + b) / 2
-        if sign_at(q, m) == 0:
-            out.append((m, m))
-        stack.append((m, b))
-        stack.append((a, m))
-    out.sort(key=lambda iv: iv[0])
-    return out
+        top = Fraction(upper)
+        if top <= 0:
+            return []
+        if sign_at(q, top) == 0:
+            out.append((top, top))
+    return isolate(q, Fraction(0), top) + out

@@ -41,6 +41,7 @@ from fractions import Fraction
 from math import gcd, isqrt
 
 from . import conditions
+from .budget import charge
 from .rationals import FRACTION_WEIGHT, integer, integer_rows, rational, require, within_budget
 
 K_BITS = 40
@@ -366,7 +367,9 @@ def survivors_of_pieces(G, b, vertices, pieces):
             continue
         near_rows = _Packed(table, near)
         hits = [(e, _Packed(table, found)) for e, found in enumerate(near_rows.outside(box) for box in per_end) if found]
-        slot_tests += len(block) * sum(len(rows_e.J) for _, rows_e in hits)
+        tests = len(block) * sum(len(rows_e.J) for _, rows_e in hits)
+        slot_tests += tests
+        charge(2 * tests, "the vertex-facet tests at the chord ends")  # measured: 1.3e8 tests in 5 s
         require(slot_tests <= MAX_SLOT_TESTS, f"over the kernel's work budget: more than {MAX_SLOT_TESTS:.0e} "
                 f"vertex-facet tests at the chord ends, past the blocks")
         for i in block:

@@ -12,7 +12,7 @@ The kernel proves, trusting nothing in the record:
 
 1. U < 1: vertex k's own valid set (first interval) ends by T = sU/(1 - U);
    U = 1 covers every h >= 0 (T = oo), and nothing is asked of vertex k.
-2. D > 0 on [0, T] (D(0) > 0 and a Sturm count of no root in (0, T]).
+2. D > 0 on [0, T] (D(0) > 0 and an exact count of no root in (0, T], Descartes isolation).
 3. [0, U] is cut at U x, x in {a/pieces} and {2^-i, 1 - 2^-i : i <= 12}; on a
    piece [t, t + d] the Bernstein coefficients B_0..B_E of P(t + d l) give
    P(t + d l) w in the box of B_0 w and B_E w widened by M |w|,
@@ -30,7 +30,8 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys, pruning
-from .rationals import WORK_BUDGET, integer, rational, require, within_budget
+from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
+from .rationals import integer, rational, require, within_budget
 
 VARIABLE = "h/(s+h)"
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
@@ -38,7 +39,6 @@ MAX_PIECES = 512
 _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the box grid is 2^-40)
 
 
-PIECES_BUDGET = 20 * WORK_BUDGET  # about 20 s of pieces (a genuine Pade(6,6) record on R^6: 7e8, 1 s)
 
 
 def is_rational_record(record):
@@ -172,6 +172,7 @@ def survivors(G, b, vertices, D, N, s, U, count):
     cost = pieces_cost(D, N, s, ends)
     require(cost <= PIECES_BUDGET, f"over the kernel's work budget: the Bernstein pieces of the pruning test in u "
             f"(estimated {cost:.2e} > {PIECES_BUDGET:.0e})")
+    charge(cost // PIECES_PER_WORD, "the Bernstein pieces of the pruning test in u")
     P = lifted(D, N, s)
     pieces = [_piece(P, t, u - t) for t, u in zip(ends, ends[1:])]
     rows = [[-beta] + list(g) for g, beta in zip(G, b)]

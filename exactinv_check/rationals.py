@@ -10,31 +10,17 @@ import re
 from fractions import Fraction
 from math import gcd
 
+from .budget import FRACTION_WEIGHT, WORK_BUDGET, within_budget  # noqa: F401 (re-exported: their old home)
+from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
+
 MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
 MAX_DIMENSION = 2000  # bound on every vector and matrix dimension
-WORK_BUDGET = 10**8  # estimated word operations of one exact computation: about seconds of work
-FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers, for the work budget
 SHOWN_DIGITS = 60  # longer numbers are described by their size in messages
 _ZERO = Fraction(0)
 
-_NUMBER = re.compile(r"[+-]?[0-9]+(?:/[0-9]+|\.[0-9]+)?")
-
-
-class CheckFailure(Exception):
-    """A claim did not verify; the message says which fact failed."""
-
-
-def require(condition, message):
-    """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
-    if not condition:
-        raise CheckFailure(message)
-
-
-def within_budget(cost, what):
-    """Reject (never run) a computation whose estimated cost exceeds WORK_BUDGET:
-    a certificate must not make the kernel work for minutes before its verdict."""
-    require(cost <= WORK_BUDGET, f"over the kernel's work budget: {what} (estimated {cost:.2e} word "
-            f"operations > {WORK_BUDGET:.0e})")
+# an integer or a fraction without leading zeros ("0", "-3/4", not "01/2" nor "1/02"),
+# or a finite decimal ("0.125", "-12.5"; the fraction part may end in zeros)
+_NUMBER = re.compile(r"[+-]?(?:0|[1-9][0-9]*)(?:/[1-9][0-9]*|\.[0-9]+)?")
 
 
 def describe(x):

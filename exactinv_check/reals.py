@@ -2,9 +2,14 @@
 
 A real algebraic number is written ``{"poly": [c0, c1, ...], "interval": [lo, hi]}``:
 the unique root of c0 + c1 x + ... in the open interval (lo, hi).  The kernel
-accepts it only after proving, by a Sturm count of the squarefree part, that
-(lo, hi) holds exactly one root and that neither end is a root.  Ordering and
+accepts it only after proving that (lo, hi) holds exactly one root and that
+neither end is a root: by Descartes' rule on (lo, hi) when it counts one sign
+variation, else by Descartes isolation of the squarefree part.  Ordering and
 equality are then decided exactly (bisection and gcds), never by tolerance.
+
+Invariant of an algebraic Real: its root is a *simple* root of ``poly``, the
+only root of ``poly`` in the open (lo, hi), and poly(lo), poly(hi) are nonzero
+(so of opposite signs).  Bisections are charged to the certificate's account.
 """
 
 from fractions import Fraction
@@ -14,19 +19,19 @@ from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
 
 MAX_REFINEMENTS = 20000
-STURM_BUDGET = polys.STURM_BUDGET  # degree^4 * bits^2 of a certificate's polynomial: about seconds of Sturm work
 
 
 class Real:
     """A proved real: ``q`` (a Fraction), ``inf`` (+1/-1) or an isolated root."""
 
-    __slots__ = ("inf", "q", "poly", "lo", "hi", "_ints", "_sign_lo")
+    __slots__ = ("inf", "q", "poly", "lo", "hi", "_ints", "_sign_lo", "_bits")
 
     def __init__(self, inf=0, q=None, poly=None, lo=None, hi=None):
         self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
         if poly is not None:
             self._ints = polys.integer_coefficients(poly)
             self._sign_lo = polys.sign_at(self._ints, lo)
+            self._bits = max(abs(c).bit_length() for c in self._ints)
 
     # -------------------------------------------------------- construction
     @classmethod
@@ -64,19 +69,14 @@ class Real:
 
         Descartes' rule on (lo, hi) counting exactly one sign variation proves
         exactly one root there, and a simple one, in O(d^2) integer operations;
-        only when it is inconclusive do Sturm sequences run, and then only
-        within a budget on degree and coefficient size (a certificate must not
-        be able to make the kernel work for hours: narrow the interval instead)."""
+        only when it is inconclusive is the squarefree part isolated on (lo, hi)
+        (:meth:`algebraic`), every step charged to the certificate's account."""
         require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
         require(lo < hi, f"{what}: empty isolating interval")
         ints = polys.integer_coefficients(poly)
         require(polys.sign_at(ints, lo) != 0 and polys.sign_at(ints, hi) != 0, f"{what}: an end of the interval is a root")
         if polys.descartes_variations(ints, lo, hi) == 1:
             return cls._made(ints, lo, hi)
-        bits = max(abs(c).bit_length() for c in ints)
-        require((len(ints) - 1) ** 4 * bits ** 2 <= STURM_BUDGET,
-                f"{what}: the interval does not isolate the root by Descartes' rule, and the polynomial is too "
-                "large for Sturm sequences within the kernel's budget: give a narrower interval")
         return cls.algebraic(poly, lo, hi, what)
 
     @classmethod
@@ -131,14 +131,14 @@ class Real:
             return sign(evaluate(f, self.q))
         g = polys.gcd(f, self.poly)
         if len(g) > 1 and sign(evaluate(g, self.lo)) * sign(evaluate(g, self.hi)) < 0:
-            return 0  # g divides the squarefree poly, so it has at most this one root in (lo, hi)
-        sturm = polys.Sturm(polys.squarefree(f))
-        fs, fi = sturm.ints[0], polys.integer_coefficients(f)
-        for _ in range(MAX_REFINEMENTS):
+            return 0  # g divides poly, whose root here is simple and alone in (lo, hi): g changes sign iff g(root) = 0
+        fi = polys.integer_coefficients(f)
+        for _ in range(MAX_REFINEMENTS):  # f(root) != 0: refine until Descartes proves no root of f in (lo, hi)
             if self.poly is None:
                 return polys.sign_at(fi, self.q)
-            if polys.sign_at(fs, self.lo) != 0 and sturm.count(self.lo, self.hi) == 0:
-                return polys.sign_at(fi, self.lo)
+            s = polys.sign_at(fi, self.lo)
+            if s != 0 and polys.descartes_variations(fi, self.lo, self.hi) == 0:
+                return s
             self.bisect()
         raise CheckFailure("could not decide a sign at an algebraic number")
 
@@ -157,6 +157,8 @@ class Real:
             return -1
         if other.hi <= self.lo:
             return 1
+        if self._same_polynomial(other):
+            return self._compare_conjugate(other)
         if self._shares_root_with(other):
             return 0
         for _ in range(MAX_REFINEMENTS):  # different numbers: refine until the enclosures part
@@ -170,6 +172,29 @@ class Real:
             # minimum) then keeps the precision it needs, instead of gaining bits each time
             (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()
         raise CheckFailure("could not separate two real numbers")
+
+    def _same_polynomial(self, other):
+        """Both roots of one polynomial (up to a nonzero factor)?"""
+        a, b = self._ints, other._ints
+        return len(a) == len(b) and (a == b or a == [-c for c in b])
+
+    def _compare_conjugate(self, other):
+        """-1, 0 or 1 for two roots of the same polynomial p: equal iff one enclosure lies inside
+        the other (a root of p in the other's (lo, hi) is the other's root, p has only that one
+        there); else refine the wider until they are disjoint or nested -- this ends, since two
+        equal roots lie strictly inside both intervals, and two different ones part.  No gcd,
+        no root count."""
+        for _ in range(MAX_REFINEMENTS):
+            if self.poly is None or other.poly is None:
+                return self.compare(other)
+            if self.hi <= other.lo:
+                return -1
+            if other.hi <= self.lo:
+                return 1
+            if (other.lo <= self.lo and self.hi <= other.hi) or (self.lo <= other.lo and other.hi <= self.hi):
+                return 0
+            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()
+        raise CheckFailure("could not compare two roots of one polynomial")
 
     def _shares_root_with(self, other):
         """Are these two overlapping algebraic numbers equal?  Each is a root of
@@ -207,13 +232,23 @@ def separate(a, b):
     raise CheckFailure("two reals could not be separated")
 
 
+def scaled(a, c):
+    """c a for an algebraic a and a rational c > 0, with no new isolation: if a is the simple root
+    of p alone in (lo, hi), c a is the simple root of p(x / c) alone in (c lo, c hi) (x -> c x is an
+    increasing bijection), so the Real invariant carries over."""
+    require(c > 0, "scaling by a positive rational only")
+    d = len(a._ints) - 1
+    n, m = c.numerator, c.denominator  # p(x m / n) n^d = sum p_k m^k n^(d-k) x^k
+    return Real._made([p * m ** k * n ** (d - k) for k, p in enumerate(a._ints)], a.lo * c, a.hi * c)
+
+
 def quotient(a, b):
     """a / b as a Real, for a finite Real a and a rational or algebraic b > 0."""
     require(not a.inf and not b.inf and b.compare(Real.rational(0)) > 0, "quotient needs finite a and b > 0")
     if b.poly is None:
         if a.poly is None:
             return Real.rational(a.q / b.q)
-        return Real._made(polys.squarefree([c * b.q ** k for k, c in enumerate(a.poly)]), a.lo / b.q, a.hi / b.q)
+        return scaled(a, 1 / b.q)
     if a.poly is None:
         if a.q == 0:
             return Real.rational(0)
@@ -232,12 +267,11 @@ def quotient(a, b):
     if a.poly is None or b.poly is None:
         return quotient(a, b)
     t = polys.squarefree(polys.quotient_polynomial(a.poly, b.poly))
-    sturm = polys.Sturm(t)
     for _ in range(MAX_REFINEMENTS):  # refine a and b until their quotient's enclosure isolates one root of t
         if a.poly is None or b.poly is None:
             return quotient(a, b)
         lo, hi = a.lo / b.hi, a.hi / b.lo
-        if evaluate(t, lo) != 0 and evaluate(t, hi) != 0 and sturm.count(lo, hi) == 1:
+        if evaluate(t, lo) != 0 and evaluate(t, hi) != 0 and polys.count_roots(t, lo, hi) == 1:
             return Real._made(t, lo, hi)
         a.bisect()
         b.bisect()

@@ -2,7 +2,7 @@
 
 Recomputed from scratch, trusting no claimed end.  The sweep
 (:func:`_valid_set`): every positive root of the given conditions and of D
-is isolated (Sturm), the roots are merged in exact order, the sign of each
+is isolated (Descartes bisection), the roots are merged in exact order, the sign of each
 condition on each open cell is decided at a rational sample point and
 tracked across the roots, and each root itself is decided exactly (a
 condition vanishes there iff the root is one of its own).  :func:`valid_set`
@@ -78,7 +78,7 @@ def valid_set(D, inequalities, equalities, first=(), start=None):
     (:func:`_nonnegative_on`), and otherwise intersected (:func:`_intersect`) with
     p's own valid set (every positive root of p isolated).  The order only makes
     it cheap: once V is bounded, most p are proved positive around V by
-    Descartes' rule, without a Sturm sequence.
+    Descartes' rule, without a root isolation.
 
     ``start = (V0, done)``: V0 is this function's valid set of D and the
     inequalities ``done`` alone (the same D); V then starts as V0 n {every
@@ -106,7 +106,7 @@ def _hull(V):
     end = V[-1].hi
     if end.inf:
         return V[0].lo.bounds()[0], None
-    if end.poly is not None:  # a tight enclosure of the end: most tests then need no Sturm sequence
+    if end.poly is not None:  # a tight enclosure of the end: most tests then need no root isolation
         end.refine_below(end.hi / 2**64)
     return V[0].lo.bounds()[0], _coarse_above(end.bounds()[1])
 

@@ -166,7 +166,7 @@ def _kind(example):
         return "certificate"
     if "type" in example:
         return "claim"
-    assert set(example) <= {"A", "G", "b", "Q", "method"}, f"unrecognised example {example!r:.200}"
+    assert set(example) <= {"A", "G", "b", "Q", "method", "B", "inputs", "hull"}, f"unrecognised example {example!r:.200}"
     return "problem"
 
 
@@ -236,7 +236,7 @@ def test_the_schema_constants_are_the_kernels():
     assert envelope["properties"]["format"]["const"] == kernel.FORMAT
     assert set(envelope["properties"]["version"]["enum"]) == set(kernel.VERSIONS)
     assert set(envelope["required"]) == set(envelope["properties"]) == {"format", "version", "problem", "claims"}
-    assert set(SCHEMA["$defs"]["problem"]["properties"]) == {"A", "G", "b", "Q", "method"}
+    assert set(SCHEMA["$defs"]["problem"]["properties"]) == {"A", "G", "b", "Q", "method", "B", "inputs", "hull"}
     assert set(SCHEMA["$defs"]["method"]["properties"]) == {"name", "numerator", "denominator"}
     radius = _claim_schemas()["absolute_monotonicity_radius"]
     assert set(radius["properties"]["reason"]["enum"]) == REASONS

@@ -83,6 +83,10 @@ def test_every_example_round_trips(example):
                         ei.valid_steplengths(prob.system, prob.polyhedron, prob.method)]
         assert check(json.loads(json.dumps(certificate(prob.system, prob.polyhedron, prob.method, results)))).ok
         return
+    if prob.design == "optimal_gain":  # the gain's certificate, then the closed loop's own problem
+        gain = ei.optimal_gain(prob.system, prob.B, prob.polyhedron, prob.inputs)
+        assert check(json.loads(json.dumps(gain.certificate))).ok
+        prob = type(prob)(gain.system, prob.polyhedron, prob.method)
     results = [ei.optimal_gamma(prob.system, prob.polyhedron)]
     if prob.method is not None:
         results.append(ei.steplength_threshold(prob.system, prob.polyhedron, prob.method))

@@ -157,7 +157,7 @@ def test_a_box_whose_b_was_tampered_is_rejected():
     _rejected(cert, "not the claimed one")
     for claim in cert["claims"]:
         claim["box"]["lo"] = ["-1"]  # claim the new box: its valid set is [0, 3/2], not [0, 1]
-    _rejected(cert, "ends at 3/2")
+    _rejected(cert, "3/2")  # the first claim (largest threshold) is 3/2, not 1: the kernel stops there
 
 
 def test_a_determinant_of_another_method_is_rejected():
@@ -250,7 +250,9 @@ def test_method_matrix_at_is_none_where_r_has_a_pole():
 
 def test_the_entries_root_isolation_is_priced_before_any_sturm_sequence():
     """Pade(2,2) on a 10-dimensional box with 15-digit entries: D and N are cheap to rebuild, but the
-    110 entry polynomials (degree 20, coefficients of about a thousand bits) would need minutes of Sturm work."""
+    110 entry polynomials (degree 20, coefficients of about a thousand bits) would need minutes of Sturm work.
+    With Descartes isolation (charged as it runs) the entries take seconds, and the box route's conditions
+    (degree 38, ~1900-bit coefficients) are over the price of one isolation: rejected by that price."""
     n, rng = 10, random.Random(7)
     A = [[str(rng.randint(-10**15, 10**15)) for _ in range(n)] for _ in range(n)]
     G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
@@ -258,4 +260,4 @@ def test_the_entries_root_isolation_is_priced_before_any_sturm_sequence():
             "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
                         "method": {"name": "pade(2,2)", "numerator": ["1", "1/2", "1/12"], "denominator": ["1", "-1/2", "1/12"]}},
             "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
-    _rejected(cert, "root isolation of the box route's entry polynomials")
+    _rejected(cert, "over the kernel's work budget: root isolation of a polynomial of degree 38")

@@ -48,8 +48,9 @@ from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.rationals import CheckFailure, rational
 
-ZERO_SPELLINGS = ["0", "00", "-0", "+0", "0/5", "0.0", "-0/7", 0]
-NOT_NUMBERS = ["0/0", "0e0", " 0", "0 ", "0.", ".0", "", "-", "0x0", "\u0660", "0_0", False, 0.0, None, ["0"]]
+ZERO_SPELLINGS = ["0", "-0", "+0", "0/5", "0.0", "-0/7", 0]
+NOT_NUMBERS = ["0/0", "0e0", " 0", "0 ", "0.", ".0", "", "-", "0x0", "\u0660", "0_0", False, 0.0, None, ["0"],
+               "00", "-00", "0/05"]  # leading zeros: rejected since issue 22 (the format is strict where it says it is)
 
 
 def _dense_check_H(A, G, b, H):

@@ -1,6 +1,6 @@
 """The package's layers, checked from the source (AST, nothing is imported).
 
-    errors <- core <- lp <- model <- {paper, beyond} <- certificates <- interfaces <- top
+    errors <- core <- lp <- model <- {paper, beyond} <- {control, certificates} <- interfaces <- top
 
 Every import inside ``exactinv`` must point to the same or a lower layer,
 ``paper`` and ``beyond`` never import each other, the module import graph has
@@ -24,6 +24,7 @@ LAYERS = {
     "model": 3,
     "paper": 4,
     "beyond": 4,
+    "control": 5,  # gain design and robust thresholds: joins paper and beyond (issue 25)
     "certificates": 5,
     "interfaces": 6,
     "top": 7,  # exactinv/__init__, __main__, cli (the entry point), check (the kernel re-exported)
@@ -32,8 +33,9 @@ SIBLINGS_THAT_NEVER_MEET = {("paper", "beyond"), ("beyond", "paper")}
 # Optional heavy extras, imported where they are used.  cvxpy: only the cvxpy
 # hint backend (exactinv/lp/hint.py) and the oracle's judge_lp need it, so it
 # stays an optional dependency.  dask: only `exactinv batch` (interfaces/batch/engine.py)
-# schedules on it (the `batch` extra).
-IN_FUNCTION_ALLOWED = ("matplotlib", "sympy", "IPython", "cvxpy", "dask")
+# schedules on it (the `batch` extra).  nodepy: only ei.methods.from_nodepy
+# (model/nodepy_methods.py) reads its method objects (the `nodepy` extra).
+IN_FUNCTION_ALLOWED = ("matplotlib", "sympy", "IPython", "cvxpy", "dask", "nodepy")
 
 
 def _module_name(path: Path) -> str:

@@ -44,12 +44,13 @@ def test_the_doc_has_examples_of_every_form():
     assert any("A0" in d["system"] for d in DOC_EXAMPLES)
     assert any("vertices" in d.get("polyhedron", {}) for d in DOC_EXAMPLES)
     assert any("ellipsoid" in d for d in DOC_EXAMPLES)
+    assert any("cdd" in d.get("polyhedron", {}) for d in DOC_EXAMPLES)
 
 
 @pytest.mark.parametrize("k", range(len(DOC_EXAMPLES)))
 def test_every_doc_example_validates_and_loads(k):
     VALIDATOR.validate(DOC_EXAMPLES[k])
-    load_problem(DOC_EXAMPLES[k])
+    load_problem(DOC_EXAMPLES[k], base=str(ROOT / "examples" / "cdd"))  # the cdd example's file lives there
 
 
 def test_schema_and_reader_know_the_same_names():
@@ -81,6 +82,9 @@ BAD = {
     "no system": {"polyhedron": BOX["polyhedron"]},
     "polyhedron and ellipsoid": {**BOX, "ellipsoid": {"Q": [[1, 0], [0, 1]]}},
     "ellipsoid without Q": {"system": BOX["system"], "ellipsoid": {"q": [[1, 0], [0, 1]]}},
+    "cdd with G": {**BOX, "polyhedron": {"cdd": "octagon.ine", "G": [[1, 0]]}},
+    "cdd not a string": {**BOX, "polyhedron": {"cdd": ["octagon.ine"]}},
+    "cdd empty": {**BOX, "polyhedron": {"cdd": ""}},
 }
 
 

@@ -34,7 +34,7 @@ def _copy_sources() -> None:
     (GENERATED / "notebooks").mkdir(parents=True)
     for name in ("problem.schema.json", "certificate.schema.json"):
         shutil.copy2(ROOT / "docs" / name, GENERATED / name)
-    for name in ("problem-format.md", "certificate-format.md", "ellipsoids.md", "errata.md", "scale.md"):
+    for name in ("problem-format.md", "certificate-format.md", "ellipsoids.md", "errata.md", "scale.md", "design.md"):
         text = (ROOT / "docs" / name).read_text(encoding="utf-8")
         # A link into the repository outside docs/ (read on a code host) points
         # here to the page that documents it.

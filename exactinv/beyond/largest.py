@@ -18,7 +18,14 @@ U = 1 when the valid set is unbounded (:mod:`.pruning_rational`).
 answer).  On a box {lo <= x <= hi} the conditions come from the box route
 instead (:mod:`.box_conditions`: the sign patterns of the rows of N(h) on the
 cells between their entries' roots, no vertex enumeration); ``box=False``
-takes the general route.  Pass one
+takes the general route.  For a large P the conditions come from the LP
+route (:mod:`.lp_route`: per facet, the pieces of [0, oo) on which one basis
+of the parametric LP max g_i A_d(h) x over P is optimal, each piece's vertex
+one condition; no vertex enumeration).  ``route=`` chooses: ``"auto"`` (box
+on a box, LP when McMullen's bound on the vertex count exceeds
+:data:`LP_ABOVE` and the LP route accepts P, else the vertex route),
+``"vertex"``, ``"box"`` or ``"lp"``; the result's ``route`` says which ran --
+every route gives the same exact set.  Pass one
 :class:`ConditionSet` as ``conditions=`` to share the built conditions
 between the valid set, the largest threshold and the certificate.
 """
@@ -45,10 +52,18 @@ from ..model.record import certificate as make_certificate, generator_record
 from ..errors import InvalidInput
 from .box_conditions import BoxRoute, box_route
 from .conditions import Condition, ConditionSet, Kind, distinct_conditions
+from .lp_route import LPRoute, LPRouteDeclined, lp_route, vertex_bound
 from .pruning import VERTEX_ZERO, WORTHWHILE, Pruning, bounding_horizon, prune as prune_pairs
 from .pruning_rational import prune_rational
 
-__all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet"]
+__all__ = ["ValidSteplengths", "LargestThreshold", "valid_steplengths", "largest_threshold", "ConditionSet", "ROUTES",
+           "LP_ABOVE"]
+
+ROUTES = ("auto", "vertex", "box", "lp")
+"""The values of ``route=``: how the conditions of the valid set are found (the set is the same)."""
+
+LP_ABOVE = 5000
+"""``route="auto"`` takes the LP route when McMullen's bound on the vertex count exceeds this."""
 
 
 @dataclass(frozen=True)
@@ -67,6 +82,12 @@ class ValidSteplengths:
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
     pruning: Pruning | None = field(default=None, repr=False)
     box: BoxRoute | None = field(default=None, repr=False)
+    lp: LPRoute | None = field(default=None, repr=False)
+
+    @property
+    def route(self) -> str:
+        """Which route found the conditions: "box", "lp" or "vertex"."""
+        return "box" if self.box is not None else "lp" if self.lp is not None else "vertex"
 
     def __iter__(self):
         return iter(self.intervals)
@@ -92,7 +113,7 @@ class ValidSteplengths:
             "type": ClaimType.VALID_STEPLENGTHS,
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,
                            "hi_closed": iv.hi_closed} for iv in self.intervals],
-            **_generators(self.polyhedron, self.box),
+            **_generators(self.polyhedron, self.box, self.lp),
             "determinant": vec(self.determinant),
             **({} if self.pruning is None or not self.pruning.applied else {"pruning": self.pruning.record()}),
         }]
@@ -140,6 +161,12 @@ class LargestThreshold(ExactValueMixin):
     determinant: tuple[Fraction, ...] = field(default=(Fraction(1),), repr=False)
     pruning: Pruning | None = field(default=None, repr=False)
     box: BoxRoute | None = field(default=None, repr=False)
+    lp: LPRoute | None = field(default=None, repr=False)
+
+    @property
+    def route(self) -> str:
+        """Which route found the conditions: "box", "lp" or "vertex"."""
+        return "box" if self.box is not None else "lp" if self.lp is not None else "vertex"
 
     def claims(self) -> list[dict]:
         """The certificate's claim: the value, whether attained, and the binding condition.
@@ -157,7 +184,7 @@ class LargestThreshold(ExactValueMixin):
             "type": ClaimType.LARGEST_THRESHOLD,
             "value": encode_real(self.value),
             "attained": self.attained,
-            **_generators(self.polyhedron, self.box),
+            **_generators(self.polyhedron, self.box, self.lp),
             "determinant": vec(self.determinant),
             "binding": None if self.binding is None else {
                 "kind": self.binding.kind, "generator": self.binding.generator, "facet": self.binding.facet,
@@ -184,38 +211,56 @@ class LargestThreshold(ExactValueMixin):
         return f"LargestThreshold(value={self.value}, attained={self.attained}, method={self.method.name})"
 
 
-def _generators(polyhedron: Polyhedron, box: BoxRoute | None) -> dict:
-    """The claim's record of P: the box (proved from G, b by the kernel) or the generator lists."""
-    return {"box": box.box.record()} if box is not None else generator_record(polyhedron)
+def _generators(polyhedron: Polyhedron, box: BoxRoute | None, lp: LPRoute | None = None) -> dict:
+    """The claim's record of P: the box (proved from G, b by the kernel), the LP route's
+    pieces (proved by the kernel: no vertex list) or the generator lists."""
+    if box is not None:
+        return {"box": box.box.record()}
+    if lp is not None:
+        return {"lp": lp.record()}
+    return generator_record(polyhedron)
 
 
-def _conditions(cs: ConditionSet, first_end: bool, allow: bool,
-                box: bool) -> tuple[list, list, Pruning | None, BoxRoute | None]:
-    """(inequalities, equalities, pruning, box route): on a box (unless ``box`` is False)
-    the box route's conditions; else every pair, or -- for a polynomial method whose
+def _conditions(cs: ConditionSet, first_end: bool, allow: bool, box: bool,
+                route: str = "auto") -> tuple[list, list, Pruning | None, BoxRoute | None, LPRoute | None]:
+    """(inequalities, equalities, pruning, box route, LP route): on a box (unless ``box`` is False
+    or another route is forced) the box route's conditions; for a large P (``route`` "auto") or
+    ``route="lp"`` the LP route's; else every pair, or -- for a polynomial method whose
     vertex 0 bounds the set (or its first interval) by a horizon T -- vertex 0's
     conditions, the surviving vertex pairs and every ray and line pair."""
-    route = box_route(cs) if box else None
-    if route is not None:
-        return route[0], [], None, route[1]
+    boxed = box_route(cs) if box and route in ("auto", "box") else None
+    if boxed is not None:
+        return boxed[0], [], None, boxed[1], None
+    if route == "box":
+        raise InvalidInput("route: 'box' needs P to be a box (every row of G one nonzero entry, every coordinate bounded)")
+    P = cs.polyhedron
+    if route == "lp" or (route == "auto" and vertex_bound(P.n, P.m) > LP_ABOVE):
+        try:
+            inequalities, lp = lp_route(cs)
+            return inequalities, [], None, None, lp
+        except LPRouteDeclined as exc:
+            if route == "lp":
+                raise InvalidInput(f"route: the LP route declines this problem: {exc}") from None
     P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
     if allow and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
         if not cs.method.is_polynomial:  # in u = h/(s + h): [0, oo) becomes [0, 1]
             pruned = prune_rational(cs, first_end)
             if pruned is not None:
-                return (*pruned, None)
+                return (*pruned, None, None)
         else:
             T, first, seconds = bounding_horizon(cs, first_end)
             if T is not None:
-                return (*prune_pairs(cs, T, first, seconds), None)
+                return (*prune_pairs(cs, T, first, seconds), None, None)
     conditions, equalities = cs.all()
-    return conditions, equalities, None, None
+    return conditions, equalities, None, None, None
 
 
-def _problem(system, polyhedron, method, conditions, prune, box):
+def _problem(system, polyhedron, method, conditions, prune, box, route="auto"):
     for name, flag in (("prune", prune), ("box", box)):
         if not isinstance(flag, bool):
             raise InvalidInput(f"{name}: expected True or False, got {flag!r}")
+    if not isinstance(route, str) or route not in ROUTES:
+        raise InvalidInput(f"route: expected one of {', '.join(map(repr, ROUTES))}, got {route!r}")
     if conditions is None:
         return ConditionSet(system, polyhedron, method)  # checks the three arguments
     if not isinstance(conditions, ConditionSet):
@@ -227,21 +272,27 @@ def _problem(system, polyhedron, method, conditions, prune, box):
 
 
 def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
-                      conditions: ConditionSet | None = None, box: bool = True) -> ValidSteplengths:
+                      conditions: ConditionSet | None = None, box: bool = True,
+                      route: str = "auto") -> ValidSteplengths:
     """The exact set {dt >= 0 : A_d(dt) P subset of P} as a union of intervals
     with exact ends (open/closed marked); singular points of r(dt A) excluded.
     ``prune``: certified pruning of the vertex-facet pairs (same result);
     ``conditions``: a shared :class:`ConditionSet` of the same problem;
-    ``box``: the box route on a box (same result; False: every vertex-facet pair).
+    ``box``: the box route on a box (same result; False: every vertex-facet pair);
+    ``route``: "auto", "vertex", "box" or "lp" (module docstring; the same set by every route).
 
     >>> import exactinv as ei
     >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-    >>> V.intervals
-    [0, 2]
+    >>> V.intervals, V.route
+    ([0, 2], 'box')
+    >>> V = valid_steplengths(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1),
+    ...                       route="lp")
+    >>> V.intervals, V.route
+    ([0, 2], 'lp')
     """
-    cs = _problem(system, polyhedron, method, conditions, prune, box)
+    cs = _problem(system, polyhedron, method, conditions, prune, box, route)
     t0 = time.perf_counter()
-    inequalities, equalities, pruning, route = _conditions(cs, False, prune, box)
+    inequalities, equalities, pruning, boxed, lp = _conditions(cs, False, prune, box, route)
     D = cs.D
     distinct = distinct_conditions(inequalities)
     singular = [r for r, _ in positive_roots(D)]
@@ -249,7 +300,7 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     # conditions of the first vertex (tightest first; kept by the pruning when it ran)
     # and then every other, each skipped when proved positive up to the current bound.
     first = [c.p for c in distinct.values() if c.kind == Kind.VERTEX and c.generator == 0]
-    vertex_zero = cs.derived.get(VERTEX_ZERO) if route is None else None
+    vertex_zero = cs.derived.get(VERTEX_ZERO) if boxed is None and lp is None else None
     if vertex_zero is None:
         vertex_zero = nonnegative_set(earliest_first(first))
     union = nonnegative_set([c.p for c in distinct.values() if c.kind != Kind.VERTEX or c.generator != 0],
@@ -264,28 +315,29 @@ def valid_steplengths(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     if pruning is not None:
         pruning = pruning.finished(time.perf_counter() - t0)
     return ValidSteplengths(union, method, tuple(singular), len(inequalities), len(distinct), system, polyhedron,
-                            tuple(cs.Dcoeffs), pruning, route)
+                            tuple(cs.Dcoeffs), pruning, boxed, lp)
 
 
 def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, *, prune: bool = True,
-                      conditions: ConditionSet | None = None, box: bool = True) -> LargestThreshold:
+                      conditions: ConditionSet | None = None, box: bool = True,
+                      route: str = "auto") -> LargestThreshold:
     """The exact largest threshold sup{T : A_d(dt) P subset of P for all dt in [0, T)}
     -- the end of the first interval of :func:`valid_steplengths` -- computed
     directly from the first sign change of each condition and the first pole.
-    ``prune``, ``conditions`` and ``box`` as for :func:`valid_steplengths`.
+    ``prune``, ``conditions``, ``box`` and ``route`` as for :func:`valid_steplengths`.
 
     >>> import exactinv as ei
     >>> largest_threshold(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(2)).value
     Fraction(2, 1)
     """
-    cs = _problem(system, polyhedron, method, conditions, prune, box)
+    cs = _problem(system, polyhedron, method, conditions, prune, box, route)
     t0 = time.perf_counter()
-    inequalities, equalities, pruning, route = _conditions(cs, True, prune, box)
+    inequalities, equalities, pruning, boxed, lp = _conditions(cs, True, prune, box, route)
     distinct = list(distinct_conditions(inequalities).values())
     Dcoeffs = tuple(cs.Dcoeffs)
     if equalities:
         return LargestThreshold(Fraction(0), True, method, equalities[0], None, system, polyhedron, tuple(distinct),
-                                Dcoeffs, pruning, route)
+                                Dcoeffs, pruning, boxed, lp)
     best: Real = INF
     binding: Condition | None = None
     for c in sorted(distinct, key=lambda c: (c.kind != Kind.VERTEX or c.generator != 0, c.p(0))):
@@ -304,4 +356,4 @@ def largest_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Meth
     if pruning is not None:
         pruning = pruning.finished(time.perf_counter() - t0)
     return LargestThreshold(best, attained, method, binding, singular, system, polyhedron, tuple(distinct), Dcoeffs,
-                            pruning, route)
+                            pruning, boxed, lp)

@@ -6,14 +6,23 @@ engine computes, to python-flint's ``fmpq``/``fmpq_mat``.  Accepted scalars:
 
 * ``int`` (not ``bool``), :class:`~fractions.Fraction`, :class:`~decimal.Decimal`;
 * strings such as ``"3/4"``, ``"-2"``, ``"0.1"`` (exactly 1/10) or ``"1e-3"``;
-* sympy rationals and python-flint ``fmpz``/``fmpq``.
+* sympy rationals and python-flint ``fmpz``/``fmpq``;
+* numpy integers, and numpy 0-d arrays holding any of the above.
 
-Python and numpy floats are refused: a float such as ``0.1`` is not the number
-1/10, and exactinv does not guess which number was meant.  Pass ``"0.1"``, or
+Matrices and vectors may be lists of rows, numpy arrays (integer dtype, or
+object dtype holding Fractions, ints, sympy rationals, ...), sympy matrices
+(a vector may also be an n x 1 or 1 x n sympy matrix or numpy array) or FLINT
+matrices.  Every one is copied entry by entry; nothing the caller passed is
+kept or changed.
+
+Python, numpy and sympy floats (and so numpy float arrays) are refused: a float
+such as ``0.1`` is not the number 1/10, and exactinv does not guess which number
+was meant.  Pass ``"0.1"``, or
 convert deliberately with :func:`exact_from_float` (the exact binary value) or
 :func:`nearest_rational` (the simplest nearby fraction), or pass
-``allow_float=True`` to the parsing functions (which then use
-:func:`exact_from_float`).
+``allow_float=True`` to the parsing functions (which then take the float's
+exact binary value, as :func:`exact_from_float` does -- for a numpy
+``longdouble`` or a sympy ``Float`` at its own precision).
 """
 
 from __future__ import annotations
@@ -162,7 +171,9 @@ def to_rational(value: Any, name: str = "value", *, allow_float: bool = False) -
     """
     if isinstance(value, Fraction):
         return value
-    if isinstance(value, bool):
+    if getattr(value, "ndim", None) == 0 and hasattr(value, "item"):  # a numpy 0-d array
+        value = value.item()
+    if isinstance(value, bool) or type(value).__name__ == "bool_":  # numpy's bool too
         raise InvalidInput(f"{name}: got the bool {value!r}; pass a number")
     if isinstance(value, int):
         return Fraction(value)
@@ -198,13 +209,26 @@ def _rational_from_text(value: str, name: str) -> Fraction:
 
 
 def _rational_from_float(value: Any, name: str, allow_float: bool) -> Fraction:
-    as_float = float(value)
-    if not math.isfinite(as_float):
-        raise InvalidInput(f"{name}: {value!r} is not a finite number")
-    if allow_float:
-        return exact_from_float(as_float)
+    if getattr(value, "is_Float", False):  # a sympy Float: its own precision, not a double's
+        if not value.is_finite:
+            raise InvalidInput(f"{name}: {value!r} is not a finite number")
+        if allow_float:
+            import sympy
+
+            exact = sympy.Rational(value)
+            return Fraction(int(exact.p), int(exact.q))
+        as_float = float(value)
+    else:
+        as_float = float(value)
+        if not math.isfinite(as_float):
+            raise InvalidInput(f"{name}: {value!r} is not a finite number")
+        if allow_float:
+            if hasattr(value, "as_integer_ratio"):  # float, numpy float16 .. longdouble: exact
+                return Fraction(*value.as_integer_ratio())
+            return exact_from_float(as_float)
+    kind = "" if type(value) is float else f" ({type(value).__module__.split('.')[0]} {type(value).__name__})"
     raise InvalidInput(
-        f"{name}: got the float {value!r}; floats are not exact. Pass a string "
+        f"{name}: got the float {value!r}{kind}; floats are not exact. Pass a string "
         f"such as '{_suggest(as_float)}', a Fraction, or convert explicitly with "
         f"exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)"
     )
@@ -214,10 +238,16 @@ def _suggest(x: float) -> str:
     return repr(x) if len(repr(x)) < 20 else str(nearest_rational(x))
 
 
-def _rows(value: Any, name: str) -> list:
-    if hasattr(value, "tolist") and not isinstance(value, str):  # numpy, flint matrices
+def _rows(value: Any, name: str, allow_float: bool = False) -> list:
+    if hasattr(value, "tolist") and not isinstance(value, str):  # numpy, sympy, flint matrices
         if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
             return [[value[i, j] for j in range(value.ncols())] for i in range(value.nrows())]
+        kind = getattr(getattr(value, "dtype", None), "kind", None)
+        if kind in ("f", "c") and not allow_float:
+            raise InvalidInput(
+                f"{name}: got a numpy array of dtype {value.dtype}; floats are not exact. Pass an integer "
+                f"array, an object array of Fractions or strings (np.array([...], dtype=object)), or convert "
+                f"explicitly with exactinv.exact_from_float / exactinv.nearest_rational (or allow_float=True)")
         value = value.tolist()
     if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
         raise InvalidInput(f"{name}: expected a list of rows, got {type(value).__name__}")
@@ -234,7 +264,10 @@ def to_vector(
     """
     if isinstance(value, (flint.fmpq_mat, flint.fmpz_mat)):
         value = [value[i, j] for i in range(value.nrows()) for j in range(value.ncols())]
-    items = _rows(value, name)
+    shape = getattr(value, "shape", None)
+    if isinstance(shape, tuple) and len(shape) == 2 and 1 in shape and hasattr(value, "tolist"):
+        value = [x for row in _rows(value, name, allow_float) for x in row]  # an n x 1 or 1 x n matrix / array
+    items = _rows(value, name, allow_float)
     out = []
     for i, entry in enumerate(items):
         if not isinstance(entry, (str, bytes)) and isinstance(entry, Iterable):
@@ -261,7 +294,7 @@ def to_matrix(
     >>> to_matrix([[1, '1/2'], [0, 3]], 'A', square=True)
     ((Fraction(1, 1), Fraction(1, 2)), (Fraction(0, 1), Fraction(3, 1)))
     """
-    rows = _rows(value, name)
+    rows = _rows(value, name, allow_float)
     if not rows:
         raise InvalidInput(f"{name}: the matrix is empty")
     out = []

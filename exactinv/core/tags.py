@@ -49,6 +49,8 @@ class ClaimType(Tag):
     ELLIPSOID_VALID_STEPLENGTHS = "ellipsoid_valid_steplengths"
     ELLIPSOID_LARGEST_THRESHOLD = "ellipsoid_largest_threshold"
     ELLIPSOID_FORWARD_EULER_THRESHOLD = "ellipsoid_forward_euler_threshold"
+    OPTIMAL_GAIN = "optimal_gain"
+    ROBUST_THRESHOLD = "robust_threshold"
 
 
 class RadiusReason(Tag):

@@ -72,11 +72,13 @@ def forward_euler_threshold(system: Any, invariant_set: Any) -> ForwardEulerThre
 
 
 def valid_steplengths(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
-                      conditions: ConditionSet | None = None, box: bool = True) -> ValidSteplengths:
+                      conditions: ConditionSet | None = None, box: bool = True, route: str = "auto") -> ValidSteplengths:
     """The exact set of valid steplengths h >= 0, a union of intervals with exact ends.
     On a polyhedron, ``prune``, ``conditions`` (a :class:`ConditionSet` of the
     same problem, shared with :func:`largest_threshold`) and ``box`` (the box
-    route on a box; False: every vertex-facet pair) are passed on.
+    route on a box; False: every vertex-facet pair) and ``route`` ("auto", "vertex", "box"
+    or "lp": how the conditions are found, the set is the same; the result's ``route``
+    says which ran) are passed on.
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> valid_steplengths(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.taylor(2))
@@ -84,13 +86,14 @@ def valid_steplengths(system: Any, invariant_set: Any, method: Any, *, prune: bo
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_valid_steplengths(system, invariant_set, method)
-    return polyhedral.valid_steplengths(system, invariant_set, method, prune=prune, conditions=conditions, box=box)
+    return polyhedral.valid_steplengths(system, invariant_set, method, prune=prune, conditions=conditions, box=box,
+                                 route=route)
 
 
 def largest_threshold(system: Any, invariant_set: Any, method: Any, *, prune: bool = True,
-                      conditions: ConditionSet | None = None, box: bool = True) -> LargestThreshold:
+                      conditions: ConditionSet | None = None, box: bool = True, route: str = "auto") -> LargestThreshold:
     """The exact largest threshold: the end of the first interval of the valid set
-    (``prune``, ``conditions``, ``box`` as for :func:`valid_steplengths`).
+    (``prune``, ``conditions``, ``box``, ``route`` as for :func:`valid_steplengths`).
 
     >>> from exactinv import LinearSystem, Ellipsoid, methods
     >>> largest_threshold(LinearSystem([[-1]]), Ellipsoid([[1]]), methods.backward_euler()).value
@@ -98,4 +101,5 @@ def largest_threshold(system: Any, invariant_set: Any, method: Any, *, prune: bo
     """
     if isinstance(invariant_set, Ellipsoid):
         return ellipsoid_largest_threshold(system, invariant_set, method)
-    return polyhedral.largest_threshold(system, invariant_set, method, prune=prune, conditions=conditions, box=box)
+    return polyhedral.largest_threshold(system, invariant_set, method, prune=prune, conditions=conditions, box=box,
+                                 route=route)

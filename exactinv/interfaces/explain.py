@@ -75,6 +75,11 @@ def _count(n: int, word: str) -> str:
 
 
 def _generators(c: dict) -> str:
+    if "lp" in c:
+        pieces = sum(len(f["bases"]) for f in c["lp"]["facets"])
+        return (f"never listed: the LP route takes, per facet, the pieces of [0, oo) on which one basis of "
+                f"max g_i A_d(dt) x over P is optimal ({pieces} pieces in all, each proved by weak duality), and the "
+                f"vertex of each piece, which together decide every vertex")
     if "box" in c:
         lo, hi = c["box"]["lo"], c["box"]["hi"]
         count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"
@@ -213,7 +218,34 @@ def _valid(c: dict) -> str:
             f"condition is constant between consecutive ends.")
 
 
+def _gain(c: dict) -> str:
+    if not c["holds"]:
+        return ("No linear gain u = Fx makes P invariant for x' = (A + BF)x (within the input set, if any): the "
+                "conditions H >= 0 off the diagonal, HG = G(A + BF), Hb <= 0 (and Lambda >= 0, Lambda G = EF, "
+                "Lambda b <= e) are one linear system in (H, F, Lambda), and the certificate's Farkas vector "
+                "combines them into 0 < 0.")
+    return (f"The gain F = {_matrix(c['F'])} gives gamma*(A + BF) <= {_real(c['value'])} (its H satisfies the "
+            f"invariance conditions with H + gamma I >= 0, and Lambda shows Fx in U on P), and the LP dual shows "
+            f"that no linear gain does better: gamma = {_real(c['value'])} is the least gamma* over all gains, so "
+            f"this F maximizes the paper's threshold rho/gamma of every method, and 1/gamma is the largest "
+            f"forward-Euler step over all linear gains (docs/design.md).")
+
+
+def _robust(c: dict) -> str:
+    return (f"For every A in conv{{A_1, ..., A_{len(c['vertices'])}}} and under arbitrary switching, steps "
+            f"dt in [0, {_real(c['value'])}{']' if c['attained'] else ')'} keep P invariant: each vertex A_i has a "
+            f"proved gamma_i* with its H_i, so H = sum lambda_i H_i certifies A = sum lambda_i A_i with "
+            f"gamma = max_i gamma_i = {_real(c['gamma'])}; tau = rho/gamma with rho = {_real(c['rho'])}"
+            + ("" if c.get("beta") is None else
+               f", capped by z_p/beta with the hull-wide spectral-abscissa bound beta = {_real(c['beta'])}"
+               if _q(c["beta"]) > 0 else
+               f" (no convergence cap: the hull-wide spectral-abscissa bound is beta = {_real(c['beta'])} <= 0)")
+            + f".  The largest robust forward-Euler step is exactly 1/gamma = {_real(c['forward_euler'])}.")
+
+
 _EXPLAIN = {
+    ClaimType.OPTIMAL_GAIN: _gain,
+    ClaimType.ROBUST_THRESHOLD: _robust,
     ClaimType.GAMMA_STAR: _gamma_star,
     ClaimType.FORWARD_EULER_THRESHOLD: _forward_euler,
     ClaimType.POLYNOMIAL_THRESHOLD: _polynomial,
@@ -239,6 +271,14 @@ def explain(cert: dict, verified: bool = False) -> str:
     lines = []
     if "Q" in p:
         lines.append(f"Problem: x' = A x with A = {_matrix(p['A'])}, E = {{x : x^T Q x <= 1}} with Q = {_matrix(p['Q'])}.")
+    elif "B" in p:
+        lines.append(f"Problem: x' = A x + B u with A = {_matrix(p['A'])}, B = {_matrix(p['B'])}, P = {{x : G x <= b}} "
+                     f"with G = {_matrix(p['G'])}, b = {_vec(p['b'])}"
+                     + (f", inputs U = {{u : E u <= e}} with E = {_matrix(p['inputs']['E'])}, e = {_vec(p['inputs']['e'])}"
+                        if "inputs" in p else "") + ".")
+    elif "hull" in p:
+        lines.append(f"Problem: x' = A x for A in conv{{{', '.join(_matrix(A) for A in p['hull'])}}}, P = {{x : G x <= b}} "
+                     f"with G = {_matrix(p['G'])}, b = {_vec(p['b'])}.")
     elif "A" in p:
         lines.append(f"Problem: x' = A x with A = {_matrix(p['A'])}, P = {{x : G x <= b}} with G = {_matrix(p['G'])}, "
                      f"b = {_vec(p['b'])}.")

@@ -30,6 +30,8 @@ from ..paper.forward_euler import ForwardEulerThreshold, _forward_euler_threshol
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import _steplength_threshold
+from ..control.optimal_gain import optimal_gain
+from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
@@ -56,11 +58,13 @@ class Report:
     check: Any = None
     lines: tuple[str, ...] = field(default=(), repr=False)
     undecided: tuple[tuple[str, str], ...] = ()
+    closed_loop: "Report | None" = field(default=None, repr=False)
 
     @property
     def ok(self) -> bool:
-        """The kernel verified the certificate (of every claim that was decided)."""
-        return self.check is not None and self.check.ok
+        """The kernel verified the certificate (of every claim that was decided); for a gain
+        design, also the closed loop's certificate (``closed_loop``, its own report)."""
+        return self.check is not None and self.check.ok and (self.closed_loop is None or self.closed_loop.ok)
 
     @property
     def complete(self) -> bool:
@@ -165,6 +169,8 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     """
     method = method if method is not None else problem.method
     step = progress or (lambda what: None)
+    if problem.design == "optimal_gain":
+        return _certify_gain(problem, method, check, progress)
     S, P = problem.system, problem.polyhedron
     if problem.is_ellipsoid:
         lines = [f"problem {problem.name}: n = {S.n}, ellipsoid x^T Q x <= 1" + (f", method {method.name}" if method else "")]
@@ -260,3 +266,52 @@ def _largest(S, P, method: Method, lines: list[str]) -> list[Any]:
     lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)")
                  + safe_step_text(L))
     return [L, V]
+
+
+def _certify_gain(problem: Problem, method: Method | None, check: bool,
+                  progress: Callable[[str], None] | None) -> Report:
+    """A gain design: the optimal gain's certificate (checked by the kernel), then
+    :func:`certify` on the closed loop x' = (A + BF)x (its own report and certificate,
+    ``Report.closed_loop``).
+
+    >>> import exactinv as ei
+    >>> from exactinv.interfaces.problem import load_problem
+    >>> p = load_problem({"system": {"A": [[0, 1], [0, 0]], "B": [[0], [1]]}, "design": "optimal_gain",
+    ...                   "polyhedron": {"G": [[1, 0], [-1, 0], [1, 1], [-1, -1]], "b": [1, 1, 1, 1]},
+    ...                   "inputs": {"G": [[1], [-1]], "b": [2, 2]}})
+    >>> report = certify(p)
+    >>> print("\\n".join(report.lines[:4]))
+    problem problem: n = 2, m = 4 inequalities, p = 1 inputs, q = 2 input constraints; design optimal_gain
+    optimal gain F = [[0, -1]]  (one LP over (H, F, gamma, Lambda), verified in Q)
+    gamma = min over gains of gamma*(A + BF): 1  (the LP dual proves no gain does better)
+    largest forward-Euler step over all linear gains: 1 = 1/gamma
+    >>> report.ok, report.closed_loop.ok
+    (True, True)
+    """
+    step = progress or (lambda what: None)
+    S, P, U = problem.system, problem.polyhedron, problem.inputs
+    lines = [f"problem {problem.name}: n = {S.n}, m = {P.m} inequalities, p = {len(problem.B[0])} inputs"
+             + (f", q = {U.m} input constraints" if U is not None else ", inputs unconstrained") + "; design optimal_gain"]
+    step("the optimal gain (one exact LP)")
+    gain = optimal_gain(S, problem.B, P, U)
+    if gain.holds:
+        lines.append(f"optimal gain F = {matrix_text(gain.F)}  (one LP over (H, F, gamma, Lambda), verified in Q)")
+        lines.append(f"gamma = min over gains of gamma*(A + BF): {exact_text(gain.gamma)}  "
+                     "(the LP dual proves no gain does better)")
+        lines.append(f"largest forward-Euler step over all linear gains: {exact_text(gain.forward_euler_step)} = 1/gamma")
+    else:
+        lines.append("optimal gain: NONE -- no linear gain u = Fx makes P invariant"
+                     + (" with u in U" if U is not None else "") + " (a Farkas certificate proves it)")
+    cert = gain.certificate
+    report = None
+    if check:
+        step("independent check (the trusted kernel)")
+        report = exactinv_check.check(cert)
+        lines.append(f"independent check of the gain: {'VERIFIED' if report.ok else 'REJECTED'} ({len(cert['claims'])} claims)")
+    closed = None
+    if gain.holds:
+        closed = certify(Problem(gain.system, P, method, f"{problem.name} (closed loop)"), method, check, progress)
+        lines.append("the closed loop x' = (A + BF)x:")
+        lines.extend("  " + line for line in closed.lines)
+    undecided = closed.undecided if closed is not None else ()
+    return Report(problem, method, (gain,), cert, report, tuple(lines), undecided, closed)

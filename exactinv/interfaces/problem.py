@@ -2,11 +2,15 @@
 docs/problem.schema.json).
 
     {"system": {"A": [["-1", "1"], ["-1", "-1"]]},          # or {"A0", "B", "F"}
-     "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}
+     "polyhedron": {"G": [[1, 0], ...], "b": [1, ...]},     # or {"vertices", "rays", "lines"}, or {"cdd": "P.ine"}
      "method": {"taylor": 4}}                               # optional
 
 or, instead of "polyhedron", an ellipsoid {x : x^T Q x <= 1}:
     "ellipsoid": {"Q": [["2", "0"], ["0", "1"]]}
+
+or a gain to design (docs/design.md): x' = Ax + Bu, u = Fx with the optimal F,
+optionally with inputs U = {u : Eu <= e} (a polyhedron in R^p):
+    "system": {"A": ..., "B": ...}, "design": "optimal_gain", "inputs": {"G": ..., "b": ...}
 
 Rationals are strings ("3/4"; "0.1" means exactly 1/10) or integers; JSON
 floats are refused like Python floats.  Unknown keys are refused at every
@@ -16,9 +20,10 @@ level, with a "did you mean" hint.  Errors name the file and the JSON path.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
+from ..core.scalars import Matrix, to_matrix
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
@@ -28,18 +33,24 @@ from .strict_json import did_you_mean  # noqa: F401 (re-exported: its old home)
 
 __all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
 
-TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description")
+TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description", "design", "inputs")
+DESIGNS = ("optimal_gain",)
 """The keys a problem file may hold (system and one of polyhedron, ellipsoid are required)."""
 
 
 @dataclass(frozen=True)
 class Problem:
-    """A problem: ``polyhedron`` holds the invariant set, a Polyhedron or an Ellipsoid."""
+    """A problem: ``polyhedron`` holds the invariant set, a Polyhedron or an Ellipsoid.
+    ``design == "optimal_gain"``: ``system`` is the open loop x' = Ax, ``B`` its input
+    matrix and ``inputs`` the optional input polyhedron U (:func:`exactinv.optimal_gain`)."""
 
     system: LinearSystem
     polyhedron: Polyhedron | Ellipsoid
     method: Method | None = None
     name: str = "problem"
+    design: str | None = field(default=None, repr=False)
+    B: Matrix | None = field(default=None, repr=False)
+    inputs: Polyhedron | None = field(default=None, repr=False)
 
     @property
     def is_ellipsoid(self) -> bool:
@@ -67,20 +78,65 @@ def _system(data: dict) -> LinearSystem:
     raise InvalidInput(f'system: give "A", or "A0", "B" and "F" (missing {", ".join(missing)})')
 
 
-def _polyhedron(data: dict) -> Polyhedron:
-    poly = _section(data, "polyhedron")
-    check_keys(poly, ("G", "b", "vertices", "rays", "lines"), "polyhedron")
+POLYHEDRON_KEYS = ("G", "b", "vertices", "rays", "lines", "cdd")
+
+
+def _cdd(poly: dict, base: str | None, key: str) -> Polyhedron:
+    if set(poly) != {"cdd"}:
+        raise InvalidInput(f'{key}: give "cdd" (a cdd file) alone, without "G", "b", "vertices", "rays", "lines"')
+    ref = poly["cdd"]
+    if not isinstance(ref, str) or not ref.strip():
+        raise InvalidInput(f"{key}.cdd: expected the path of a cdd file (.ine or .ext), got {_kind(ref)}")
+    if "\n" in ref.strip():  # the file's text, inline
+        source = ref
+    else:
+        source = ref if os.path.isabs(ref) else os.path.join(base or os.curdir, ref)
+    try:
+        return Polyhedron.from_cdd(source)
+    except InvalidInput as exc:
+        raise InvalidInput(f"{key}.cdd: {exc}") from None
+
+
+def _polyhedron(data: dict, base: str | None = None, key: str = "polyhedron") -> Polyhedron:
+    poly = _section(data, key)
+    check_keys(poly, POLYHEDRON_KEYS, key)
+    if "cdd" in poly:
+        return _cdd(poly, base, key)
     h_keys, v_keys = {"G", "b"} & set(poly), {"vertices", "rays", "lines"} & set(poly)
     if h_keys and v_keys:
-        raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines") -- not both')
+        raise InvalidInput(f'{key}: give "G" and "b", or "vertices" (with optional "rays", "lines"), '
+                           'or "cdd" -- not both')
     if h_keys:
-        _require(poly, ("G", "b"), "polyhedron")
-        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+        _require(poly, ("G", "b"), key)
+        with _At(key, POLYHEDRON_KEYS):
             return Polyhedron(poly["G"], poly["b"])
     if "vertices" in poly:
-        with _At("polyhedron", ("G", "b", "vertices", "rays", "lines")):
+        with _At(key, POLYHEDRON_KEYS):
             return Polyhedron.from_vertices(poly["vertices"], poly.get("rays", ()), poly.get("lines", ()))
-    raise InvalidInput('polyhedron: give "G" and "b", or "vertices" (with optional "rays", "lines")')
+    raise InvalidInput(f'{key}: give "G" and "b", or "vertices" (with optional "rays", "lines"), or "cdd"')
+
+
+def _design(data: dict, name: str, base: str | None = None) -> Problem:
+    """A gain-design problem: "system": {"A", "B"}, "design": "optimal_gain", optional "inputs"."""
+    if data["design"] not in DESIGNS:
+        raise InvalidInput(f"design: expected one of {', '.join(map(repr, DESIGNS))}, got {data['design']!r}")
+    if "ellipsoid" in data:
+        raise InvalidInput('design: a gain is designed on a "polyhedron", not an ellipsoid')
+    sys_data = _section(data, "system")
+    check_keys(sys_data, ("A", "B"), "system")
+    if set(sys_data) != {"A", "B"}:
+        raise InvalidInput('system: "design": "optimal_gain" needs "A" and "B" (x\' = Ax + Bu)')
+    with _At("system", ("A", "B")):
+        system = LinearSystem(sys_data["A"])
+        B = to_matrix(sys_data["B"], "B", shape=(system.n, None))
+    polyhedron = _polyhedron(data, base)
+    if system.n != polyhedron.n:
+        raise InvalidInput(f"polyhedron: the system has dimension {system.n} but the polyhedron lives in dimension {polyhedron.n}")
+    inputs = _polyhedron(data, base, "inputs") if "inputs" in data else None
+    if inputs is not None and inputs.n != len(B[0]):
+        raise InvalidInput(f"inputs: B has {len(B[0])} columns (inputs) but the input polyhedron lives in dimension {inputs.n}")
+    method = parse_method(data["method"]) if data.get("method") is not None else None
+    return Problem(system, polyhedron, method, name, "optimal_gain", B, inputs)
 
 
 def _ellipsoid(data: dict) -> Ellipsoid:
@@ -91,16 +147,18 @@ def _ellipsoid(data: dict) -> Ellipsoid:
         return Ellipsoid(ell["Q"])
 
 
-def _invariant_set(data: dict) -> Polyhedron | Ellipsoid:
+def _invariant_set(data: dict, base: str | None) -> Polyhedron | Ellipsoid:
     if "ellipsoid" in data:
         if "polyhedron" in data:
             raise InvalidInput('ellipsoid: give "polyhedron" or "ellipsoid" -- not both')
         return _ellipsoid(data)
-    return _polyhedron(data)
+    return _polyhedron(data, base)
 
 
-def problem_from_dict(data: Any, name: str = "problem") -> Problem:
+def problem_from_dict(data: Any, name: str = "problem", base: str | None = None) -> Problem:
     """A :class:`Problem` from the parsed JSON of a problem file (every key checked).
+    A relative ``{"cdd": path}`` polyhedron is looked up in the folder ``base``
+    (the problem file's folder; the working directory when ``None``).
 
     >>> problem_from_dict({"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, "1/2"]},
     ...                    "method": {"taylor": 2}}, "box")
@@ -121,8 +179,12 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
         name = data["name"]
     if "description" in data and not isinstance(data["description"], str):
         raise InvalidInput(f"description: expected a string, got {_kind(data['description'])}")
+    if "design" in data:
+        return _design(data, name, base)
+    if "inputs" in data:
+        raise InvalidInput('inputs: an input polyhedron belongs to a gain design ("design": "optimal_gain")')
     system = _system(data)
-    polyhedron = _invariant_set(data)
+    polyhedron = _invariant_set(data, base)
     if system.n != polyhedron.n:
         what = "ellipsoid" if isinstance(polyhedron, Ellipsoid) else "polyhedron"
         raise InvalidInput(f"{what}: the system has dimension {system.n} but the {what} lives in dimension {polyhedron.n}")
@@ -130,9 +192,12 @@ def problem_from_dict(data: Any, name: str = "problem") -> Problem:
     return Problem(system, polyhedron, method, name)
 
 
-def load_problem(source: Any) -> Problem:
+def load_problem(source: Any, base: str | None = None) -> Problem:
     """Read a problem from a dict, a JSON string or a path to a JSON file.
-    Errors from a file are prefixed with its path.
+    Errors from a file are prefixed with its path.  A cdd file the problem
+    names (``"polyhedron": {"cdd": "P.ine"}``) is found relative to the problem
+    file's folder, or to ``base`` (default: the working directory) for a dict or
+    JSON text.
 
     >>> import pathlib, exactinv
     >>> examples = pathlib.Path(exactinv.__file__).parents[1] / "examples"
@@ -147,9 +212,9 @@ def load_problem(source: Any) -> Problem:
     exactinv.errors.InvalidInput: the JSON number -1.0 is a float; write it as a string ("-1.0") to mean it exactly
     """
     if isinstance(source, dict):
-        return problem_from_dict(source)
+        return problem_from_dict(source, base=base)
     if isinstance(source, str) and source.lstrip().startswith("{"):
-        return problem_from_dict(_parse(source, "problem"))
+        return problem_from_dict(_parse(source, "problem"), base=base)
     if not isinstance(source, (str, os.PathLike)):
         raise InvalidInput(f"problem: expected a dict, JSON text or a path, got {type(source).__name__}")
     path = str(source)
@@ -164,7 +229,7 @@ def load_problem(source: Any) -> Problem:
     except UnicodeDecodeError:
         raise InvalidInput(f"{path}: not a text file (a problem file is UTF-8 JSON)") from None
     try:
-        return problem_from_dict(_parse(text, path), name)
+        return problem_from_dict(_parse(text, path), name, os.path.dirname(os.path.abspath(path)))
     except InvalidInput as exc:
         if str(exc).startswith(path):
             raise

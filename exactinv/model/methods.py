@@ -11,7 +11,8 @@ h(0) = 1.
 The methods are built in three modules, gathered here (``exactinv.methods``):
 :mod:`~exactinv.model.method` (the type), :mod:`~exactinv.model.families`
 (Taylor, polynomial, rational, theta, Pade, Butcher tableaux) and
-:mod:`~exactinv.model.presets` (named Runge-Kutta methods).
+:mod:`~exactinv.model.presets` (named Runge-Kutta methods), and
+:mod:`~exactinv.model.nodepy_methods` (NodePy's method objects, ``from_nodepy``).
 """
 
 from .families import (
@@ -27,6 +28,7 @@ from .families import (
     from_butcher,
 )
 from .method import Method, matrix_polynomial
+from .nodepy_methods import from_nodepy
 from .presets import (
     heun,
     ssprk22,
@@ -52,5 +54,5 @@ __all__ = [
     "backward_euler", "trapezoid", "implicit_midpoint", "pade", "from_butcher", "heun", "ssprk22",
     "ssprk33", "rk4", "ssprk_s1", "radau_iia2", "lobatto_iiic2", "gauss2", "radau_iia1",
     "radau_iia3", "lobatto_iiic3", "lobatto_iiic4", "sdirk2", "sdirk4", "ssp_sdirk", "PRESETS",
-    "preset",
+    "preset", "from_nodepy",
 ]

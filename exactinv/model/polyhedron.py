@@ -20,6 +20,7 @@ from ..core.latex import LatexMixin, latex_column, latex_matrix
 from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_text, to_matrix, to_vector, vector_text
 from ..errors import InvalidInput
 from ..lp import INFEASIBLE, ExactLPSolver
+from .cdd import ext_text, ine_text, read_cdd
 
 __all__ = ["Polyhedron"]
 
@@ -29,8 +30,9 @@ class Polyhedron(LatexMixin):
     """The polyhedron P = {x in Q^n : G x <= b}.
 
     Construct it from inequalities, ``Polyhedron(G, b)``, from generators,
-    ``Polyhedron.from_vertices(vertices, rays=(), lines=())``, or as a box,
-    ``Polyhedron.box(lo, hi)``.  Conversions between the two representations
+    ``Polyhedron.from_vertices(vertices, rays=(), lines=())``, as a box,
+    ``Polyhedron.box(lo, hi)``, or from a cdd file, ``Polyhedron.from_cdd(path_or_text)``
+    (written back by ``P.to_cdd("ine" | "ext")``).  Conversions between the two representations
     are exact (double description, pplpy).
 
     >>> P = Polyhedron.box([-1, -1], [1, 1])
@@ -94,6 +96,75 @@ class Polyhedron(LatexMixin):
         P = cls(G, b)
         P.__dict__["_ppl"] = poly
         return P
+
+    @classmethod
+    def from_cdd(cls, source: Any, *, allow_float: bool = False) -> "Polyhedron":
+        """P from a cdd file (a path, or the file's text): an H-representation
+        (``.ine``: rows ``b -a`` meaning a.x <= b, ``linearity`` rows equalities)
+        or a V-representation (``.ext``: rows ``1 v`` points, ``0 r`` rays, lines
+        when listed in ``linearity``; no point means the origin).  Exact:
+        ``integer`` and ``rational`` files only, unless ``allow_float=True``
+        reads a ``real`` file's entries as the exact values of their doubles.
+        An equality becomes two opposite inequalities; a void row ``b 0 ... 0``
+        with b >= 0 is dropped.  Errors name the file and line
+        (:mod:`exactinv.model.cdd`).
+
+        >>> P = Polyhedron.from_cdd('''H-representation
+        ... linearity 1 3
+        ... begin
+        ...  3 3 rational
+        ...  1 -1 0
+        ...  1 0 -1
+        ...  0 1/2 -1/2
+        ... end''')                 # x <= 1, y <= 1, x = y
+        >>> P.vertices, P.rays                # the half-line from (1, 1) towards (-1, -1)
+        (((Fraction(1, 1), Fraction(1, 1)),), ((Fraction(-1, 1), Fraction(-1, 1)),))
+        """
+        data = read_cdd(source, allow_float=allow_float)
+        where = "cdd text" if isinstance(source, str) and "\n" in source.strip() else str(source)
+        try:
+            if data.kind == "H":
+                G = list(data.G) + list(data.E) + [tuple(-x for x in g) for g in data.E]
+                b = list(data.b) + list(data.e) + [-x for x in data.e]
+                if not G:
+                    raise InvalidInput("the H-representation has no inequality; P would be the whole space")
+                return cls(G, b)
+            points = data.points or ((0,) * data.dimension,)
+            return cls.from_vertices(points, data.rays, data.lines)
+        except InvalidInput as exc:
+            raise InvalidInput(f"{where}: {exc}") from None
+
+    def to_cdd(self, kind: str = "ine", path: Any = None) -> str:
+        """The cdd file of P, exact (``integer`` when every entry is an integer,
+        else ``rational``): ``"ine"``, the H-representation G x <= b row by row
+        (rows ``b -g``), or ``"ext"``, the V-representation (vertices, rays, and
+        lines listed in ``linearity``).  With ``path``, the text is also written
+        there.  ``Polyhedron.from_cdd`` reads either back to the same set.
+
+        >>> print(Polyhedron.box([0], ['1/2']).to_cdd("ext"), end="")
+        V-representation
+        begin
+        2 2 rational
+        1 0
+        1 1/2
+        end
+        """
+        key = str(kind).lower()
+        if key in ("ine", "h"):
+            text = ine_text(self.G, self.b)
+        elif key in ("ext", "v"):
+            if not self.vertices:
+                raise InvalidInput("to_cdd: P is empty; an empty polyhedron has no V-representation")
+            text = ext_text(self.vertices, self.rays, self.lines)
+        else:
+            raise InvalidInput(f'kind: expected "ine" (H-representation) or "ext" (V-representation), got {kind!r}')
+        if path is not None:
+            try:
+                with open(path, "w", encoding="utf-8") as fh:
+                    fh.write(text)
+            except OSError as exc:
+                raise InvalidInput(f"path: cannot write {path} ({exc.strerror or exc})") from None
+        return text
 
     @classmethod
     def box(cls, lo: Any, hi: Any, *, allow_float: bool = False) -> "Polyhedron":

@@ -23,6 +23,7 @@ timeout, the memory limit).
 
 from __future__ import annotations
 
+import re
 import sys
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -145,11 +146,18 @@ def _solve(job: tuple[Task, Limits]) -> dict:
                 "error": f"internal error (a bug; please report it): {type(exc).__name__}: {exc}"}
 
 
+def _folder(source: str) -> str | None:
+    """The folder of a task's file ("dir/p.json" or "dir/corpus.jsonl:12"): where a
+    problem's relative cdd file is looked up."""
+    path = re.sub(r":\d+\Z", "", source or "")
+    return str(Path(path).resolve().parent) if path else None
+
+
 def _certify(task: Task, check: bool, keep: bool = False) -> dict:
     text = task.text or ""
     if not text.lstrip().startswith("{"):
         raise InvalidInput("expected a problem: a JSON object with \"system\" and \"polyhedron\"")
-    problem = load_problem(text)
+    problem = load_problem(text, base=_folder(task.source))
     if problem.name == "problem" and task.kind == "certify" and task.source.endswith(".json"):
         problem = replace(problem, name=Path(task.source).stem)  # a file's name, as `exactinv certify` does
     report = certify(problem, check=check)

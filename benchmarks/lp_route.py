@@ -1,0 +1,185 @@
+"""The LP route (issue 23) against float LP bisection, in one run on the same instances.
+
+Family: P = {Gx <= 1}, G's entries uniform integers in [-5, 5] (a zero row is
+redrawn), A = -I + N/(10 n) with N's entries uniform integers in [-3, 3] (the
+scale 10 n keeps P invariant for x' = Ax, so the valid sets are not just {0}).
+
+Columns, on each instance:
+
+* engine  -- exactinv's ``largest_threshold`` and ``valid_steplengths`` with
+             ``route="lp"`` (one shared ConditionSet): the exact valid set and
+             the exact largest threshold, with their certificate;
+* kernel  -- ``exactinv_check.check`` of that certificate (both claims);
+* float   -- what a user would write instead (MPT3 or a hand-written
+             cvxpy/HiGHS script): per facet i, the float LP
+             max g_i A_d(h) x over P in HiGHS (one model per instance,
+             warm-started, default tolerances), doubling h from 1/16 while the
+             facet is kept (up to 2^12), then 40 bisection steps; the threshold
+             is the least over the facets.  A float answer, no certificate, and
+             it only brackets the first interval's end.
+
+``float vs exact`` compares the float threshold with the exact largest
+threshold (relative difference; absolute when that is 0).  Times are CPU seconds of this process
+(``time.process_time``, HiGHS' threads included): the project machine is
+shared, and wall-clock times there move with the other jobs' load.
+
+Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import random
+import sys
+import time
+from fractions import Fraction
+
+import highspy
+import numpy as np
+
+import exactinv as ei
+import exactinv_check
+from exactinv.beyond.conditions import ConditionSet
+from exactinv.lp.highs import silent_highs
+from exactinv.model.record import certificate
+
+SIZES = [(6, 12), (6, 36), (6, 60), (8, 16), (8, 32), (8, 48), (10, 40), (12, 60), (16, 100), (20, 200)]
+QUICK = [(6, 12), (8, 32), (10, 40)]
+METHODS = {"taylor1": ei.methods.taylor(1), "taylor4": ei.methods.taylor(4), "taylor8": ei.methods.taylor(8),
+           "pade11": ei.methods.pade(1, 1), "pade22": ei.methods.pade(2, 2),
+           "backward_euler": ei.methods.backward_euler()}
+
+
+def family(n: int, m: int, seed: int = 1) -> tuple[ei.LinearSystem, ei.Polyhedron]:
+    rng = random.Random(seed * 1000 + n * 7 + m)
+    G = []
+    while len(G) < m:
+        row = [rng.randint(-5, 5) for _ in range(n)]
+        if any(row):
+            G.append(row)
+    D = 10 * n
+    A = [[Fraction(-1 if i == j else 0) + Fraction(rng.randint(-3, 3), D) for j in range(n)] for i in range(n)]
+    return ei.LinearSystem(A), ei.Polyhedron(G, [1] * m)
+
+
+# ------------------------------------------------------------------ the float anchor
+
+
+def _float_Ad(A: np.ndarray, method: ei.Method, h: float) -> np.ndarray:
+    """r(hA) in floats: g(hA) solved against h_r(hA)."""
+    n = A.shape[0]
+    M = h * A
+
+    def poly(coeffs):
+        out, power = np.zeros((n, n)), np.eye(n)
+        for c in coeffs:
+            out += float(c) * power
+            power = power @ M
+        return out
+
+    num = poly(method.numerator)
+    if method.is_polynomial:
+        return num
+    return np.linalg.solve(poly(method.denominator), num)
+
+
+def float_bisection(S: ei.LinearSystem, P: ei.Polyhedron, method: ei.Method) -> tuple[float, int]:
+    """(threshold, LPs solved): per facet doubling then 40 bisection steps, one HiGHS LP per step."""
+    G = np.array([[float(v) for v in row] for row in P.G])
+    b = np.array([float(v) for v in P.b])
+    A = np.array([[float(v) for v in row] for row in S.A])
+    m, n = G.shape
+    h = silent_highs()
+    h.setOptionValue("output_flag", False)
+    lp = highspy.HighsLp()
+    lp.num_col_, lp.num_row_ = n, m
+    lp.col_cost_, lp.col_lower_, lp.col_upper_ = np.zeros(n), np.full(n, -highspy.kHighsInf), np.full(n, highspy.kHighsInf)
+    lp.row_lower_, lp.row_upper_ = np.full(m, -highspy.kHighsInf), b
+    lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+    lp.a_matrix_.start_ = np.arange(0, m * n + 1, m, dtype=np.int32)
+    lp.a_matrix_.index_ = np.tile(np.arange(m, dtype=np.int32), n)
+    lp.a_matrix_.value_ = G.T.reshape(-1).copy()
+    h.passModel(lp)
+    lps = 0
+    idx = np.arange(n, dtype=np.int32)
+
+    def kept(i: int, step: float) -> bool:
+        nonlocal lps
+        c = G[i] @ _float_Ad(A, method, step)
+        h.changeColsCost(n, idx, -c)  # HiGHS minimizes
+        h.run()
+        lps += 1
+        if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+            return False
+        return -h.getInfo().objective_function_value <= b[i] + 1e-9
+
+    best = math.inf
+    for i in range(m):
+        lo, hi = 0.0, 1.0 / 16
+        while kept(i, hi) and hi < 2.0 ** 12:
+            lo, hi = hi, 2 * hi
+        if hi >= 2.0 ** 12 and kept(i, hi):
+            continue
+        for _ in range(40):
+            mid = (lo + hi) / 2
+            if kept(i, mid):
+                lo = mid
+            else:
+                hi = mid
+        best = min(best, lo)
+    return best, lps
+
+
+# ------------------------------------------------------------------ the run
+
+
+def row(n: int, m: int, name: str, method: ei.Method) -> dict:
+    S, P = family(n, m)
+    t0 = time.process_time()
+    cs = ConditionSet(S, P, method)
+    L = ei.largest_threshold(S, P, method, conditions=cs, route="lp")
+    V = ei.valid_steplengths(S, P, method, conditions=cs, route="lp")
+    engine = time.process_time() - t0
+    cert = certificate(S, P, method, [L, V])
+    t0 = time.process_time()
+    report = exactinv_check.check(cert)
+    kernel = time.process_time() - t0
+    t0 = time.process_time()
+    tau, lps = float_bisection(S, P, method)
+    flt = time.process_time() - t0
+    exact = float(L.value) if L.value != ei.INF else math.inf
+    if not math.isfinite(exact):
+        agree = 0.0 if tau == math.inf else 1.0
+    else:  # relative difference; absolute when the exact threshold is 0 (P not invariant)
+        agree = abs(tau - exact) / (abs(exact) if exact else 1.0)
+    return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "lps": V.lp.float_lps + V.lp.exact_lps,
+            "engine": engine, "kernel": kernel, "float": flt, "float_lps": lps, "ok": report.ok,
+            "tau": L.value, "set": V.intervals, "agree": agree}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--methods", default="taylor4")
+    parser.add_argument("--sizes", default=None, help="e.g. 10x40,20x200")
+    args = parser.parse_args(argv)
+    sizes = QUICK if args.quick else SIZES
+    if args.sizes:
+        sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
+    print("| n | facets | method | pieces | engine LPs | engine s | kernel s | float s (LPs) | engine/float | "
+          "kernel/engine | kernel | tau (exact) | float vs exact |")
+    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|")
+    for name in args.methods.split(","):
+        for n, m in sizes:
+            r = row(n, m, name, METHODS[name])
+            print(f"| {r['n']} | {r['m']} | {r['method']} | {r['pieces']} | {r['lps']} | {r['engine']:.2f} | "
+                  f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
+                  f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
+                  f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "
+                  f"{r['agree']:.1e} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

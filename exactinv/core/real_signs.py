@@ -1,0 +1,220 @@
+"""Signs of rational polynomials at and just right of an exact real, and the next sign change.
+
+The LP route (:mod:`exactinv.beyond.lp_route`) starts a piece at a breakpoint t,
+a Fraction or a :class:`~exactinv.RealAlgebraic` (a root of an irreducible
+integer polynomial q, isolated).  It needs, exactly:
+
+* the sign of p just right of t (:func:`sign_right_of_real`): for a rational t
+  the first nonzero Taylor coefficient; for t = alpha algebraic, write
+  p = q^k r with q not dividing r (q irreducible, so alpha is a simple root of q
+  and r(alpha) != 0); then sign p(alpha + eps) = sign(q right of alpha)^k
+  sign r(alpha), where q right of alpha has the sign of q at the isolating
+  interval's upper end, and r(alpha) the sign of r on an enclosure of alpha
+  that Descartes' rule proves root-free for r;
+* the first point after t where p changes sign (:func:`next_sign_change`): the
+  least root of odd multiplicity of p greater than t (FLINT's certified roots);
+* a rational strictly right of t and within a given width (:func:`rational_right_of`).
+
+No float anywhere.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from math import comb
+
+import flint
+
+from .algebraic import FiniteReal, Real, RealAlgebraic
+from .polys import integer_part, no_root_between, sign_at, sign_right_of
+from .roots import first_sign_change
+from .scalars import INF
+from .flintq import dyadic_of
+
+__all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
+           "positive_after"]
+
+
+def narrowed(alpha: FiniteReal) -> FiniteReal:
+    """alpha itself, for an algebraic alpha with a narrow isolating interval: the enclosure of the
+    matching root from FLINT's certified complex roots (Arb balls), kept only if it lies inside the
+    old one and an exact sign change confirms it; else exact bisection to width 2^-48.
+
+    >>> r = narrowed(RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2))
+    >>> r.upper - r.lower < Fraction(1, 2**40), r.lower ** 2 < 2 < r.upper ** 2
+    (True, True)
+    """
+    if not isinstance(alpha, RealAlgebraic):
+        return alpha
+    p = alpha.poly
+    for z, _ in p.complex_roots():
+        if not z.imag.is_zero():
+            continue
+        lo = dyadic_of(z.real.lower())
+        hi = dyadic_of(z.real.upper())
+        if alpha.lower <= lo < hi <= alpha.upper and sign_at(p, lo) * sign_at(p, hi) < 0:
+            return RealAlgebraic(p, lo, hi, _trusted=True)
+    return alpha.refine(48)
+
+
+def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
+    """For each row of M (the coefficients, constant first, of a polynomial p): +1 if Descartes'
+    rule proves p > 0 on the open interval (lo, hi) (hi None: (lo, oo)) or p = 0, -1 if it proves
+    p < 0 there, 0 if it proves nothing.  All rows at once: p(lo + y) by one product with the
+    Taylor-shift matrix, then for a finite hi = lo + P/Q the coefficients of
+    Q^d (1 + y)^d p(lo + (P/Q) y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
+    (as in :func:`exactinv.core.polys.positive_below`).  Exact.
+
+    >>> M = flint.fmpq_mat([[2, -3, 1], [-2, 0, 1], [0, 0, 0], [-1, 0, -1]])  # (x-1)(x-2), x^2-2, 0, -1-x^2
+    >>> # (x-1)(x-2) > 0 and x^2 - 2 < 0 on (0, 1); beyond 2 every one keeps its sign
+    >>> interval_signs(M, Fraction(0), Fraction(1)), interval_signs(M, Fraction(2), None)
+    ([1, -1, 1, -1], [1, 1, 1, -1])
+    """
+    W = M.ncols()
+    d = W - 1
+    x = flint.fmpq(lo.numerator, lo.denominator)
+    S = flint.fmpq_mat(W, W, [comb(k, j) * x ** (k - j) if j <= k else 0 for k in range(W) for j in range(W)])
+    T = S
+    if hi is not None:
+        H = hi - lo
+        P, Q = H.numerator, H.denominator
+        T = S * flint.fmpq_mat(W, W, [P ** k * Q ** (d - k) * comb(d - k, m - k) if m >= k else 0
+                                      for k in range(W) for m in range(W)])
+    out = []
+    entries = (M * T).entries()
+    for r in range(M.nrows()):
+        row = entries[r * W:(r + 1) * W]
+        positive = any(c > 0 for c in row)
+        negative = any(c < 0 for c in row)
+        out.append(0 if positive and negative else -1 if negative else 1)
+    return out
+
+
+def _sign_at_algebraic(r: flint.fmpz_poly, alpha: RealAlgebraic) -> int:
+    """sign r(alpha) for r with r(alpha) != 0: first r on a ball holding alpha's enclosure (Arb's
+    rigorous ball arithmetic: a ball that excludes 0 decides); else alpha refined until r has no
+    root on its closed enclosure (Descartes), and r's sign at an end."""
+    ball = flint.arb(flint.fmpq(alpha.lower.numerator, alpha.lower.denominator)).union(
+        flint.arb(flint.fmpq(alpha.upper.numerator, alpha.upper.denominator)))
+    value = flint.arb_poly([flint.arb(c) for c in r.coeffs()])(ball)
+    if value > 0:
+        return 1
+    if value < 0:
+        return -1
+    bits = 16
+    while True:
+        lo, hi = alpha.lower, alpha.upper
+        if sign_at(r, lo) != 0 and sign_at(r, hi) != 0 and no_root_between(r, lo, hi):
+            return sign_at(r, lo)
+        alpha.refine(bits)
+        bits *= 2
+
+
+def _split(p: flint.fmpq_poly, alpha: RealAlgebraic) -> tuple[flint.fmpz_poly, flint.fmpz_poly, int]:
+    """(q, r, k): c p = q^k r for a c > 0 (integers), q = alpha's minimal polynomial, q not dividing r:
+    r(alpha) != 0."""
+    q = flint.fmpz_poly(alpha.poly)
+    r, k = integer_part(p), 0
+    while True:
+        quotient, remainder = divmod(r, q)
+        if not remainder.is_zero():
+            return q, r, k
+        r, k = quotient, k + 1
+
+
+def sign_right_of_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
+    """The sign of p on (t, t + eps) for small eps > 0 (0 only for p = 0); exact.
+
+    >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> p = flint.fmpq_poly([2, 0, -1])                       # 2 - x^2: zero at sqrt 2, negative after
+    >>> sign_right_of_real(p, sqrt2), sign_right_of_real(p * p, sqrt2), sign_right_of_real(p + 1, sqrt2)
+    (-1, 1, 1)
+    """
+    if not isinstance(t, RealAlgebraic):
+        return sign_right_of(p, Fraction(t))
+    if p.is_zero():
+        return 0
+    q, r, k = _split(p, t)
+    sign = _sign_at_algebraic(r, t)
+    if k % 2:
+        sign *= sign_at(q, t.upper)  # q's sign right of its simple root alpha: (alpha, upper) holds no other root
+    return sign
+
+
+def positive_after(p: flint.fmpq_poly, t: FiniteReal, bound: Fraction, right: int | None = None) -> bool:
+    """True proves p > 0 on the open (t, bound) (a rational bound); False says nothing.  ``right``,
+    if given, is :func:`sign_right_of_real` (p, t), already known.  For t = alpha algebraic,
+    c p = q^k r (:func:`_split`): r has no root on [lower, bound) and q none on [upper, bound)
+    (Descartes; q's only root in (lower, upper) is alpha), so p keeps its sign right of alpha.
+
+    >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> p = flint.fmpq_poly([-2, 0, 1]) * flint.fmpq_poly([-3, 1]) * -1     # (x^2 - 2)(3 - x)
+    >>> positive_after(p, sqrt2, Fraction(3)), positive_after(p, sqrt2, Fraction(4))
+    (True, False)
+    """
+    if p.is_zero():
+        return False
+    if right is None:
+        right = sign_right_of_real(p, t)
+    if right <= 0:
+        return False
+    if not isinstance(t, RealAlgebraic):
+        return Fraction(t) < bound and no_root_between(p, Fraction(t), bound)
+    if not t.upper < bound:
+        return False
+    q, r, k = _split(p, t)
+    if r.degree() > 0 and not (sign_at(r, t.lower) != 0 and no_root_between(r, t.lower, bound)):
+        return False
+    return k == 0 or no_root_between(q, t.upper, bound)
+
+
+def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
+    """The least root of odd multiplicity of p greater than t (INF if none): where p,
+    of one sign just right of t, first takes the other one.
+
+    For t = alpha algebraic: p = q^k r as above; alpha is refined until r has no root on
+    its closed enclosure [lower, upper] (which holds no other root of q either), and the
+    answer is the first sign change beyond ``upper`` of r, and of q when k is odd.
+
+    >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> next_sign_change(flint.fmpq_poly([6, -5, 1]), sqrt2)     # (x - 2)(x - 3)
+    Fraction(2, 1)
+    >>> next_sign_change(flint.fmpq_poly([-2, 0, 1]) * flint.fmpq_poly([-3, 1]), sqrt2)   # (x^2 - 2)(x - 3)
+    Fraction(3, 1)
+    >>> next_sign_change(flint.fmpq_poly([4, -4, 1]), Fraction(0))   # (x - 2)^2: tangent only
+    INF
+    """
+    if p.is_zero() or p.degree() < 1:
+        return INF
+    if not isinstance(t, RealAlgebraic):
+        return first_sign_change(p, Fraction(t))
+    q, r, k = _split(p, t)
+    bits = 16
+    while not (r.degree() < 1 or (sign_at(r, t.lower) != 0 and sign_at(r, t.upper) != 0
+                                   and no_root_between(r, t.lower, t.upper))):
+        t.refine(bits)
+        bits *= 2
+    end = first_sign_change(flint.fmpq_poly(r), t.upper) if r.degree() > 0 else INF
+    if k % 2:
+        other = first_sign_change(flint.fmpq_poly(q), t.upper)
+        if other < end:
+            end = other
+    return end
+
+
+def rational_right_of(t: FiniteReal, width: Fraction) -> Fraction:
+    """A rational s with t < s <= t + width (width > 0).
+
+    >>> rational_right_of(Fraction(1), Fraction(1, 4))
+    Fraction(5, 4)
+    >>> s = rational_right_of(RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2), Fraction(1, 100))
+    >>> 2 < s * s and s < Fraction(14242, 10000)      # sqrt 2 < s <= sqrt 2 + 1/100
+    True
+    """
+    if not isinstance(t, RealAlgebraic):
+        return Fraction(t) + width
+    bits = 8
+    while t.upper - t.lower > width / 2:
+        t.refine(bits)
+        bits *= 2
+    return t.upper + width / 2  # t < upper and upper + width/2 < t + width/2 + width/2

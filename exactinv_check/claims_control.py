@@ -1,0 +1,168 @@
+"""Claims about control (issue 25; docs/design.md, "Control").
+
+* optimal_gain: the LP  max -gamma  over (H, F, gamma, Lambda) with
+  HG = G(A + BF), Hb <= 0, H off-diagonal >= 0, H_ii + gamma >= 0, and (with
+  inputs U = {u : Eu <= e}) Lambda >= 0, Lambda G = EF, Lambda b <= e.  The
+  primal (H, F, Lambda) proves gamma*(A + BF) <= gamma for this F; the dual
+  (Y, mu, nu, Z, w) proves gamma*(A + BF') >= gamma for EVERY gain F' (LP weak
+  duality, the dual's constraints written out below).  holds = false: a Farkas
+  vector (the dual with nu = 0 and a negative objective) proves that no gain
+  makes P invariant.
+* robust_threshold: each vertex A_i of the hull gets a full gamma_star check
+  (H_i and the dual of its binding row); gamma = max_i gamma_i; the method's
+  radius rho comes from a verified absolute_monotonicity_radius claim; the
+  threshold is recomputed: rho/gamma (polynomial), min(rho/gamma, z_p/beta)
+  (rational, P without lines, beta = max_i max_r (H_i v)_r / v_r recomputed).
+"""
+
+from . import claims_invariance
+from .claims_thresholds import INF, ZERO, smallest_positive_root
+from .rationals import describe, dot, matmul, matrix, matvec, rational, require, vector, within_budget
+from .reals import Real, quotient
+
+
+def _dual(record, m, n, q, what):
+    require(isinstance(record, dict) and set(record) == {"Y", "mu", "nu", "Z", "w"},
+            f"{what} has the keys Y, mu, nu, Z, w")
+    return (matrix(record["Y"], f"{what} Y", m, n), vector(record["mu"], f"{what} mu", m),
+            vector(record["nu"], f"{what} nu", m), matrix(record["Z"], f"{what} Z", q, n), vector(record["w"], f"{what} w", q))
+
+
+def _dual_rows(problem, Y, mu, nu, Z, w):
+    """The dual's constraints, one per primal variable; returns the dual objective <GA, Y> + e.w."""
+    G, b, m, n, q = problem.G, problem.b, problem.m, problem.n, len(problem.E)
+    require(all(x >= 0 for x in mu) and all(x >= 0 for x in nu) and all(x >= 0 for x in w), "mu, nu, w must be >= 0")
+    YGt = [[dot(Y[i], G[j]) for j in range(m)] for i in range(m)]
+    for i in range(m):
+        for j in range(m):
+            s = YGt[i][j] + mu[i] * b[j]
+            require(s == nu[i] if i == j else s >= 0, f"dual constraint of H[{i}][{j}] fails")
+    GB = matmul(G, problem.B)
+    for k in range(problem.p):
+        for c in range(n):
+            s = sum(GB[i][k] * Y[i][c] for i in range(m)) + sum(problem.E[j][k] * Z[j][c] for j in range(q))
+            require(s == 0, f"dual constraint of F[{k}][{c}] fails ((GB)^T Y + E^T Z != 0)")
+    for j in range(q):
+        for k in range(m):
+            require(dot(Z[j], G[k]) + w[j] * b[k] >= 0, f"dual constraint of Lambda[{j}][{k}] fails")
+    GA = matmul(G, problem.A)
+    return sum(dot(GA[i], Y[i]) for i in range(m)) + dot(problem.e, w)
+
+
+def optimal_gain(problem, claim, context):
+    require(problem.B is not None, "an optimal_gain claim needs B in the problem")
+    A, B, G, b, m, n, p = problem.A, problem.B, problem.G, problem.b, problem.m, problem.n, problem.p
+    E, e, q = problem.E, problem.e, len(problem.E)
+    within_budget((m + q) * (m + p) * n + n * n * p, f"the gain LP's rows ({m} x {m} H, {p} x {n} F, {q} x {m} Lambda)")
+    value = Real.parse(claim["value"], "gamma")
+    keys = set(claim) - {"type", "holds", "value"}
+    if not claim["holds"]:
+        require(keys == {"farkas"} and value.inf == 1, "holds = false carries value oo and a farkas certificate only")
+        Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas")
+        require(all(x == 0 for x in nu), "a Farkas certificate has nu = 0 (the cost of gamma is 0)")
+        objective = _dual_rows(problem, Y, mu, nu, Z, w)
+        require(objective < 0, "the Farkas certificate's objective <GA, Y> + e.w is not negative")
+        return ("no linear gain u = Fx makes P invariant" + (" with u in U" if q else "")
+                + ": a Farkas certificate of the gain LP (every constraint recomputed)")
+    require(keys == {"F", "H", "Lambda", "dual"}, "holds = true carries F, H, Lambda, dual")
+    require(value.inf == 0 and value.poly is None, "the optimal gamma is rational")
+    gamma = value.q
+    F = matrix(claim["F"], "F", p, n)
+    H = matrix(claim["H"], "H", m, m)
+    Lam = matrix(claim["Lambda"], "Lambda", q, m)
+    closed = [[A[i][c] + sum(B[i][k] * F[k][c] for k in range(p)) for c in range(n)] for i in range(n)]
+    require(matmul(H, G) == matmul(G, closed), "HG != G(A + BF)")
+    require(all(v <= 0 for v in matvec(H, b)), "Hb <= 0 fails")
+    require(all(H[i][j] >= 0 for i in range(m) for j in range(m) if i != j), "an off-diagonal entry of H is negative")
+    require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
+    require(all(v >= 0 for r in Lam for v in r), "Lambda has a negative entry")
+    require(all(dot(Lam[j], [G[k][c] for k in range(m)]) == sum(E[j][k] * F[k][c] for k in range(p))
+                for j in range(q) for c in range(n)), "Lambda G != EF")
+    require(all(dot(Lam[j], b) <= e[j] for j in range(q)), "Lambda b <= e fails")
+    Y, mu, nu, Z, w = _dual(claim["dual"], m, n, q, "dual")
+    require(sum(nu) == 1, "the dual's nu must sum to 1 (the cost of gamma)")
+    objective = _dual_rows(problem, Y, mu, nu, Z, w)
+    require(-objective == gamma, f"the dual objective gives gamma >= {describe(-objective)}, not {describe(gamma)}")
+    context["gain"] = (F, gamma)
+    return (f"gain F: gamma*(A + BF) <= {describe(gamma)} (H" + (", Lambda: u in U" if q else "")
+            + f"), and the LP dual proves gamma*(A + BF') >= {describe(gamma)} for every gain F'"
+            + (" with u in U" if q else ""))
+
+
+class _Vertex:
+    """The problem seen from one vertex A_i of the hull (for the gamma_star check)."""
+
+    def __init__(self, problem, A):
+        self.A, self.G, self.b, self.m, self.n, self.method = A, problem.G, problem.b, problem.m, problem.n, problem.method
+
+
+def robust_threshold(problem, claim, context):
+    method = problem.method
+    require(method is not None, "a robust_threshold claim needs the problem's method")
+    rho = context.get("rho")
+    require(rho is not None, "a verified absolute_monotonicity_radius claim must precede this one")
+    require(Real.parse(claim["rho"], "rho").compare(rho) == 0, "rho differs from the verified radius")
+    records = claim["vertices"]
+    require(isinstance(records, list) and len(records) == len(problem.hull), "one gamma* record per vertex of the hull")
+    gammas, Hs = [], []
+    for i, (A, record) in enumerate(zip(problem.hull, records)):
+        require(isinstance(record, dict) and "type" not in record, f"vertex {i}: a gamma* record without type")
+        allowed = {"value", "H", "binding_row", "dual", "rows"}
+        require(set(record) <= allowed and "value" in record, f"vertex {i}: keys {sorted(allowed)}")
+        ctx = {}
+        claims_invariance.gamma_star(_Vertex(problem, A), dict(record, type="gamma_star"), ctx)
+        require(ctx["gamma"].inf != 1, f"vertex {i}: P is not invariant, no robust threshold exists")
+        gammas.append(ctx["gamma"])
+        Hs.append(ctx.get("H"))
+    gamma = gammas[0]
+    for g in gammas[1:]:
+        if g.compare(gamma) > 0:
+            gamma = g
+    require(Real.parse(claim["gamma"], "gamma").compare(gamma) == 0, f"gamma is not max_i gamma_i = {gamma}")
+    positive = gamma.inf == 0 and gamma.q > 0
+    fe = Real.rational(1 / gamma.q) if positive else INF
+    require(Real.parse(claim["forward_euler"], "forward_euler").compare(fe) == 0,
+            f"the largest robust forward-Euler step is 1/gamma = {fe}")
+    value = Real.parse(claim["value"], "tau")
+    attained = claim["attained"]
+    has_beta = "beta" in claim or "v" in claim
+    if method.is_polynomial:
+        require(not has_beta, "beta and v belong to rational methods only")
+        if positive and rho.inf:
+            expected, at = INF, True
+        elif positive:
+            expected, at = quotient(rho, gamma), context["rho_attained"]
+        else:
+            expected, at = (INF if all(s >= 0 for s in method.numerator) else ZERO), True
+        require(value.compare(expected) == 0 and attained == at, f"tau is rho/gamma = {expected} (attained {at})")
+        return (f"tau = {expected}: every A in the hull has H = sum lambda_i H_i with H + gamma I >= 0, "
+                f"gamma = max of the {len(gammas)} verified gamma_i (docs/design.md)")
+    require(not problem.lines_possible, "a rational method needs P without lines (checked: G has full column rank)")
+    if rho.is_zero():
+        require(value.is_zero() and attained, "rho = 0 gives tau = 0 (attained)")
+        return "tau = 0 (rho = 0)"
+    candidates = []
+    if positive and not rho.inf:
+        candidates.append((quotient(rho, gamma), context["rho_attained"]))
+    pole = smallest_positive_root(method.denominator)
+    if pole is not None and problem.m:
+        require(all(H is not None for H in Hs), "every vertex needs its H for the hull-wide abscissa bound")
+        v = vector(claim["v"], "v", problem.m)
+        require(all(x > 0 for x in v), "v must be positive")
+        beta = max(dot(row, v) / vr for H in Hs for row, vr in zip(H, v))
+        require(rational(claim["beta"], "beta") == beta, f"beta is max_i max_r (H_i v)_r / v_r = {describe(beta)}")
+        if beta > 0:
+            candidates.append((quotient(pole, Real.rational(beta)), False))
+    else:
+        require(not has_beta, "no pole: beta and v do not belong here")
+    expected, expected_at = INF, True
+    for bound, at in candidates:
+        c = bound.compare(expected)
+        if c < 0:
+            expected, expected_at = bound, at
+        elif c == 0:
+            expected_at = expected_at and at
+    require(value.compare(expected) == 0, f"tau is not min(rho/gamma, z_p/beta) = {expected}")
+    require(attained == expected_at, "the attained flag is wrong")
+    return (f"tau = {expected} = min(rho/gamma, z_p/beta) over the whole hull (beta bounds the spectral abscissa of "
+            "every sum lambda_i H_i; P has no lines, so r(hA) exists; docs/design.md)")

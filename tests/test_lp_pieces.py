@@ -1,0 +1,174 @@
+"""The kernel's lp record (exactinv_check/lp_pieces.py): genuine LP-route certificates verify;
+forged pieces -- a wrong basis, a piece that skips a breakpoint, a z_B that dips negative inside a
+piece, a singular or infeasible basis, ends out of order, pieces stopping short of the valid set --
+are rejected."""
+
+import copy
+import random
+from fractions import Fraction
+
+import pytest
+
+import exactinv as ei
+import exactinv_check
+from exactinv_check import lp_pieces
+from exactinv_check.reals import Real, separate
+
+M = ei.methods
+F = Fraction
+
+
+def _problem(seed=1, n=3, m=8, method=None):
+    rng = random.Random(seed)
+    G = [[rng.randint(-4, 4) for _ in range(n)] for _ in range(m)] + \
+        [[int(i == j) * s for j in range(n)] for i in range(n) for s in (1, -1)]
+    S = ei.LinearSystem([[F(-1 if i == j else 0) + F(rng.randint(-3, 3), 12) for j in range(n)] for i in range(n)])
+    P = ei.Polyhedron(G, [1] * m + [2] * (2 * n))
+    return S, P, method or M.taylor(4)
+
+
+def _certificate(claim="valid", **kw):
+    S, P, m = _problem(**kw)
+    result = (ei.valid_steplengths if claim == "valid" else ei.largest_threshold)(S, P, m, route="lp")
+    assert result.route == "lp"
+    return result.certificate
+
+
+def _rejected(cert, match):
+    report = exactinv_check.check(cert)
+    assert not report.ok, report
+    assert match in str(report), report
+
+
+def _lp(cert):
+    return cert["claims"][0]["lp"]["facets"]
+
+
+@pytest.mark.parametrize("claim", ["valid", "largest"])
+@pytest.mark.parametrize("method", [M.taylor(4), M.taylor(1), M.pade(1, 1), M.backward_euler()])
+def test_genuine_certificates_verify(claim, method):
+    cert = _certificate(claim, method=method)
+    assert "vertices" not in cert["claims"][0] and "lp" in cert["claims"][0]
+    report = exactinv_check.check(cert)
+    assert report.ok, report
+    assert "LP route" in str(report)
+
+
+def _facet_with_pieces(cert, count=2):
+    for i, f in enumerate(_lp(cert)):
+        if len(f["bases"]) >= count:
+            return i, f
+    pytest.skip("no facet with enough pieces")
+
+
+def test_a_wrong_basis_is_rejected():
+    """The basis of the next piece on the previous one: not optimal there (z_B < 0 on part of it)."""
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    f["bases"][0] = list(f["bases"][1])
+    _rejected(cert, "negative inside its piece")
+
+
+def test_a_piece_that_skips_a_breakpoint_is_rejected():
+    """Two pieces merged into one with the first basis: past the breakpoint its z_B turns negative."""
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    del f["ends"][0]
+    del f["bases"][1]
+    _rejected(cert, "negative inside its piece")
+
+
+def test_a_z_b_dipping_negative_inside_a_piece_is_rejected():
+    """A piece's end moved a little past the true breakpoint (a rational just beyond it): z_B is
+    negative on a sliver at the end of the piece; Descartes cannot prove it, the cells do."""
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    end, nxt = Real.parse(f["ends"][0]), Real.parse(f["ends"][1])
+    if nxt.inf:
+        shifted = end.bounds()[1] + F(1, 2**40)
+    else:
+        a1, b0 = separate(end, nxt)  # end <= a1 < b0 <= next
+        shifted = a1 + (b0 - a1) / 2**20  # just past the true breakpoint, before the next end
+    f["ends"][0] = str(shifted)
+    _rejected(cert, "negative inside its piece")
+
+
+def test_a_singular_or_infeasible_basis_is_rejected():
+    cert = _certificate()
+    f = _lp(cert)[0]
+    f["bases"][0] = [f["bases"][0][0]] * len(f["bases"][0])
+    _rejected(cert, "repeats a row")
+    cert = _certificate()
+    f = _lp(cert)[0]
+    n = len(f["bases"][0])
+    m = len(cert["problem"]["G"])
+    # the n rows 0..n-1 of G: a vertex of the arrangement, mostly not of P (or singular)
+    for rows in ([0, 1, 2][:n], [1, 2, 3][:n], [2, 3, 4][:n]):
+        forged = copy.deepcopy(cert)
+        _lp(forged)[0]["bases"][0] = rows
+        report = exactinv_check.check(forged)
+        assert not report.ok
+        assert any(word in str(report) for word in ("violates row", "singular", "negative inside")), report
+    assert m > n
+
+
+def test_ends_out_of_order_or_infinite_too_early_are_rejected():
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    f["ends"][1] = f["ends"][0]  # a second piece of length 0
+    _rejected(cert, "not increasing")
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    f["ends"][0] = "oo"
+    report = exactinv_check.check(cert)
+    assert not report.ok
+
+
+def test_pieces_stopping_short_of_the_valid_set_are_rejected():
+    """Every facet cut after its first piece: the horizon E is then below the valid set's end."""
+    cert = _certificate()
+    for f in _lp(cert):
+        del f["ends"][1:]
+        del f["bases"][1:]
+    report = exactinv_check.check(cert)
+    assert not report.ok
+    assert any(w in str(report) for w in ("beyond it", "negative inside", "valid set")), report
+
+
+def test_the_record_shape_is_checked():
+    cert = _certificate()
+    cert["claims"][0]["lp"]["facets"].pop()
+    _rejected(cert, "one entry per facet")
+    cert = _certificate()
+    cert["claims"][0]["vertices"] = [["0", "0", "0"]]
+    _rejected(cert, "neither a box nor generators")
+    cert = _certificate()
+    _lp(cert)[0]["bases"][0] = [0, 1]
+    _rejected(cert, "a list of 3 rows")
+
+
+def test_the_work_is_priced_first(monkeypatch):
+    monkeypatch.setattr(lp_pieces, "MAX_PIECES", 2)
+    _rejected(_certificate(), "more than 2 pieces")
+
+
+def test_a_claimed_valid_set_that_differs_is_rejected():
+    cert = _certificate()
+    claim = cert["claims"][0]
+    claim["intervals"][-1]["hi_closed"] = not claim["intervals"][-1]["hi_closed"]
+    assert not exactinv_check.check(cert).ok
+
+
+def test_a_breakpoint_moved_a_hair_early_is_rejected():
+    """The end of the first piece moved to a rational 2^-60 below the true breakpoint: the next
+    piece's basis is then claimed on a sliver where one of its components is still negative."""
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    end = Real.parse(f["ends"][0])
+    f["ends"][0] = str(end.bounds()[0] - F(1, 2**60))
+    _rejected(cert, "negative inside its piece")
+
+
+def test_the_pieces_together_are_priced_first(monkeypatch):
+    monkeypatch.setattr(lp_pieces, "LP_WORK_BUDGET", 10**3)
+    _rejected(_certificate(), "the LP route's")

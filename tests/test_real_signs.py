@@ -1,0 +1,75 @@
+"""exactinv/core/real_signs.py: signs at and just right of algebraic points, the next sign change,
+batched Descartes signs -- against the definitions (exact roots, exact signs at rationals)."""
+
+from fractions import Fraction
+
+import flint
+from hypothesis import given, settings, strategies as st
+
+from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.polys import count_real_roots, sign_at
+from exactinv.core.real_signs import (interval_signs, narrowed, next_sign_change, rational_right_of,
+                                      sign_right_of_real)
+from exactinv.core.roots import real_roots
+from exactinv.core.scalars import INF
+
+F = Fraction
+SQRT2 = (-2, 0, 1)
+
+
+def _sqrt2():
+    return RealAlgebraic.from_isolating_interval(list(SQRT2), 1, 2)
+
+
+small = st.lists(st.integers(-4, 4), min_size=1, max_size=4).filter(any)
+
+
+@settings(max_examples=60, deadline=None)
+@given(small, st.integers(0, 3))
+def test_sign_right_of_sqrt2_of_q_to_the_k_times_r(r, k):
+    """p = (x^2 - 2)^k r: right of sqrt 2, (x^2 - 2) > 0, so the sign is that of r(sqrt 2) (r(sqrt 2) != 0:
+    r has integer coefficients and degree < 4, so r(sqrt 2) = 0 only if x^2 - 2 divides r) -- or, when it
+    divides r, the sign just right taken from r's own factorisation; checked against a rational point
+    closer to sqrt 2 than any other root of p."""
+    q = flint.fmpq_poly(list(SQRT2))
+    p = q ** k * flint.fmpq_poly(r)
+    t = _sqrt2()
+    others = [root for root, _ in real_roots(p) if root != t] if p.degree() > 0 else []
+    gap = min((abs(Fraction(float(root)) - F(141421, 100000)) for root in others), default=F(1))
+    s = rational_right_of(t, min(gap / 4, F(1, 10**6)))
+    assert sign_right_of_real(p, t) == sign_at(p, s)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(-5, 5), min_size=2, max_size=6).filter(lambda c: c[-1] != 0))
+def test_next_sign_change_is_the_least_odd_root_beyond(coeffs):
+    p = flint.fmpq_poly(coeffs)
+    for t in (_sqrt2(), F(1, 3)):
+        expected = next((root for root, m in real_roots(p) if m % 2 and root > t), INF)
+        assert next_sign_change(p, t) == expected
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.lists(st.integers(-5, 5), min_size=3, max_size=3), min_size=1, max_size=5),
+       st.fractions(min_value=-2, max_value=2, max_denominator=4), st.fractions(min_value=F(1, 4), max_value=3,
+                                                                             max_denominator=4))
+def test_interval_signs_are_sound(rows, lo, width):
+    """+1 / -1 only when the polynomial has no root in (lo, hi) and that sign there (count_real_roots)."""
+    hi = lo + width
+    M = flint.fmpq_mat(len(rows), 3, [v for r in rows for v in r])
+    for r, sign in zip(rows, interval_signs(M, lo, hi)):
+        p = flint.fmpq_poly(r)
+        if sign == 0:
+            continue
+        if p.is_zero():
+            assert sign == 1
+            continue
+        inside = count_real_roots(p, lo, hi) - (1 if sign_at(p, hi) == 0 else 0) if p.degree() > 0 else 0
+        assert inside == 0 and sign_at(p, (lo + hi) / 2) == sign
+
+
+def test_narrowed_keeps_the_number():
+    for poly, lo, hi in ((SQRT2, 1, 2), ((-3, 0, 0, 1), 1, 2), ((-1, -1, 1), 1, 2)):
+        a = RealAlgebraic.from_isolating_interval(list(poly), lo, hi)
+        b = narrowed(a)
+        assert b == a and b.upper - b.lower < F(1, 2**40)
