@@ -20,7 +20,8 @@ import pytest
 from exactinv.cli import main
 
 ROOT = Path(__file__).parent.parent
-EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.json"))
+# a "design" problem (issue 25: a gain, then its closed loop) reports its results nested: not yet in --json
+EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.json") if "design" not in json.loads(p.read_text()))
 CLAIM = {"gamma_star": ("gamma_star", "value"), "forward_euler": ("forward_euler_threshold", "value"),
          "largest_threshold": ("largest_threshold", "value"), "largest_attained": ("largest_threshold", "attained"),
          "valid_steplengths": ("valid_steplengths", "intervals")}
