@@ -90,7 +90,7 @@ def _direct(problem: dict) -> dict:
     """The values `certify` gives when called directly, in this process."""
     report = certify(load_problem(json.dumps(problem)))
     assert report.ok
-    values = {"gamma_star": encode_real(report.results[0].value)}
+    values = {"gamma_star": encode_real(report.results[0].value), "outcome": report.outcome}
     for r in report.results:
         if isinstance(r, LargestThreshold):
             values["largest_threshold"] = encode_real(r.value)
@@ -105,17 +105,23 @@ def test_generated_corpus_equals_certify_called_directly(scheduler, tmp_path):
     _write_dir(tmp_path / "corpus", problems)
     out = tmp_path / "results.jsonl"
     summary = run_batch([tmp_path / "corpus"], out, scheduler=scheduler, timeout=120, progress=False)
-    assert (summary.total, summary.skipped, summary.ran, summary.count("ok")) == (18, 0, 18, 18) and summary.ok
+    assert (summary.total, summary.skipped, summary.ran, summary.count("ok")) == (18, 0, 18, 18)
     assert summary.workers == 2
     records = _records(out)
+    outcomes = []
     for p in problems:
         r = records[p["name"] + ".json"]
         assert r["status"] == "ok" and r["checked"] and r["claims"] >= 3, r
         direct = _direct(p)
+        outcomes.append(direct["outcome"])
+        assert r["outcome"] == direct["outcome"] and (direct["outcome"] == "refuted") == (direct["gamma_star"] == "oo")
         assert r["values"]["gamma_star"] == direct["gamma_star"]
         assert r["values"].get("largest_threshold") == direct.get("largest_threshold")
         got = [[i["lo"], i["hi"], i["lo_closed"], i["hi_closed"]] for i in r["values"].get("valid_steplengths", [])]
         assert got == direct.get("valid_steplengths", [])
+    # a set that is not invariant is refuted (exit 1); the summary counts every outcome
+    assert dict(summary.outcomes) == {o: outcomes.count(o) for o in set(outcomes)}
+    assert summary.exit_code == (1 if "refuted" in outcomes else 0) and summary.ok == (summary.exit_code == 0)
     for c in (1, 3, 5):
         for p in (1, 2):
             values = records[f"decay-{c}-{p}.json"]["values"]
@@ -204,7 +210,7 @@ def test_command_line_batch(scheduler, tmp_path, capsys):
     assert main(["batch", str(tmp_path / "corpus"), "-o", out, "--scheduler", scheduler]) == 0
     assert "2 already in" in capsys.readouterr().out
     (tmp_path / "corpus" / "bad.json").write_text('{"system": {"A": [[1]]}}')
-    assert main(["batch", str(tmp_path / "corpus"), "-o", out, "--scheduler", scheduler]) == 1
+    assert main(["batch", str(tmp_path / "corpus"), "-o", out, "--scheduler", scheduler]) == 2  # bad input
     assert json.loads(open(out).read().splitlines()[-1])["error"].startswith("polyhedron")
     unchecked = str(tmp_path / "unchecked.jsonl")
     assert main(["batch", str(tmp_path / "corpus" / "decay-2-1.json"), "-o", unchecked, "--scheduler", scheduler,

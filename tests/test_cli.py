@@ -34,10 +34,14 @@ def test_method_override(capsys):
 
 
 def test_not_invariant_problem(tmp_path, capsys):
+    """x' = x leaves [-1, 1] through x = 1: refuted (exit 1), and the certificate of the refutation
+    (the witness point) is still written and verified."""
     prob = tmp_path / "p.json"
     prob.write_text(json.dumps({"system": {"A": [["1"]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}))
-    assert main(["certify", str(prob)]) == 0
+    out = tmp_path / "cert.json"
+    assert main(["certify", str(prob), "-o", str(out)]) == 1
     assert "FAILS" in capsys.readouterr().out
+    assert main(["check", str(out)]) == 0  # the certificate (x = 1 leaves) is verified: check exits 0
 
 
 @pytest.mark.parametrize("content, message", [
@@ -70,7 +74,7 @@ def test_certify_never_writes_a_certificate_the_kernel_rejects(tmp_path, monkeyp
     rejected = exactinv_check.CheckReport([("largest_threshold", False, "forced rejection for the test")])
     monkeypatch.setattr(exactinv_check, "check", lambda cert: rejected)
     out = tmp_path / "cert.json"
-    assert main(["certify", str(BOX), "-o", str(out)]) == 1
+    assert main(["certify", str(BOX), "-o", str(out)]) == 4  # the engine's own certificate rejected: an error
     assert not out.exists()
     assert "NOT written" in capsys.readouterr().err
     assert main(["certify", str(BOX), "--no-check", "-o", str(out)]) == 0  # the user's explicit choice

@@ -149,7 +149,8 @@ CASES = [
     ("explain problem file", ["explain", "{d}/problem.json"], 2, ["problem.json", "problem file"], True),
     ("explain tampered", ["explain", "{d}/tampered.json"], 1, ["tampered.json", "REJECTED", "not explained"], False),
     ("explain malformed", ["explain", "{d}/malformed_cert.json"], 1, ["REJECTED"], False),
-    ("oracle rows", ["oracle", "{d}/rows.csv"], 1,
+    # an invalid claim (1) and rows that cannot be judged (2): the highest code, as for every sub-command
+    ("oracle rows", ["oracle", "{d}/rows.csv"], 2,
      ["row 1", "abc", "row 2", "rk4", "row 3", "speed", "row 4", "missing.json", "row 5", "negative",
       "row 6", "row 7", "row 8", "notjson.json", "TIGHT", "INVALID", "10 results judged: 1 invalid"], False),
     ("oracle bad rows only", ["oracle", "{d}/bad_only.csv"], 2, ["row 1", "abc"], False),

@@ -1,8 +1,8 @@
 """exactinv.interfaces.pipeline: partial answers, never all-or-nothing (issue 21,
 item 5).  An Undecided question leaves its claim out; every other claim is
 certified, written and verified by the kernel; the report names what is open
-and why; ``exactinv certify`` exits 1 (an undecided question) with the
-certificate written."""
+and why; ``exactinv certify`` exits 3 (undecided, the exit-code rule of
+exactinv.interfaces.exit_codes) with the certificate written."""
 
 import json
 from fractions import Fraction
@@ -38,7 +38,7 @@ def test_an_undecided_radius_leaves_everything_else_certified(tmp_path, capsys, 
     monkeypatch.setattr("exactinv.paper.rational.absolute_monotonicity_radius", _never_decided)
     cert = tmp_path / "cert.json"
     code, out = _certify_cli(E2, cert, capsys)
-    assert code == 1 and cert.exists()
+    assert code == 3 and cert.exists()
     assert "paper's threshold for backward_euler: UNDECIDED -- absolute monotonicity of backward_euler" in out
     assert "undecided (1, not in the certificate): paper's threshold for backward_euler" in out
     assert "exact valid steplengths for backward_euler: [0, 1)" in out
@@ -71,7 +71,7 @@ def test_the_issue_method_on_the_e2_problem(tmp_path, capsys):
     assert f"use dt <= {float_text(L.safe_float)}" in out and float(float_text(L.safe_float)) == L.safe_float
     types = {c["type"] for c in json.loads(cert.read_text())["claims"]}
     if undecided:
-        assert code == 1 and types == PARTIAL and "UNDECIDED -- absolute monotonicity" in out
+        assert code == 3 and types == PARTIAL and "UNDECIDED -- absolute monotonicity" in out
     else:  # the radius has been decided since: the whole answer
         assert code == 0 and {"rational_threshold", "absolute_monotonicity_radius"} <= types
     assert exactinv_check.check(str(cert)).ok
@@ -102,11 +102,12 @@ def test_a_decided_problem_is_complete():
 
 def test_a_batch_records_the_partial_answer(monkeypatch):
     """A batch task (forked: the patch is inherited) records status "undecided", names the open
-    question and keeps the decided values; the batch's exit code is then 1 (not every record ok)."""
+    question and keeps the decided values, with the outcome "undecided" (a batch's exit code 3)."""
     from exactinv.interfaces.batch.corpus import Task
     from exactinv.interfaces.batch.task import Limits, run_task
 
     monkeypatch.setattr("exactinv.paper.rational.absolute_monotonicity_radius", _never_decided)
     r = run_task(Task("e2", "certify", text=E2.read_text()), Limits(timeout=120))
     assert r["status"] == "undecided" and list(r["undecided"]) == ["paper's threshold for backward_euler"]
+    assert r["outcome"] == "undecided"
     assert r["values"]["largest_threshold"] == "1" and r["values"]["gamma_star"] == "1"

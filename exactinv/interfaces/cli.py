@@ -1,24 +1,26 @@
 """The ``exactinv`` command: parses arguments and prints what the pipeline,
 the kernel, the oracle and the explainer return.
 
-    exactinv certify PROBLEM.json [--method SPEC] [-o CERT.json] [--no-check]
+    exactinv certify PROBLEM.json [--method SPEC] [-o CERT.json] [--no-check] [--json | --latex | --quiet]
     exactinv check CERT.json
     exactinv explain CERT.json
     exactinv oracle RESULTS.csv [--tolerance 1e-9]
-    exactinv batch INPUT... --out RESULTS.jsonl [--workers N | --scheduler ADDRESS]
+    exactinv batch INPUT... --out RESULTS.jsonl [--cert-dir DIR] [--workers N | --scheduler ADDRESS]
                    [--timeout S] [--memory MB] [--check/--no-check] [--tolerance 1e-9]
     exactinv --version
 
-Exit codes: 0 success; 1 a certificate was rejected, an oracle verdict was
-``invalid``, a question was undecided or an internal verification failed;
-2 bad input (the one-line message names the file, key, row or argument).
-No traceback reaches the user: an unexpected exception is reported in one
-line as an internal error (exit 1).
+Exit codes: one rule for every sub-command, :mod:`exactinv.interfaces.exit_codes`
+(0 proved, 1 refuted, 2 bad input, 3 undecided, 4 error; the highest of
+several; 130 interrupted).  No traceback reaches the user: an unexpected
+exception is reported in one line as an internal error (exit 4).  No output
+file is ever one of the inputs (refused, exit 2, before any work), and every
+file is written atomically (:mod:`exactinv.interfaces.files`).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 from typing import Sequence
@@ -29,23 +31,16 @@ from exactinv_check.kernel import BadInput, load as _load_certificate
 from ..core.encode import dumps
 from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
-from .batch import run_batch
+from .batch import BatchInterrupted, run_batch
+from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, exit_code
 from .explain import explain
-from .files import check_writable
+from .files import atomic_write, check_writable, is_certificate, refuse_foreign, refuse_inputs
 from .oracle import judge_batch
 from .pipeline import certify, stages
 from .problem import load_problem, method_from_text
+from .report_output import report_json, report_latex
 
 __all__ = ["main"]
-
-EXIT_CODES = """\
-exit codes:
-  0  success (certify/check: the kernel verified the certificate; oracle: no claim invalid)
-  1  a certificate was rejected, an oracle claim was invalid, a question was
-     undecided, or an internal error (a bug: please report it)
-  2  bad input: a missing or malformed file, key, row or argument (the
-     one-line message names it)
-"""
 
 FORMAT_BRIEF = """\
 problem file (JSON; full format: docs/problem-format.md, schema: docs/problem.schema.json):
@@ -66,9 +61,9 @@ presets: {presets}
 class _Progress:
     """Stage-by-stage progress on a terminal (stderr); silent when piped."""
 
-    def __init__(self, total: int):
+    def __init__(self, total: int, active: bool = True):
         self.total, self.done = total, 0
-        self.active = sys.stderr.isatty()
+        self.active = active and sys.stderr.isatty()
 
     def step(self, what: str) -> None:
         self.done += 1
@@ -89,30 +84,40 @@ def _input_file(path: str, what: str) -> None:
 
 
 def _certify(args) -> int:
-    if args.output:
-        check_writable(args.output, "-o", "cert.json")
     _input_file(args.problem, "problem file")
+    if args.output:  # refused before any work: never an input, never a file exactinv did not write
+        check_writable(args.output, "-o", "cert.json")
+        refuse_inputs(args.output, "-o", [args.problem])
+        refuse_foreign(args.output, "-o", is_certificate, "an exactinv certificate")
     problem = load_problem(args.problem)
     method = method_from_text(args.method) if args.method else None
-    progress = _Progress(stages(method or problem.method, not args.no_check))
+    progress = _Progress(stages(method or problem.method, not args.no_check), active=not args.quiet)
     try:
         report = certify(problem, method, check=not args.no_check, progress=progress.step)
     finally:
         progress.close()
-    print(report.text)
-    if report.check is not None and not report.ok:
+    written = None
+    if report.outcome == "error":  # the kernel rejected the engine's certificate: never written
         print(report.check, file=sys.stderr)
-        if args.output:
-            print(f"exactinv: the kernel rejected the certificate; {args.output} was NOT written", file=sys.stderr)
-        return 1
-    if args.output:
+        print("exactinv: the kernel rejected the certificate (an engine bug: please report it)"
+              + (f"; {args.output} was NOT written" if args.output else ""), file=sys.stderr)
+    elif args.output:
         try:
-            with open(args.output, "w", encoding="utf-8") as fh:
-                fh.write(dumps(report.certificate))
+            atomic_write(args.output, dumps(report.certificate))
         except OSError as exc:
             raise InvalidInput(f"-o {args.output}: cannot write ({exc.strerror or exc})") from None
-        print(f"certificate written to {args.output}")
-    return 1 if report.undecided else 0  # a partial answer: every decided claim certified, one question open
+        written = args.output
+    if args.json:
+        print(json.dumps(report_json(report, written), indent=1))
+    elif args.latex:
+        print(report_latex(report))
+    elif not args.quiet:
+        print(report.text)
+        if written:
+            print(f"certificate written to {written}")
+    for what, why in report.undecided:  # a partial answer: every decided claim certified, this question open
+        print(f"exactinv: undecided: {what}: {why}", file=sys.stderr)
+    return CODES[report.outcome]
 
 
 def _load_cert(path: str) -> dict:
@@ -153,15 +158,19 @@ def _oracle(args) -> int:
     for r in rows:
         if r.verdict is None:
             print(f"exactinv: {args.results}: {r.error}", file=sys.stderr)
-    return 1 if invalid else (2 if errors else 0)
+    return exit_code("bad_input" if r.verdict is None else "refuted" if r.status == "invalid" else "proved"
+                     for r in rows)
 
 
 def _batch(args) -> int:
+    def notice(line: str) -> None:
+        print(f"exactinv: {line}", file=sys.stderr, flush=True)
+
     summary = run_batch(args.inputs, args.out, workers=args.workers, scheduler=args.scheduler,
                         timeout=args.timeout, memory_mb=args.memory, check=args.check,
-                        tolerance=args.tolerance)
+                        tolerance=args.tolerance, cert_dir=args.cert_dir, notice=notice)
     print(summary.table())
-    return 0 if summary.ok else 1
+    return summary.exit_code
 
 
 def _explain(args) -> int:
@@ -198,8 +207,14 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("problem", help="problem JSON file")
     p.add_argument("--method", help='method as JSON, e.g. \'{"taylor": 4}\', or a preset name such as rk4 '
                                     '(overrides the file)')
-    p.add_argument("-o", "--output", help="write the certificate to this JSON file (only if the kernel verifies it)")
+    p.add_argument("-o", "--output", help="write the certificate to this JSON file, atomically (not if the kernel "
+                                          "rejects it; never over an input or a file that is not a certificate)")
     p.add_argument("--no-check", action="store_true", help="skip the built-in run of the trusted kernel")
+    shown = p.add_mutually_exclusive_group()
+    shown.add_argument("--json", action="store_true", help="print the report as JSON (exact numbers as strings, "
+                                                           "as in the certificate) instead of text")
+    shown.add_argument("--latex", action="store_true", help="print the results as a LaTeX tabular (needs amsmath)")
+    shown.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors; the exit code tells")
     p.set_defaults(run=_certify)
     for name, run, what, description in (
             ("check", _check, "re-verify a certificate with the trusted kernel (exactinv_check)", None),
@@ -215,8 +230,8 @@ def _parser() -> argparse.ArgumentParser:
                        epilog="columns: problem (a problem file, relative to the results file), quantity "
                               "(threshold, gamma or radius; default threshold), method (JSON or a preset name; "
                               "default: the problem's), claimed (a float such as 1.5, 1e-3 or inf).\n"
-                              "exit: 1 if a claim is invalid, else 2 if a row could not be judged, else 0.\n\n"
-                              + EXIT_CODES, formatter_class=fmt)
+                              "each row is one outcome: proved (valid or tight), refuted (invalid) or bad input "
+                              "(the row cannot be judged).\n\n" + EXIT_CODES, formatter_class=fmt)
     o.add_argument("results", help="CSV or JSON-lines file of float results")
     o.add_argument("--tolerance", default="1e-9", help="relative tolerance for 'tight' (default 1e-9)")
     o.set_defaults(run=_oracle)
@@ -227,10 +242,16 @@ def _parser() -> argparse.ArgumentParser:
 BATCH_EPILOG = """\
 inputs: a directory (every *.json problem file below it), a .json problem file, a .jsonl file
 (one problem object per line) or an oracle .csv (problem,quantity,method,claimed: each row judged).
+In a directory, .jsonl and .csv files, certificates and results files are not read: each is named
+on stderr with the reason (give a .jsonl or .csv as an INPUT to read it).
 ids: the path below the directory, the file as given, a line's "name" (else FILE:LINE), FILE:ROW.
-each record (one JSON line): id, kind, status (ok, rejected, error, timeout, memory), exact values
-as strings (values / verdict), seconds, peak_mb, error.  A run skips ids already in --out.
-exit: 0 if every task run ended ok and no judged claim was invalid, else 1; 2 for bad arguments.
+each record (one JSON line): id, kind, status (ok, rejected, error, timeout, memory), outcome
+(proved, refuted, bad_input, undecided, error), exact values as strings (values / verdict),
+seconds, peak_mb, error, certificate (with --cert-dir).  A run skips ids already in --out.
+--out is appended to (one whole line per record, never rewritten) and is never an input;
+--cert-dir gets one certificate per problem, named after its id, each written atomically.
+The summary and the exit code cover every record in --out, earlier runs' included.
+Ctrl-C stops the batch with one line "interrupted: N done, resumable" (exit 130).
 """
 
 
@@ -242,6 +263,9 @@ def _batch_parser(sub, fmt) -> None:
                        epilog=BATCH_EPILOG + "\n" + EXIT_CODES, formatter_class=fmt)
     b.add_argument("inputs", nargs="+", metavar="INPUT", help="problem directory, .json, .jsonl or oracle .csv")
     b.add_argument("-o", "--out", required=True, help="results file (JSON lines); appended to, done ids skipped")
+    b.add_argument("--cert-dir", metavar="DIR", help="keep each problem's certificate in DIR (created if missing): "
+                                                     "ID.cert.json, written once the kernel verified it "
+                                                     "(with --no-check: unverified, as asked)")
     where = b.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_positive(int), metavar="N", help="local worker processes (default: every core)")
     where.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask scheduler, e.g. tcp://10.0.0.1:8786")
@@ -268,7 +292,7 @@ def _positive(kind):
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code (0, 1 or 2; see the module docstring).
+    """Run the command line; returns the exit code (:mod:`exactinv.interfaces.exit_codes`).
 
     The paper's box example: A = [[-1, 1], [-1, -1]] on [-1, 1]^2 has gamma* = 1
     (row 1: max h_1 s.t. h^T G = g_1^T A = (-1, 1), h^T b <= 0 is h = (-1, 0, 1, 0)),
@@ -295,23 +319,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         return args.run(args)
     except VerificationFailed as exc:
         print(f"exactinv: internal verification failed: {exc}", file=sys.stderr)
-        return 1
+        return CODES["error"]
     except Undecided as exc:
         print(f"exactinv: undecided: {exc}", file=sys.stderr)
-        return 1
+        return CODES["undecided"]
     except ExactinvException as exc:
         print(f"exactinv: {exc}", file=sys.stderr)
-        return 2
+        return CODES["bad_input"]
+    except BatchInterrupted as stop:
+        print(f"interrupted: {stop.done} done, resumable", file=sys.stderr)
+        return INTERRUPTED
     except KeyboardInterrupt:
         print("exactinv: interrupted", file=sys.stderr)
-        return 130
+        return INTERRUPTED
     except RecursionError:
         print("exactinv: input nested too deeply", file=sys.stderr)
-        return 2
+        return CODES["bad_input"]
     except Exception as exc:  # never a traceback: a one-line report of an engine bug
         print(f"exactinv: internal error (a bug; please report it): {type(exc).__name__}: {exc}", file=sys.stderr)
-        return 1
-
+        return CODES["error"]
 
 if __name__ == "__main__":
     sys.exit(main())

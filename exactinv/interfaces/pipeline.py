@@ -19,20 +19,23 @@ from typing import Any, Callable
 
 import exactinv_check
 
-from ..beyond.largest import ConditionSet, largest_threshold, valid_steplengths
+from ..beyond.ellipsoid_thresholds import EllipsoidForwardEulerThreshold
+from ..beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
+from ..core.encode import encode_real
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from ..paper.forward_euler import _forward_euler_threshold
+from ..paper.forward_euler import ForwardEulerThreshold, _forward_euler_threshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
+from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import _steplength_threshold
 from ..control.optimal_gain import optimal_gain
 from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
-__all__ = ["Report", "certify", "VERTEX_LIMIT", "exact_text", "safe_step_text"]
+__all__ = ["Report", "certify", "VERTEX_LIMIT", "exact_text", "safe_step_text", "result_values"]
 
 VERTEX_LIMIT = 12  # dimension above which the vertex enumeration is not attempted by default
 
@@ -42,7 +45,8 @@ class Report:
     """What :func:`certify` found: the ``results`` (in certificate order), the
     JSON ``certificate``, the kernel's ``check`` report (None when skipped)
     and the human-readable ``lines``.  ``ok``: the kernel verified the
-    certificate (False when the check was skipped).  ``undecided``: the
+    certificate (False when the check was skipped).  ``outcome``: for the
+    exit code (:mod:`exactinv.interfaces.exit_codes`).  ``undecided``: the
     questions exactinv could neither prove nor refute, as (what, why) pairs;
     their claims are absent from the certificate, every other claim is in it
     (a partial answer, never all-or-nothing)."""
@@ -70,6 +74,62 @@ class Report:
     @property
     def text(self) -> str:
         return "\n".join(self.lines)
+
+    @property
+    def refuted(self) -> bool:
+        """The set is not invariant: an exact witness point (a polyhedron) or direction (an ellipsoid)."""
+        return any((isinstance(r, OptimalGamma) and r.witness is not None) or getattr(r, "holds", True) is False
+                   for r in self.results)
+
+    @property
+    def outcome(self) -> str:
+        """``"error"`` if the kernel rejected the certificate, else ``"refuted"`` if the set
+        is not invariant, ``"undecided"`` if a question is undecided, else ``"proved"``
+        (:mod:`exactinv.interfaces.exit_codes`; with the check skipped: what the engine found)."""
+        if self.check is not None and not self.check.ok:
+            return "error"
+        return "refuted" if self.refuted else "undecided" if self.undecided else "proved"
+
+    def values(self) -> dict[str, Any]:
+        """The exact values of the results, encoded as the certificate encodes them (:func:`result_values`).
+
+        >>> import exactinv as ei
+        >>> from exactinv.interfaces.problem import Problem
+        >>> certify(Problem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])), check=False).values()
+        {'gamma_star': '1/2', 'forward_euler': '2'}
+        """
+        return result_values(self.results)
+
+
+_KEYS = ((OptimalGamma, "gamma_star"), (ForwardEulerThreshold, "forward_euler"),
+         (EllipsoidForwardEulerThreshold, "forward_euler"),
+         (SteplengthThreshold, "paper_threshold"), (LargestThreshold, "largest_threshold"))
+
+
+def result_values(results: Any) -> dict[str, Any]:
+    """The exact values of ``results`` by name -- ``gamma_star``, ``forward_euler``,
+    ``paper_threshold``, ``largest_threshold`` (with ``largest_attained``) and
+    ``valid_steplengths`` (intervals ``lo``, ``hi``, ``lo_closed``, ``hi_closed``) --
+    each encoded as the certificate encodes it (:func:`exactinv.core.encode.encode_real`:
+    ``"p/q"``, ``"oo"``, or ``{"poly": [...], "interval": [lo, hi]}``; never a float).
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> result_values([ei.optimal_gamma(S, P), ei.valid_steplengths(S, P, ei.methods.taylor(1))])
+    {'gamma_star': '1/2', 'valid_steplengths': [{'lo': '0', 'hi': '2', 'lo_closed': True, 'hi_closed': True}]}
+    """
+    values: dict[str, Any] = {}
+    for r in results:
+        for kind, key in _KEYS:
+            if isinstance(r, kind):
+                values[key] = encode_real(r.value)
+        if isinstance(r, LargestThreshold):
+            values["largest_attained"] = bool(r.attained)
+        if isinstance(r, ValidSteplengths):
+            values["valid_steplengths"] = [
+                {"lo": encode_real(i.lo), "hi": encode_real(i.hi), "lo_closed": i.lo_closed, "hi_closed": i.hi_closed}
+                for i in r.intervals]
+    return values
 
 
 def stages(method: Method | None, check: bool) -> int:

@@ -16,6 +16,11 @@ shared file system: a task carries the text it works on):
 A file that cannot be read, or a line that is not JSON, still becomes a task:
 its problem is recorded as an error and the batch goes on.
 
+Never read as problems, each named in :attr:`Corpus.ignored` with the
+reason: inside a directory, ``.jsonl`` and ``.csv`` files (give one as an
+input to read it); anywhere, the batch's own results file and certificate
+folder, an exactinv certificate and an ``exactinv batch`` results file.
+
 >>> import json, os, tempfile
 >>> d = tempfile.mkdtemp()
 >>> with open(os.path.join(d, "p.jsonl"), "w") as fh:
@@ -35,8 +40,9 @@ from pathlib import Path
 from typing import Iterable, Sequence
 
 from ...errors import InvalidInput
+from ..files import is_results_file, same_file
 
-__all__ = ["Task", "read_corpus", "done_ids"]
+__all__ = ["Task", "Corpus", "read_corpus", "scan_corpus", "done_ids"]
 
 
 @dataclass(frozen=True)
@@ -52,6 +58,17 @@ class Task:
     row: dict | None = field(default=None, repr=False)
     error: str | None = None
     source: str = ""
+
+
+@dataclass(frozen=True)
+class Corpus:
+    """The tasks of a batch's inputs; ``files``: every file read for them (problem files,
+    ``.jsonl``, ``.csv`` and the problem files its rows name), which no output may be;
+    ``ignored``: (path, why) for every file of the inputs that was not read as a problem."""
+
+    tasks: tuple[Task, ...]
+    files: tuple[str, ...] = ()
+    ignored: tuple[tuple[str, str], ...] = ()
 
 
 def read_corpus(inputs: Sequence[str | os.PathLike]) -> list[Task]:
@@ -72,36 +89,147 @@ def read_corpus(inputs: Sequence[str | os.PathLike]) -> list[Task]:
     ...
     exactinv.errors.InvalidInput: ...a.txt: no such file or directory
     """
+    return list(scan_corpus(inputs).tasks)
+
+
+def scan_corpus(inputs: Sequence[str | os.PathLike], out: str | None = None,
+                cert_dir: str | None = None) -> Corpus:
+    """The :class:`Corpus` of ``inputs``; ``out`` (the results file) and everything in
+    ``cert_dir`` are never read as problems.
+
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> for name, text in (("a.json", '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}}'),
+    ...                    ("old.jsonl", ""), ("c.json", '{"format": "exactinv-certificate"}')):
+    ...     with open(os.path.join(d, name), "w") as fh:
+    ...         _ = fh.write(text)
+    >>> c = scan_corpus([d], out=os.path.join(d, "r.jsonl"))
+    >>> [t.id for t in c.tasks], [(os.path.basename(p), why[:30]) for p, why in c.ignored]
+    (['a.json'], [('c.json', 'an exactinv certificate, not a'), ('old.jsonl', 'a .jsonl file inside a directo')])
+    """
     if isinstance(inputs, (str, os.PathLike)):
         inputs = [inputs]
     if not inputs:
         raise InvalidInput("INPUT: give at least one directory, .json, .jsonl or .csv file")
-    tasks: list[Task] = []
+    scan = _Scan(out, cert_dir)
     for source in map(str, inputs):
-        tasks.extend(_read(source))
+        scan.read(source)
     seen: dict[str, int] = {}
-    for k, t in enumerate(tasks):
+    for k, t in enumerate(scan.tasks):
         if t.id in seen:
             raise InvalidInput(f"{t.id}: two problems have this id (give them different \"name\"s); "
                                "a resumable batch needs unique ids")
         seen[t.id] = k
-    return tasks
+    return Corpus(tuple(scan.tasks), tuple(scan.files), tuple(scan.ignored))
 
 
-def _read(source: str) -> list[Task]:
-    if os.path.isdir(source):
-        root = Path(source)
-        return [_file_task(str(p), p.relative_to(root).as_posix()) for p in sorted(root.rglob("*.json"))]
-    if not os.path.exists(source):
-        raise InvalidInput(f"{source}: no such file or directory")
-    suffix = os.path.splitext(source)[1].lower()
-    if suffix == ".json":
-        return [_file_task(source, source)]
-    if suffix == ".jsonl":
-        return list(_jsonl_tasks(source))
-    if suffix == ".csv":
-        return list(_csv_tasks(source))
-    raise InvalidInput(f"{source}: unknown kind of input (expected a directory, .json, .jsonl or .csv)")
+_IN_FOLDERS = {".jsonl": "a .jsonl file inside a directory is not read (give it as an INPUT to read its problems)",
+               ".csv": "a .csv file inside a directory is not read (give it as an INPUT to judge its rows)"}
+
+
+class _Scan:
+    """The tasks, files read and files ignored, input by input."""
+
+    def __init__(self, out: str | None, cert_dir: str | None):
+        self.out, self.cert_dir = out, cert_dir
+        self.tasks: list[Task] = []
+        self.files: list[str] = []
+        self.ignored: list[tuple[str, str]] = []
+
+    def _ours(self, path: str) -> str | None:
+        """Why ``path`` is this batch's own output (never read), or None."""
+        if self.out is not None and same_file(path, self.out):
+            return "the results file of this batch (--out), not a problem"
+        if self.cert_dir is not None:
+            here = os.path.realpath(path)
+            folder = os.path.realpath(self.cert_dir)
+            if os.path.commonpath([here, folder]) == folder:
+                return "inside --cert-dir (the certificates this batch writes), not a problem"
+        return None
+
+    def read(self, source: str) -> None:
+        if os.path.isdir(source):
+            root = Path(source)
+            found = sorted(p for p in root.rglob("*") if p.suffix.lower() in (".json", ".jsonl", ".csv")
+                           and not p.name.startswith(".") and p.is_file())
+            for p in found:
+                why = self._ours(str(p)) or _IN_FOLDERS.get(p.suffix.lower())
+                if why and self.out is not None and same_file(p, self.out) and os.path.getsize(p) \
+                        and not is_results_file(str(p)):
+                    self.files.append(str(p))  # a file of the user's that --out names: refused by the caller
+                if why:
+                    self.ignored.append((str(p), why))
+                else:
+                    self._json_file(str(p), p.relative_to(root).as_posix())
+            return
+        if not os.path.exists(source):
+            raise InvalidInput(f"{source}: no such file or directory")
+        suffix = os.path.splitext(source)[1].lower()
+        if suffix not in (".json", ".jsonl", ".csv"):
+            raise InvalidInput(f"{source}: unknown kind of input (expected a directory, .json, .jsonl or .csv)")
+        why = self._ours(source)
+        if why:  # refused later as an output that is an input; never read here
+            self.files.append(source)
+            self.ignored.append((source, why))
+        elif suffix == ".json":
+            self._json_file(source, source)
+        elif suffix == ".jsonl":
+            self._jsonl(source)
+        else:
+            self.files.append(source)
+            self.tasks.extend(_csv_tasks(source, self.files))
+
+    def _json_file(self, path: str, task_id: str) -> None:
+        text, error = _text(path)
+        why = _not_a_problem(text) if text is not None else None
+        self.files.append(path)
+        if why:
+            self.ignored.append((path, why))
+        else:
+            self.tasks.append(Task(task_id, "certify", text=text, error=error, source=path))
+
+    def _jsonl(self, path: str) -> None:
+        self.files.append(path)
+        text, error = _text(path)
+        if error:
+            raise InvalidInput(error.replace("problem file", "JSON-lines file"))
+        first = next((line for line in text.splitlines() if line.strip()), "")
+        if _is_record(first):
+            self.ignored.append((path, "an exactinv batch results file, not a file of problems"))
+            return
+        base = os.path.basename(path)
+        for number, line in enumerate(text.splitlines(), 1):
+            if line.strip():
+                self.tasks.append(Task(_line_name(line) or f"{base}:{number}", "certify", text=line,
+                                       source=f"{path}:{number}"))
+
+
+def _is_record(line: str) -> bool:
+    try:
+        data = json.loads(line)
+    except (ValueError, RecursionError):
+        return False
+    return isinstance(data, dict) and isinstance(data.get("id"), str) and "status" in data
+
+
+def _not_a_problem(text: str) -> str | None:
+    """Why a .json file's ``text`` is exactinv's own output rather than a problem, or None."""
+    head = text.lstrip()[:1]
+    if head != "{":
+        return None
+    if '"exactinv-certificate"' in text[:4096]:
+        try:
+            data = json.loads(text)
+        except (ValueError, RecursionError):
+            data = None
+        if isinstance(data, dict) and data.get("format") == "exactinv-certificate":
+            return "an exactinv certificate, not a problem"
+    first = text.lstrip().split("\n", 1)[0]
+    if "\n" in text.strip() and _is_record(first):
+        return "an exactinv batch results file, not a problem"
+    if _is_record(text):
+        return "an exactinv batch results file, not a problem"
+    return None
 
 
 def _text(path: str) -> tuple[str | None, str | None]:
@@ -115,21 +243,6 @@ def _text(path: str) -> tuple[str | None, str | None]:
         return None, f"{path}: not a text file (a problem file is UTF-8 JSON)"
 
 
-def _file_task(path: str, task_id: str) -> Task:
-    text, error = _text(path)
-    return Task(task_id, "certify", text=text, error=error, source=path)
-
-
-def _jsonl_tasks(path: str) -> Iterable[Task]:
-    text, error = _text(path)
-    if error:
-        raise InvalidInput(error.replace("problem file", "JSON-lines file"))
-    base = os.path.basename(path)
-    for number, line in enumerate(text.splitlines(), 1):
-        if line.strip():
-            yield Task(_line_name(line) or f"{base}:{number}", "certify", text=line, source=f"{path}:{number}")
-
-
 def _line_name(line: str) -> str | None:
     try:
         name = json.loads(line).get("name")
@@ -138,7 +251,7 @@ def _line_name(line: str) -> str | None:
     return name if isinstance(name, str) and name else None
 
 
-def _csv_tasks(path: str) -> Iterable[Task]:
+def _csv_tasks(path: str, files: list[str]) -> Iterable[Task]:
     base, stem = os.path.dirname(os.path.abspath(path)), os.path.basename(path)
     try:
         with open(path, encoding="utf-8", newline="") as fh:
@@ -155,6 +268,7 @@ def _csv_tasks(path: str) -> Iterable[Task]:
         named, error = row.get("problem"), None
         problem = named
         if isinstance(named, str) and named and not named.lstrip().startswith("{"):
+            files.append(os.path.join(base, named))
             problem, error = _text(os.path.join(base, named))
         yield Task(f"{stem}:{k}", "judge", row={**row, "problem": problem}, error=error, source=str(named))
 

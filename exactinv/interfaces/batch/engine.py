@@ -8,9 +8,17 @@ dask-kubernetes; docs/scale.md).  Each task runs on a worker in a forked
 child under the per-task time and memory limits (:mod:`.sandbox`), so a
 runaway problem is stopped and recorded and the batch goes on.
 
-Resumable: ids already in ``out`` are skipped, and every record is written
-and flushed the moment it arrives, so an interrupted batch loses at most the
-tasks in flight.
+Resumable: ids already in ``out`` are skipped, and every record is appended
+as one whole line the moment it arrives (:mod:`.results`), so an interrupted
+batch loses at most the tasks in flight.  Ctrl-C raises
+:class:`BatchInterrupted` after a quiet shutdown: the futures are cancelled,
+the cluster is closed, and the worker processes of a local cluster ignore
+the signal (:func:`_connect`), so no worker prints a traceback.
+
+Nothing the user gave is overwritten: ``out`` and every certificate of
+``cert_dir`` are refused (:class:`InvalidInput`, before any work) when they
+are one of the inputs, and the batch never reads its own output as a problem
+(:func:`.corpus.scan_corpus`).
 
 Dask is an optional extra (``pip install "exactinv[batch]"``), imported only
 when a batch actually runs.
@@ -20,22 +28,33 @@ from __future__ import annotations
 
 import contextlib
 import itertools
-import json
 import logging
 import math
 import os
 import sys
 import time
-from typing import Any, Sequence, TextIO
+from typing import Any, Callable, Sequence, TextIO
 
 from ...core.scalars import to_rational
 from ...errors import InvalidInput
-from ..files import check_writable
-from .corpus import Task, done_ids, read_corpus
+from ..files import atomic_write, check_writable, is_results_file, refuse_foreign, refuse_inputs
+from .certdir import prepare_cert_dir
+from .corpus import Task, scan_corpus
+from .results import ResultsFile, read_records
+from .signals import CtrlC, sigint_ignored
 from .summary import BatchSummary, Tally
 from .task import Limits, engine_version, run_task
 
-__all__ = ["run_batch"]
+__all__ = ["run_batch", "BatchInterrupted"]
+
+
+class BatchInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped a batch: ``done`` tasks of the corpus are recorded in ``out``
+    (earlier runs' included); running the batch again does the rest."""
+
+    def __init__(self, done: int, out: str):
+        super().__init__(f"interrupted: {done} done, resumable")
+        self.done, self.out = done, out
 
 _WINDOW = 4  # tasks in flight per worker thread: enough to keep workers busy, few enough to scale to 10^5 tasks
 _CONNECT_TIMEOUT = "30s"  # to reach an existing scheduler
@@ -44,16 +63,22 @@ _RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may gr
 
 def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, workers: int | None = None,
               scheduler: str | None = None, timeout: float | None = None, memory_mb: float | None = None,
-              check: bool = True, tolerance: str = "1e-9", progress: bool | None = None) -> BatchSummary:
+              check: bool = True, tolerance: str = "1e-9", progress: bool | None = None,
+              cert_dir: str | os.PathLike | None = None,
+              notice: Callable[[str], None] | None = None) -> BatchSummary:
     """Certify every problem (judge every oracle row) of ``inputs`` -- problem
     directories, ``.json``, ``.jsonl`` or oracle ``.csv`` files
     (:mod:`.corpus`) -- and append one JSON record per task to ``out``,
     skipping ids already there.  ``workers``: local worker processes (default:
     every core); ``scheduler``: the address of an existing Dask scheduler
     instead.  ``timeout`` (seconds) and ``memory_mb`` limit each task;
-    ``check`` runs the trusted kernel on every certificate.  ``progress``: a
-    progress bar on stderr (default: when stderr is a terminal).  Every value
-    in ``out`` is exact (see :mod:`.task`).
+    ``check`` runs the trusted kernel on every certificate; ``cert_dir``
+    keeps each problem's certificate there (:mod:`.certdir`).  ``progress``:
+    a progress bar on stderr (default: when stderr is a terminal);
+    ``notice(line)``: told, before any work, of every file of the inputs that
+    is not read and why.  Every value in ``out`` is exact (see :mod:`.task`).
+    The summary covers every record of ``out``.  Ctrl-C raises
+    :class:`BatchInterrupted` (a ``KeyboardInterrupt``).
 
     >>> import os, tempfile
     >>> corpus = tempfile.mkdtemp()
@@ -63,27 +88,90 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     >>> with open(out, "w") as fh:  # as if an earlier run had done it
     ...     _ = fh.write('{"id": "box.json", "status": "ok"}\\n')
     >>> summary = run_batch([corpus], out, progress=False)
-    >>> summary.total, summary.skipped, summary.ran
-    (1, 1, 0)
+    >>> summary.total, summary.skipped, summary.ran, summary.exit_code
+    (1, 1, 0, 0)
     >>> run_batch([corpus], out, workers=0)
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: workers: expected a positive integer, got 0
+    >>> run_batch([corpus], os.path.join(corpus, "box.json"))
+    Traceback (most recent call last):
+    ...
+    exactinv.errors.InvalidInput: --out ...box.json: this is the input ...box.json; exactinv never overwrites an input (choose another file name)
     """
     limits = _limits(timeout, memory_mb, check, tolerance)
     workers = _workers(workers, scheduler)
     out = os.fspath(out) if isinstance(out, (str, os.PathLike)) else out
     _check_out(out)
-    tasks = read_corpus(inputs)
-    done = done_ids(out)
-    todo = [t for t in tasks if t.id not in done]
-    tally, start = Tally(), time.monotonic()
-    threads = 0
+    cert_dir = os.fspath(cert_dir) if isinstance(cert_dir, (str, os.PathLike)) else cert_dir
+    if cert_dir is not None and (not isinstance(cert_dir, str) or not cert_dir):
+        raise InvalidInput(f"cert_dir: expected a directory name, got {cert_dir!r}")
+    if cert_dir is not None:
+        _refuse_cert_dir_over_inputs(cert_dir, inputs)
+    corpus = scan_corpus(inputs, out=out, cert_dir=cert_dir)
+    refuse_inputs(out, "--out", corpus.files)
+    refuse_foreign(out, "--out", is_results_file, "an exactinv batch results file")
+    if notice is not None:
+        for line in _skipped_lines(corpus.ignored):
+            notice(line)
+    done = set(read_records(out))
+    todo = [t for t in corpus.tasks if t.id not in done]
+    targets: dict[str, str] = {}
+    if cert_dir is not None:
+        limits = Limits(limits.timeout, limits.memory_mb, limits.check, limits.tolerance, keep_certificate=True)
+        targets = prepare_cert_dir(cert_dir, [t.id for t in todo if t.kind == "certify"], corpus.files, out)
+    start, threads = time.monotonic(), 0
+    ran = 0
     if todo:
         bar = _Bar(len(todo), sys.stderr if (progress if progress is not None else sys.stderr.isatty()) else None)
-        threads = _run(_dask(), todo, limits, workers, scheduler, out, tally, bar)
+        try:
+            threads, ran = _run(_dask(), todo, limits, workers, scheduler, out, targets, bar)
+        except _Interrupted as stop:
+            bar.close()
+            raise BatchInterrupted(len(corpus.tasks) - len(todo) + stop.written, out) from None
         bar.close()
-    return tally.summary(str(out), len(tasks), len(tasks) - len(todo), time.monotonic() - start, threads)
+    tally = Tally()
+    for record in read_records(out).values():
+        tally.add(record)
+    return tally.summary(str(out), len(corpus.tasks), len(corpus.tasks) - len(todo), ran,
+                         time.monotonic() - start, threads, corpus.ignored)
+
+
+def _skipped_lines(ignored: Sequence[tuple[str, str]]) -> list[str]:
+    """One line per file not read, or one per folder and reason when more than three share them.
+
+    >>> _skipped_lines([("d/a.json", "why"), ("c/1.cert.json", "cert")] + [(f"c/{k}.cert.json", "cert") for k in range(2, 5)])
+    ['skipped d/a.json: why', 'skipped 4 files in c: cert']
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    for path, why in ignored:
+        groups.setdefault((os.path.dirname(path), why), []).append(path)
+    lines = []
+    for (folder, why), paths in groups.items():
+        if len(paths) > 3:
+            lines.append(f"skipped {len(paths)} files in {folder}: {why}")
+        else:
+            lines.extend(f"skipped {path}: {why}" for path in paths)
+    return lines
+
+
+def _refuse_cert_dir_over_inputs(cert_dir: str, inputs: Any) -> None:
+    """--cert-dir may lie inside an input directory (its files are then not read), but may not be
+    an input or hold one: its files are never read as problems."""
+    folder = os.path.realpath(cert_dir)
+    for given in [inputs] if isinstance(inputs, (str, os.PathLike)) else list(inputs):
+        here = os.path.realpath(given)
+        if os.path.commonpath([here, folder]) == folder:
+            raise InvalidInput(f"--cert-dir {cert_dir}: holds the input {os.fspath(given)}; give the certificates "
+                               "a directory of their own")
+
+
+class _Interrupted(Exception):
+    """Ctrl-C inside :func:`_run`, after the quiet shutdown; ``written`` records were appended."""
+
+    def __init__(self, written: int):
+        super().__init__(written)
+        self.written = written
 
 
 def _limits(timeout: Any, memory_mb: Any, check: Any, tolerance: Any) -> Limits:
@@ -114,15 +202,6 @@ def _check_out(out: Any) -> None:
     check_writable(out, "out", "results.jsonl")
 
 
-def _end_torn_line(path: str, sink: TextIO) -> None:
-    """Start on a fresh line if an interrupted run left a torn last line (it then counts as not done)."""
-    if sink.tell() > 0:
-        with open(path, "rb") as fh:
-            fh.seek(-1, os.SEEK_END)
-            if fh.read(1) != b"\n":
-                sink.write("\n")
-
-
 def _dask() -> Any:
     """The module dask.distributed, or InvalidInput saying how to install it."""
     try:
@@ -134,16 +213,21 @@ def _dask() -> Any:
 
 
 def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
-         out: str, tally: Tally, bar: "_Bar") -> int:
+         out: str, targets: dict[str, str], bar: "_Bar") -> tuple[int, int]:
     """Submit ``todo`` to Dask, about ``_WINDOW`` tasks per worker thread in flight (re-counted as
-    workers join or leave), append each record to ``out`` as it comes; the most worker threads seen."""
-    client, cluster = _connect(dask, workers, scheduler)
-    stack = contextlib.ExitStack()
+    workers join or leave), append each record to ``out`` as it comes (its certificate to
+    ``targets[id]`` first); (the most worker threads seen, records written).  Ctrl-C: a quiet
+    shutdown, then :class:`_Interrupted`."""
+    client = cluster = sink = None
+    futures: dict[Any, Task] = {}
+    written, interrupted = 0, False
+    ctrl_c = CtrlC()
     try:
+        client, cluster = _connect(dask, workers, scheduler)
+        ctrl_c.__enter__()
         _same_engine(client)
-        sink = stack.enter_context(open(out, "a", encoding="utf-8"))
-        _end_torn_line(out, sink)
-        pending, futures, stream = iter(todo), {}, dask.as_completed()
+        sink = ResultsFile(out)
+        pending, stream = iter(todo), dask.as_completed()
         threads, counted = _threads(client), time.monotonic()
         most = threads
 
@@ -156,20 +240,56 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
         top_up()
         for future in stream:
             record = _record(future, futures.pop(future))
-            sink.write(json.dumps(record) + "\n")
-            sink.flush()
-            tally.add(record)
+            with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
+                _keep_certificate(record, targets)
+                sink.append(record)
+                written += 1
             bar.step(record["status"])
             if time.monotonic() - counted > _RECOUNT:
                 threads, counted = _threads(client), time.monotonic()
                 most = max(most, threads)
             top_up()
-        return most
+        return most, written
+    except KeyboardInterrupt:
+        interrupted = True
+        raise _Interrupted(written) from None
     finally:
-        stack.close()
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        ctrl_c.__exit__()
+        _shutdown(client, cluster, sink, list(futures), quiet=interrupted)
+
+
+def _keep_certificate(record: dict, targets: dict[str, str]) -> None:
+    """Write the certificate a record carries (only verified ones do) to its file; the record names it."""
+    text = record.pop("certificate_json", None)
+    path = targets.get(record["id"])
+    if text is not None and path is not None:
+        atomic_write(path, text)
+        record["certificate"] = path
+
+
+def _shutdown(client: Any, cluster: Any, sink: ResultsFile | None, futures: list, quiet: bool) -> None:
+    """Close the results file, cancel what is in flight, close the client and our own cluster.
+    After Ctrl-C: quietly (Dask's loggers muted, a second Ctrl-C ignored meanwhile)."""
+    muted = [logging.getLogger(name) for name in ("distributed", "tornado", "asyncio")] if quiet else []
+    levels = [log.level for log in muted]
+    for log in muted:
+        log.setLevel(logging.CRITICAL + 1)
+    try:
+        with sigint_ignored() if quiet else contextlib.nullcontext():
+            if sink is not None:
+                sink.close()
+            if client is not None:
+                if futures:
+                    with contextlib.suppress(Exception):  # the cluster may already be gone
+                        client.cancel(futures, force=True)
+                with contextlib.suppress(Exception):
+                    client.close(timeout=10)
+            if cluster is not None:
+                with contextlib.suppress(Exception):
+                    cluster.close(timeout=10)
+    finally:
+        for log, level in zip(muted, levels):
+            log.setLevel(level)
 
 
 def _threads(client: Any) -> int:
@@ -191,9 +311,29 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
             return dask.Client(scheduler, timeout=_CONNECT_TIMEOUT), None
         except (OSError, TimeoutError, ValueError) as exc:
             raise InvalidInput(f"scheduler: cannot connect to {scheduler} ({exc})") from None
-    cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                dashboard_address=None, silence_logs=logging.ERROR)
-    return dask.Client(cluster), cluster
+    # The worker processes ignore SIGINT (a Ctrl-C in the terminal reaches every process of the job):
+    # they start with it ignored (inherited from this process while the cluster starts), and the
+    # preload re-ignores it after importing cysignals (pplpy's), which installs its own handler.
+    # This process alone handles Ctrl-C and shuts the cluster down quietly: no worker traceback.
+    with sigint_ignored():
+        cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                    dashboard_address=None, silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
+    try:
+        return dask.Client(cluster), cluster
+    except BaseException:
+        cluster.close()
+        raise
+
+
+_WORKER_PRELOAD = """\
+# exactinv batch: a local worker ignores Ctrl-C (the process that started the batch handles it)
+import signal
+try:
+    import cysignals.signals  # installs a SIGINT handler when first imported (by pplpy)
+except ImportError:
+    pass
+signal.signal(signal.SIGINT, signal.SIG_IGN)
+"""
 
 
 def _same_engine(client: Any) -> None:

@@ -24,6 +24,7 @@ Linux (POSIX ``fork`` and ``RLIMIT_AS``).
 
 from __future__ import annotations
 
+import ctypes
 import json
 import math
 import os
@@ -116,6 +117,7 @@ def _limit(timeout: float | None, memory_mb: float | None) -> None:
     # pplpy, would attach a debugger) and no core dump
     for sig in _FATAL:
         signal.signal(sig, signal.SIG_DFL)
+    _die_with_parent()
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     if memory_mb is not None:
         ceiling = min(_address_space() + int(memory_mb * 2**20), 2**62)
@@ -123,6 +125,18 @@ def _limit(timeout: float | None, memory_mb: float | None) -> None:
     if timeout is not None:
         cpu = int(math.ceil(timeout)) + _CPU_GRACE
         resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+
+
+def _die_with_parent() -> None:
+    """SIGKILL this child when the thread that forked it dies (Linux ``PR_SET_PDEATHSIG``): a worker
+    closed by an interrupted batch leaves no orphan computing on."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        return
+    if os.getppid() == 1:  # the parent died before prctl took effect
+        os._exit(3)
 
 
 def _address_space() -> int:

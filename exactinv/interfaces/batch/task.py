@@ -11,8 +11,14 @@ measurements, not results.
 
 >>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": 2}}'
 >>> r = run_task(Task("box", "certify", text=box), Limits(timeout=60))
->>> r["status"], r["values"]["gamma_star"], r["values"]["largest_threshold"]
-('ok', '1/2', '2')
+>>> r["status"], r["outcome"], r["values"]["gamma_star"], r["values"]["largest_threshold"]
+('ok', 'proved', '1/2', '2')
+
+Each record also has an ``outcome`` (:mod:`exactinv.interfaces.exit_codes`):
+``proved``, ``refuted`` (the set is not invariant; a judged claim is
+invalid), ``undecided``, ``bad_input`` (the problem or row cannot be read)
+or ``error`` (an engine failure, a certificate the kernel rejected, a
+timeout, the memory limit).
 """
 
 from __future__ import annotations
@@ -24,21 +30,18 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from ...beyond.largest import LargestThreshold, ValidSteplengths
 from ...core.algebraic import RealAlgebraic
-from ...core.encode import encode_real
+from ...core.encode import dumps, encode_real
 from ...core.scalars import Infinity
 from ...errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
-from ...paper.forward_euler import ForwardEulerThreshold
-from ...paper.gamma_star import OptimalGamma
-from ...paper.polynomial import SteplengthThreshold
+from ..exit_codes import CODES
 from ..oracle import judge_row
 from ..pipeline import certify
 from ..problem import load_problem
 from .corpus import Task
 from .sandbox import run_limited
 
-__all__ = ["Limits", "STATUSES", "run_task", "engine_version"]
+__all__ = ["Limits", "STATUSES", "run_task", "engine_version", "record_outcome"]
 
 STATUSES = ("ok", "rejected", "error", "timeout", "memory")
 """A record's status: the kernel verified the certificate (or, with
@@ -46,8 +49,28 @@ STATUSES = ("ok", "rejected", "error", "timeout", "memory")
 its verdict is in ``verdict``); the kernel rejected it; bad input or an
 engine failure (``error`` says which); the time limit; the memory limit."""
 
-_KEYS = ((OptimalGamma, "gamma_star"), (ForwardEulerThreshold, "forward_euler"),
-         (SteplengthThreshold, "paper_threshold"), (LargestThreshold, "largest_threshold"))
+
+
+def record_outcome(record: dict) -> str:
+    """The outcome of a record (its ``outcome``; for a record written before outcomes were
+    recorded: ``refuted`` for an invalid verdict or gamma* = oo, ``error`` for a status other
+    than ok, else ``proved``).
+
+    >>> record_outcome({"status": "ok", "values": {"gamma_star": "oo"}}), record_outcome({"status": "timeout"})
+    ('refuted', 'error')
+    """
+    outcome = record.get("outcome")
+    if outcome in CODES:
+        return outcome
+    if record.get("status") == "undecided":
+        return "undecided"
+    if record.get("status") != "ok":
+        return "error"
+    verdict, values = record.get("verdict"), record.get("values")
+    if (isinstance(verdict, dict) and verdict.get("status") == "invalid") or (
+            isinstance(values, dict) and values.get("gamma_star") == "oo"):
+        return "refuted"
+    return "proved"
 
 
 @dataclass(frozen=True)
@@ -55,12 +78,15 @@ class Limits:
     """How each task runs: wall-clock ``timeout`` (seconds) and ``memory_mb``
     (megabytes beyond what the worker holds) per task, None for no limit;
     ``check``: run the trusted kernel on each certificate; ``tolerance``:
-    the oracle's relative tolerance for ``tight``."""
+    the oracle's relative tolerance for ``tight``; ``keep_certificate``: the
+    record carries the certificate's JSON text (``certificate_json``) for the
+    machine that writes the results (``--cert-dir``) -- not if the kernel rejected it."""
 
     timeout: float | None = None
     memory_mb: float | None = None
     check: bool = True
     tolerance: str = "1e-9"
+    keep_certificate: bool = False
 
 
 def engine_version() -> str:
@@ -90,10 +116,11 @@ def run_task(task: Task, limits: Limits) -> dict:
     """
     head = {"id": task.id, "kind": task.kind, "source": task.source}
     if task.error:
-        return {**head, "status": "error", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
+        return {**head, "status": "error", "outcome": "bad_input", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
     outcome = run_limited(_solve, (task, limits), limits.timeout, limits.memory_mb)
     record = dict(outcome.value) if outcome.status == "ok" else {
-        "status": "error" if outcome.status == "crash" else outcome.status, "error": outcome.message}
+        "status": "error" if outcome.status == "crash" else outcome.status, "outcome": "error",
+        "error": outcome.message}
     return {**head, **record, "seconds": round(outcome.seconds, 4), "cpu_seconds": round(outcome.cpu_seconds, 4),
             "peak_mb": round(outcome.peak_mb, 1)}
 
@@ -101,19 +128,22 @@ def run_task(task: Task, limits: Limits) -> dict:
 def _solve(job: tuple[Task, Limits]) -> dict:
     task, limits = job
     try:
-        return _certify(task, limits.check) if task.kind == "certify" else _judge(task, limits.tolerance)
+        if task.kind == "certify":
+            return _certify(task, limits.check, limits.keep_certificate)
+        return _judge(task, limits.tolerance)
     except VerificationFailed as exc:
-        return {"status": "error", "error": f"internal verification failed: {exc}"}
+        return {"status": "error", "outcome": "error", "error": f"internal verification failed: {exc}"}
     except Undecided as exc:
-        return {"status": "error", "error": f"undecided: {exc}"}
+        return {"status": "error", "outcome": "undecided", "error": f"undecided: {exc}"}
     except ExactinvException as exc:
-        return {"status": "error", "error": str(exc)}
+        return {"status": "error", "outcome": "bad_input", "error": str(exc)}
     except RecursionError:
-        return {"status": "error", "error": "input nested too deeply"}
+        return {"status": "error", "outcome": "bad_input", "error": "input nested too deeply"}
     except MemoryError:
         raise
     except Exception as exc:  # an engine bug: recorded, never the end of the batch
-        return {"status": "error", "error": f"internal error (a bug; please report it): {type(exc).__name__}: {exc}"}
+        return {"status": "error", "outcome": "error",
+                "error": f"internal error (a bug; please report it): {type(exc).__name__}: {exc}"}
 
 
 def _folder(source: str) -> str | None:
@@ -123,7 +153,7 @@ def _folder(source: str) -> str | None:
     return str(Path(path).resolve().parent) if path else None
 
 
-def _certify(task: Task, check: bool) -> dict:
+def _certify(task: Task, check: bool, keep: bool = False) -> dict:
     text = task.text or ""
     if not text.lstrip().startswith("{"):
         raise InvalidInput("expected a problem: a JSON object with \"system\" and \"polyhedron\"")
@@ -131,44 +161,31 @@ def _certify(task: Task, check: bool) -> dict:
     if problem.name == "problem" and task.kind == "certify" and task.source.endswith(".json"):
         problem = replace(problem, name=Path(task.source).stem)  # a file's name, as `exactinv certify` does
     report = certify(problem, check=check)
-    record = {"status": "ok" if not check or report.ok else "rejected",
+    record = {"status": "ok" if not check or report.ok else "rejected", "outcome": report.outcome,
               "name": report.problem.name, "method": report.method.name if report.method else None,
-              "checked": check, "claims": len(report.certificate["claims"]), "values": _values(report.results)}
+              "checked": check, "claims": len(report.certificate["claims"]), "values": report.values()}
     if check and not report.ok:
         record["error"] = f"the kernel rejected the certificate: {report.check}"
+    elif keep:  # verified (or unchecked, as asked): the machine that writes the results keeps it
+        record["certificate_json"] = dumps(report.certificate)
     if report.undecided:  # a partial answer: status "undecided", the decided claims in "values"
         record["undecided"] = {what: why for what, why in report.undecided}
         record["status"] = "undecided" if record["status"] == "ok" else record["status"]
     return record
 
 
-def _values(results: tuple) -> dict:
-    values: dict[str, Any] = {}
-    for r in results:
-        for kind, key in _KEYS:
-            if isinstance(r, kind):
-                values[key] = encode_real(r.value)
-        if isinstance(r, LargestThreshold):
-            values["largest_attained"] = bool(r.attained)
-        if isinstance(r, ValidSteplengths):
-            values["valid_steplengths"] = [
-                {"lo": encode_real(i.lo), "hi": encode_real(i.hi), "lo_closed": i.lo_closed, "hi_closed": i.hi_closed}
-                for i in r.intervals]
-    return values
-
-
 def _judge(task: Task, tolerance: str) -> dict:
     row = judge_row(task.row or {}, tolerance=tolerance, number=int(task.id.rsplit(":", 1)[-1]))
     record = {"name": row.name, "method": row.method, "quantity": row.quantity, "claimed": row.claimed}
     if row.verdict is None:
-        return {"status": "error", **record, "error": row.error}
+        return {"status": "error", "outcome": "bad_input", **record, "error": row.error}
     v = row.verdict
     verdict = {"status": str(v.status), "exact": _jsonable(v.exact), "message": v.message}
     if v.relative_gap is not None:
         verdict["relative_gap"] = str(v.relative_gap)
     if v.counterexample is not None:
         verdict["counterexample"] = _jsonable(v.counterexample)
-    return {"status": "ok", **record, "verdict": verdict}
+    return {"status": "ok", "outcome": "refuted" if v.status == "invalid" else "proved", **record, "verdict": verdict}
 
 
 def _jsonable(x: Any) -> Any:
