@@ -15,13 +15,14 @@ import pytest
 
 import exactinv_check
 from exactinv.cli import main
-from exactinv.interfaces.exit_codes import CODES, EXIT_CODES, INTERRUPTED, exit_code
+from exactinv.interfaces.exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 
 ROOT = Path(__file__).parent.parent
 BOX = json.loads((ROOT / "examples" / "paper_box_taylor4.json").read_text())
 SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
-# r = 1/(1 - z + z^2/4 - z^3/40): its radius of absolute monotonicity is undecided (issue 21)
-UNDECIDED = {"rational": {"num": ["1"], "den": ["1", "-1", "1/4", "-1/40"]}}
+# r = 1/((1 - z)(1 - z + z^2/2)): poles 1 and 1 +- i, a complex pair with exactly p*'s real
+# part -- its radius of absolute monotonicity is undecided (docs/design.md, what stays undecided)
+UNDECIDED = {"rational": {"num": ["1"], "den": ["1", "-2", "3/2", "-1/2"]}}
 
 
 def test_the_rule_reads_the_same_everywhere():
@@ -34,7 +35,7 @@ def test_the_rule_reads_the_same_everywhere():
         proc = subprocess.run([sys.executable, "-m", "exactinv", *command, "--help"], capture_output=True, text=True)
         assert proc.returncode == 0 and EXIT_CODES in proc.stdout, command
     numbers = [int(n) for n in re.findall(r"^  (\d+)  ", EXIT_CODES, re.M)]
-    assert numbers == sorted(CODES.values()) + [INTERRUPTED]
+    assert numbers == sorted(CODES.values()) + [INTERRUPTED, PIPE_CLOSED]
 
 
 def test_several_outcomes_exit_with_the_highest_code():
@@ -121,3 +122,18 @@ def test_batch_exit_codes(tmp_path, capsys):
     assert [records[i]["outcome"] for i in ("decay.json", "grows.json", "undecided.json")] == \
         ["proved", "refuted", "undecided"]
     assert "outcomes: proved 1, refuted 1, undecided 1 (exit code 3)" in capsys.readouterr().out
+
+
+def test_a_closed_pipe_stops_quietly():
+    """`exactinv certify P.json | head -0`: the reader is gone before the first line;
+    no traceback, no 'internal error', exit 141 (the shell's code for SIGPIPE)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    proc = subprocess.Popen([sys.executable, "-m", "exactinv", "certify", "examples/paper_box_taylor4.json"],
+                            cwd=root, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 141, err
+    assert err == b""

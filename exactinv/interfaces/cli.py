@@ -32,7 +32,7 @@ from ..core.encode import dumps
 from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
 from .batch import BatchInterrupted, run_batch
-from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, exit_code
+from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 from .explain import explain
 from .files import atomic_write, check_writable, is_certificate, refuse_foreign, refuse_inputs
 from .oracle import judge_batch
@@ -316,7 +316,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     args = _parser().parse_args(argv)
     try:
-        return args.run(args)
+        code = args.run(args)
+        sys.stdout.flush()  # here, not at exit: a closed pipe is then caught below
+        return code
     except VerificationFailed as exc:
         print(f"exactinv: internal verification failed: {exc}", file=sys.stderr)
         return CODES["error"]
@@ -332,12 +334,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("exactinv: interrupted", file=sys.stderr)
         return INTERRUPTED
+    except BrokenPipeError:
+        _drop_stdout()
+        return PIPE_CLOSED
     except RecursionError:
         print("exactinv: input nested too deeply", file=sys.stderr)
         return CODES["bad_input"]
     except Exception as exc:  # never a traceback: a one-line report of an engine bug
         print(f"exactinv: internal error (a bug; please report it): {type(exc).__name__}: {exc}", file=sys.stderr)
         return CODES["error"]
+
+def _drop_stdout() -> None:
+    """Point stdout at /dev/null: the reader is gone, and Python's flush at exit must not fail."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
+
 
 if __name__ == "__main__":
     sys.exit(main())

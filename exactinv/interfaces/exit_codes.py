@@ -34,12 +34,13 @@ from __future__ import annotations
 
 from typing import Iterable
 
-__all__ = ["CODES", "EXIT_CODES", "INTERRUPTED", "exit_code"]
+__all__ = ["CODES", "EXIT_CODES", "INTERRUPTED", "PIPE_CLOSED", "exit_code"]
 
 CODES = {"proved": 0, "refuted": 1, "bad_input": 2, "undecided": 3, "error": 4}
 """The exit code of each outcome."""
 
 INTERRUPTED = 130  # 128 + SIGINT, the shell's convention
+PIPE_CLOSED = 141  # 128 + SIGPIPE: what `yes | head` reports for yes
 
 EXIT_CODES = """\
 exit codes (every sub-command; several outcomes -- a batch, an oracle file -- exit with the highest):
@@ -53,6 +54,7 @@ exit codes (every sub-command; several outcomes -- a batch, an oracle file -- ex
   4  error: the engine could not finish -- an internal error (a bug: please report it), a
      certificate of its own the kernel rejected, a batch task that timed out or ran out of memory
   130  interrupted (Ctrl-C); a batch is resumable: run the same command again
+  141  the reader of the output went away (e.g. `exactinv certify P.json | head`): stops quietly
 """
 """The rule as ``exactinv --help`` prints it (README's "Command line" section quotes it verbatim)."""
 
