@@ -295,9 +295,9 @@ def test_unknown_keys_are_rejected():
 def test_hostile_number_strings_are_rejected_fast(number):
     cert = _genuine("box-taylor4")
     cert["problem"]["method"]["denominator"] = [number]
-    start = time.perf_counter()
+    start = time.process_time()
     _rejected(cert)
-    assert time.perf_counter() - start < 5  # a hang would never get here (not a timing claim)
+    assert time.process_time() - start < 5  # a hang would never get here (CPU time, not a timing claim)
 
 
 def test_json_floats_are_rejected():

@@ -77,7 +77,8 @@ from test_kernel_redteam_secant import _circle_polygon
 
 
 class _Deadline:
-    """Raise TooSlow in the block after ``seconds`` (SIGALRM)."""
+    """Raise TooSlow in the block after ``seconds`` of this process's CPU time
+    (ITIMER_PROF: other processes' load does not count)."""
 
     def __init__(self, seconds):
         self.seconds = seconds
@@ -85,12 +86,12 @@ class _Deadline:
     def __enter__(self):
         def alarm(*_):
             raise TooSlow(f"no verdict after {self.seconds} s")
-        self.old = signal.signal(signal.SIGALRM, alarm)
-        signal.alarm(self.seconds)
+        self.old = signal.signal(signal.SIGPROF, alarm)
+        signal.setitimer(signal.ITIMER_PROF, self.seconds)
 
     def __exit__(self, *exc):
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, self.old)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, self.old)
         return False
 
 

@@ -37,10 +37,10 @@ def coefficients(g, h, kappa, n):
 
 
 def timed(g, h, K, N_hint=0):
-    t = time.perf_counter()
+    t = time.process_time()  # CPU time: the machine's load does not count
     N = prove_tail(g, h, K, N_hint)
-    elapsed = time.perf_counter() - t
-    assert elapsed < 0.5, f"prove_tail took {elapsed:.3f} s"
+    elapsed = time.process_time() - t
+    assert elapsed < 0.5, f"prove_tail took {elapsed:.3f} s of CPU time"
     return N
 
 
@@ -185,10 +185,10 @@ NEGATIVE = [
 
 @pytest.mark.parametrize("name,g,h,K,reason", NEGATIVE, ids=[c[0] for c in NEGATIVE])
 def test_unprovable_tails_are_rejected(name, g, h, K, reason):
-    t = time.perf_counter()
+    t = time.process_time()
     with pytest.raises(CheckFailure, match=re.escape(reason)):
         prove_tail(g, h, K)
-    assert time.perf_counter() - t < 0.5
+    assert time.process_time() - t < 0.5  # CPU time: the machine's load does not count
 
 
 def test_rejections_are_necessary():
