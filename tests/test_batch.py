@@ -160,6 +160,14 @@ def _slow() -> dict:
             "method": {"taylor": 45}}
 
 
+def _hog(n: int = 20) -> dict:
+    """The cross-polytope of R^20 given by its 40 vertices: its H-representation has 2^20
+    facets, and building it exhausts 200 MB in about a second of CPU time (GMP aborts)."""
+    unit = [[1 if i == j else 0 for j in range(n)] for i in range(n)]
+    return {"name": "hog", "system": {"A": [[-x for x in row] for row in unit]},
+            "polyhedron": {"vertices": unit + [[-x for x in row] for row in unit]}, "method": {"taylor": 2}}
+
+
 def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_path):
     good = [_decay(c, 2) for c in (1, 2, 3)]
     lines = [json.dumps(p) for p in good] + [
@@ -168,7 +176,7 @@ def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_pa
         json.dumps({"name": "typo", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "methd": {"taylor": 1}}),
         json.dumps({"name": "ragged", "system": {"A": [[-1, 0], [0]]}, "polyhedron": SEGMENT}),
         json.dumps(_slow()),
-        json.dumps({"name": "hog", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "method": {"taylor": 1000}}),
+        json.dumps(_hog()),
     ]
     corpus = tmp_path / "poisoned.jsonl"
     corpus.write_text("\n".join(lines) + "\n")
