@@ -59,6 +59,9 @@ def corpus(tmp_path, monkeypatch):
     os.symlink(d / "q0.json", tmp_path / "soft.json")
     os.link(d / "q0.json", tmp_path / "hard.json")
     os.symlink(d, tmp_path / "dirlink")
+    (d / "segment.ine").write_text("H-representation\nbegin\n2 2 integer\n1 -1\n1 1\nend\n")
+    (d / "on_cdd.json").write_text(json.dumps({"system": {"A": [[-1]]}, "polyhedron": {"cdd": "segment.ine"},
+                                               "method": {"taylor": 1}}))
     _age(tmp_path)
     monkeypatch.chdir(tmp_path)
     return tmp_path
@@ -74,6 +77,7 @@ CERTIFY_CASES = {
     "the input given through a link": ["soft.json", "-o", "corpus/q0.json"],
     "another problem file (not a certificate)": ["corpus/q0.json", "-o", "corpus/box.json"],
     "a text file (not a certificate)": ["corpus/q0.json", "-o", "notes.txt"],
+    "the cdd file the problem reads": ["corpus/on_cdd.json", "-o", "corpus/segment.ine"],
 }
 
 
