@@ -16,8 +16,39 @@
 """
 
 from . import claims_invariance
+from .budget import WORK_BUDGET, charge, fraction_products_cost
 from .claims_thresholds import INF, ZERO, smallest_positive_root
-from .rationals import describe, dot, matmul, matrix, matvec, rational, require, vector, within_budget
+from .rationals import describe, dot, matrix, matvec, rational, require, vector, within_budget
+
+GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
+
+
+def _bits(*arrays):
+    """The largest numerator plus denominator bits over the entries (matrices or vectors)."""
+    out = 1
+    for M in arrays:
+        for row in M:
+            for x in (row if isinstance(row, list) else [row]):
+                out = max(out, x.numerator.bit_length() + x.denominator.bit_length())
+    return out
+
+
+def _price_gain(problem, count, *arrays):
+    """The gain LP's rows are ``count`` Fraction products and sums of the problem's and the record's numbers:
+    priced (by their sizes) and charged before any of them is formed, so a large record is rejected, not run."""
+    within_budget(fraction_products_cost(count, _bits(problem.A, problem.B, problem.G, [problem.b], problem.E,
+                                                      [problem.e], *arrays)),
+                  "the gain LP's rows (dense Fraction products)", GAIN_WORK_BUDGET)
+
+
+def _matmul(X, Y):
+    """X Y, one row at a time; each row is a charge of nothing (a tick of the account's clock)."""
+    cols = list(zip(*Y))
+    out = []
+    for row in X:
+        charge(0, "a product of the gain LP's matrices")
+        out.append([sum(a * b for a, b in zip(row, col)) for col in cols])
+    return out
 from .reals import Real, quotient
 
 
@@ -32,12 +63,15 @@ def _dual_rows(problem, Y, mu, nu, Z, w):
     """The dual's constraints, one per primal variable; returns the dual objective <GA, Y> + e.w."""
     G, b, m, n, q = problem.G, problem.b, problem.m, problem.n, len(problem.E)
     require(all(x >= 0 for x in mu) and all(x >= 0 for x in nu) and all(x >= 0 for x in w), "mu, nu, w must be >= 0")
-    YGt = [[dot(Y[i], G[j]) for j in range(m)] for i in range(m)]
+    YGt = []
+    for i in range(m):
+        charge(0, "the dual's rows")  # a tick of the account's clock (the work is priced by the caller)
+        YGt.append([dot(Y[i], G[j]) for j in range(m)])
     for i in range(m):
         for j in range(m):
             s = YGt[i][j] + mu[i] * b[j]
             require(s == nu[i] if i == j else s >= 0, f"dual constraint of H[{i}][{j}] fails")
-    GB = matmul(G, problem.B)
+    GB = _matmul(G, problem.B)
     for k in range(problem.p):
         for c in range(n):
             s = sum(GB[i][k] * Y[i][c] for i in range(m)) + sum(problem.E[j][k] * Z[j][c] for j in range(q))
@@ -45,7 +79,7 @@ def _dual_rows(problem, Y, mu, nu, Z, w):
     for j in range(q):
         for k in range(m):
             require(dot(Z[j], G[k]) + w[j] * b[k] >= 0, f"dual constraint of Lambda[{j}][{k}] fails")
-    GA = matmul(G, problem.A)
+    GA = _matmul(G, problem.A)
     return sum(dot(GA[i], Y[i]) for i in range(m)) + dot(problem.e, w)
 
 
@@ -54,11 +88,15 @@ def optimal_gain(problem, claim, context):
     A, B, G, b, m, n, p = problem.A, problem.B, problem.G, problem.b, problem.m, problem.n, problem.p
     E, e, q = problem.E, problem.e, len(problem.E)
     within_budget((m + q) * (m + p) * n + n * n * p, f"the gain LP's rows ({m} x {m} H, {p} x {n} F, {q} x {m} Lambda)")
+    # the dual's rows: <Y, G> (m^2 n), GB (m n p), the F rows ((m + q) p n), Z G (q m n), GA (m n^2); the primal's:
+    # HG (m^2 n), G(A + BF) (m n^2 + n^2 p), Lambda G (q m n)
+    count = 2 * (m + q) * m * n + 2 * m * n * n + 2 * (m + q) * p * n + 2 * n * n * p
     value = Real.parse(claim["value"], "gamma")
     keys = set(claim) - {"type", "holds", "value"}
     if not claim["holds"]:
         require(keys == {"farkas"} and value.inf == 1, "holds = false carries value oo and a farkas certificate only")
         Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas")
+        _price_gain(problem, count, Y, [mu], [nu], Z, [w])
         require(all(x == 0 for x in nu), "a Farkas certificate has nu = 0 (the cost of gamma is 0)")
         objective = _dual_rows(problem, Y, mu, nu, Z, w)
         require(objective < 0, "the Farkas certificate's objective <GA, Y> + e.w is not negative")
@@ -70,8 +108,10 @@ def optimal_gain(problem, claim, context):
     F = matrix(claim["F"], "F", p, n)
     H = matrix(claim["H"], "H", m, m)
     Lam = matrix(claim["Lambda"], "Lambda", q, m)
+    Y, mu, nu, Z, w = _dual(claim["dual"], m, n, q, "dual")
+    _price_gain(problem, count, F, H, Lam, Y, [mu], [nu], Z, [w])
     closed = [[A[i][c] + sum(B[i][k] * F[k][c] for k in range(p)) for c in range(n)] for i in range(n)]
-    require(matmul(H, G) == matmul(G, closed), "HG != G(A + BF)")
+    require(_matmul(H, G) == _matmul(G, closed), "HG != G(A + BF)")
     require(all(v <= 0 for v in matvec(H, b)), "Hb <= 0 fails")
     require(all(H[i][j] >= 0 for i in range(m) for j in range(m) if i != j), "an off-diagonal entry of H is negative")
     require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
@@ -79,7 +119,6 @@ def optimal_gain(problem, claim, context):
     require(all(dot(Lam[j], [G[k][c] for k in range(m)]) == sum(E[j][k] * F[k][c] for k in range(p))
                 for j in range(q) for c in range(n)), "Lambda G != EF")
     require(all(dot(Lam[j], b) <= e[j] for j in range(q)), "Lambda b <= e fails")
-    Y, mu, nu, Z, w = _dual(claim["dual"], m, n, q, "dual")
     require(sum(nu) == 1, "the dual's nu must sum to 1 (the cost of gamma)")
     objective = _dual_rows(problem, Y, mu, nu, Z, w)
     require(-objective == gamma, f"the dual objective gives gamma >= {describe(-objective)}, not {describe(gamma)}")
@@ -147,6 +186,15 @@ def robust_threshold(problem, claim, context):
     pole = smallest_positive_root(method.denominator)
     if pole is not None and problem.m:
         require(all(H is not None for H in Hs), "every vertex needs its H for the hull-wide abscissa bound")
+        # beta bounds Re lambda only; r(hA) exists (and the series at -kappa converges) because the spectral
+        # radius of hH + kappa I >= 0 is h alpha(H) + kappa < z_p + kappa, which needs H + gamma I >= 0 for the
+        # SAME H = sum lambda_i H_i (kappa = h max(gamma, 0) <= rho).  A gamma* = -oo record's H is not tied to
+        # gamma: without this test an H with Re lambda <= 0 but a complex eigenvalue on a pole's ray passed
+        # (tests/test_kernel_redteam_lp.py, r(hA) singular at h = 1 under a claimed tau = oo).
+        floor = gamma.q if positive else 0
+        require(all(H[r][r] + floor >= 0 for H in Hs for r in range(problem.m)),
+                f"a vertex's H has H + {describe(floor)} I >= 0 failing: its abscissa bound beta does not "
+                "bound the spectral radius the rational method's series needs")
         v = vector(claim["v"], "v", problem.m)
         require(all(x > 0 for x in v), "v must be positive")
         beta = max(dot(row, v) / vr for H in Hs for row, vr in zip(H, v))

@@ -11,6 +11,7 @@
 
 from fractions import Fraction
 
+from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
 from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
@@ -21,6 +22,12 @@ def check_H(problem, H):
     entries of each row of H only (a row LP's basic solution has at most n + 1 of its m)."""
     A, G, b, n = problem.A, problem.G, problem.b, problem.n
     rows = [[(k, x) for k, x in enumerate(row) if x] for row in H]
+    # priced before any product: GA (m n^2) and the nonzero entries of H times G (each a Fraction product of
+    # the numbers' sizes) -- a dense n x n problem per claim (or per vertex of a robust hull) is not free
+    bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length()
+                      for M in (A, G, [b], H) for r in M for x in r if x])
+    within_budget(fraction_products_cost(len(G) * n * n + sum(map(len, rows)) * (n + 1), bits),
+                  f"HG = GA for a {len(G)} x {len(G)} H in dimension {n}")
     require([[sum(x * G[k][c] for k, x in row) for c in range(n)] for row in rows] == matmul(G, A), "HG != GA")
     require(all(sum(x * b[k] for k, x in row) <= 0 for row in rows), "Hb <= 0 fails")
     require(all(x >= 0 for i, row in enumerate(rows) for k, x in row if k != i), "an off-diagonal entry of H is negative")
