@@ -31,6 +31,7 @@ from math import comb, factorial, gcd
 
 import flint
 
+from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
@@ -372,7 +373,7 @@ def _march(s: PoleStructure, fs, n0):
         if f < 0:
             return a
         if not f > 0:
-            return f"f({float(a):.6g}) is 0 to working precision"
+            return f"f({float_hint(a):.6g}) is 0 to working precision"
         while True:
             D = flint.arb(fmpq_of(d))
             lower = f + (df * D if df < 0 else 0) - D * D * _bound(s, 2, A, A + D) / 2
@@ -383,7 +384,7 @@ def _march(s: PoleStructure, fs, n0):
                 for probe in _probes(a, f, df):
                     if _f_and_derivative(s, flint.arb(fmpq_of(probe)))[0] < 0:
                         return probe  # f crosses 0 just beyond a: rho < oo
-                return (f"f comes within working precision of 0 near t = {float(a):.6g}: deciding f >= 0 there is "
+                return (f"f comes within working precision of 0 near t = {float_hint(a):.6g}: deciding f >= 0 there is "
                         "the continuous positivity problem for linear differential equations (open in general)")
         a += d
         d = min(2 * d, Fraction(8))
