@@ -50,6 +50,7 @@ from .failure import require
 WORK_BUDGET = 10**8  # word operations of one priced computation: one to three seconds of work
 FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers
 PYTHON_OP = 10  # word operations per interpreted integer operation on short numbers (its overhead)
+DISK_STEP = 50000  # word operations per term of one step of the Bernstein positivity proof (disk arithmetic)
 CALL = 1000  # word operations of the fixed overhead of one Descartes test
 STURM_BUDGET = 5 * 10**12  # degree^4 bits^2 of one pseudo-remainder sequence (gcd, Sturm): up to about 20 s
 STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequence (measured: 880 at degree 80)
@@ -185,6 +186,13 @@ def condition_cost(terms, n, d_terms):
 def modular_squarefree_cost(degree, bits):
     """A gcd of p and p' modulo a prime: the reduction of the coefficients, then degree^2 small operations."""
     return (degree + 1) * words(bits) + 4 * (degree + 1) ** 2
+
+
+def disk_step_cost(terms):
+    """One step (or one step-size trial) of the Bernstein positivity proof (exactinv_check.bernstein): a few
+    operations on 128-bit disks per term b_{k,m} t^(m-1) e^(-z_k t) (``terms`` of them in all); measured about
+    1 ms of work per term and step at degree 15."""
+    return DISK_STEP * terms
 
 
 def evaluation_cost(degree, bits, end_bits=0):

@@ -1,0 +1,89 @@
+"""Red team (rt-budget): the certificate-wide work budget and the new radius reasons bernstein / balanced-tie.
+
+Each test is a reproduction of an attack; the ones fixed in the kernel pass, any that are not are marked
+xfail(strict=True).
+"""
+
+import json
+import os
+import subprocess
+import sys
+import time
+from fractions import Fraction as F
+from pathlib import Path
+
+import pytest
+
+from exactinv_check import budget, check
+from exactinv_check.bernstein import prove_completely_monotone
+from exactinv_check.rationals import CheckFailure
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _pmul(p, q):
+    out = [F(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(q):
+            out[i + j] += a * b
+    return out
+
+
+def _padd(p, q):
+    n = max(len(p), len(q))
+    return [(p[i] if i < len(p) else F(0)) + (q[i] if i < len(q) else F(0)) for i in range(n)]
+
+
+def _radius_cert(num, den, claim):
+    return {"format": "exactinv-certificate", "version": 2,
+            "problem": {"method": {"name": "rt", "numerator": [str(c) for c in num],
+                                   "denominator": [str(c) for c in den]}},
+            "claims": [claim]}
+
+
+def slow_bernstein(pairs=7, delta_den=1000):
+    """r = sum_k [1/(1 - z) - (a_k - z)/((a_k - z)^2 + Y_k^2)], a_k = 1 + 1/(delta_den + k), Y_k = 10 + k:
+    f(t) = e^(-t) sum_k (1 - e^(-(a_k - 1) t) cos(Y_k t)) >= 0, so rho = oo is even true -- but p* = 1
+    dominates the complex poles only for t of order delta_den, and f's minima (touching e^(-t) (a_k - 1) t)
+    force small steps: the compact piece runs its 8000 steps (4 KB certificate, deg h = 15)."""
+    num, den = [F(pairs)], [F(1), F(-1)]
+    for k in range(pairs):
+        a, Y = 1 + F(1, delta_den + k), F(10 + k)
+        q = _padd(_pmul([a, -1], [a, -1]), [Y * Y])
+        num, den = _padd(_pmul(num, q), _pmul([-a, 1], den)), _pmul(den, q)
+    num = [x * den[0] / num[0] for x in num]
+    return num, den
+
+
+# ------------------------------------------------------------------ Goal B: bernstein's compact piece
+def test_bernstein_steps_are_charged_to_the_account():
+    """Before the fix bernstein._positive charged nothing: no work budget, and the clock (read only at a
+    charge) never fired -- 130 s of CPU (165 s wall) before a rejection for a 4.3 KB certificate.  Now every
+    step and step-size trial is charged: with a small account the proof stops at once."""
+    num, den = slow_bernstein()
+    start = time.process_time()
+    with budget.account(limit=2 * 10**8, time_limit=None):
+        with pytest.raises(CheckFailure, match="work budget"):
+            prove_completely_monotone(num, den)
+    assert time.process_time() - start < 20
+
+
+@pytest.mark.skipif(not os.environ.get("EXACTINV_FUZZ"), reason="30-60 s: the full-size forgery (EXACTINV_FUZZ=1)")
+def test_slow_bernstein_certificate_gets_a_verdict_within_a_minute(tmp_path):
+    num, den = slow_bernstein()
+    path = tmp_path / "cert.json"
+    path.write_text(json.dumps(_radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "oo",
+                                                       "reason": "bernstein", "attained": True})))
+    assert path.stat().st_size < 10**4
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    done = subprocess.run([sys.executable, "-m", "exactinv_check", str(path)], capture_output=True, text=True,
+                          timeout=120, env=env)
+    assert done.returncode == 1 and "budget" in done.stdout + done.stderr
+
+
+def test_genuine_bernstein_with_many_steps_still_verified():
+    """The same family with faster dominance (a_k = 1 + 1/(100 + k)): 1197 steps, 1.35e9 word operations."""
+    num, den = slow_bernstein(pairs=3, delta_den=100)
+    report = check(_radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "oo",
+                                           "reason": "bernstein", "attained": True}))
+    assert report.ok, str(report)
