@@ -198,9 +198,9 @@ def absolute_monotonicity_radius(problem, claim, context):
         kappa = balanced_tie(g, h)
         require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {kappa}")
         count = max(len(num), len(den), 1)  # c_j for j > deg g - 2 are >= 0 on [0, kappa*] by the identity
-        first, attained, d = recompute(num, den, count, False, kappa)
+        first, first_attained, d = recompute(num, den, count, False, kappa)  # not `attained`: the claim's flag
         require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {kappa}")
-        rho, rho_attained = value, attained if first.compare(value) == 0 else True
+        rho, rho_attained = value, first_attained if first.compare(value) == 0 else True
         how = (f"two simple real poles p* > 0 > a with balanced residues |b_a| = b_*: c_j >= 0 on [0, {kappa}] "
                f"for j > deg q by the closed form, c_0 .. c_{count - 1} recomputed")
     elif reason == "tie":

@@ -87,3 +87,26 @@ def test_genuine_bernstein_with_many_steps_still_verified():
     report = check(_radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "oo",
                                            "reason": "bernstein", "attained": True}))
     assert report.ok, str(report)
+
+
+# ------------------------------------------------------------------ Goal A: balanced-tie's attained flag
+@pytest.mark.parametrize("num, den, kappa", [
+    (["-4"], ["-4", "3", "1"], "3/2"),            # r = 4/((1 - z)(4 + z)): c_j(3/2) = (4/5)(2/5)^(j+1)(1 + (-1)^j)
+    (["-9"], ["-9", "5/2", "1"], "5/4"),
+    (["-2", "-8", "-8"], ["-2", "1", "1"], "1/2"),
+])
+def test_balanced_tie_checks_the_claimed_attained_flag(num, den, kappa):
+    """The balanced-tie branch unpacked recompute(...) into ``attained``, overwriting the claim's flag, so the
+    final ``attained is rho_attained`` compared the kernel's value with itself: a claim with the wrong flag
+    (attained false; kappa* is admissible, c_j(kappa*) >= 0 for every j) was VERIFIED."""
+    claim = {"type": "absolute_monotonicity_radius", "value": kappa, "reason": "balanced-tie", "attained": True}
+    assert check(_radius_cert(num, den, claim)).ok
+    report = check(_radius_cert(num, den, {**claim, "attained": False}))
+    assert not report.ok and "attained" in str(report), str(report)
+
+
+def test_balanced_tie_attained_agrees_with_the_reference():
+    sys.path.insert(0, str(ROOT / "tests"))
+    from radius_reference import admissible
+    num, den = [F(-4)], [F(-4), F(3), F(1)]
+    assert admissible(num, den, F(3, 2), 60) and not admissible(num, den, F(3, 2) + F(1, 100), 400)
