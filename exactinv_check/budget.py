@@ -57,6 +57,8 @@ STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequ
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
 CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)
+BIG_CHARGE = 10**6  # a charge this large reads the clock itself (else every 64th: 63 priced computations of up
+# to WORK_BUDGET each, mispriced a few times, would run minutes between two readings)
 TIME_LIMIT = 50  # CPU seconds: the clock behind the account (a verdict within a minute of the kernel's own work)
 
 
@@ -102,7 +104,7 @@ def charge(cost, what):
             require(False, f"over the certificate's work budget: {what} brings the certificate's estimated work "
                     f"to {acc.spent:.2e} word operations > {acc.limit:.0e}")
         acc.charges += 1
-        if acc.deadline is not None and not acc.charges & 63 and process_time() > acc.deadline:  # every 64th charge
+        if acc.deadline is not None and (not acc.charges & 63 or cost >= BIG_CHARGE) and process_time() > acc.deadline:
             require(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
 
 

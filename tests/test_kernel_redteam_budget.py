@@ -110,3 +110,35 @@ def test_balanced_tie_attained_agrees_with_the_reference():
     from radius_reference import admissible
     num, den = [F(-4)], [F(-4), F(3), F(1)]
     assert admissible(num, den, F(3, 2), 60) and not admissible(num, den, F(3, 2) + F(1, 100), 400)
+
+
+# ------------------------------------------------------------------ Goal B: the price of c_j(0) (rho = 0 reasons)
+def _big_witness_cert(bits=300, D=64, j=796):
+    import random
+    rng = random.Random(5)
+    den = [2**bits + rng.randint(0, 2**bits)] + [rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))
+                                                  for _ in range(D)]
+    num = [den[0]] + [rng.randint(2**bits, 2**(bits + 1)) for _ in range(D)]
+    return _radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "0", "reason": "no-positive-pole",
+                                   "attained": False, "witness_j": j})
+
+
+def test_sign_at_zero_priced_by_the_size_of_its_numbers():
+    """A 12 KB certificate (deg h = 64, 300-bit coefficients, witness_j = 796) was priced 7e7 word operations
+    (under the 1e8 limit) and ran 120 s before its verdict: H_i u_(k-i) H_0^(i-1) multiplies (k bits)-bit by
+    (i bits)-bit numbers.  Now priced with deg h bits: rejected before it runs."""
+    cert = _big_witness_cert()
+    assert len(json.dumps(cert)) < 10**6
+    start = time.process_time()
+    report = check(cert)
+    assert not report.ok and "work budget" in str(report), str(report)
+    assert time.process_time() - start < 10
+
+
+def test_a_big_charge_reads_the_clock():
+    """The clock was read only at every 64th charge: up to 63 priced computations of 1e8 each (mispriced a few
+    times: minutes) could run between two readings.  A charge of BIG_CHARGE or more reads it itself."""
+    with budget.account(time_limit=-1):  # the deadline has passed
+        budget.charge(10, "small")  # the clock is not read for a small charge
+        with pytest.raises(CheckFailure, match="time limit"):
+            budget.charge(budget.BIG_CHARGE, "big")
