@@ -142,3 +142,20 @@ def test_a_big_charge_reads_the_clock():
         budget.charge(10, "small")  # the clock is not read for a small charge
         with pytest.raises(CheckFailure, match="time limit"):
             budget.charge(budget.BIG_CHARGE, "big")
+
+
+# ------------------------------------------------------------------ Goal B: the price of the tie polynomial
+def test_tie_polynomial_priced_by_the_square_of_its_numbers():
+    """tie.interpolation_cost was linear in the bits of h: for deg h = 2 with 10^5-bit coefficients (a 90 KB
+    method) it priced the interpolation of T at 3.2e7 word operations (under the 1e8 limit) and it ran 47 s of
+    CPU.  The resultants' Fraction gcds are quadratic in the words: now rejected before it runs."""
+    import random
+    from exactinv_check import tie
+    rng = random.Random(2)
+    bits = 100000
+    h = [F(rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))) for _ in range(2)] + [F(rng.randint(2**bits, 2**(bits + 1)))]
+    start = time.process_time()
+    with budget.account(time_limit=None):
+        with pytest.raises(CheckFailure, match="work budget"):
+            tie.tie_polynomial(h)
+    assert time.process_time() - start < 10
