@@ -40,6 +40,7 @@ Every number is an exact rational; disks round outward; what is not proved withi
 from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 
+from .budget import charge, disk_step_cost
 from .disks import ball, ball_abs_upper, ball_mul, pole_disks
 from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
 from .rationals import require
@@ -268,7 +269,9 @@ def _positive(g, h, terms, mu, P_hi):
     a, d = t_a, t_a
     E = [_exp_of(z, a) for z, _, _, _ in terms]
     steps_of, trials = {}, 0
+    size = sum(M for _, M, _, _ in terms)
     for step in range(MAX_STEPS):
+        charge(disk_step_cost(size), "a step of the Bernstein positivity proof")  # the clock too: no charge, no limit
         if dominated_beyond(a):
             return step
         F0 = F1 = (Fraction(0), Fraction(0), Fraction(0))
@@ -286,6 +289,7 @@ def _positive(g, h, terms, mu, P_hi):
         e = [ball_abs_upper(x) for x in E]
         while True:
             trials += 1
+            charge(disk_step_cost(size) // 4, "a step-size trial of the Bernstein positivity proof")
             require(trials <= MAX_TRIALS, f"bernstein: more than {MAX_TRIALS} step trials (f is too close to 0)")
             B2 = derivative_bound(2, e, a + d)
             if f_lo + min(Fraction(0), df_lo * d) - d * d * B2 / 2 > 0:

@@ -50,12 +50,15 @@ from .failure import require
 WORK_BUDGET = 10**8  # word operations of one priced computation: one to three seconds of work
 FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers
 PYTHON_OP = 10  # word operations per interpreted integer operation on short numbers (its overhead)
+DISK_STEP = 50000  # word operations per term of one step of the Bernstein positivity proof (disk arithmetic)
 CALL = 1000  # word operations of the fixed overhead of one Descartes test
 STURM_BUDGET = 5 * 10**12  # degree^4 bits^2 of one pseudo-remainder sequence (gcd, Sturm): up to about 20 s
 STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequence (measured: 880 at degree 80)
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
 CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)
+BIG_CHARGE = 10**6  # a charge this large reads the clock itself (else every 64th: 63 priced computations of up
+# to WORK_BUDGET each, mispriced a few times, would run minutes between two readings)
 TIME_LIMIT = 50  # CPU seconds: the clock behind the account (a verdict within a minute of the kernel's own work)
 
 
@@ -101,7 +104,7 @@ def charge(cost, what):
             require(False, f"over the certificate's work budget: {what} brings the certificate's estimated work "
                     f"to {acc.spent:.2e} word operations > {acc.limit:.0e}")
         acc.charges += 1
-        if acc.deadline is not None and not acc.charges & 63 and process_time() > acc.deadline:  # every 64th charge
+        if acc.deadline is not None and (not acc.charges & 63 or cost >= BIG_CHARGE) and process_time() > acc.deadline:
             require(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
 
 
@@ -185,6 +188,13 @@ def condition_cost(terms, n, d_terms):
 def modular_squarefree_cost(degree, bits):
     """A gcd of p and p' modulo a prime: the reduction of the coefficients, then degree^2 small operations."""
     return (degree + 1) * words(bits) + 4 * (degree + 1) ** 2
+
+
+def disk_step_cost(terms):
+    """One step (or one step-size trial) of the Bernstein positivity proof (exactinv_check.bernstein): a few
+    operations on 128-bit disks per term b_{k,m} t^(m-1) e^(-z_k t) (``terms`` of them in all); measured about
+    1 ms of work per term and step at degree 15."""
+    return DISK_STEP * terms
 
 
 def evaluation_cost(degree, bits, end_bits=0):

@@ -6,7 +6,12 @@ whose roots are the quotients of two algebraic numbers.  Re-exported by
 from fractions import Fraction
 
 from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
+from .budget import active, charge, fraction_products_cost
 from .rationals import require
+
+
+def _bits(p):
+    return max((max(abs(c.numerator).bit_length(), c.denominator.bit_length()) for c in p), default=1)
 
 
 def resultant(f, g):
@@ -18,6 +23,8 @@ def resultant(f, g):
     result = Fraction(1)
     while len(g) > 1:
         df, dg = len(f) - 1, len(g) - 1
+        if active():  # a division step: (df - dg + 1) dg Fraction products (uncharged before: red team rt-budget)
+            charge(fraction_products_cost((df - dg + 1) * (dg + 1), _bits(f) + _bits(g)), "a resultant step")
         r = divmod_(f, g)[1]
         if not r:
             return Fraction(0)
@@ -33,6 +40,8 @@ def interpolate(points, values):
     k = len(points)
     coef = list(values)
     for level in range(1, k):
+        if active():  # one level of divided differences (uncharged before: red team rt-budget)
+            charge(fraction_products_cost(2 * (k - level), 2 * _bits(coef)), "an interpolation step")
         for i in range(k - 1, level - 1, -1):
             coef[i] = (coef[i] - coef[i - 1]) / (points[i] - points[i - level])
     result = [coef[-1]] if coef else []

@@ -70,7 +70,11 @@ def _value(h, t):
 def interpolation_cost(degree, bits):
     """Estimated word operations of building T of formal degree ``degree`` for an h with ``bits``-bit
     integer coefficients (calibrated: about a second of work per 10^8 on the kernel's Fractions)."""
-    return (degree + 1) ** 2 * (3 * FRACTION_WEIGHT + degree * (bits + degree.bit_length()) // 2)
+    linear = (degree + 1) ** 2 * (3 * FRACTION_WEIGHT + degree * (bits + degree.bit_length()) // 2)
+    # the resultants' Fraction gcds are quadratic in the words of their numbers (about deg T bits bits): priced
+    # linearly only, a deg h = 2 h with 10^5-bit coefficients was priced 3e7 and took 47 s (red team rt-budget)
+    w = 1 + degree * (bits + degree.bit_length()) // 64
+    return max(linear, (degree + 1) ** 2 * w * w // 8)
 
 
 def tie_polynomial(h):
