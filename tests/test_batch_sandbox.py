@@ -58,3 +58,29 @@ def test_exceptions_and_fatal_signals_in_the_child_are_reported():
     assert died.status == "crash" and "SIGSEGV" in died.message
     unserialisable = run_limited(lambda _: object(), None)
     assert unserialisable.status == "crash" and "exited with code 3" in unserialisable.message
+
+
+def _glibc_tls_abort(_):
+    """What glibc does when it cannot allocate a thread's or a dlopen'ed library's thread-local
+    storage (dl-tls.c, ``oom``): one line on standard error, then ``_exit(127)`` -- no signal, no
+    Python exception.  Seen once in CI, when the R^20 cross-polytope of tests/test_batch.py hit the
+    200 MB limit under the lowest declared versions."""
+    os.write(2, b"cannot allocate memory for thread-local data: ABORT\n")
+    os._exit(127)
+
+
+def _exit_with_words(_):
+    os.write(2, b"something else went wrong\n")
+    os._exit(5)
+
+
+def test_glibc_giving_up_on_memory_is_a_memory_outcome_only_under_a_memory_limit():
+    limited = run_limited(_glibc_tls_abort, None, timeout=30, memory_mb=200)
+    assert limited.status == "memory" and "code 127" in limited.message and "thread-local" in limited.message
+    unlimited = run_limited(_glibc_tls_abort, None, timeout=30)
+    assert unlimited.status == "crash" and "thread-local" in unlimited.message
+
+
+def test_an_exit_without_a_result_is_a_crash_quoting_the_childs_last_words():
+    out = run_limited(_exit_with_words, None, timeout=30, memory_mb=200)
+    assert out.status == "crash" and "code 5" in out.message and out.message.endswith("something else went wrong")

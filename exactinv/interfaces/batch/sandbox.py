@@ -7,8 +7,11 @@ the computation's good will:
 
 * memory: ``setrlimit(RLIMIT_AS)`` in the child, at the address space it
   inherits plus ``memory_mb``.  Python then raises :class:`MemoryError`;
-  FLINT and GMP abort the child when an allocation fails.  Both are reported
-  as ``"memory"``.
+  FLINT and GMP abort the child when an allocation fails, and glibc ends it
+  with exit code 127 when it cannot allocate a thread's or a library's
+  thread-local storage.  All three are reported as ``"memory"``; the child's
+  standard error goes to a file whose tail the parent reads to tell the last
+  one from an ordinary exit without a result.
 * time: the parent waits at most ``timeout`` seconds of wall time, then sends
   ``SIGKILL`` -- which stops a FLINT loop that never returns to Python.  A
   CPU-time limit a little above ``timeout`` is a second guard should the
@@ -31,6 +34,7 @@ import os
 import resource
 import select
 import signal
+import tempfile
 import time
 from dataclasses import dataclass, replace
 from typing import Any, Callable
@@ -38,6 +42,7 @@ from typing import Any, Callable
 __all__ = ["Outcome", "run_limited"]
 
 _FATAL = (signal.SIGSEGV, signal.SIGFPE, signal.SIGABRT, signal.SIGBUS, signal.SIGILL)
+_STDERR_TAIL = 4096  # bytes of the child's standard error kept for the message
 _CPU_GRACE = 5  # seconds of CPU time above the wall-clock timeout before the kernel stops an orphan
 
 
@@ -73,22 +78,26 @@ def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None
     ('crash', 'ZeroDivisionError: integer division or modulo by zero')
     """
     read_end, write_end = os.pipe()
-    start = time.monotonic()
-    pid = os.fork()
-    if pid == 0:  # the child: never returns
-        os.close(read_end)
-        _child(fn, arg, write_end, timeout, memory_mb)
-    os.close(write_end)
-    data, timed_out = _read_until(read_end, None if timeout is None else start + timeout)
-    if timed_out:
-        os.kill(pid, signal.SIGKILL)
-    _, wait_status, usage = os.wait4(pid, 0)
-    seconds = time.monotonic() - start
+    with tempfile.TemporaryFile() as stderr:
+        start = time.monotonic()
+        pid = os.fork()
+        if pid == 0:  # the child: never returns
+            os.close(read_end)
+            os.dup2(stderr.fileno(), 2)
+            _child(fn, arg, write_end, timeout, memory_mb)
+        os.close(write_end)
+        data, timed_out = _read_until(read_end, None if timeout is None else start + timeout)
+        if timed_out:
+            os.kill(pid, signal.SIGKILL)
+        _, wait_status, usage = os.wait4(pid, 0)
+        seconds = time.monotonic() - start
+        stderr.seek(max(os.fstat(stderr.fileno()).st_size - _STDERR_TAIL, 0))
+        said = stderr.read().decode("utf-8", "replace").strip()
     peak = usage.ru_maxrss / 1024  # kilobytes on Linux
     if timed_out:
         outcome = Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)")
     else:
-        outcome = _decode(data, wait_status, memory_mb, seconds, peak)
+        outcome = _decode(data, wait_status, memory_mb, seconds, peak, said)
     return replace(outcome, cpu_seconds=usage.ru_utime + usage.ru_stime)
 
 
@@ -165,7 +174,7 @@ def _read_until(fd: int, deadline: float | None) -> tuple[bytes, bool]:
         os.close(fd)
 
 
-def _decode(data: bytes, wait_status: int, memory_mb, seconds: float, peak: float) -> Outcome:
+def _decode(data: bytes, wait_status: int, memory_mb, seconds: float, peak: float, said: str) -> Outcome:
     if os.WIFSIGNALED(wait_status):
         sig = signal.Signals(os.WTERMSIG(wait_status)).name
         if sig == "SIGXCPU":
@@ -178,8 +187,13 @@ def _decode(data: bytes, wait_status: int, memory_mb, seconds: float, peak: floa
     try:
         reply = json.loads(data)
     except ValueError:
+        code = os.waitstatus_to_exitcode(wait_status)
+        last = said.splitlines()[-1] if said else ""
+        if memory_mb is not None and "cannot allocate memory" in last.lower():
+            return Outcome("memory", None, seconds, peak,
+                           f"the child exited with code {code} under the --memory limit of {memory_mb:g} MB: {last}")
         return Outcome("crash", None, seconds, peak,
-                       f"the child exited with code {os.waitstatus_to_exitcode(wait_status)} without a result")
+                       f"the child exited with code {code} without a result" + (f": {last}" if last else ""))
     if "ok" in reply:
         return Outcome("ok", reply["ok"], seconds, peak)
     if "memory" in reply:
