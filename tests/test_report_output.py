@@ -13,6 +13,7 @@ import os
 import re
 import shutil
 import subprocess
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
@@ -20,8 +21,8 @@ import pytest
 from exactinv.cli import main
 
 ROOT = Path(__file__).parent.parent
-# a "design" problem (issue 25: a gain, then its closed loop) reports its results nested: not yet in --json
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.json") if "design" not in json.loads(p.read_text()))
+DESIGNS = sorted(p for p in (ROOT / "examples").glob("*.json") if "design" in json.loads(p.read_text()))
 CLAIM = {"gamma_star": ("gamma_star", "value"), "forward_euler": ("forward_euler_threshold", "value"),
          "largest_threshold": ("largest_threshold", "value"), "largest_attained": ("largest_threshold", "attained"),
          "valid_steplengths": ("valid_steplengths", "intervals")}
@@ -95,12 +96,38 @@ def test_output_formats_exclude_each_other(capsys):
     assert stop.value.code == 2 and "not allowed with" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("example", DESIGNS, ids=[p.stem for p in DESIGNS])
+def test_json_of_a_gain_design(example, tmp_path, capsys):
+    """A gain design (issue 25): the gain's values equal its certificate's claim, and the closed
+    loop's values are the engine's own results for x' = (A + BF)x, recomputed here through the API;
+    gamma*(A + BF) = gamma and the forward-Euler step is 1/gamma (the LP's theorem)."""
+    import exactinv as ei
+    from exactinv.interfaces.problem import load_problem
+
+    cert_path = tmp_path / "cert.json"
+    code, report = _json_of([str(example), "-o", str(cert_path)], capsys)
+    claim = json.loads(cert_path.read_text())["claims"][0]
+    assert code == report["exit_code"] == 0 and report["outcome"] == "proved" and _no_floats(report)
+    assert report["check"]["verified"] is True and report["closed_loop_check"]["verified"] is True
+    gain, closed = report["values"]["gain"], report["values"]["closed_loop"]
+    assert claim["type"] == "optimal_gain" and (gain["F"], gain["gamma"]) == (claim["F"], claim["value"])
+    problem = load_problem(str(example))
+    loop = ei.LinearSystem.closed_loop(problem.system.A, problem.B, [[Fraction(x) for x in row] for row in gain["F"]])
+    gamma = ei.optimal_gamma(loop, problem.polyhedron).value
+    assert closed["gamma_star"] == gain["gamma"] == str(gamma)
+    assert closed["forward_euler"] == gain["forward_euler"] == str(1 / gamma if gamma > 0 else ei.INF)
+    largest = ei.largest_threshold(loop, problem.polyhedron, problem.method)
+    assert closed["largest_threshold"] == str(largest.value) and closed["largest_attained"] == largest.attained
+
+
 def test_latex_tables(capsys):
     tables = []
-    for example in EXAMPLES:
+    for example in EXAMPLES + DESIGNS:
         assert main(["certify", str(example), "--latex"]) == 0
         tables.append(capsys.readouterr().out)
     box = tables[[p.stem for p in EXAMPLES].index("paper_box_taylor4")]
+    gain = tables[len(EXAMPLES)]
+    assert "optimal gain $F$" in gain and r"closed loop: $\gamma^*$" in gain
     assert r"$\gamma^*$ & $1$ \\" in box and r"x^{4}-6x^{2}+12x-12" in box
     assert all(t.count(r"\begin{tabular}") == t.count(r"\end{tabular}") == 1 for t in tables)
     _compile(tables)

@@ -181,3 +181,32 @@ def test_forged_robust_certificates_are_rejected():
     assert forged(lambda c: c["problem"]["hull"].append([["1", "0"], ["0", "1"]]))
     assert forged(lambda c: c["claims"].pop(0))                                     # no verified radius
     assert forged(lambda c: c["claims"][claim].update(rho="2"))
+
+
+def test_gamma_unbounded_below():
+    """P = {0} (both coordinates pinned by pairs of inequalities with b = 0): every row LP of
+    gamma* is unbounded, so gamma*(A) = -oo for every A, and P is invariant under every linear map.
+    Then the forward-Euler step and a polynomial method with sigma_k >= 0 (Taylor 3) give tau = oo
+    exactly, and each vertex's H is written with H >= 0 entrywise (H + max(gamma, 0) I >= 0, the
+    kernel's condition for a rational method).  Backward Euler is capped only by the pole z_p = 1
+    over beta, a hull-wide bound of the spectral abscissa: every A of the hull with h < tau has
+    I - hA nonsingular."""
+    P = ei.Polyhedron([[1, 0], [-1, 0], [0, 1], [0, -1]], [0, 0, 0, 0])
+    systems = [ei.LinearSystem([[1, 2], [3, -4]]), ei.LinearSystem([[0, 1], [-1, 0]])]
+    taylor = ei.robust_threshold(systems, P, ei.methods.taylor(3))
+    assert taylor.gammas == (-ei.INF, -ei.INF) and taylor.gamma == -ei.INF
+    assert (taylor.value, taylor.attained, taylor.forward_euler_step) == (ei.INF, True, ei.INF)
+    assert ei.check(taylor.certificate).ok
+    be = ei.robust_threshold(systems, P, ei.methods.backward_euler())
+    cert = be.certificate
+    assert ei.check(cert).ok
+    for vertex in cert["claims"][-1]["vertices"]:
+        assert all(Fraction(x) >= 0 for row in vertex["H"] for x in row)
+    assert be.beta > 0 and be.value == Fraction(1) / be.beta and not be.attained
+    for lam in ([1, 0], [0, 1], [Fraction(1, 2)] * 2, [Fraction(1, 3), Fraction(2, 3)]):
+        A = _combination(systems, lam).A
+        for h in (be.value * Fraction(k, 8) for k in range(8)):
+            assert _matrix([[int(i == j) - h * A[i][j] for j in range(2)] for i in range(2)]).det() != 0
+    forged = copy.deepcopy(cert)
+    forged["claims"][-1]["vertices"][0]["H"][0][0] = "-1"
+    assert not ei.check(forged).ok

@@ -21,7 +21,7 @@ import exactinv_check
 
 from ..beyond.ellipsoid_thresholds import EllipsoidForwardEulerThreshold
 from ..beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
-from ..core.encode import encode_real
+from ..core.encode import encode_real, mat
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
 from ..model import Method
@@ -30,7 +30,7 @@ from ..paper.forward_euler import ForwardEulerThreshold, _forward_euler_threshol
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import _steplength_threshold
-from ..control.optimal_gain import optimal_gain
+from ..control.optimal_gain import OptimalGain, optimal_gain
 from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
@@ -97,8 +97,14 @@ class Report:
         >>> from exactinv.interfaces.problem import Problem
         >>> certify(Problem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])), check=False).values()
         {'gamma_star': '1/2', 'forward_euler': '2'}
+
+        A gain design has ``gain`` (F, gamma, the forward-Euler step over all gains) and the
+        closed loop's own values under ``closed_loop``.
         """
-        return result_values(self.results)
+        values = result_values(self.results)
+        if self.closed_loop is not None:
+            values["closed_loop"] = self.closed_loop.values()
+        return values
 
 
 _KEYS = ((OptimalGamma, "gamma_star"), (ForwardEulerThreshold, "forward_euler"),
@@ -120,6 +126,9 @@ def result_values(results: Any) -> dict[str, Any]:
     """
     values: dict[str, Any] = {}
     for r in results:
+        if isinstance(r, OptimalGain):
+            values["gain"] = {"holds": r.holds, "F": mat(r.F) if r.holds else None, "gamma": encode_real(r.gamma),
+                              "forward_euler": encode_real(r.forward_euler_step)}
         for kind, key in _KEYS:
             if isinstance(r, kind):
                 values[key] = encode_real(r.value)

@@ -14,7 +14,8 @@ from __future__ import annotations
 from typing import Any
 
 from ..beyond.largest import LargestThreshold, ValidSteplengths
-from ..core.latex import latex_real, latex_text
+from ..control.optimal_gain import OptimalGain
+from ..core.latex import latex_matrix, latex_real, latex_text
 from ..paper.gamma_star import OptimalGamma
 from ..paper.polynomial import SteplengthThreshold
 from .exit_codes import CODES
@@ -29,9 +30,10 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
     """The report as a JSON-able dict: ``format`` (``"exactinv-report"``), ``version`` (1),
     ``problem``, ``method``, ``outcome`` and ``exit_code``, ``invariant`` (and the exact
     ``witness`` when the set is not invariant), ``values`` (exact, as the certificate
-    encodes them), ``undecided`` (each open question and why: ``{"question", "why"}``), ``check`` (the
-    kernel's verdict per claim; ``verified`` None when skipped) and ``certificate`` (the
-    file it was written to, or None).
+    encodes them; a gain design has ``gain`` and ``closed_loop``), ``undecided`` (each open question
+    and why: ``{"question", "why"}``), ``check`` (the kernel's verdict per claim; ``verified`` None
+    when skipped; a gain design also has ``closed_loop_check``, the verdict on the closed loop's own
+    certificate) and ``certificate`` (the file it was written to, or None).
 
     >>> import exactinv as ei
     >>> from exactinv.interfaces.pipeline import certify
@@ -45,7 +47,6 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
     """
     witness = next((claim["witness"] for claim in report.certificate.get("claims", ())
                     if isinstance(claim, dict) and claim.get("witness") is not None), None)
-    check = report.check
     out: dict[str, Any] = {
         "format": REPORT_FORMAT, "version": 1,
         "problem": report.problem.name, "method": report.method.name if report.method is not None else None,
@@ -56,12 +57,19 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
         out["witness"] = witness
     out["values"] = report.values()
     out["undecided"] = [{"question": what, "why": why} for what, why in report.undecided]
-    out["check"] = {"verified": None if check is None else bool(check.ok),
-                    "claims": len(report.certificate.get("claims", ())),
-                    "verdicts": [] if check is None else
-                    [{"claim": kind, "ok": bool(ok), "message": str(message)} for kind, ok, message in check.verdicts]}
+    out["check"] = _check_json(report)
+    if report.closed_loop is not None:  # a gain design: the closed loop's certificate is checked on its own
+        out["closed_loop_check"] = _check_json(report.closed_loop)
     out["certificate"] = certificate
     return out
+
+
+def _check_json(report: Report) -> dict[str, Any]:
+    check = report.check
+    return {"verified": None if check is None else bool(check.ok),
+            "claims": len(report.certificate.get("claims", ())),
+            "verdicts": [] if check is None else
+            [{"claim": kind, "ok": bool(ok), "message": str(message)} for kind, ok, message in check.verdicts]}
 
 
 def report_latex(report: Report) -> str:
@@ -90,12 +98,34 @@ def report_latex(report: Report) -> str:
     \\hline
     \\end{tabular}
     """
-    method = f", ${latex_text(report.method.name)}$" if report.method is not None else ""
     check = report.check
     verdict = ("the check was skipped (--no-check)" if check is None else
                f"the trusted kernel {'VERIFIED' if check.ok else 'REJECTED'} the certificate "
                f"({len(report.certificate.get('claims', ()))} claims)")
     name = report.problem.name.replace("\n", " ")
+    lines = [f"% exactinv certify: problem {name}, method {report.method.name if report.method else 'none'}",
+             f"% {verdict}; needs \\usepackage{{amsmath}}",
+             r"\begin{tabular}{ll}", r"\hline", r"quantity & exact value \\", r"\hline"]
+    lines += [f"{what} & {value} \\\\" for what, value in _latex_rows(report)]
+    lines += [r"\hline", r"\end{tabular}"]
+    return "\n".join(lines)
+
+
+def _latex_rows(report: Report) -> list[tuple[str, str]]:
+    """(quantity, value) rows in the order of the paper; a gain design's rows, then its closed loop's."""
+    if report.closed_loop is not None or any(isinstance(r, OptimalGain) for r in report.results):
+        rows = []
+        for r in report.results:
+            if isinstance(r, OptimalGain) and r.holds:
+                rows += [("optimal gain $F$", f"${latex_matrix(r.F)}$"),
+                         (r"$\gamma = \min_F \gamma^*(A + BF)$", f"${latex_real(r.gamma)}$"),
+                         ("largest forward-Euler step over all gains", f"${latex_real(r.forward_euler_step)}$")]
+            elif isinstance(r, OptimalGain):
+                rows.append(("optimal gain $F$", "none: no linear gain keeps the set invariant"))
+        if report.closed_loop is not None:
+            rows += [(f"closed loop: {what}", value) for what, value in _latex_rows(report.closed_loop)]
+        return rows
+    method = f", ${latex_text(report.method.name)}$" if report.method is not None else ""
     rows = [(0, "continuous invariance", "holds" if not report.refuted else "fails (an exact witness leaves the set)")]
     for r in report.results:
         if isinstance(r, OptimalGamma):
@@ -112,9 +142,4 @@ def report_latex(report: Report) -> str:
                          f"${latex_real(r.value)}$" + ("" if r.attained else " (not attained)")))
     rows += [(6, f"undecided: ${latex_text(what)}$", "not in the certificate") for what, _ in report.undecided]
     rows.sort(key=lambda row: row[0])
-    lines = [f"% exactinv certify: problem {name}, method {report.method.name if report.method else 'none'}",
-             f"% {verdict}; needs \\usepackage{{amsmath}}",
-             r"\begin{tabular}{ll}", r"\hline", r"quantity & exact value \\", r"\hline"]
-    lines += [f"{what} & {value} \\\\" for _, what, value in rows]
-    lines += [r"\hline", r"\end{tabular}"]
-    return "\n".join(lines)
+    return [(what, value) for _, what, value in rows]
