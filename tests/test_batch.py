@@ -176,7 +176,6 @@ def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_pa
         json.dumps({"name": "typo", "system": {"A": [[-1]]}, "polyhedron": SEGMENT, "methd": {"taylor": 1}}),
         json.dumps({"name": "ragged", "system": {"A": [[-1, 0], [0]]}, "polyhedron": SEGMENT}),
         json.dumps(_slow()),
-        json.dumps(_hog()),
     ]
     corpus = tmp_path / "poisoned.jsonl"
     corpus.write_text("\n".join(lines) + "\n")
@@ -184,14 +183,28 @@ def test_poisoned_corpus_completes_with_every_failure_recorded(scheduler, tmp_pa
     summary = run_batch([corpus], out, scheduler=scheduler, timeout=6, memory_mb=200, progress=False)
     records = _records(out)
     assert summary.ran == len(lines) == len(records) and not summary.ok
-    assert [summary.count(s) for s in ("ok", "error", "timeout", "memory")] == [3, 4, 1, 1]
+    assert [summary.count(s) for s in ("ok", "error", "timeout", "memory")] == [3, 4, 1, 0]
     assert all(records[p["name"]]["status"] == "ok" for p in good)
     assert "float" in records["float"]["error"] and "0.5" in records["float"]["error"]
     assert records["poisoned.jsonl:5"]["status"] == "error" and "JSON" in records["poisoned.jsonl:5"]["error"]
     assert 'did you mean "method"' in records["typo"]["error"]
     assert records["ragged"]["status"] == "error"
     assert records["slow"]["status"] == "timeout" and "6 s" in records["slow"]["error"]
-    assert records["hog"]["status"] == "memory"
+
+
+def test_a_memory_hog_is_recorded_as_memory_and_the_rest_completes(scheduler, tmp_path):
+    """The hog needs about a second of CPU to pass 200 MB; its time limit is generous, so that on a
+    loaded machine (where that second may take ten of wall time) the memory limit, not the clock,
+    stops it -- the outcome under test."""
+    good = [_decay(c, 2) for c in (1, 2)]
+    corpus = tmp_path / "hog.jsonl"
+    corpus.write_text("\n".join(json.dumps(p) for p in [good[0], _hog(), good[1]]) + "\n")
+    out = tmp_path / "results.jsonl"
+    summary = run_batch([corpus], out, scheduler=scheduler, timeout=300, memory_mb=200, progress=False)
+    records = _records(out)
+    assert [summary.count(s) for s in ("ok", "error", "timeout", "memory")] == [2, 0, 0, 1]
+    assert records["hog"]["status"] == "memory" and "200 MB" in records["hog"]["error"]
+    assert all(records[p["name"]]["status"] == "ok" for p in good)
 
 
 def test_oracle_rows_judged_as_judge_batch_judges_them(scheduler, tmp_path):

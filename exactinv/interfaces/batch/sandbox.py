@@ -108,7 +108,8 @@ def _child(fn, arg, fd: int, timeout, memory_mb) -> None:
         try:
             reply = {"ok": fn(arg)}
         except MemoryError:
-            reply = {"memory": "MemoryError (the --memory limit)"}
+            reply = {"memory": f"MemoryError (the --memory limit of {memory_mb:g} MB)" if memory_mb is not None
+                     else "MemoryError"}
         except BaseException as exc:  # the function's own bug: report it, never hang the batch
             reply = {"crash": f"{type(exc).__name__}: {exc}"}
         payload = json.dumps(reply).encode()
