@@ -58,7 +58,7 @@ def test_positive_gamma_ignores_redundant_rows(A, data):
 
 
 def test_nonpositive_gamma_depends_on_representation():
-    """DESIGN.md: P = {x >= 1}, x' = x has gamma* = -1, but -1/6 once x >= -5 is added."""
+    """docs/design.md: P = {x >= 1}, x' = x has gamma* = -1, but -1/6 once x >= -5 is added."""
     S = ei.LinearSystem([[1]])
     assert ei.optimal_gamma(S, ei.Polyhedron([[-1]], [-1])).value == -1
     assert ei.optimal_gamma(S, ei.Polyhedron([[-1], [-1]], [-1, 5])).value == Fraction(-1, 6)
