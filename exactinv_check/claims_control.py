@@ -52,9 +52,9 @@ def _matmul(X, Y):
 from .reals import Real, quotient
 
 
-def _dual(record, m, n, q, what):
-    require(isinstance(record, dict) and set(record) == {"Y", "mu", "nu", "Z", "w"},
-            f"{what} has the keys Y, mu, nu, Z, w")
+def _dual(record, m, n, q, what, extra=frozenset()):
+    keys = {"Y", "mu", "nu", "Z", "w"} | extra
+    require(isinstance(record, dict) and set(record) == keys, f"{what} has the keys {', '.join(sorted(keys))}")
     return (matrix(record["Y"], f"{what} Y", m, n), vector(record["mu"], f"{what} mu", m),
             vector(record["nu"], f"{what} nu", m), matrix(record["Z"], f"{what} Z", q, n), vector(record["w"], f"{what} w", q))
 
@@ -95,8 +95,12 @@ def optimal_gain(problem, claim, context):
     keys = set(claim) - {"type", "holds", "value"}
     if not claim["holds"]:
         require(keys == {"farkas"} and value.inf == 1, "holds = false carries value oo and a farkas certificate only")
-        Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas")
-        _price_gain(problem, count, Y, [mu], [nu], Z, [w])
+        Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas", frozenset({"x"}))
+        # the LP's infeasibility means "no gain makes P invariant" only for a NONEMPTY P (an empty P is invariant
+        # under every gain, yet its LP may be infeasible: tests/test_kernel_redteam_control.py); a point proves it
+        x = vector(claim["farkas"]["x"], "farkas x (a point of P)", n)
+        _price_gain(problem, count, Y, [mu], [nu], Z, [w], [x])
+        require(all(v <= beta for v, beta in zip(matvec(G, x), b)), "farkas x is not in P (P must be nonempty)")
         require(all(x == 0 for x in nu), "a Farkas certificate has nu = 0 (the cost of gamma is 0)")
         objective = _dual_rows(problem, Y, mu, nu, Z, w)
         require(objective < 0, "the Farkas certificate's objective <GA, Y> + e.w is not negative")
