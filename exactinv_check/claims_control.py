@@ -6,9 +6,11 @@
   primal (H, F, Lambda) proves gamma*(A + BF) <= gamma for this F; the dual
   (Y, mu, nu, Z, w) proves gamma*(A + BF') >= gamma for EVERY gain F' (LP weak
   duality, the dual's constraints written out below).  holds = false: a Farkas
-  vector (the dual with nu = 0 and a negative objective) proves that no gain
+  vector (the dual with nu = 0 and a negative objective), with a point x of P
+  (P nonempty: an empty P is invariant under every gain), proves that no gain
   makes P invariant.
-* robust_threshold: each vertex A_i of the hull gets a full gamma_star check
+* robust_threshold: a point x of P (P nonempty: 1/gamma is the largest robust
+  forward-Euler step only then); each vertex A_i of the hull gets a full gamma_star check
   (H_i and the dual of its binding row); gamma = max_i gamma_i; the method's
   radius rho comes from a verified absolute_monotonicity_radius claim; the
   threshold is recomputed: rho/gamma (polynomial), min(rho/gamma, z_p/beta)
@@ -145,6 +147,11 @@ def robust_threshold(problem, claim, context):
     rho = context.get("rho")
     require(rho is not None, "a verified absolute_monotonicity_radius claim must precede this one")
     require(Real.parse(claim["rho"], "rho").compare(rho) == 0, "rho differs from the verified radius")
+    # forward_euler = 1/gamma is the LARGEST robust step only on a nonempty P (an empty P keeps every step, yet its
+    # gamma* LP can be finite: tests/test_kernel_redteam_control.py); a point of P proves it nonempty
+    x = vector(claim["x"], "x (a point of P)", problem.n)
+    within_budget(fraction_products_cost(problem.m * problem.n, _bits(problem.G, [problem.b], [x])), "Gx <= b")
+    require(all(v <= beta for v, beta in zip(matvec(problem.G, x), problem.b)), "x is not in P (P must be nonempty)")
     records = claim["vertices"]
     require(isinstance(records, list) and len(records) == len(problem.hull), "one gamma* record per vertex of the hull")
     gammas, Hs = [], []

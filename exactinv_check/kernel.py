@@ -53,7 +53,7 @@ CLAIMS = {
     "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
     "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas"}),
     "robust_threshold": (claims_control.robust_threshold, {"value", "attained", "gamma", "rho", "forward_euler",
-                                                           "vertices"}, {"beta", "v"}),
+                                                           "vertices", "x"}, {"beta", "v"}),
 }
 _BOOLEAN_KEYS = {"holds", "attained"}
 

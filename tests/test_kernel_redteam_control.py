@@ -6,6 +6,9 @@ Findings (each a test that failed before its fix):
   infeasible (HG = G(A + BF) has no solution when a row of G(A + BF) leaves the row space of G), so a
   genuine Farkas vector exists, yet every gain leaves an empty P invariant -- the kernel's verdict "no
   linear gain makes P invariant" was false.  Now the Farkas record carries a point x of P.
+* a robust_threshold claim on an EMPTY P was accepted with ``forward_euler`` = 1/gamma finite, stated as the
+  largest robust forward-Euler step, though an empty P keeps every step (its gamma* LP can be finite).  Now
+  the claim carries a point x of P.
 * the robust problem's rank test (P without lines, for rational methods) ran a Fraction Gauss-Jordan
   elimination of G uncharged, so neither the work budget nor the clock could stop it: a 640 KB certificate
   (G 400 x 200, digits -9..9) ran for minutes of CPU before the first claim.  Now a fraction-free
@@ -82,7 +85,47 @@ def test_the_engine_writes_the_point_and_the_kernel_checks_it():
     assert not exactinv_check.check(bad).ok
 
 
-# ------------------------------------------------------------------ finding 2: the hull problem's rank, uncharged
+# ------------------------------------------------------------------ finding 2: a robust forward-Euler step on an empty P
+
+_FE_RADIUS = {"type": "absolute_monotonicity_radius", "value": "1", "reason": "coefficient", "attained": True,
+              "binding": 0, "d": [["1", "-1"], ["1"]]}
+
+
+def _empty_robust(x=None):
+    """P = {x1 <= -1, -x1 <= -1, x2 <= 5} is empty (rows 0 and 1), so every step keeps it: the largest robust
+    forward-Euler step is oo.  Yet gamma* of A = diag(0, -1) is 1 by a genuine H and dual: rows 0 and 1 of H
+    are free to grow (1, 1, 0), row 2 is h_3 = (a, a, -1) with h_33 = -1 fixed by h_3 G = g_3 A = (0, -1); the
+    dual of row 2 is y = (0, 1), lambda = 0 (g_k y + lambda b_k = 0, 0, 1), and (A^T g_3) . y = -1."""
+    claim = {"type": "robust_threshold", "value": "1", "attained": True, "gamma": "1", "rho": "1",
+             "forward_euler": "1",
+             "vertices": [{"value": "1", "H": [["1", "1", "0"], ["1", "1", "0"], ["0", "0", "-1"]], "binding_row": 2,
+                           "dual": {"y": ["0", "1"], "lambda": "0"}}]}
+    if x is not None:
+        claim["x"] = x
+    return {"format": "exactinv-certificate", "version": 2,
+            "problem": {"hull": [[["0", "0"], ["0", "-1"]]], "G": [["1", "0"], ["-1", "0"], ["0", "1"]],
+                        "b": ["-1", "-1", "5"], "method": {"name": "forward_euler", "numerator": ["1", "1"],
+                                                          "denominator": ["1"]}},
+            "claims": [_FE_RADIUS, claim]}
+
+
+def test_the_largest_robust_forward_euler_step_needs_a_nonempty_P():
+    assert not exactinv_check.check(_empty_robust()).ok  # was accepted: "forward_euler": "1" on an empty P
+    for x in (["-1", "0"], ["1", "0"], ["0", "5"]):
+        report = exactinv_check.check(_empty_robust(x))
+        assert not report.ok and "not in P" in str(report), report
+    # the same record on the nonempty P = {|x1| <= 1, x2 <= 5} (b = (1, 1, 5)) is true: at x = (0, 5) on the
+    # facet x2 = 5, forward Euler gives x2 = 5 - 5h, and the facets |x1| <= 1 are fixed (x1' = 0); the step
+    # 1/gamma = 1 is the largest, as the independent sampler of this file confirms.
+    cert = _empty_robust(["0", "5"])
+    cert["problem"]["b"] = ["1", "1", "5"]
+    cert["claims"][1]["vertices"][0]["H"] = [["0", "0", "0"], ["0", "0", "0"], ["0", "0", "-1"]]
+    cert["claims"][1]["vertices"][0]["dual"] = {"y": ["0", "1"], "lambda": "0"}
+    assert exactinv_check.check(cert).ok
+    assert _robust_claim_is_true(cert["problem"], cert["claims"][1], random.Random(3), samples=20)
+
+
+# ------------------------------------------------------------------ finding 3: the hull problem's rank, uncharged
 
 def _hull_record(G):
     n = len(G[0])
@@ -197,7 +240,7 @@ def _gain_claim_is_true(problem, claim, genuine_value):
     objective = sum(GA[i][c] * Y[i][c] for i in range(m) for c in range(n)) + sum(x * y for x, y in zip(e, w))
     if gamma is None:
         return objective < 0 and genuine_value in (None, "oo")
-    return -objective == gamma and (genuine_value is None or genuine_value == claim["value"])
+    return -objective == gamma and (genuine_value is None or genuine_value != "oo" and _q(genuine_value) == gamma)
 
 
 def _r_of(method, A, h):
@@ -409,10 +452,13 @@ def fuzz(seed, problems=2, mutants_per_cert=60):
                     continue
                 stats["accepted"] += 1
                 same_problem = mutant["problem"] == cert["problem"]
-                if kind == "gain":
-                    ok = _gain_claim_is_true(mutant["problem"], mutant["claims"][-1], genuine if same_problem else None)
+                claims = [c for c in mutant["claims"] if c.get("type") in ("optimal_gain", "robust_threshold")]
+                if not claims:  # the claims list cut short: what is left are genuine claims, unchanged
+                    ok = same_problem and all(c in cert["claims"] for c in mutant["claims"])
+                elif kind == "gain":
+                    ok = _gain_claim_is_true(mutant["problem"], claims[-1], genuine if same_problem else None)
                 else:
-                    ok = _robust_claim_is_true(mutant["problem"], mutant["claims"][-1], rng)
+                    ok = _robust_claim_is_true(mutant["problem"], claims[-1], rng)
                 if ok:
                     stats["true"] += 1
                 else:

@@ -75,7 +75,7 @@ def test_a_dense_robust_hull_is_priced_not_run():
             "claims": [{"type": "absolute_monotonicity_radius", "value": "1", "reason": "coefficient",
                         "attained": True, "binding": 0, "d": [["1", "-1"], ["1"]]},
                        {"type": "robust_threshold", "value": "1", "attained": True, "gamma": "0", "rho": "1",
-                        "forward_euler": "oo", "vertices": [vertex] * k}]}
+                        "forward_euler": "oo", "vertices": [vertex] * k, "x": [0] * n}]}
     report, seconds = _timed_check(cert)
     assert not report.ok
     assert "work budget" in str(report), report
