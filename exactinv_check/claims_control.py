@@ -6,9 +6,10 @@
   primal (H, F, Lambda) proves gamma*(A + BF) <= gamma for this F; the dual
   (Y, mu, nu, Z, w) proves gamma*(A + BF') >= gamma for EVERY gain F' (LP weak
   duality, the dual's constraints written out below).  holds = false: a Farkas
-  vector (the dual with nu = 0 and a negative objective), with a point x of P
-  (P nonempty: an empty P is invariant under every gain), proves that no gain
-  makes P invariant.
+  vector (the dual with nu = 0 and a negative objective) proves that no gain
+  makes P invariant.  Both carry a point x of P: on an empty P every gain keeps
+  P invariant and "Fx in U on P" is vacuous, so neither LP statement would mean
+  what the claim says.
 * robust_threshold: a point x of P (P nonempty: 1/gamma is the largest robust
   forward-Euler step only then); each vertex A_i of the hull gets a full gamma_star check
   (H_i and the dual of its binding row); gamma = max_i gamma_i; the method's
@@ -54,9 +55,9 @@ def _matmul(X, Y):
 from .reals import Real, quotient
 
 
-def _dual(record, m, n, q, what, extra=frozenset()):
-    keys = {"Y", "mu", "nu", "Z", "w"} | extra
-    require(isinstance(record, dict) and set(record) == keys, f"{what} has the keys {', '.join(sorted(keys))}")
+def _dual(record, m, n, q, what):
+    require(isinstance(record, dict) and set(record) == {"Y", "mu", "nu", "Z", "w"},
+            f"{what} has the keys Y, mu, nu, Z, w")
     return (matrix(record["Y"], f"{what} Y", m, n), vector(record["mu"], f"{what} mu", m),
             vector(record["nu"], f"{what} nu", m), matrix(record["Z"], f"{what} Z", q, n), vector(record["w"], f"{what} w", q))
 
@@ -94,15 +95,19 @@ def optimal_gain(problem, claim, context):
     # HG (m^2 n), G(A + BF) (m n^2 + n^2 p), Lambda G (q m n)
     count = 2 * (m + q) * m * n + 2 * m * n * n + 2 * (m + q) * p * n + 2 * n * n * p
     value = Real.parse(claim["value"], "gamma")
-    keys = set(claim) - {"type", "holds", "value"}
+    keys = set(claim) - {"type", "holds", "value", "x"}
+    # P must be nonempty, proved by a point x: on an empty P every gain keeps P invariant and "Fx in U on P" holds
+    # vacuously, yet the gain LP can be infeasible (a Farkas vector) or its Lambda rows can exclude gains (a false
+    # optimum): both were accepted (tests/test_kernel_redteam_control.py).  With P nonempty, Lambda >= 0,
+    # Lambda G = EF, Lambda b <= e is exactly "Fx in U for every x in P" (affine Farkas lemma).
+    require("x" in claim, "an optimal_gain claim carries x, a point of P (P nonempty)")
+    x = vector(claim["x"], "x (a point of P)", n)
+    within_budget(fraction_products_cost(m * n, _bits(G, [b], [x])), "Gx <= b")
+    require(all(v <= beta for v, beta in zip(matvec(G, x), b)), "x is not in P (P must be nonempty)")
     if not claim["holds"]:
         require(keys == {"farkas"} and value.inf == 1, "holds = false carries value oo and a farkas certificate only")
-        Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas", frozenset({"x"}))
-        # the LP's infeasibility means "no gain makes P invariant" only for a NONEMPTY P (an empty P is invariant
-        # under every gain, yet its LP may be infeasible: tests/test_kernel_redteam_control.py); a point proves it
-        x = vector(claim["farkas"]["x"], "farkas x (a point of P)", n)
-        _price_gain(problem, count, Y, [mu], [nu], Z, [w], [x])
-        require(all(v <= beta for v, beta in zip(matvec(G, x), b)), "farkas x is not in P (P must be nonempty)")
+        Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas")
+        _price_gain(problem, count, Y, [mu], [nu], Z, [w])
         require(all(x == 0 for x in nu), "a Farkas certificate has nu = 0 (the cost of gamma is 0)")
         objective = _dual_rows(problem, Y, mu, nu, Z, w)
         require(objective < 0, "the Farkas certificate's objective <GA, Y> + e.w is not negative")

@@ -51,7 +51,7 @@ CLAIMS = {
     "ellipsoid_valid_steplengths": (claims_ellipsoid.valid_steplengths, {"intervals"}, {"determinant"}),
     "ellipsoid_largest_threshold": (claims_ellipsoid.largest_threshold, {"value", "attained"}, {"determinant", "binding"}),
     "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
-    "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas"}),
+    "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas", "x"}),
     "robust_threshold": (claims_control.robust_threshold, {"value", "attained", "gamma", "rho", "forward_euler",
                                                            "vertices", "x"}, {"beta", "v"}),
 }

@@ -5,7 +5,9 @@ Findings (each a test that failed before its fix):
 * an optimal_gain claim with ``holds: false`` on an EMPTY P was accepted: the gain LP of an empty P can be
   infeasible (HG = G(A + BF) has no solution when a row of G(A + BF) leaves the row space of G), so a
   genuine Farkas vector exists, yet every gain leaves an empty P invariant -- the kernel's verdict "no
-  linear gain makes P invariant" was false.  Now the Farkas record carries a point x of P.
+  linear gain makes P invariant" was false.  Likewise ``holds: true``: on an empty P the Lambda rows
+  restrict F although "Fx in U on P" is vacuous, so an LP optimum 0 was accepted where a gain reaches
+  gamma* = -5.  Now the claim carries a point x of P.
 * a robust_threshold claim on an EMPTY P was accepted with ``forward_euler`` = 1/gamma finite, stated as the
   largest robust forward-Euler step, though an empty P keeps every step (its gamma* LP can be finite).  Now
   the claim carries a point x of P.
@@ -55,8 +57,7 @@ def test_a_farkas_vector_on_an_empty_P_does_not_prove_that_no_gain_exists():
     claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS)}
     assert not exactinv_check.check(_gain_cert(_EMPTY_P, claim)).ok  # was accepted
     for x in (["-1", "0"], ["1", "0"], ["0", "0"]):  # no point of the empty P can be offered
-        claim["farkas"] = dict(_EMPTY_FARKAS, x=x)
-        report = exactinv_check.check(_gain_cert(_EMPTY_P, claim))
+        report = exactinv_check.check(_gain_cert(_EMPTY_P, dict(claim, x=x)))
         assert not report.ok and "not in P" in str(report), report
 
 
@@ -65,24 +66,50 @@ def test_the_same_farkas_vector_on_a_nonempty_P_with_its_point_is_accepted():
     reason (the first row of G(A + BF) is (0, 1)); so no gain makes P invariant -- true: at x = (1, 1),
     on the facet x1 = 1, x1' = x2 = 1 > 0 whatever u is."""
     problem = dict(_EMPTY_P, b=["1", "1"])
-    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS, x=["1", "1"])}
+    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS), "x": ["1", "1"]}
     assert exactinv_check.check(_gain_cert(problem, claim)).ok
-    assert not exactinv_check.check(_gain_cert(problem, dict(claim, farkas=_EMPTY_FARKAS))).ok  # x is required
-    assert not ei.continuous_invariance(ei.LinearSystem([[0, 1], [0, 0]]), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])).holds
-    assert not ei.continuous_invariance(ei.LinearSystem([[0, 1], [0, -7]]), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])).holds
+    claim.pop("x")
+    assert not exactinv_check.check(_gain_cert(problem, claim)).ok  # x is required
+    P = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])
+    for a22 in (0, -7, 3):  # whatever the gain puts in the second row
+        assert not ei.continuous_invariance(ei.LinearSystem([[0, 1], [0, a22]]), P).holds
+
+
+# P = {x1 <= -1, -x1 <= -1, x2 <= 1} is empty; U = {u : -u <= 1}.  Lambda G = EF needs EF = (-f1, -f2) in the
+# cone of G's rows {(s, t) : t >= 0}, so the LP admits only f2 <= 0, and its optimum is gamma = 0 (F = 0).  But
+# on an empty P "Fx in U for every x in P" holds for EVERY F, and F' = (0, 5) has gamma*(A + BF') = -5.
+_EMPTY_P3 = {"A": [["0", "0"], ["0", "0"]], "B": [["0"], ["1"]], "G": [["1", "0"], ["-1", "0"], ["0", "1"]],
+             "b": ["-1", "-1", "1"], "inputs": {"E": [["-1"]], "e": ["1"]}}
+_EMPTY_P3_CLAIM = {"type": "optimal_gain", "holds": True, "value": "0", "F": [["0", "0"]], "H": [["0"] * 3] * 3,
+                   "Lambda": [["0", "0", "0"]],
+                   "dual": {"Y": [["0", "0"], ["0", "0"], ["0", "1"]], "mu": ["0", "0", "0"], "nu": ["0", "0", "1"],
+                            "Z": [["0", "1"]], "w": ["0"]}}
+
+
+def test_an_optimal_gain_on_an_empty_P_is_refused():
+    """The LP's claim 'gamma*(A + BF') >= 0 for every gain F' with u in U' was accepted on the empty P above; the
+    kernel itself proves it false: gamma*(A + BF') = -5 for F' = (0, 5) (a gamma_star certificate on the same P,
+    H rows (5, 5, 0), (5, 5, 0), (3, 3, 5); the dual of row 2 is y = (0, 1), lambda = 0)."""
+    assert not exactinv_check.check(_gain_cert(_EMPTY_P3, _EMPTY_P3_CLAIM)).ok  # was accepted
+    report = exactinv_check.check(_gain_cert(_EMPTY_P3, dict(_EMPTY_P3_CLAIM, x=["1", "1"])))
+    assert not report.ok and "not in P" in str(report), report
+    closed = {"A": [["0", "0"], ["0", "5"]], "G": _EMPTY_P3["G"], "b": _EMPTY_P3["b"]}
+    smaller = {"type": "gamma_star", "value": "-5", "H": [["5", "5", "0"], ["5", "5", "0"], ["3", "3", "5"]],
+               "binding_row": 2, "dual": {"y": ["0", "1"], "lambda": "0"}}
+    assert exactinv_check.check(_gain_cert(closed, smaller)).ok  # so the optimum 0 was false
 
 
 def test_the_engine_writes_the_point_and_the_kernel_checks_it():
     P = ei.Polyhedron([[1, 0], [-1, 0], [1, 1], [-1, -1]], [1, 1, 1, 1])
-    g = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], P, inputs=ei.Polyhedron.box([-1], [1]))
-    assert not g.holds
-    cert = g.certificate
-    x = [Fraction(v) for v in cert["claims"][0]["farkas"]["x"]]
-    assert x in P
-    assert exactinv_check.check(cert).ok
-    bad = copy.deepcopy(cert)
-    bad["claims"][0]["farkas"]["x"] = ["5", "0"]
-    assert not exactinv_check.check(bad).ok
+    for e, holds in ((1, False), (2, True)):
+        g = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], P, inputs=ei.Polyhedron.box([-e], [e]))
+        assert g.holds is holds
+        cert = g.certificate
+        assert [Fraction(v) for v in cert["claims"][0]["x"]] in P
+        assert exactinv_check.check(cert).ok
+        bad = copy.deepcopy(cert)
+        bad["claims"][0]["x"] = ["5", "0"]
+        assert not exactinv_check.check(bad).ok
 
 
 # ------------------------------------------------------------------ finding 2: a robust forward-Euler step on an empty P

@@ -140,6 +140,7 @@ class OptimalGain:
             claim.update(F=mat(self.F), H=mat(self.H), Lambda=mat(self.Lambda), dual=_encoded(self.dual))
         else:
             claim["farkas"] = _encoded(self.farkas)
+        claim["x"] = vec(self.polyhedron.vertices[0])  # a point of P: P is nonempty (the kernel checks it)
         return [claim]
 
     @property
@@ -223,10 +224,7 @@ def optimal_gain(A: Any, B: Any, polyhedron: Polyhedron, inputs: Polyhedron | No
         _recheck(lp, result)
         return result
     if res.status == INFEASIBLE:
-        # the kernel needs a point x of P with the Farkas vector: the LP's infeasibility proves "no gain makes
-        # P invariant" only for a nonempty P (an empty P is invariant under every gain)
-        farkas = dict(lp.dual(res.y), x=tuple(P.vertices[0]))
-        return OptimalGain(False, None, INF, None, None, None, farkas, A_m, B_m, P, U, str(res.path))
+        return OptimalGain(False, None, INF, None, None, None, lp.dual(res.y), A_m, B_m, P, U, str(res.path))
     raise ExactinvError("optimal_gain: gamma is unbounded below over the linear gains (the LP has a verified ray), "
                         "so no gain attains the minimum; every gain with gamma*(A + BF) <= 0 gives the paper's "
                         "threshold infinity for methods with rho > 0 (docs/design.md)")
