@@ -7,8 +7,11 @@
   (Y, mu, nu, Z, w) proves gamma*(A + BF') >= gamma for EVERY gain F' (LP weak
   duality, the dual's constraints written out below).  holds = false: a Farkas
   vector (the dual with nu = 0 and a negative objective) proves that no gain
-  makes P invariant.
-* robust_threshold: each vertex A_i of the hull gets a full gamma_star check
+  makes P invariant.  Both carry a point x of P: on an empty P every gain keeps
+  P invariant and "Fx in U on P" is vacuous, so neither LP statement would mean
+  what the claim says.
+* robust_threshold: a point x of P (P nonempty: 1/gamma is the largest robust
+  forward-Euler step only then); each vertex A_i of the hull gets a full gamma_star check
   (H_i and the dual of its binding row); gamma = max_i gamma_i; the method's
   radius rho comes from a verified absolute_monotonicity_radius claim; the
   threshold is recomputed: rho/gamma (polynomial), min(rho/gamma, z_p/beta)
@@ -92,7 +95,15 @@ def optimal_gain(problem, claim, context):
     # HG (m^2 n), G(A + BF) (m n^2 + n^2 p), Lambda G (q m n)
     count = 2 * (m + q) * m * n + 2 * m * n * n + 2 * (m + q) * p * n + 2 * n * n * p
     value = Real.parse(claim["value"], "gamma")
-    keys = set(claim) - {"type", "holds", "value"}
+    keys = set(claim) - {"type", "holds", "value", "x"}
+    # P must be nonempty, proved by a point x: on an empty P every gain keeps P invariant and "Fx in U on P" holds
+    # vacuously, yet the gain LP can be infeasible (a Farkas vector) or its Lambda rows can exclude gains (a false
+    # optimum): both were accepted (tests/test_kernel_redteam_control.py).  With P nonempty, Lambda >= 0,
+    # Lambda G = EF, Lambda b <= e is exactly "Fx in U for every x in P" (affine Farkas lemma).
+    require("x" in claim, "an optimal_gain claim carries x, a point of P (P nonempty)")
+    x = vector(claim["x"], "x (a point of P)", n)
+    within_budget(fraction_products_cost(m * n, _bits(G, [b], [x])), "Gx <= b")
+    require(all(v <= beta for v, beta in zip(matvec(G, x), b)), "x is not in P (P must be nonempty)")
     if not claim["holds"]:
         require(keys == {"farkas"} and value.inf == 1, "holds = false carries value oo and a farkas certificate only")
         Y, mu, nu, Z, w = _dual(claim["farkas"], m, n, q, "farkas")
@@ -141,6 +152,11 @@ def robust_threshold(problem, claim, context):
     rho = context.get("rho")
     require(rho is not None, "a verified absolute_monotonicity_radius claim must precede this one")
     require(Real.parse(claim["rho"], "rho").compare(rho) == 0, "rho differs from the verified radius")
+    # forward_euler = 1/gamma is the LARGEST robust step only on a nonempty P (an empty P keeps every step, yet its
+    # gamma* LP can be finite: tests/test_kernel_redteam_control.py); a point of P proves it nonempty
+    x = vector(claim["x"], "x (a point of P)", problem.n)
+    within_budget(fraction_products_cost(problem.m * problem.n, _bits(problem.G, [problem.b], [x])), "Gx <= b")
+    require(all(v <= beta for v, beta in zip(matvec(problem.G, x), problem.b)), "x is not in P (P must be nonempty)")
     records = claim["vertices"]
     require(isinstance(records, list) and len(records) == len(problem.hull), "one gamma* record per vertex of the hull")
     gammas, Hs = [], []

@@ -11,7 +11,7 @@ primitive (divided by the gcd of its entries, a positive factor).
 
 from math import gcd, lcm
 
-from .budget import PYTHON_OP, charge
+from .budget import PYTHON_OP, charge, words
 from .rationals import CheckFailure, require
 
 MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
@@ -61,10 +61,15 @@ def _reduce(rows, ncols, aug=None):
             ext[rank], ext[pr] = ext[pr], ext[rank]
         prow, pv = work[rank], work[rank][c]
         targets = range(len(work)) if ext is not None else range(rank + 1, len(work))
+        width = len(prow) + (len(ext[rank]) if ext is not None else 0)
         for i in targets:
             f = work[i][c]
             if i == rank or not f:
                 continue
+            # each row operation charged by its numbers' sizes, as it runs (the entries are minors of about the
+            # pivot's size): a 400 x 200 G ran minutes uncharged here (tests/test_kernel_redteam_control.py)
+            w = words(2 * max(abs(pv).bit_length(), abs(f).bit_length()))
+            charge(width * (PYTHON_OP + 2 * w * w), "a fraction-free elimination step (a rank)")
             row = [pv * x - f * y for x, y in zip(work[i], prow)]
             if ext is not None:
                 e = [pv * x - f * y for x, y in zip(ext[i], ext[rank])]
@@ -83,8 +88,12 @@ def _reduce(rows, ncols, aug=None):
     return rank, cols, order[:rank], work[:rank], (ext[:rank] if ext is not None else None)
 
 
-def _rank(rows, ncols):
+def integer_rank(rows, ncols):
+    """The rank of integer rows of length ``ncols`` (fraction-free elimination, charged as it runs)."""
     return _reduce(rows, ncols)[0] if rows else 0
+
+
+_rank = integer_rank  # its old name, used within the kernel
 
 
 def _basis_rays(B, ncols):

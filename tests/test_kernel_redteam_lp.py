@@ -41,7 +41,8 @@ def test_a_dense_farkas_record_is_priced_not_run():
             "problem": {"A": _zeros(n, n), "B": [[0] for _ in range(n)],
                         "G": [[int(i == j) for j in range(n)] for i in range(m)], "b": [1] * m},
             "claims": [{"type": "optimal_gain", "holds": False, "value": "oo",
-                        "farkas": {"Y": _zeros(m, n), "mu": [0] * m, "nu": [0] * m, "Z": [], "w": []}}]}
+                        "farkas": {"Y": _zeros(m, n), "mu": [0] * m, "nu": [0] * m, "Z": [], "w": []},
+                        "x": [0] * n}]}
     report, seconds = _timed_check(cert)
     assert not report.ok
     assert "work budget" in str(report), report
@@ -55,7 +56,7 @@ def test_a_dense_primal_gain_record_is_priced_not_run():
                         "G": [[int(i == j) for j in range(n)] for i in range(m)], "b": [1] * m},
             "claims": [{"type": "optimal_gain", "holds": True, "value": "0", "F": [[0] * n], "H": _zeros(m, m),
                         "Lambda": [], "dual": {"Y": _zeros(m, n), "mu": [0] * m, "nu": [1] + [0] * (m - 1),
-                                               "Z": [], "w": []}}]}
+                                               "Z": [], "w": []}, "x": [0] * n}]}
     report, seconds = _timed_check(cert)
     assert not report.ok
     assert "work budget" in str(report), report
@@ -74,7 +75,7 @@ def test_a_dense_robust_hull_is_priced_not_run():
             "claims": [{"type": "absolute_monotonicity_radius", "value": "1", "reason": "coefficient",
                         "attained": True, "binding": 0, "d": [["1", "-1"], ["1"]]},
                        {"type": "robust_threshold", "value": "1", "attained": True, "gamma": "0", "rho": "1",
-                        "forward_euler": "oo", "vertices": [vertex] * k}]}
+                        "forward_euler": "oo", "vertices": [vertex] * k, "x": [0] * n}]}
     report, seconds = _timed_check(cert)
     assert not report.ok
     assert "work budget" in str(report), report

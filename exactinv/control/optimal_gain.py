@@ -140,6 +140,7 @@ class OptimalGain:
             claim.update(F=mat(self.F), H=mat(self.H), Lambda=mat(self.Lambda), dual=_encoded(self.dual))
         else:
             claim["farkas"] = _encoded(self.farkas)
+        claim["x"] = vec(self.polyhedron.vertices[0])  # a point of P: P is nonempty (the kernel checks it)
         return [claim]
 
     @property

@@ -120,7 +120,8 @@ class RobustThreshold(ExactValueMixin):
             vertices.append(claim)
         claim = {"type": ClaimType.ROBUST_THRESHOLD, "value": encode_real(self.value), "attained": self.attained,
                  "gamma": encode_real(self.gamma), "rho": encode_real(self.rho),
-                 "forward_euler": encode_real(self.forward_euler_step), "vertices": vertices}
+                 "forward_euler": encode_real(self.forward_euler_step), "vertices": vertices,
+                 "x": vec(self.polyhedron.vertices[0])}  # a point of P: P is nonempty (the kernel checks it)
         if self.beta is not None:
             claim.update(beta=str(self.beta), v=vec(self.v))
         return self.radius.claims() + [claim]
