@@ -27,7 +27,7 @@ SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
 
 @pytest.fixture(scope="module")
 def scheduler():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0",
                                   silence_logs=40) as cluster:
         yield cluster.scheduler_address
 

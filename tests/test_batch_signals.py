@@ -78,7 +78,7 @@ def test_ctrl_c_on_the_local_cluster(tmp_path):
 
 
 def test_ctrl_c_with_an_existing_scheduler(tmp_path):
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0",
                                   silence_logs=40) as cluster:
         _interrupt_then_resume(tmp_path, ["--scheduler", cluster.scheduler_address])
 

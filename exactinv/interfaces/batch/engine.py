@@ -315,9 +315,11 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     # they start with it ignored (inherited from this process while the cluster starts), and the
     # preload re-ignores it after importing cysignals (pplpy's), which installs its own handler.
     # This process alone handles Ctrl-C and shuts the cluster down quietly: no worker traceback.
+    # dashboard_address=None does not stop the scheduler's HTTP server: it then asks for port 8787
+    # and warns on stderr when that is taken (two batches at once); a free local port is quiet.
     with sigint_ignored():
         cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                    dashboard_address=None, silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
+                                    dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
     try:
         return dask.Client(cluster), cluster
     except BaseException:
