@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..beyond.largest import LargestThreshold, ValidSteplengths
+from ..validset.results import LargestThreshold, ValidSteplengths
 from ..core.latex import latex_real, latex_text
 from ..paper.gamma_star import OptimalGamma
 from ..paper.polynomial import SteplengthThreshold

@@ -1,0 +1,45 @@
+"""The LP route: per facet, the pieces of [0, oo) on which one basis of the parametric LP
+max g_i A_d(h) x over P is optimal (docs/design.md, "The LP route" and "The route protocol").
+
+Wraps :func:`exactinv.beyond.lp_route.lp_route` (weak duality proves each
+piece's vertex a maximizer; the vertex-facet conditions of the pieces give
+the valid set exactly, with no vertex list).  It accepts P with rank G = n
+(no lines; a cheap rank of G); an unbounded P is found while solving and
+declined (:class:`~exactinv.validset.route.RouteDeclined`).
+"""
+
+from __future__ import annotations
+
+from ..beyond.lp_route import LPRouteDeclined, lp_route
+from .polyhedral import PolyhedralRoute, vertex_zero
+from .problem import ValidSetProblem
+from .route import RouteConditions, RouteDeclined
+
+__all__ = ["ParametricLPRoute", "LP_ABOVE"]
+
+LP_ABOVE = 5000
+"""The notional cost of one facet's parametric LP in units of vertex-facet pairs: ``route="auto"``
+takes the LP route when McMullen's bound on the vertex count exceeds this."""
+
+
+class ParametricLPRoute(PolyhedralRoute):
+    """The LP route."""
+
+    name = "lp"
+
+    def accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
+        return problem.conditions.G.rank() == problem.invariant_set.n
+
+    def polyhedron_refusal(self, problem: ValidSetProblem) -> str:
+        return "P has lines (rank G < n): no basis exists; the vertex route handles it"
+
+    def estimate(self, problem: ValidSetProblem) -> float:
+        """Facets times :data:`LP_ABOVE` (+1: a tie goes to the vertex route)."""
+        return problem.invariant_set.m * LP_ABOVE + 1
+
+    def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
+        try:
+            inequalities, pieces = lp_route(problem.conditions)
+        except LPRouteDeclined as exc:
+            raise RouteDeclined(str(exc)) from None
+        return RouteConditions(self.name, tuple(inequalities), (), vertex_zero(inequalities), None, {"lp": pieces})
