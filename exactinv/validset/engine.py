@@ -33,13 +33,15 @@ import time
 from fractions import Fraction
 from typing import Any
 
+import flint
+
 from ..beyond.conditions import Condition, ConditionSet, distinct_conditions
 from ..core.algebraic import ExactKey, Real, exact_lt, upper_bound
 from ..core.intervals import Interval, IntervalUnion, complement_of_open
 from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.roots import nonnegative_until, positive_roots
-from ..core.scalars import INF, Infinity
+from ..core.scalars import INF, Infinity, fraction_of
 from ..errors import InvalidInput
 from ..model.methods import forward_euler
 from ..paper.gamma_star import OptimalGamma
@@ -147,9 +149,12 @@ def largest(problem: ValidSetProblem, route: str = "auto") -> Any:
     best: Real = INF
     binding: Condition | None = None
     for c in sorted(distinct, key=lambda c: (c not in leading, c.p(0))):
-        if not isinstance(best, Infinity) and positive_right_of_zero(c.p) and no_positive_root_below(c.p, upper_bound(best)):
+        if c.p.degree() <= 1:  # a linear condition (forward Euler): its end in closed form
+            end = _linear_end(c.p)
+        elif not isinstance(best, Infinity) and positive_right_of_zero(c.p) and no_positive_root_below(c.p, upper_bound(best)):
             continue  # c >= 0 on [0, best]: cannot end the first interval earlier
-        end = nonnegative_until(c.p)
+        else:
+            end = nonnegative_until(c.p)
         if exact_lt(end, best):
             best, binding = end, c
     attained = True
@@ -158,6 +163,19 @@ def largest(problem: ValidSetProblem, route: str = "auto") -> Any:
     if isinstance(best, Infinity):
         attained = True
     return r.largest_result(problem, _finished(found, t0), best, attained, binding, singular, tuple(distinct))
+
+
+def _linear_end(p: flint.fmpq_poly) -> Real:
+    """sup{T : c0 + c1 h >= 0 on [0, T]} for a polynomial of degree <= 1, exactly (as
+    :func:`~exactinv.core.roots.nonnegative_until`): 0 if c0 < 0, -c0/c1 if c1 < 0, else INF.
+
+    >>> _linear_end(flint.fmpq_poly([2, -1])), _linear_end(flint.fmpq_poly([0, 3])), _linear_end(flint.fmpq_poly([-1, 5]))
+    (Fraction(2, 1), INF, Fraction(0, 1))
+    """
+    c = [fraction_of(x) for x in p.coeffs()] + [Fraction(0)] * 2
+    if c[0] < 0:
+        return Fraction(0)
+    return -c[0] / c[1] if c[1] < 0 else INF
 
 
 def _finished(found: RouteConditions, t0: float) -> RouteConditions:
@@ -222,15 +240,15 @@ def forward_euler_threshold(system: Any, invariant_set: Any) -> Any:
     >>> forward_euler_threshold(ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])).value
     Fraction(2, 5)
     """
-    problem = ValidSetProblem(system, invariant_set, forward_euler())
-    return problem.family.forward_euler(problem.system, problem.invariant_set, largest(problem))
+    problem = ValidSetProblem(system, invariant_set, forward_euler(), prune=False)  # linear conditions:
+    return problem.family.forward_euler(problem.system, problem.invariant_set, largest(problem))  # pruning does not pay
 
 
 def forward_euler_with_gamma(system: Any, polyhedron: Any, gamma: OptimalGamma) -> Any:
     """:func:`forward_euler_threshold` on a polyhedron with gamma* already solved for this very pair
     (:func:`exactinv.interfaces.pipeline.certify` solves it once for all claims); a gamma* that is
     not this pair's is refused by the cross-check (VerificationFailed)."""
-    problem = ValidSetProblem(system, polyhedron, forward_euler())
+    problem = ValidSetProblem(system, polyhedron, forward_euler(), prune=False)
     if problem.family is not POLYHEDRA:
         raise InvalidInput("polyhedron: gamma* is of a polyhedron")
     return POLYHEDRA.forward_euler(problem.system, problem.invariant_set, largest(problem), gamma)
