@@ -1,7 +1,7 @@
 """The route protocol (exactinv/validset/route.py and engine.py): every route that accepts a
 problem gives the identical valid set, end by end and open/closed flag by flag, and the same
-largest threshold; the set is the same whether P is given by inequalities or by its vertices
-(rays, lines); each route's membership agrees with an independent exact test
+largest threshold, and the kernel accepts each route's certificate; the set is the same whether
+P is given by inequalities or by its vertices (rays, lines); each route's membership agrees with an independent exact test
 (``discrete_invariance`` at rational steps); ``route="auto"`` reports the route it took, and a
 forced route that does not accept the problem is refused with a message naming it and why."""
 
@@ -35,7 +35,7 @@ def _first_end(V):
     return first.hi, first.hi_closed or isinstance(first.hi, Infinity)
 
 
-def _every_route(S, P, m):
+def _every_route(S, P, m, check=False):
     """{route: (valid set, largest threshold)} over the polyhedral routes that accept (S, P, m)
     and do not decline it while applying (the LP route on an unbounded P)."""
     out = {}
@@ -51,6 +51,8 @@ def _every_route(S, P, m):
             continue
         L = ei.largest_threshold(S, P, m, route=name)
         assert V.route == L.route == name
+        if check:  # the kernel, on the route's own record (box, lp pieces, generator lists)
+            assert ei.check(V.certificate).ok and ei.check(L.certificate).ok
         out[name] = (V, L)
     assert "vertex" in out  # the vertex route accepts every polyhedron
     return out
@@ -134,7 +136,7 @@ def test_every_accepting_route_gives_the_same_valid_set(problem):
     lines): identical ends and flags, identical (tau, attained); membership agrees with the exact
     invariance test at rational steps."""
     S, P, m, kind = problem
-    V = _same_everywhere(_every_route(S, P, m))
+    V = _same_everywhere(_every_route(S, P, m, check=True))
     Q = ei.Polyhedron.from_vertices(P.vertices, P.rays, P.lines)  # the same set, given by its generators
     W = _same_everywhere(_every_route(S, Q, m))
     assert _ends(V) == _ends(W)
@@ -165,6 +167,7 @@ def test_the_ellipsoid_route_through_the_one_engine(problem):
     assert [r.name for r in accepting_routes(ValidSetProblem(S, E, m))] == ["ellipsoid"]
     V, L = ei.valid_steplengths(S, E, m), ei.largest_threshold(S, E, m)
     assert V.route == L.route == "ellipsoid" and 0 in V
+    assert ei.check(V.certificate).ok and ei.check(L.certificate).ok  # binding q_k included
     assert (L.value, L.attained) == _first_end(V)
     _independent(S, E, m, V)
 
