@@ -22,19 +22,35 @@ class BoxCellRoute(PolyhedralRoute):
 
     name = "box"
 
-    def accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
+    def _accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
         P = problem.invariant_set
         return detect_box(P.G, P.b) is not None
 
-    def polyhedron_refusal(self, problem: ValidSetProblem) -> str:
+    def _polyhedron_refusal(self, problem: ValidSetProblem) -> str:
         return "P is not a box (every row of G one nonzero entry, every coordinate bounded)"
 
     def estimate(self, problem: ValidSetProblem) -> float:
-        """Entry polynomials: n (n + 1) (no vertex, no pair)."""
+        """Entry polynomials: n (n + 1) (no vertex, no pair).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> BoxCellRoute().estimate(p)
+        2
+        """
         n = problem.invariant_set.n
         return n * (n + 1)
 
     def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
+        """The box route's conditions and statistics (cached on the problem's ConditionSet).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> found = BoxCellRoute().apply(p, False)
+        >>> [c.poly for c in found.inequalities], found.details["box"].entries
+        ([(Fraction(2, 1), Fraction(-1, 1))], 2)
+        """
         found = box_route(problem.conditions)
         assert found is not None  # accepts() saw the box
         inequalities, stats = found

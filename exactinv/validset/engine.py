@@ -99,7 +99,14 @@ def choose_route(problem: ValidSetProblem, route: str = "auto") -> list[Route]:
 
 
 def apply_route(problem: ValidSetProblem, route: str, first_end: bool) -> tuple[Route, RouteConditions]:
-    """(the route that ran, its conditions): the first of :func:`choose_route` that does not decline."""
+    """(the route that ran, its conditions): the first of :func:`choose_route` that does not decline.
+
+    >>> import exactinv as ei
+    >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+    >>> route, found = apply_route(p, "auto", False)
+    >>> route.name, len(found.inequalities)
+    ('box', 1)
+    """
     reasons = []
     for r in choose_route(problem, route):
         try:
@@ -112,7 +119,13 @@ def apply_route(problem: ValidSetProblem, route: str, first_end: bool) -> tuple[
 
 
 def valid_set(problem: ValidSetProblem, route: str = "auto") -> Any:
-    """The exact valid set of ``problem`` by ``route`` (see the module docstring): the route's result object."""
+    """The exact valid set of ``problem`` by ``route`` (see the module docstring): the route's result object.
+
+    >>> import exactinv as ei
+    >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+    >>> [(V.intervals, V.route) for V in (valid_set(p, r) for r in ("vertex", "box", "lp"))]
+    [([0, 2], 'vertex'), ([0, 2], 'box'), ([0, 2], 'lp')]
+    """
     t0 = time.perf_counter()
     r, found = apply_route(problem, route, False)
     distinct = distinct_conditions(list(found.inequalities))
@@ -136,7 +149,14 @@ def valid_set(problem: ValidSetProblem, route: str = "auto") -> Any:
 
 def largest(problem: ValidSetProblem, route: str = "auto") -> Any:
     """The exact largest threshold of ``problem`` by ``route``: the end of the first interval of
-    :func:`valid_set`, from the first sign change of each condition and the first pole."""
+    :func:`valid_set`, from the first sign change of each condition and the first pole.
+
+    >>> import exactinv as ei
+    >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+    >>> L = largest(p, "vertex")
+    >>> L.value, L.attained, L.binding.poly
+    (Fraction(2, 1), True, (Fraction(2, 1), Fraction(-1, 1)))
+    """
     t0 = time.perf_counter()
     r, found = apply_route(problem, route, True)
     distinct = list(distinct_conditions(list(found.inequalities)).values())
@@ -247,7 +267,13 @@ def forward_euler_threshold(system: Any, invariant_set: Any) -> Any:
 def forward_euler_with_gamma(system: Any, polyhedron: Any, gamma: OptimalGamma) -> Any:
     """:func:`forward_euler_threshold` on a polyhedron with gamma* already solved for this very pair
     (:func:`exactinv.interfaces.pipeline.certify` solves it once for all claims); a gamma* that is
-    not this pair's is refused by the cross-check (VerificationFailed)."""
+    not this pair's is refused by the cross-check (VerificationFailed).
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> forward_euler_with_gamma(S, P, ei.optimal_gamma(S, P)).value     # gamma* = 1/2
+    Fraction(2, 1)
+    """
     problem = ValidSetProblem(system, polyhedron, forward_euler(), prune=False)
     if problem.family is not POLYHEDRA:
         raise InvalidInput("polyhedron: gamma* is of a polyhedron")

@@ -43,20 +43,47 @@ class SetFamily(ABC):
 
     @abstractmethod
     def checked(self, system: Any, invariant_set: Any, method: Any, conditions: Any) -> tuple:
-        """(system, set, method, ConditionSet or None), each checked (else InvalidInput)."""
+        """(system, set, method, ConditionSet or None), each checked (else InvalidInput).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> family_of(P).checked(S, P, "taylor", None)
+        Traceback (most recent call last):
+        ...
+        exactinv.errors.InvalidInput: method: expected an exactinv method (exactinv.methods.*), got str
+        """
 
     @abstractmethod
     def continuous_invariance(self, system: Any, invariant_set: Any) -> Any:
-        """Is the set invariant for x' = Ax?  Exact, with a certificate."""
+        """Is the set invariant for x' = Ax?  Exact, with a certificate.
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> family_of(E).continuous_invariance(S, E).holds
+        True
+        """
 
     @abstractmethod
     def discrete_invariance(self, Ad: Any, invariant_set: Any, method: Any, dt: Any, allow_float: bool) -> Any:
-        """Is the set mapped into itself by x+ = A_d x?  Exact, with a certificate."""
+        """Is the set mapped into itself by x+ = A_d x?  Exact, with a certificate.
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> family_of(P).discrete_invariance([[3]], P, None, None, False).holds     # 3 [-1, 1] is not in [-1, 1]
+        False
+        """
 
     @abstractmethod
     def forward_euler(self, system: Any, invariant_set: Any, by_valid_set: Any, gamma: Any = None) -> Any:
         """The forward-Euler result: the engine's largest threshold ``by_valid_set`` for r(z) = 1 + z,
-        cross-checked against this family's own derivation (VerificationFailed if they differ)."""
+        cross-checked against this family's own derivation (VerificationFailed if they differ).
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> from exactinv.validset.engine import largest_threshold
+        >>> family_of(E).forward_euler(S, E, largest_threshold(S, E, ei.methods.forward_euler())).value
+        Fraction(2, 5)
+        """
 
 
 class Polyhedra(SetFamily):
@@ -66,6 +93,13 @@ class Polyhedra(SetFamily):
     paper_applies = True
 
     def checked(self, system, invariant_set, method, conditions):
+        """The checked arguments and the ConditionSet (``conditions``, if of this very problem).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> POLYHEDRA.checked(S, P, ei.methods.taylor(2), None)[3]
+        <exactinv.beyond.conditions.ConditionSet object at ...>
+        """
         if conditions is None:
             cs = ConditionSet(system, invariant_set, method)  # checks the three arguments
         elif not isinstance(conditions, ConditionSet):
@@ -78,13 +112,35 @@ class Polyhedra(SetFamily):
         return cs.system, cs.polyhedron, cs.method, cs
 
     def continuous_invariance(self, system, invariant_set):
+        """The paper's test (gamma*, an exact H or a facet witness).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> POLYHEDRA.continuous_invariance(S, P).holds
+        True
+        """
         return paper_invariance.continuous_invariance(system, invariant_set)
 
     def discrete_invariance(self, Ad, invariant_set, method, dt, allow_float):
+        """The paper's discrete test (an exact H~ or a witness vertex).
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> POLYHEDRA.discrete_invariance(S, P, ei.methods.forward_euler(), 2, False).holds   # 1 - 2 = -1
+        True
+        """
         return paper_invariance.discrete_invariance(Ad, invariant_set, method, dt, allow_float=allow_float)
 
     def forward_euler(self, system, invariant_set, by_valid_set, gamma: OptimalGamma | None = None) -> ForwardEulerThreshold:
-        """1/gamma* (Lemma 3.14; ``gamma``: gamma* already solved for this very pair) against the valid set."""
+        """1/gamma* (Lemma 3.14; ``gamma``: gamma* already solved for this very pair) against the valid set.
+
+        >>> import exactinv as ei
+        >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+        >>> from exactinv.validset.engine import largest_threshold
+        >>> fe = POLYHEDRA.forward_euler(S, P, largest_threshold(S, P, ei.methods.forward_euler()))
+        >>> fe.value, fe.by_gamma, fe.route
+        (Fraction(2, 1), Fraction(2, 1), 'box')
+        """
         if gamma is None:
             gamma = optimal_gamma(system, invariant_set)
         g = gamma.value
@@ -104,19 +160,48 @@ class Ellipsoids(SetFamily):
     name = "ellipsoid"
 
     def checked(self, system, invariant_set, method, conditions):
+        """The checked arguments; no ConditionSet (that is of a polyhedron).
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> ELLIPSOIDS.checked(S, E, ei.methods.taylor(2), None)[3] is None
+        True
+        """
         if conditions is not None:
             raise InvalidInput("conditions: a ConditionSet is of a polyhedron; pass None on an ellipsoid")
         S, E = check_ellipsoid_pair(system, invariant_set)
         return S, E, check_method(method), None
 
     def continuous_invariance(self, system, invariant_set):
+        """-(A^T Q + Q A) >= 0, by an exact LDL^T (or a witness direction).
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> ELLIPSOIDS.continuous_invariance(S, E).holds
+        True
+        """
         return ellipsoid_continuous_invariance(system, invariant_set)
 
     def discrete_invariance(self, Ad, invariant_set, method, dt, allow_float):
+        """Q - A_d^T Q A_d >= 0, exactly.
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> ELLIPSOIDS.discrete_invariance([[0, 1], [-1, 0]], E, None, None, False).holds    # a rotation
+        True
+        """
         return ellipsoid_discrete_invariance(Ad, invariant_set, method, dt, allow_float=allow_float)
 
     def forward_euler(self, system, invariant_set, by_valid_set, gamma: Any = None) -> EllipsoidForwardEulerThreshold:
-        """The generalised eigenvalue (:mod:`exactinv.beyond.ellipsoid_eigenvalue`) against the valid set."""
+        """The generalised eigenvalue (:mod:`exactinv.beyond.ellipsoid_eigenvalue`) against the valid set.
+
+        >>> import exactinv as ei
+        >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
+        >>> from exactinv.validset.engine import largest_threshold
+        >>> fe = ELLIPSOIDS.forward_euler(S, E, largest_threshold(S, E, ei.methods.forward_euler()))
+        >>> fe.by_eigenvalue, fe.by_valid_set
+        (Fraction(2, 5), Fraction(2, 5))
+        """
         by_eigenvalue = generalised_eigenvalue_step(system.A_flint, invariant_set.Q_flint)
         by_set = by_valid_set.value
         if by_set != by_eigenvalue:

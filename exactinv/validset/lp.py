@@ -27,17 +27,34 @@ class ParametricLPRoute(PolyhedralRoute):
 
     name = "lp"
 
-    def accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
+    def _accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
         return problem.conditions.G.rank() == problem.invariant_set.n
 
-    def polyhedron_refusal(self, problem: ValidSetProblem) -> str:
+    def _polyhedron_refusal(self, problem: ValidSetProblem) -> str:
         return "P has lines (rank G < n): no basis exists; the vertex route handles it"
 
     def estimate(self, problem: ValidSetProblem) -> float:
-        """Facets times :data:`LP_ABOVE` (+1: a tie goes to the vertex route)."""
+        """Facets times :data:`LP_ABOVE` (+1: a tie goes to the vertex route).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> ParametricLPRoute().estimate(p)
+        10001
+        """
         return problem.invariant_set.m * LP_ABOVE + 1
 
     def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
+        """The conditions of the pieces (:func:`~exactinv.beyond.lp_route.lp_route`; RouteDeclined
+        when P turns out unbounded).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> found = ParametricLPRoute().apply(p, False)
+        >>> [c.poly for c in found.inequalities], found.details["lp"].pieces
+        ([(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))], 4)
+        """
         try:
             inequalities, pieces = lp_route(problem.conditions)
         except LPRouteDeclined as exc:

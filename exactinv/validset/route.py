@@ -68,30 +68,81 @@ class Route(ABC):
 
     @abstractmethod
     def accepts(self, problem: "ValidSetProblem") -> bool:
-        """True if this route handles ``problem``; cheap (no vertex enumeration, no LP)."""
+        """True if this route handles ``problem``; cheap (no vertex enumeration, no LP).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import ROUTES
+        >>> [name for name, r in ROUTES.items() if r.accepts(p)]     # [-1, 1] is a box with rank G = 1
+        ['vertex', 'box', 'lp']
+        """
 
     @abstractmethod
     def refusal(self, problem: "ValidSetProblem") -> str:
-        """Why :meth:`accepts` is False, in words for an error message."""
+        """Why :meth:`accepts` is False, in words for an error message.
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import ROUTES
+        >>> ROUTES["ellipsoid"].refusal(p)
+        'the ellipsoid route handles ellipsoids, not a polyhedron'
+        """
 
     @abstractmethod
     def estimate(self, problem: "ValidSetProblem") -> float:
-        """A cheap cost figure for the route choice (smaller runs first)."""
+        """A cheap cost figure for the route choice (smaller runs first).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import ROUTES
+        >>> ROUTES["box"].estimate(p) < ROUTES["vertex"].estimate(p) < ROUTES["lp"].estimate(p)
+        True
+        """
 
     @abstractmethod
     def apply(self, problem: "ValidSetProblem", first_end: bool) -> RouteConditions:
         """The route's proved conditions; ``first_end``: only the first interval's end is wanted
-        (a route may then prune more).  May raise :class:`RouteDeclined`."""
+        (a route may then prune more).  May raise :class:`RouteDeclined`.
+
+        x' = -x on [-1, 1], forward Euler: the vertex -1 on the facet x <= 1 gives 2 - h >= 0.
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import ROUTES
+        >>> found = ROUTES["vertex"].apply(p, False)
+        >>> found.route, [c.poly for c in found.inequalities]
+        ('vertex', [(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))])
+        """
 
     @abstractmethod
     def valid_result(self, problem: "ValidSetProblem", found: RouteConditions, union: IntervalUnion,
                      singular: tuple, distinct: int) -> Any:
-        """The valid-set result object of this route's set type."""
+        """The valid-set result object of this route's set type (the engine calls it).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import ROUTES, valid_set
+        >>> type(valid_set(p, "box")).__name__
+        'ValidSteplengths'
+        """
 
     @abstractmethod
     def largest_result(self, problem: "ValidSetProblem", found: RouteConditions, value: Any, attained: bool,
                        binding: Condition | None, singular: Any, checked: tuple[Condition, ...]) -> Any:
-        """The largest-threshold result object of this route's set type."""
+        """The largest-threshold result object of this route's set type (the engine calls it).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> e = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Ellipsoid([[1]]), ei.methods.taylor(1))
+        >>> from exactinv.validset.engine import largest
+        >>> type(largest(e)).__name__
+        'EllipsoidLargestThreshold'
+        """
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"

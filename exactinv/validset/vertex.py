@@ -29,11 +29,32 @@ class VertexRoute(PolyhedralRoute):
     name = "vertex"
 
     def estimate(self, problem: ValidSetProblem) -> float:
-        """Pairs: facets times McMullen's bound on the vertex count (no vertex is computed)."""
+        """Pairs: facets times McMullen's bound on the vertex count (no vertex is computed).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> t = ValidSetProblem(ei.LinearSystem([[-1, 0], [0, -1]]), ei.Polyhedron([[-1, 0], [0, -1], [1, 1]], [0, 0, 1]),
+        ...                     ei.methods.taylor(1))
+        >>> VertexRoute().estimate(t)     # 3 facets, a triangle's 3 vertices
+        9
+        """
         P = problem.invariant_set
         return P.m * vertex_bound(P.n, P.m)
 
     def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
+        """Every pair, or vertex 0's conditions and the pairs that survive the pruning.
+
+        x' = -x on the triangle, forward Euler: (1 - h) v stays in it iff h <= 1 (the
+        vertices (1, 0) and (0, 1) on the facets x >= 0 and y >= 0).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> t = ValidSetProblem(ei.LinearSystem([[-1, 0], [0, -1]]), ei.Polyhedron([[-1, 0], [0, -1], [1, 1]], [0, 0, 1]),
+        ...                     ei.methods.taylor(1))
+        >>> found = VertexRoute().apply(t, False)
+        >>> sorted({c.poly for c in found.inequalities})
+        [(Fraction(1, 1), Fraction(-1, 1))]
+        """
         cs = problem.conditions
         P = cs.polyhedron  # each vertex lies on >= n facets, pairs that always survive: too many when n/m is large
         if problem.prune and cs.count(Kind.VERTEX) > 1 and P.n <= WORTHWHILE * P.m:
