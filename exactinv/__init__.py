@@ -23,12 +23,7 @@ Fraction(1, 1)
 """
 
 from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
-from .beyond.ellipsoid_thresholds import (
-    EllipsoidForwardEulerThreshold,
-    EllipsoidLargestThreshold,
-    EllipsoidValidSteplengths,
-)
-from .beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths
+from .beyond.conditions import ConditionSet
 from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 from .core import scalars as numbers
@@ -39,13 +34,6 @@ from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, 
 from .interfaces import display, oracle
 from .interfaces.batch import BatchSummary, run_batch
 from .interfaces.compare import ThresholdComparison, compare_thresholds
-from .interfaces.dispatch import (
-    continuous_invariance,
-    discrete_invariance,
-    forward_euler_threshold,
-    largest_threshold,
-    valid_steplengths,
-)
 from .model import Ellipsoid, LinearSystem, Method, Polyhedron, methods
 from .paper.forward_euler import ForwardEulerThreshold
 from .paper.invariance import (
@@ -58,6 +46,20 @@ from .paper.invariance import (
 from .paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
 from .paper.polynomial import SteplengthThreshold
 from .paper.threshold import steplength_threshold
+from .validset.engine import (
+    continuous_invariance,
+    discrete_invariance,
+    forward_euler_threshold,
+    largest_threshold,
+    valid_steplengths,
+)
+from .validset.results import (
+    EllipsoidForwardEulerThreshold,
+    EllipsoidLargestThreshold,
+    EllipsoidValidSteplengths,
+    LargestThreshold,
+    ValidSteplengths,
+)
 
 __version__ = "0.1.0"
 

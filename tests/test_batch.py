@@ -19,7 +19,7 @@ import pytest
 distributed = pytest.importorskip("dask.distributed")
 
 import exactinv as ei  # noqa: E402
-from exactinv.beyond.largest import LargestThreshold, ValidSteplengths  # noqa: E402
+from exactinv.validset.results import LargestThreshold, ValidSteplengths  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
 from exactinv.interfaces.batch import run_batch  # noqa: E402
 from exactinv.interfaces.batch.corpus import done_ids, read_corpus  # noqa: E402

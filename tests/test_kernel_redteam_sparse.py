@@ -41,7 +41,8 @@ from test_kernel_redteam import _check_in_subprocess
 from test_kernel_speed_paths import _ratio_reference
 
 import exactinv as ei
-from exactinv.paper.forward_euler import _forward_euler_threshold, forward_euler_threshold
+from exactinv import forward_euler_threshold
+from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv.paper.gamma_star import optimal_gamma
 from exactinv.paper.threshold import _steplength_threshold, steplength_threshold
 from exactinv_check import check, claims_thresholds
@@ -231,7 +232,7 @@ def test_a_tampered_gamma_is_caught_by_the_kernel():
     S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
     fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
     with pytest.raises(ei.VerificationFailed):
-        _forward_euler_threshold(S, P, fake)  # cross-checked by the ratio tests
+        forward_euler_with_gamma(S, P, fake)  # cross-checked by the valid set
     assert not check(_steplength_threshold(ei.methods.taylor(2), fake).certificate)
 
 

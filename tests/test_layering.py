@@ -1,6 +1,6 @@
 """The package's layers, checked from the source (AST, nothing is imported).
 
-    errors <- core <- lp <- model <- {paper, beyond} <- {control, certificates} <- interfaces <- top
+    errors <- core <- lp <- model <- {paper, beyond} <- {validset, control, certificates} <- interfaces <- top
 
 Every import inside ``exactinv`` must point to the same or a lower layer,
 ``paper`` and ``beyond`` never import each other, the module import graph has
@@ -24,6 +24,7 @@ LAYERS = {
     "model": 3,
     "paper": 4,
     "beyond": 4,
+    "validset": 5,  # the one valid-set engine and its routes: joins paper and beyond (issue 26)
     "control": 5,  # gain design and robust thresholds: joins paper and beyond (issue 25)
     "certificates": 5,
     "interfaces": 6,

@@ -14,7 +14,7 @@ from hypothesis import assume, given, settings, strategies as st
 import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
-from exactinv.beyond.largest import LP_ABOVE
+from exactinv.validset.lp import LP_ABOVE
 from exactinv.beyond.lp_route import LPRouteDeclined, lp_route, vertex_bound
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import Infinity

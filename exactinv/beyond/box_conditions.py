@@ -224,10 +224,10 @@ def box_route(cs: ConditionSet) -> tuple[list[Condition], BoxRoute] | None:
     >>> [(c.generator, c.facet, c.poly) for c in conditions], stats.entries
     ([(1, 1, (Fraction(2, 1), Fraction(-2, 1)))], 2)
     """
-    if "box" not in cs.derived:
+    if box_route not in cs.derived:  # keyed by this function, not by a name
         box = detect_box(cs.polyhedron.G, cs.polyhedron.b)
-        cs.derived["box"] = None if box is None else _build(cs, box)
-    return cs.derived["box"]  # type: ignore[return-value]
+        cs.derived[box_route] = None if box is None else _build(cs, box)
+    return cs.derived[box_route]  # type: ignore[return-value]
 
 
 def _build(cs: ConditionSet, box: Box) -> tuple[list[Condition], BoxRoute]:

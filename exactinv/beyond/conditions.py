@@ -42,11 +42,13 @@ __all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "never_binds"
 
 
 class Kind(StrEnum):
-    """Which generator of P a condition is about (equal to the old strings)."""
+    """Which generator of P a condition is about (equal to the old strings); on an ellipsoid,
+    ``COEFFICIENT``: the condition is h q_k(h) >= 0 of the k-th coefficient polynomial."""
 
     VERTEX = "vertex"
     RAY = "ray"
     LINE = "line"
+    COEFFICIENT = "coefficient"  # an ellipsoid's q_k (generator k): exactinv.validset.ellipsoid
 
 
 @dataclass(frozen=True)
@@ -147,7 +149,9 @@ class ConditionSet:
         self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]
         self.G = polyhedron.G_flint
         self.b = [fmpq_of(x) for x in polyhedron.b]
-        self.derived: dict[str, object] = {}  # what other routes derive once per problem (the box route)
+        # what a route derives once per problem, keyed by the function that derives it
+        # (the box route); the LP route (lp_route.py) still keys its pieces by "lp"
+        self.derived: dict[object, object] = {}
         self._generator_rows: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
         self._facet_matrices: dict[int, tuple[flint.fmpz_mat, list[int]]] = {}

@@ -51,6 +51,7 @@ import numpy as np
 
 from ..core.algebraic import upper_bound
 from ..core.float_hint import float_hints
+from ..core.intervals import IntervalUnion
 from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
 from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
@@ -321,30 +322,29 @@ class Pruning:
         return replace(self, seconds=self.seconds + (("roots and intervals", rest),))
 
 
-VERTEX_ZERO = "vertex 0 valid set"  # ConditionSet.derived: the valid set of vertex 0's conditions
-
-
-def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list]:
-    """(T, conditions of vertex 0, stage times): T a rational upper bound on the valid
-    set of vertex 0 (or, with ``first_end``, on the end of its first interval); None if unbounded.
-    Earliest conditions first, each skipped when proved positive up to the bound so far
-    (:mod:`..core.nonnegative`); the valid set of vertex 0 is kept in ``cs.derived``.
+def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list, IntervalUnion | None]:
+    """(T, conditions of vertex 0, stage times, the valid set of vertex 0): T a rational upper
+    bound on the valid set of vertex 0 (or, with ``first_end``, on the end of its first interval;
+    then the set is not computed: None); T is None if unbounded.  Earliest conditions first, each
+    skipped when proved positive up to the bound so far (:mod:`..core.nonnegative`).
 
     >>> import exactinv as ei
     >>> from exactinv.beyond.conditions import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-    >>> bounding_horizon(cs, False)[0], cs.derived[VERTEX_ZERO]
+    >>> T, _, _, vertex_zero = bounding_horizon(cs, False)
+    >>> T, vertex_zero
     (Fraction(2, 1), [0, 2])
     """
     t0 = time.perf_counter()
     first = cs.pairs(Kind.VERTEX, [(0, j) for j in range(cs.polyhedron.m)])
+    union = None
     if first_end:
         end = earliest_end([c.p for c in first])
     else:
-        union = cs.derived[VERTEX_ZERO] = nonnegative_set(earliest_first([c.p for c in first]))
+        union = nonnegative_set(earliest_first([c.p for c in first]))
         end = union.intervals[-1].hi if union.intervals else Fraction(0)
     T = None if isinstance(end, Infinity) else _short_horizon(upper_bound(end))
-    return T, first, [("bounding vertex", time.perf_counter() - t0)]
+    return T, first, [("bounding vertex", time.perf_counter() - t0)], union
 
 
 def _short_horizon(x: Fraction) -> Fraction | None:
@@ -368,7 +368,7 @@ def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Prun
     >>> import exactinv as ei
     >>> from exactinv.beyond.conditions import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
-    >>> T, first, seconds = bounding_horizon(cs, False)
+    >>> T, first, seconds, _ = bounding_horizon(cs, False)
     >>> prune(cs, Fraction(1, 2), first, seconds)[2].survivors   # vertex 0's two pairs, vertex 1's own facet
     3
     """

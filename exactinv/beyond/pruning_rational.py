@@ -44,6 +44,7 @@ from math import comb
 import flint
 
 from ..core.float_hint import log2_hint
+from ..core.intervals import IntervalUnion
 from ..core.roots import positive_roots
 from ..core.scalars import fmpq_of, fraction_of
 from .conditions import Kind
@@ -184,8 +185,9 @@ def rational_survivors(cs, s: Fraction, U: Fraction, count: int):
     return pieces_test(G, [0] * G.nrows(), lifted_W, pieces, vertex_order(W))
 
 
-def rational_horizon(cs, first_end: bool) -> tuple[Fraction, Fraction, list, list] | None:
-    """(s, U, vertex 0's conditions, stage times), or None when D = det h_r(hA) has a root
+def rational_horizon(cs, first_end: bool) -> tuple[Fraction, Fraction, list, list, IntervalUnion | None] | None:
+    """(s, U, vertex 0's conditions, stage times, vertex 0's valid set as from
+    :func:`~.pruning.bounding_horizon`), or None when D = det h_r(hA) has a root
     in (0, sU/(1 - U)] (then c = qD can change sign without q: nothing is pruned).
 
     >>> import exactinv as ei
@@ -194,36 +196,36 @@ def rational_horizon(cs, first_end: bool) -> tuple[Fraction, Fraction, list, lis
     >>> rational_horizon(cs, False)[:2]                 # D = 1 + h; the valid set is [0, oo): U = 1
     (Fraction(1, 1), Fraction(1, 1))
     """
-    T, first, seconds = bounding_horizon(cs, first_end)
+    T, first, seconds, vertex_zero = bounding_horizon(cs, first_end)
     s = scale_of(cs.D)
     U = Fraction(1) if T is None else min(Fraction(1), coarse_above(T / (s + T), 20))
     roots = positive_roots(cs.D)
     if roots and (U == 1 or not roots[0][0] > s * U / (1 - U)):
         return None
-    return s, U, first, seconds
+    return s, U, first, seconds, vertex_zero
 
 
 def prune_rational(cs, first_end: bool):
-    """(inequalities, equalities, record) of a rational method pruned in u = h/(s + h),
-    or None when D vanishes in the range (then every pair is built by the caller).
+    """(inequalities, equalities, record, vertex 0's valid set or None) of a rational method
+    pruned in u = h/(s + h), or None when D vanishes in the range (then every pair is built by the caller).
 
     >>> import exactinv as ei
     >>> from exactinv.beyond.conditions import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 2]), ei.methods.backward_euler())
-    >>> inequalities, equalities, record = prune_rational(cs, False)
+    >>> inequalities, equalities, record, _ = prune_rational(cs, False)
     >>> record.record()["variable"], record.survivors, inequalities   # 2 of 4 pairs built, none binds
     ('h/(s+h)', 3, [])
     """
     found = rational_horizon(cs, first_end)
     if found is None:
         return None
-    s, U, first, seconds = found
+    s, U, first, seconds, vertex_zero = found
     t0 = time.perf_counter()
     count = _piece_count(cs)
     facets, vertices = rational_survivors(cs, s, U, count)
     seconds = tuple(seconds) + (("bounds and slacks", time.perf_counter() - t0),)
     template = Pruning(U, 0, 0, 0, (), variable={"variable": VARIABLE, "scale": str(s), "pieces": count})
-    return build_survivors(cs, facets, vertices, first, seconds, template)
+    return (*build_survivors(cs, facets, vertices, first, seconds, template), vertex_zero)
 
 
 def _piece_count(cs) -> int:

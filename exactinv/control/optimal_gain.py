@@ -16,7 +16,8 @@ from typing import Any
 
 import flint
 
-from ..beyond.largest import LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
+from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
+from ..validset.results import LargestThreshold, ValidSteplengths
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.scalars import INF, Infinity, Matrix, to_matrix
 from ..core.tags import ClaimType
@@ -24,7 +25,7 @@ from ..errors import ExactinvError, InvalidInput, NotInvariant, VerificationFail
 from ..lp import OPTIMAL, INFEASIBLE, solve_lp
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method, check_polyhedron
-from ..paper.forward_euler import ForwardEulerThreshold, forward_euler_threshold
+from ..paper.forward_euler import ForwardEulerThreshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import steplength_threshold

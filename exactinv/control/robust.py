@@ -26,7 +26,7 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any, Sequence
 
-from ..beyond.largest import valid_steplengths
+from ..validset.engine import valid_steplengths
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.intervals import IntervalUnion

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..beyond.largest import largest_threshold
+from ..validset.engine import largest_threshold
 from ..core.algebraic import Real, RealAlgebraic
 from ..core.scalars import Infinity
 from ..model import LinearSystem, Polyhedron

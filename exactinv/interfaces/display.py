@@ -15,8 +15,8 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
-from ..beyond.ellipsoid_thresholds import ellipsoid_largest_threshold, ellipsoid_valid_steplengths
-from ..beyond.largest import largest_threshold, valid_steplengths
+from ..validset.engine import largest_threshold, valid_steplengths
+from ..validset.families import ELLIPSOIDS, family_of
 from ..core.algebraic import RealAlgebraic
 from ..core.digits import significant_digits
 from ..core.float_hint import float_hint
@@ -234,11 +234,9 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
 
 def _thresholds(system, polyhedron, method):
     """(valid set, largest threshold, the paper's and the corrected threshold or None, why none)."""
-    if isinstance(polyhedron, Ellipsoid):  # the paper is about polyhedra: no paper threshold on E
-        V = ellipsoid_valid_steplengths(system, polyhedron, method)
-        return V, ellipsoid_largest_threshold(system, polyhedron, method), None, None, \
-            "the paper's theorems are about polyhedra"
     V, L = valid_steplengths(system, polyhedron, method), largest_threshold(system, polyhedron, method)
+    if not family_of(polyhedron).paper_applies:  # the paper is about polyhedra: no paper threshold on E
+        return V, L, None, None, "the paper's theorems are about polyhedra"
     try:
         t = steplength_threshold(system, polyhedron, method)
         return V, L, t.paper, t.value, None
@@ -294,7 +292,7 @@ def plot_images(system, polyhedron, method, dts: Sequence[Any]):
     >>> plt.close(fig)
     """
     plt = _plt()
-    if isinstance(polyhedron, Ellipsoid):
+    if family_of(polyhedron) is ELLIPSOIDS:
         return _plot_ellipse_images(plt, system, polyhedron, method, dts)
     if polyhedron.n != 2 or not polyhedron.is_bounded:
         raise InvalidInput("polyhedron: plot_images draws bounded polygons in the plane")

@@ -7,11 +7,7 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from ..beyond.ellipsoid_invariance import ellipsoid_continuous_invariance
-from ..beyond.ellipsoid_thresholds import (
-    ellipsoid_forward_euler_threshold,
-    ellipsoid_largest_threshold,
-    ellipsoid_valid_steplengths,
-)
+from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 from ..core.text import exact_text, safe_step_text
 from ..model import Ellipsoid, LinearSystem, Method
 
@@ -38,15 +34,15 @@ def ellipsoid_results(S: LinearSystem, E: Ellipsoid, method: Method | None, line
         lines.append(f"continuous invariance: FAILS -- v = [{', '.join(map(str, w.v))}] has "
                      f"v^T (A^T Q + Q A) v = {w.value} > 0: the boundary point v/||v||_Q leaves E")
     step("forward Euler (generalised eigenvalue)")
-    fe = ellipsoid_forward_euler_threshold(S, E)
+    fe = forward_euler_threshold(S, E)
     lines.append(f"largest forward-Euler step on E: {exact_text(fe.value)}{safe_step_text(fe)}  "
                  "(generalised eigenvalue and valid set agree)")
     results: list[Any] = [inv, fe]
     if method is not None:
         step("exact valid steplengths")
-        V = ellipsoid_valid_steplengths(S, E, method)
+        V = valid_steplengths(S, E, method)
         step("exact largest threshold")
-        L = ellipsoid_largest_threshold(S, E, method)
+        L = largest_threshold(S, E, method)
         lines.append(f"exact valid steplengths for {method.name}: {V.intervals!r}")
         lines.append(f"exact largest threshold: {exact_text(L.value)}" + ("" if L.attained else "  (not attained)")
                      + safe_step_text(L))

@@ -22,7 +22,7 @@ from ..model import LinearSystem, Polyhedron
 from ..model.methods import Method, forward_euler
 from ..paper.gamma_star import optimal_gamma
 from ..paper.monotonicity import absolute_monotonicity_radius
-from .dispatch import discrete_invariance, largest_threshold, valid_steplengths
+from ..validset.engine import discrete_invariance, largest_threshold, valid_steplengths
 
 __all__ = ["Status", "Verdict", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold"]
 

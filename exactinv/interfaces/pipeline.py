@@ -19,18 +19,19 @@ from typing import Any, Callable
 
 import exactinv_check
 
-from ..beyond.ellipsoid_thresholds import EllipsoidForwardEulerThreshold
-from ..beyond.largest import ConditionSet, LargestThreshold, ValidSteplengths, largest_threshold, valid_steplengths
+from ..beyond.conditions import ConditionSet
 from ..core.encode import encode_real, mat
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from ..paper.forward_euler import ForwardEulerThreshold, _forward_euler_threshold
+from ..paper.forward_euler import ForwardEulerThreshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import _steplength_threshold
 from ..control.optimal_gain import OptimalGain, optimal_gain
+from ..validset.engine import forward_euler_with_gamma, largest_threshold, valid_steplengths
+from ..validset.results import EllipsoidForwardEulerThreshold, LargestThreshold, ValidSteplengths
 from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
@@ -168,7 +169,7 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     >>> report = certify(decay, ei.methods.forward_euler())
     >>> for line in report.lines[3:]:
     ...     print(line)
-    largest forward-Euler step: 2; use dt <= 2  (1/gamma* and the vertex ratio tests agree)
+    largest forward-Euler step: 2; use dt <= 2  (1/gamma* and the valid set agree)
     paper's threshold for forward_euler (Theorem 3.4 (polynomial methods)): 2; use dt <= 2
     exact valid steplengths for forward_euler: [0, 2]
     exact largest threshold: 2; use dt <= 2
@@ -197,7 +198,7 @@ def certify(problem: Problem, method: Method | None = None, check: bool = True,
     else:
         lines.append("continuous invariance: holds (certificate H with HG = GA, Hb <= 0, off-diagonal >= 0)")
         lines.append(f"gamma*: {gamma.value}   [row LPs verified in Q; routes: {_routes(gamma.paths)}]")
-        step("forward Euler (vertex ratio tests)")
+        step("forward Euler (1/gamma* and the valid set)")
         results += _forward_euler(S, P, gamma, lines)
         if method is not None:
             step(f"paper's threshold for {method.name}")
@@ -251,9 +252,9 @@ def _forward_euler(S, P, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
     if P.n > VERTEX_LIMIT:
         lines.append("largest forward-Euler step 1/gamma* (Lemma 3.14): see gamma* above")
         return []
-    fe = _forward_euler_threshold(S, P, gamma)
+    fe = forward_euler_with_gamma(S, P, gamma)
     lines.append(f"largest forward-Euler step: {exact_text(fe.value)}{safe_step_text(fe)}  "
-                 "(1/gamma* and the vertex ratio tests agree)")
+                 "(1/gamma* and the valid set agree)")
     return [fe]
 
 

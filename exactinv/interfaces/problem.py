@@ -27,6 +27,7 @@ from ..core.scalars import Matrix, to_matrix
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
+from ..validset.families import ELLIPSOIDS, family_of
 from .method_format import METHOD_KINDS, method_from_text, parse_method  # re-exported: their old home
 from .strict_json import _At, _kind, _object, _parse, _require, check_keys
 from .strict_json import did_you_mean  # noqa: F401 (re-exported: its old home)
@@ -54,7 +55,7 @@ class Problem:
 
     @property
     def is_ellipsoid(self) -> bool:
-        return isinstance(self.polyhedron, Ellipsoid)
+        return family_of(self.polyhedron) is ELLIPSOIDS
 
 
 def _section(data: dict, key: str) -> dict:
@@ -186,7 +187,7 @@ def problem_from_dict(data: Any, name: str = "problem", base: str | None = None)
     system = _system(data)
     polyhedron = _invariant_set(data, base)
     if system.n != polyhedron.n:
-        what = "ellipsoid" if isinstance(polyhedron, Ellipsoid) else "polyhedron"
+        what = family_of(polyhedron).name
         raise InvalidInput(f"{what}: the system has dimension {system.n} but the {what} lives in dimension {polyhedron.n}")
     method = parse_method(data["method"]) if data.get("method") is not None else None
     return Problem(system, polyhedron, method, name)

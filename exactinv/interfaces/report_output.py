@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..beyond.largest import LargestThreshold, ValidSteplengths
 from ..control.optimal_gain import OptimalGain
 from ..core.latex import latex_matrix, latex_real, latex_text
+from ..validset.results import LargestThreshold, ValidSteplengths
 from ..paper.gamma_star import OptimalGamma
 from ..paper.polynomial import SteplengthThreshold
 from .exit_codes import CODES

@@ -1,0 +1,62 @@
+"""The LP route: per facet, the pieces of [0, oo) on which one basis of the parametric LP
+max g_i A_d(h) x over P is optimal (docs/design.md, "The LP route" and "The route protocol").
+
+Wraps :func:`exactinv.beyond.lp_route.lp_route` (weak duality proves each
+piece's vertex a maximizer; the vertex-facet conditions of the pieces give
+the valid set exactly, with no vertex list).  It accepts P with rank G = n
+(no lines; a cheap rank of G); an unbounded P is found while solving and
+declined (:class:`~exactinv.validset.route.RouteDeclined`).
+"""
+
+from __future__ import annotations
+
+from ..beyond.lp_route import LPRouteDeclined, lp_route
+from .polyhedral import PolyhedralRoute, vertex_zero
+from .problem import ValidSetProblem
+from .route import RouteConditions, RouteDeclined
+
+__all__ = ["ParametricLPRoute", "LP_ABOVE"]
+
+LP_ABOVE = 5000
+"""The notional cost of one facet's parametric LP in units of vertex-facet pairs: ``route="auto"``
+takes the LP route when McMullen's bound on the vertex count exceeds this."""
+
+
+class ParametricLPRoute(PolyhedralRoute):
+    """The LP route."""
+
+    name = "lp"
+
+    def _accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
+        return problem.conditions.G.rank() == problem.invariant_set.n
+
+    def _polyhedron_refusal(self, problem: ValidSetProblem) -> str:
+        return "P has lines (rank G < n): no basis exists; the vertex route handles it"
+
+    def estimate(self, problem: ValidSetProblem) -> float:
+        """Facets times :data:`LP_ABOVE` (+1: a tie goes to the vertex route).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> ParametricLPRoute().estimate(p)
+        10001
+        """
+        return problem.invariant_set.m * LP_ABOVE + 1
+
+    def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
+        """The conditions of the pieces (:func:`~exactinv.beyond.lp_route.lp_route`; RouteDeclined
+        when P turns out unbounded).
+
+        >>> import exactinv as ei
+        >>> from exactinv.validset.problem import ValidSetProblem
+        >>> p = ValidSetProblem(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]), ei.methods.taylor(1))
+        >>> found = ParametricLPRoute().apply(p, False)
+        >>> [c.poly for c in found.inequalities], found.details["lp"].pieces
+        ([(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))], 4)
+        """
+        try:
+            inequalities, pieces = lp_route(problem.conditions)
+        except LPRouteDeclined as exc:
+            raise RouteDeclined(str(exc)) from None
+        return RouteConditions(self.name, tuple(inequalities), (), vertex_zero(inequalities), None, {"lp": pieces})
