@@ -118,7 +118,7 @@ def test_check_H_is_the_dense_definition():
         truth = _dense_check_H(A, G, b, H)
         seen[truth] += 1
         try:
-            check_H(problem, H)
+            check_H(problem, [[(k, x) for k, x in enumerate(row) if x] for row in H])  # sparse rows
             verdict = True
         except CheckFailure:
             verdict = False
@@ -140,10 +140,32 @@ def _square_certificate():
     return forward_euler_threshold(S, P).certificate
 
 
+def _as_version_2(cert):
+    """The certificate with its version 3 sparse H written dense, as version 2 has it."""
+    cert = json.loads(json.dumps(cert))
+    cert["version"] = 2
+    for claim in cert["claims"]:
+        if isinstance(claim.get("H"), dict):
+            rows = claim["H"]["sparse"]
+            dense = [["0"] * len(rows) for _ in rows]
+            for i, row in enumerate(rows):
+                for k, v in row:
+                    dense[i][k] = v
+            claim["H"] = dense
+    return cert
+
+
 def test_zero_spellings_in_H_change_no_verdict():
-    """The genuine square certificate with its H's zeros spelt otherwise: verified; a zero
-    replaced by a tiny nonzero, or by a malformed zero: rejected."""
+    """The genuine square certificate (as version 2, H dense) with its H's zeros spelt otherwise:
+    verified; a zero replaced by a tiny nonzero, or by a malformed zero: rejected.  In version 3
+    every spelling of zero, listed as an entry, is rejected (absent entries are the zeros)."""
     cert = _square_certificate()
+    assert check(cert)
+    for s in ZERO_SPELLINGS:
+        forged = json.loads(json.dumps(cert))
+        forged["claims"][0]["H"]["sparse"][0].append([3, s])  # row 0 lists columns 0 and 1
+        assert not check(forged), s
+    cert = _as_version_2(cert)
     H = cert["claims"][0]["H"]
     zeros = [(i, k) for i, row in enumerate(H) for k, v in enumerate(row) if v == "0"]
     assert zeros

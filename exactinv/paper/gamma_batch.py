@@ -31,6 +31,7 @@ from typing import Sequence
 import flint
 import numpy as np
 
+from ..core.sparse import SparseRows
 from ..lp import OPTIMAL, LPResult
 from ..lp.block import block_hints
 from ..lp.reconstruct import COMMON_DENOMINATOR
@@ -123,15 +124,15 @@ class RowBatch:
         y = _column(self.Yn[j].tolist() + [self.Ln[j].item()], self.D)
         return LPResult(OPTIMAL, -self.gamma(j), x, y, None, LPPath.ROUNDED)
 
-    def H_flint(self) -> flint.fmpq_mat:
-        """H = Hn/D as an fmpq matrix (built in C from the integers).
+    def H_rows(self) -> SparseRows:
+        """H = Hn/D by rows, its nonzero entries only.
 
-        >>> RowBatch(np.array([[-3.0, 1.0], [2.0, 0.0]]), np.zeros((2, 1)), np.zeros(2), 2, np.ones(2, bool)).H_flint()
-        [-3/2, 1/2]
-        [   1,   0]
+        >>> RowBatch(np.array([[-3.0, 1.0], [2.0, 0.0]]), np.zeros((2, 1)), np.zeros(2), 2, np.ones(2, bool)).H_rows().rows
+        (((0, -3/2), (1, 1/2)), ((0, 1),))
         """
         m = len(self.Hn)
-        return flint.fmpq_mat(flint.fmpz_mat(m, m, self.Hn.astype(np.int64).ravel().tolist())) / self.D
+        return SparseRows.of_rows(m, ([(k, flint.fmpq(int(self.Hn[j, k]), self.D)) for k in np.flatnonzero(self.Hn[j]).tolist()]
+                                      for j in range(m)))
 
 
 def is_sparse(G: tuple[np.ndarray, int] | None) -> bool:

@@ -28,6 +28,7 @@ import flint
 import numpy as np
 
 from ..core.float_hint import float_hints
+from ..core.sparse import SparseRows
 from ..lp import OPTIMAL, LPResult
 from ..lp.floatlp import FloatLP
 from ..lp.hint import HighsHint
@@ -98,17 +99,14 @@ class DenseRows:
         y = flint.fmpq_mat(len(row.w), 1, [flint.fmpq(v, row.e) for v in row.w])
         return LPResult(OPTIMAL, -self.gamma(j), x, y, None, row.path)
 
-    def H_flint(self) -> flint.fmpq_mat:
-        """H, row j = h_j (set entry by entry on the supports).
+    def H_rows(self) -> SparseRows:
+        """H by rows, row j = h_j on its support (no m x m object).
 
-        >>> DenseRows((SparseRow((0,), (-3,), 2, (4, 1), 2, LPPath.BASIS),), np.array([True]), 1).H_flint()
-        [-3/2]
+        >>> DenseRows((SparseRow((0,), (-3,), 2, (4, 1), 2, LPPath.BASIS),), np.array([True]), 1).H_rows().rows
+        (((0, -3/2),),)
         """
-        H = flint.fmpq_mat(self.m, self.m)
-        for j, row in enumerate(self.rows):
-            for k, v in zip(row.support, row.h):
-                H[j, k] = flint.fmpq(v, row.d)
-        return H
+        return SparseRows.of_rows(self.m, ([(k, flint.fmpq(v, row.d)) for k, v in zip(row.support, row.h)]
+                                           for row in self.rows))
 
 
 def dense_rows(system: LinearSystem, polyhedron: Polyhedron) -> DenseRows | None:
@@ -181,28 +179,36 @@ def _support_basis(data: LPData, j: int, hint, tol: float):
 
 
 def _verify(system: LinearSystem, polyhedron: Polyhedron, GA: flint.fmpq_mat, rows: list[SparseRow]) -> np.ndarray:
-    """Per row: the three checks of the module docstring, exact (FLINT integers)."""
+    """Per row: the three checks of the module docstring, exact (FLINT integers).  The primal
+    checks run over each row's support (at most n + 1 entries); the dual ones as products of
+    the m x (n + 1) matrix [dG db Gn | dG bn] with blocks of ``_CHUNK`` duals -- no m x m matrix."""
     m, n = polyhedron.m, polyhedron.n
     (Gn, dG), (bn, db), (An, dA) = (M.numer_denom() for M in (polyhedron.G_flint, polyhedron.b_flint, system.A_flint))
-    Hn, Ddiag = flint.fmpz_mat(m, m), flint.fmpz_mat(m, m)
-    for j, row in enumerate(rows):
-        Ddiag[j, j] = row.d
-        for k, v in zip(row.support, row.h):
-            Hn[j, k] = v
     GAn = Gn * An
-    residual = (Hn * Gn * dA - Ddiag * GAn).entries()
-    Hb = (Hn * bn).entries()
-    Wn = flint.fmpz_mat(m, n + 1, [v for row in rows for v in row.w])
-    Gb = flint.fmpz_mat(m, n + 1, [v for i in range(m) for v in [Gn[i, k] * db for k in range(n)] + [bn[i, 0] * dG]])
-    K = (Wn * Gb.transpose()).entries()  # row j: (g_k.y_j + lam_j b_k) dG db e_j over k
-    GA_rows, zero = GAn.entries(), flint.fmpz(0)
+    G_entries, GA_rows, b_list = Gn.entries(), GAn.entries(), bn.entries()
+    G_rows = [G_entries[k * n:(k + 1) * n] for k in range(m)]
+    zero = flint.fmpz(0)
     ok = np.zeros(m, dtype=bool)
     for j, row in enumerate(rows):
-        k_row = K[j * m:(j + 1) * m]
-        others = k_row[:j] + k_row[j + 1:]
-        ok[j] = (not any(residual[j * n:(j + 1) * n]) and Hb[j] <= 0 and row.w[n] >= 0
-                 and all(v >= 0 for k, v in zip(row.support, row.h) if k != j)
-                 and k_row[j] == dG * db * row.e and (not others or min(others) >= zero)
+        pairs = list(zip(row.support, row.h))
+        ok[j] = (all(sum((h * G_rows[k][c] for k, h in pairs), zero) * dA == row.d * GA_rows[j * n + c] for c in range(n))
+                 and sum((h * b_list[k] for k, h in pairs), zero) <= 0 and row.w[n] >= 0
+                 and all(h >= 0 for k, h in pairs if k != j)
                  and sum(map(mul, GA_rows[j * n:(j + 1) * n], row.w[:n]), zero) * row.d
                  == row.diagonal(j) * dG * dA * row.e)
+    GbT = flint.fmpz_mat(n + 1, m, [G_entries[i * n + k] * db for k in range(n) for i in range(m)]
+                         + [v * dG for v in b_list])
+    for start in range(0, m, _CHUNK):
+        block = range(start, min(m, start + _CHUNK))
+        W = flint.fmpz_mat(len(block), n + 1, [v for j in block for v in rows[j].w])
+        K = (W * GbT).entries()  # row t: (g_k.y_j + lam_j b_k) dG db e_j over k, j = start + t
+        for t, j in enumerate(block):
+            if not ok[j]:
+                continue
+            k_row = K[t * m:(t + 1) * m]
+            others = k_row[:j] + k_row[j + 1:]
+            ok[j] = k_row[j] == dG * db * rows[j].e and (not others or min(others) >= zero)
     return ok
+
+
+_CHUNK = 64  # duals checked per FLINT product: a 64 x m block, never m x m

@@ -20,7 +20,7 @@ from typing import Any
 
 import flint
 
-from ..core.encode import mat
+from ..core.encode import mat, sparse_of_dense
 from ..core.latex import LatexMixin, latex_column, latex_matrix
 from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
 from ..core.tags import ClaimType
@@ -65,7 +65,7 @@ class _Invariance(LatexMixin):
     def _claim(self, **data) -> list[dict]:
         claim = {"type": self._kind, "holds": self.holds, **data}
         if self.holds:
-            claim["H"] = mat(self.H)
+            claim["H"] = sparse_of_dense(self.H)  # certificate version 3: the nonzero entries by row
         else:
             claim["witness"] = self.witness.record()
         return [claim]
