@@ -39,6 +39,7 @@ from types import SimpleNamespace
 import pytest
 from test_kernel_redteam import _check_in_subprocess
 from test_kernel_speed_paths import _ratio_reference
+from versions import as_version
 
 import exactinv as ei
 from exactinv.paper.forward_euler import _forward_euler_threshold, forward_euler_threshold
@@ -140,21 +141,6 @@ def _square_certificate():
     return forward_euler_threshold(S, P).certificate
 
 
-def _as_version_2(cert):
-    """The certificate with its version 3 sparse H written dense, as version 2 has it."""
-    cert = json.loads(json.dumps(cert))
-    cert["version"] = 2
-    for claim in cert["claims"]:
-        if isinstance(claim.get("H"), dict):
-            rows = claim["H"]["sparse"]
-            dense = [["0"] * len(rows) for _ in rows]
-            for i, row in enumerate(rows):
-                for k, v in row:
-                    dense[i][k] = v
-            claim["H"] = dense
-    return cert
-
-
 def test_zero_spellings_in_H_change_no_verdict():
     """The genuine square certificate (as version 2, H dense) with its H's zeros spelt otherwise:
     verified; a zero replaced by a tiny nonzero, or by a malformed zero: rejected.  In version 3
@@ -165,7 +151,7 @@ def test_zero_spellings_in_H_change_no_verdict():
         forged = json.loads(json.dumps(cert))
         forged["claims"][0]["H"]["sparse"][0].append([3, s])  # row 0 lists columns 0 and 1
         assert not check(forged), s
-    cert = _as_version_2(cert)
+    cert = as_version(cert, 2)
     H = cert["claims"][0]["H"]
     zeros = [(i, k) for i, row in enumerate(H) for k, v in enumerate(row) if v == "0"]
     assert zeros

@@ -174,7 +174,7 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron,
     m, n = polyhedron.m, polyhedron.n
     G = integer_G(polyhedron) if G is None else G
     data = IntegerData.from_G(G, system, polyhedron) if m and n and is_sparse(G) else None
-    if data is None:
+    if data is None or not fits_doubles(data):
         return None
     scale_G, scale_b = data.Gn / data.dG, data.bn / data.db
     constraint = np.vstack([scale_G.T, scale_b[None, :]])  # [G^T; b^T]: (n + 1) x m
@@ -190,6 +190,21 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron,
     Yn, Ln = Wn[:, :n], Wn[:, n]
     ok = verify_rows(data, Hn, Yn, Ln, D)
     return None if ok is None else RowBatch(Hn, Yn, Ln, D, ok & rounded)
+
+
+def fits_doubles(data: IntegerData, D: int = COMMON_DENOMINATOR) -> bool:
+    """Can :func:`verify_rows` decide anything on this data?  Its bounds hold at best for
+    rows H with entries of size 1 (numerators D): m max|Gn| dA + D max|GAn| and dG db D below
+    2^53.  Long data (e.g. 50-bit facet normals) fails at once, before any block LP is solved
+    (gamma_star then takes the row-by-row route with the FLINT check, gamma_dense).
+
+    >>> fits_doubles(IntegerData.of(LinearSystem([[-1]]), Polyhedron.box([-1], [1])))
+    True
+    >>> fits_doubles(IntegerData.of(LinearSystem([[-1]]), Polyhedron([[2**50], [-1]], [1, 1])))
+    False
+    """
+    m = data.Gn.shape[0]
+    return max(m * _max(data.Gn) * data.dA + D * _max(data.GAn), data.dG * data.db * D) < _EXACT
 
 
 def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarray, D: int) -> np.ndarray | None:

@@ -239,11 +239,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
 
 def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:
     """Every row LP solved in float and proved in one batch: one block-diagonal
-    float LP for a sparse G, warm-started row solves otherwise (HiGHS hints only)."""
+    float LP for a sparse G with short integer data, warm-started row solves and
+    one FLINT integer check otherwise -- also when the sparse route cannot decide
+    (long data: no row falls back to the general engine for that) (HiGHS hints only)."""
     if not isinstance(get_hint_backend(), HighsHint) or not P.m or not P.n:
         return None
     G = integer_G(P)
-    return batch_rows(S, P, G) if is_sparse(G) else dense_rows(S, P)
+    batch = batch_rows(S, P, G) if is_sparse(G) else None
+    return batch if batch is not None else dense_rows(S, P)
 
 
 def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
