@@ -56,6 +56,8 @@ def sparse_matrix(value, what, rows, cols):
             last = k
             if isinstance(x, str):
                 longest = max(longest, len(x))
+            elif type(x) is int:  # a JSON integer (the kernel reads one where a number is expected)
+                longest = max(longest, x.bit_length() // 3 + 1)
         total += len(row)
     require(total <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too many entries")
     within_budget(sparse_read_cost(total, longest), f"reading the {total} entries of {what}", limit=CERTIFICATE_BUDGET)
