@@ -49,7 +49,11 @@ class SparseRows:
 
     @classmethod
     def of_rows(cls, cols: int, rows: Iterable[Iterable[tuple[int, object]]]) -> SparseRows:
-        """From rows of (column, value) pairs (any exact rationals; zeros are dropped, columns sorted)."""
+        """From rows of (column, value) pairs (any exact rationals; zeros are dropped, columns sorted).
+
+        >>> SparseRows.of_rows(3, [[(2, Fraction(1, 3)), (0, 0)], []]).rows
+        (((2, 1/3),), ())
+        """
         out = []
         for row in rows:
             entries = sorted((int(k), _fmpq(v)) for k, v in row)
@@ -87,7 +91,11 @@ class SparseRows:
         return sum(map(len, self.rows))
 
     def diagonal(self) -> list[flint.fmpq]:
-        """H_ii for every row (0 where the row has none)."""
+        """H_ii for every row (0 where the row has none).
+
+        >>> SparseRows.of([[1, 2], [3, 0]]).diagonal()
+        [1, 0]
+        """
         zero = flint.fmpq(0)
         return [next((v for k, v in row if k == i), zero) for i, row in enumerate(self.rows)]
 
@@ -102,7 +110,11 @@ class SparseRows:
         return [sum((x * q[k] for k, x in row), zero) for row in self.rows]
 
     def successors(self) -> list[list[int]]:
-        """The graph i -> k (k != i, H_ik != 0)."""
+        """The graph i -> k (k != i, H_ik != 0).
+
+        >>> SparseRows.of([[1, 2, 0], [0, 3, 4], [5, 0, 6]]).successors()
+        [[1], [2], [0]]
+        """
         return [[k for k, _ in row if k != i] for i, row in enumerate(self.rows)]
 
     def block(self, indices: Sequence[int]) -> flint.fmpq_mat:
@@ -121,7 +133,12 @@ class SparseRows:
         return B
 
     def to_flint(self) -> flint.fmpq_mat:
-        """The dense fmpq matrix (m x cols) -- for a user who asks; the engine never needs it."""
+        """The dense fmpq matrix (m x cols) -- for a user who asks; the engine never needs it.
+
+        >>> SparseRows.of_rows(2, [[(1, 5)], []]).to_flint()
+        [0, 5]
+        [0, 0]
+        """
         M = flint.fmpq_mat(self.m, self.cols)
         for i, row in enumerate(self.rows):
             for k, v in row:
@@ -129,7 +146,11 @@ class SparseRows:
         return M
 
     def encode(self) -> dict:
-        """The version 3 certificate encoding ``{"sparse": [[[k, "v"], ...], ...]}``."""
+        """The version 3 certificate encoding ``{"sparse": [[[k, "v"], ...], ...]}``.
+
+        >>> SparseRows.of([[0, Fraction(-1, 2)], [0, 0]]).encode()
+        {'sparse': [[[1, '-1/2']], []]}
+        """
         return sparse_mat(self.rows)
 
     def __repr__(self) -> str:
