@@ -202,3 +202,11 @@ def evaluation_cost(degree, bits, end_bits=0):
     ``end_bits``-bit numerator and denominator (Horner: each step multiplies a number growing to
     bits + degree end_bits bits by one of end_bits bits)."""
     return (degree + 1) * (PYTHON_OP + words(bits + degree * end_bits) * words(end_bits))
+
+
+def sparse_read_cost(entries, longest_chars):
+    """Reading ``entries`` nonzero entries of a sparse matrix (version 3), each a number string of at most
+    ``longest_chars`` characters: a regular-expression match and a Fraction each (decimal-to-binary
+    conversion, quadratic in the words)."""
+    w = words(4 * longest_chars)
+    return entries * (FRACTION_WEIGHT + 2 * w * w)

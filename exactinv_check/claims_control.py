@@ -53,6 +53,7 @@ def _matmul(X, Y):
         out.append([sum(a * b for a, b in zip(row, col)) for col in cols])
     return out
 from .reals import Real, quotient
+from .sparse import diagonal, row_dot
 
 
 def _dual(record, m, n, q, what):
@@ -144,6 +145,7 @@ class _Vertex:
 
     def __init__(self, problem, A):
         self.A, self.G, self.b, self.m, self.n, self.method = A, problem.G, problem.b, problem.m, problem.n, problem.method
+        self.version = problem.version
 
 
 def robust_threshold(problem, claim, context):
@@ -208,12 +210,12 @@ def robust_threshold(problem, claim, context):
         # gamma: without this test an H with Re lambda <= 0 but a complex eigenvalue on a pole's ray passed
         # (tests/test_kernel_redteam_lp.py, r(hA) singular at h = 1 under a claimed tau = oo).
         floor = gamma.q if positive else 0
-        require(all(H[r][r] + floor >= 0 for H in Hs for r in range(problem.m)),
+        require(all(h + floor >= 0 for H in Hs for h in diagonal(H)),
                 f"a vertex's H has H + {describe(floor)} I >= 0 failing: its abscissa bound beta does not "
                 "bound the spectral radius the rational method's series needs")
         v = vector(claim["v"], "v", problem.m)
         require(all(x > 0 for x in v), "v must be positive")
-        beta = max(dot(row, v) / vr for H in Hs for row, vr in zip(H, v))
+        beta = max(row_dot(row, v) / vr for H in Hs for row, vr in zip(H, v))
         require(rational(claim["beta"], "beta") == beta, f"beta is max_i max_r (H_i v)_r / v_r = {describe(beta)}")
         if beta > 0:
             candidates.append((quotient(pole, Real.rational(beta)), False))

@@ -15,17 +15,25 @@ from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
 from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
+from .sparse import diagonal, read_square, row_dot
 
 
-def check_H(problem, H):
-    """H is an invariance certificate: off-diagonal >= 0, HG = GA, Hb <= 0 -- over the nonzero
-    entries of each row of H only (a row LP's basic solution has at most n + 1 of its m)."""
+def read_H(problem, claim, key, what):
+    """The m x m matrix ``claim[key]`` as sparse rows (:mod:`.sparse`): the certificate's version decides
+    the encoding (version 3: only the nonzero entries, by row; versions 1 and 2: dense)."""
+    return read_square(claim[key], what, problem.m, problem.version)
+
+
+def check_H(problem, rows):
+    """H (sparse rows, :mod:`.sparse`) is an invariance certificate: off-diagonal >= 0, HG = GA,
+    Hb <= 0 -- over the nonzero entries of each row of H only (a row LP's basic solution has at
+    most n + 1 of its m)."""
     A, G, b, n = problem.A, problem.G, problem.b, problem.n
-    rows = [[(k, x) for k, x in enumerate(row) if x] for row in H]
     # priced before any product: GA (m n^2) and the nonzero entries of H times G (each a Fraction product of
     # the numbers' sizes) -- a dense n x n problem per claim (or per vertex of a robust hull) is not free
     bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length()
-                      for M in (A, G, [b], H) for r in M for x in r if x])
+                      for M in (A, G, [b]) for r in M for x in r if x]
+               + [x.numerator.bit_length() + x.denominator.bit_length() for row in rows for _, x in row])
     within_budget(fraction_products_cost(len(G) * n * n + sum(map(len, rows)) * (n + 1), bits),
                   f"HG = GA for a {len(G)} x {len(G)} H in dimension {n}")
     require([[sum(x * G[k][c] for k, x in row) for c in range(n)] for row in rows] == matmul(G, A), "HG != GA")
@@ -50,7 +58,7 @@ def facet_witness(problem, M, w, on_facet):
 
 def continuous_invariance(problem, claim, context):
     if claim["holds"]:
-        check_H(problem, matrix(claim["H"], "H", problem.m, problem.m))
+        check_H(problem, read_H(problem, claim, "H", "H"))
         return "P is invariant for x' = Ax (H: off-diagonal >= 0, HG = GA, Hb <= 0)"
     j, value = facet_witness(problem, problem.A, claim["witness"], on_facet=True)
     require(value > 0, f"the witness does not leave P through facet {j}")
@@ -75,10 +83,16 @@ def discrete_invariance(problem, claim, context):
     Ad, what = _discrete_matrix(problem, claim)
     G, b = problem.G, problem.b
     if claim["holds"]:
-        H = matrix(claim["H"], "H~", problem.m, problem.m)
-        require(all(v >= 0 for r in H for v in r), "H~ has a negative entry")
-        require(matmul(H, G) == matmul(G, Ad), "H~G != GA_d")
-        require(all(v <= beta for v, beta in zip(matvec(H, b), b)), "H~b <= b fails")
+        rows = read_H(problem, claim, "H", "H~")
+        require(all(x > 0 for row in rows for _, x in row), "H~ has a negative entry")
+        n = problem.n
+        bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length()
+                          for M in (Ad, G, [b]) for r in M for x in r if x]
+                   + [x.numerator.bit_length() + x.denominator.bit_length() for row in rows for _, x in row])
+        within_budget(fraction_products_cost(len(G) * n * n + sum(map(len, rows)) * (n + 1), bits),
+                      f"H~G = GA_d for a {len(G)} x {len(G)} H~ in dimension {n}")
+        require([[sum(x * G[k][c] for k, x in row) for c in range(n)] for row in rows] == matmul(G, Ad), "H~G != GA_d")
+        require(all(row_dot(row, b) <= beta for row, beta in zip(rows, b)), "H~b <= b fails")
         return f"A_d P is a subset of P for {what} (H~ >= 0, H~G = GA_d, H~b <= b)"
     j, value = facet_witness(problem, Ad, claim["witness"], on_facet=False)
     require(value > b[j], f"the witness's image does not leave P through facet {j}")
@@ -114,15 +128,15 @@ def gamma_star(problem, claim, context):
                 require(all(vec[k] >= 0 for k in range(m) if k != j), f"row {j}: {name} has a negative off-diagonal entry")
             require(dot(b, h) <= 0 and dot(b, d) <= 0 and d[j] > 0, f"row {j}: not a ray of increase of h_jj")
         if claim.get("H") is not None:
-            H = matrix(claim["H"], "H", m, m)
+            H = read_H(problem, claim, "H", "H")
             check_H(problem, H)
             context["H"] = H
         context["gamma"] = value
         return "gamma* = -oo: every row LP is unbounded (a feasible point and a ray per row)"
     gamma = value.q
-    H = matrix(claim["H"], "H", m, m)
+    H = read_H(problem, claim, "H", "H")
     check_H(problem, H)
-    require(all(H[i][i] + gamma >= 0 for i in range(m)), "H + gamma I >= 0 fails")
+    require(all(h + gamma >= 0 for h in diagonal(H)), "H + gamma I >= 0 fails")
     j = integer(claim["binding_row"], "binding_row", 0, m)
     dual = claim["dual"]
     require(isinstance(dual, dict) and set(dual) == {"y", "lambda"}, "dual has the keys y, lambda")

@@ -15,12 +15,13 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys
-from .claims_invariance import check_H
+from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
 from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
 from .reals import Real, quotient
+from .sparse import dense, diagonal, row_dot
 from .validset import first_end
 
 ZERO, INF = Real.rational(0), Real(inf=1)
@@ -88,10 +89,10 @@ def rational_threshold(problem, claim, context):
     H = context.get("H")
     require((claim.get("H") is None) == (claim.get("gamma_H") is None), "H and gamma_H come together")
     if claim.get("H") is not None:  # another certificate H with its own gamma_H >= gamma*
-        H = matrix(claim["H"], "H", problem.m, problem.m)
+        H = read_H(problem, claim, "H", "H")
         check_H(problem, H)
         gamma_H = rational(claim["gamma_H"], "gamma_H")
-        require(all(H[i][i] + gamma_H >= 0 for i in range(problem.m)), "H + gamma_H I >= 0 fails")
+        require(all(h + gamma_H >= 0 for h in diagonal(H)), "H + gamma_H I >= 0 fails")
         gamma = Real.rational(gamma_H)
     if rho.is_zero():
         require(value.is_zero() and attained, "rho = 0 gives tau = 0 (attained)")
@@ -108,7 +109,7 @@ def rational_threshold(problem, claim, context):
         require(H is not None, "the gamma_star claim carries no H: the convergence bound of erratum E2 cannot be computed")
         alpha = None
         if claim.get("alpha") is not None or _e2_may_bind(H, problem.b, pole, candidates):
-            alpha = largest_real_root(characteristic_polynomial(H))
+            alpha = largest_real_root(characteristic_polynomial(dense(H, problem.m)))
             if alpha is not None and alpha.compare(ZERO) > 0:
                 candidates.append((quotient(pole, alpha), False))  # E2: the series at -rho stops converging
         _same(claim.get("alpha"), alpha, "alpha(H)")
@@ -128,12 +129,12 @@ def rational_threshold(problem, claim, context):
 def _e2_may_bind(H, b, pole, candidates):
     """False when a cheap exact bound shows z_p/alpha(H) cannot be the least bound.
 
-    Collatz-Wielandt for the nonnegative matrix H + cI: for any v > 0,
+    H is in sparse rows (exactinv_check.sparse).  Collatz-Wielandt for the nonnegative matrix H + cI: for any v > 0,
     alpha(H) <= U = max_i (Hv)_i / v_i.  With v = b when b > 0 (then Hb <= 0
     gives U <= 0: no E2 bound at all), else v = 1.  If U <= 0, or z_p/U exceeds
     another candidate, the characteristic polynomial of H is not needed."""
     v = b if all(x > 0 for x in b) else [Fraction(1)] * len(b)
-    U = max(sum(h * x for h, x in zip(row, v)) / vi for row, vi in zip(H, v))
+    U = max(row_dot(row, v) / vi for row, vi in zip(H, v))
     if U <= 0:
         return False
     lower = quotient(pole, Real.rational(U))  # z_p/alpha(H) >= z_p/U

@@ -1,6 +1,6 @@
 """The driver: read a certificate strictly, check its claims in order, report.
 
-A certificate is ``{"format": "exactinv-certificate", "version": 1 or 2,
+A certificate is ``{"format": "exactinv-certificate", "version": 1, 2 or 3,
 "problem": {...}, "claims": [...]}``.  Every key is required or optional by
 name; an unknown key, a missing key or a value of the wrong JSON type rejects
 the claim.  Claims are checked in order and may use what an earlier claim
@@ -24,7 +24,7 @@ from .cones import integer_rank
 from .rationals import CheckFailure, integer_rows, matrix, require, vector
 
 FORMAT = "exactinv-certificate"
-VERSIONS = (1, 2)
+VERSIONS = (1, 2, 3)  # 3: H and H~ sparse (exactinv_check/sparse.py); the engine writes 3
 V2_KEYS = {"discrete_invariance": {"dt"}}  # keys version 1 does not have (docs/certificate-format.md)
 MAX_METHOD_DEGREE = 64
 _ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
@@ -92,7 +92,8 @@ class Problem:
     """A, G, b (each shape-checked) and the method; or A, Q (an ellipsoid, Q proved
     symmetric positive definite) and the method; radius certificates have only the method."""
 
-    def __init__(self, record):
+    def __init__(self, record, version=VERSIONS[-1]):
+        self.version = version  # the encoding of H and H~ in the claims (version 3: sparse, exactinv_check/sparse.py)
         require(isinstance(record, dict) and set(record) <= {"A", "B", "inputs", "hull", "G", "b", "Q", "method"},
                 "problem has the keys A, G, b (or Q), method; B and inputs (a gain); hull, G, b, method (robust)")
         self.method = Method(record["method"]) if record.get("method") is not None else None
@@ -247,7 +248,7 @@ def _check_claims(cert, progress):
                 "format, version, problem, claims")
         require(type(cert["version"]) is int and cert["version"] in VERSIONS,
                 f"unsupported certificate version {cert['version']!r}")
-        problem = Problem(cert["problem"])
+        problem = Problem(cert["problem"], cert["version"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
     except _ERRORS as exc:
         return [("problem", False, f"{type(exc).__name__}: {exc}")]

@@ -71,12 +71,12 @@ def errors(instance, schema, root=SCHEMA, path="$"):
     """The list of violations of ``schema`` by ``instance`` (empty: valid).
 
     Supports: type, const, enum, pattern, maxLength, minimum, required,
-    properties, additionalProperties, dependentRequired, items, minItems,
+    properties, additionalProperties, dependentRequired, items, prefixItems, minItems,
     maxItems, oneOf, anyOf, allOf, $ref (to #/...).  Any other keyword is an
     error of the test, so the schema cannot silently outgrow this validator."""
     unknown = set(schema) - _ANNOTATIONS - {
         "type", "const", "enum", "pattern", "maxLength", "minimum", "required", "properties",
-        "additionalProperties", "dependentRequired", "items", "minItems", "maxItems", "oneOf", "anyOf", "allOf",
+        "additionalProperties", "dependentRequired", "items", "prefixItems", "minItems", "maxItems", "oneOf", "anyOf", "allOf",
         "$ref"}
     assert not unknown, f"the test's validator does not support {sorted(unknown)}"
     out = []
@@ -113,8 +113,11 @@ def errors(instance, schema, root=SCHEMA, path="$"):
             if key in instance:
                 out += [f"{path}: {key!r} needs {k!r}" for k in needed if k not in instance]
     if isinstance(instance, list):
+        prefix = schema.get("prefixItems", [])
+        for i, (x, sub) in enumerate(zip(instance, prefix)):
+            out += errors(x, sub, root, f"{path}[{i}]")
         if "items" in schema:
-            for i, x in enumerate(instance):
+            for i, x in enumerate(instance[len(prefix):], len(prefix)):
                 out += errors(x, schema["items"], root, f"{path}[{i}]")
         if len(instance) < schema.get("minItems", 0):
             out.append(f"{path}: fewer than {schema['minItems']} items")
@@ -280,7 +283,7 @@ def _mutants():
         ("an unknown problem key", mutate(lambda c: c["problem"].update(P="x"))),
         ("a missing required key", mutate(lambda c: c["claims"][1].pop("vertices"))),
         ("an unknown claim type", mutate(lambda c: c["claims"][gamma].update(type="gamma"))),
-        ("version 3", mutate(lambda c: c.update(version=3))),
+        ("version 4", mutate(lambda c: c.update(version=4))),
         ("a wrong format", mutate(lambda c: c.update(format="exactinv"))),
         ("no claims", mutate(lambda c: c.update(claims=[]))),
         ("a string boolean", mutate(lambda c: c["claims"][3].update(attained="true"))),

@@ -104,7 +104,8 @@ def _bump(s):
 
 
 TAMPERS = {
-    "H entry": (_box_taylor3, lambda c: _claim(c, "gamma_star")["H"][0].__setitem__(1, _bump(_claim(c, "gamma_star")["H"][0][1]))),
+    "H entry": (_box_taylor3, lambda c: _claim(c, "gamma_star")["H"]["sparse"][0][1].__setitem__(
+        1, _bump(_claim(c, "gamma_star")["H"]["sparse"][0][1][1]))),  # version 3: [column, value] pairs
     "gamma value": (_box_taylor3, lambda c: _claim(c, "gamma_star").__setitem__("value", "1/2")),
     "dual entry": (_box_taylor3, lambda c: _claim(c, "gamma_star")["dual"]["y"].__setitem__(0, _bump(_claim(c, "gamma_star")["dual"]["y"][0]))),
     "dual lambda sign": (_box_taylor3, lambda c: _claim(c, "gamma_star")["dual"].__setitem__("lambda", "-1")),
@@ -121,7 +122,7 @@ TAMPERS = {
     "witness point": (_non_invariant, lambda c: _claim(c, "gamma_star")["witness"]["x"].__setitem__(0, "1/2")),
     "witness facet": (_non_invariant, lambda c: _claim(c, "gamma_star")["witness"].__setitem__("facet", 3)),
     "ray sign": (_minus_infinity, lambda c: _claim(c, "gamma_star")["rows"][0]["ray"].__setitem__(0, str(-Fraction(_claim(c, "gamma_star")["rows"][0]["ray"][0]) - 1))),
-    "H~ entry": (_discrete, lambda c: c["claims"][0]["H"][0].__setitem__(0, "1")),
+    "H~ entry": (_discrete, lambda c: c["claims"][0]["H"]["sparse"][0].insert(0, [0, "1"])),
     "discrete verdict flipped": (_discrete, lambda c: c["claims"][1].__setitem__("holds", True)),
     "version": (_box_taylor3, lambda c: c.__setitem__("version", 99)),
     "valid set end moved": (_gap_set, lambda c: c["claims"][0]["intervals"][1].__setitem__("hi", "3")),

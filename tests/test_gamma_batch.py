@@ -77,7 +77,7 @@ def test_box_rows_are_all_proved_in_one_batch():
     assert batch.ok.all() and max(batch.gamma(j) for j in range(4)) == 2
     g = ei.optimal_gamma(S, P)
     assert g.value == 2 and set(g.paths) == {"float-rounded"}
-    assert g.H_flint == batch.H_flint() and check(g.certificate).ok
+    assert g.H_flint == batch.H_rows().to_flint() and check(g.certificate).ok
 
 
 def test_rows_that_do_not_round_go_to_the_general_engine():

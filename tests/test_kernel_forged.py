@@ -312,7 +312,7 @@ def test_discrete_invariance_with_dt_is_tied_to_the_method():
         D = ei.discrete_invariance(S, P, m, dt)
         cert = D.certificate_json
         claim = _claim(cert, "discrete_invariance")
-        assert claim["dt"] == dt and cert["version"] == 2
+        assert claim["dt"] == dt and cert["version"] == 3
         assert check(cert).ok, check(cert)
         claim["dt"] = "1/3"
         _rejected(cert, "r(dt A)")

@@ -183,11 +183,12 @@ def test_a_robust_tau_past_a_complex_pole_is_rejected():
     assert exactinv_check.check(cert).ok  # the engine's own H is nonnegative: genuine, and still verified
     claim = cert["claims"][1]
     assert claim["gamma"] == "-oo"
-    claim["vertices"][0]["H"] = [["-1", "0", "0", "1"], ["1", "-1", "0", "0"], ["0", "1", "-1", "0"], ["0", "0", "1", "-1"]]
+    claim["vertices"][0]["H"] = {"sparse": [[[0, "-1"], [3, "1"]], [[0, "1"], [1, "-1"]], [[1, "1"], [2, "-1"]],
+                                            [[2, "1"], [3, "-1"]]]}  # version 3: by rows
     claim["v"], claim["beta"] = ["1"] * 4, "0"
     claim["value"], claim["attained"] = "oo", True
     report = exactinv_check.check(cert)
-    assert not report.ok, report
+    assert not report.ok and "H + 0 I >= 0 failing" in str(report), report
     # the claim is false: h_r(hA) = I - (hA)^2/2 - (hA)^3/2 is singular at h = 1
     A2 = [[sum(A[i][k] * A[k][j] for k in range(2)) for j in range(2)] for i in range(2)]
     A3 = [[sum(A2[i][k] * A[k][j] for k in range(2)) for j in range(2)] for i in range(2)]

@@ -39,6 +39,7 @@ from types import SimpleNamespace
 import pytest
 from test_kernel_redteam import _check_in_subprocess
 from test_kernel_speed_paths import _ratio_reference
+from versions import as_version
 
 import exactinv as ei
 from exactinv import forward_euler_threshold
@@ -119,7 +120,7 @@ def test_check_H_is_the_dense_definition():
         truth = _dense_check_H(A, G, b, H)
         seen[truth] += 1
         try:
-            check_H(problem, H)
+            check_H(problem, [[(k, x) for k, x in enumerate(row) if x] for row in H])  # sparse rows
             verdict = True
         except CheckFailure:
             verdict = False
@@ -142,9 +143,16 @@ def _square_certificate():
 
 
 def test_zero_spellings_in_H_change_no_verdict():
-    """The genuine square certificate with its H's zeros spelt otherwise: verified; a zero
-    replaced by a tiny nonzero, or by a malformed zero: rejected."""
+    """The genuine square certificate (as version 2, H dense) with its H's zeros spelt otherwise:
+    verified; a zero replaced by a tiny nonzero, or by a malformed zero: rejected.  In version 3
+    every spelling of zero, listed as an entry, is rejected (absent entries are the zeros)."""
     cert = _square_certificate()
+    assert check(cert)
+    for s in ZERO_SPELLINGS:
+        forged = json.loads(json.dumps(cert))
+        forged["claims"][0]["H"]["sparse"][0].append([3, s])  # row 0 lists columns 0 and 1
+        assert not check(forged), s
+    cert = as_version(cert, 2)
     H = cert["claims"][0]["H"]
     zeros = [(i, k) for i, row in enumerate(H) for k, v in enumerate(row) if v == "0"]
     assert zeros

@@ -94,7 +94,7 @@ def test_the_e2_bound_uses_the_best_certificate_H():
     cert = t.certificate
     assert ei.check(cert).ok
     claim = next(c for c in cert["claims"] if c["type"] == "rational_threshold")
-    claim["H"][0][1] = "-1"  # no longer a certificate
+    claim["H"]["sparse"][0] = [[1, "-1"]]  # no longer a certificate (version 3: H by rows)
     assert not ei.check(cert).ok
 
 

@@ -175,7 +175,7 @@ def test_forged_robust_certificates_are_rejected():
     assert forged(lambda c: c["claims"][claim].update(forward_euler="2"))
     assert forged(lambda c: c["claims"][claim].update(value=bump(c["claims"][claim]["value"])))
     assert forged(lambda c: c["claims"][claim]["vertices"].pop())
-    assert forged(lambda c: c["claims"][claim]["vertices"][0]["H"][0].__setitem__(1, "5"))
+    assert forged(lambda c: c["claims"][claim]["vertices"][0]["H"]["sparse"][0][-1].__setitem__(1, "5"))
     assert forged(lambda c: c["claims"][claim]["vertices"][1].update(value="1/3"))  # the smaller gamma, unproved
     assert forged(lambda c: c["problem"]["hull"][1][0].__setitem__(0, "-1/2"))     # another hull
     assert forged(lambda c: c["problem"]["hull"].append([["1", "0"], ["0", "1"]]))

@@ -32,7 +32,8 @@ from ..core.encode import encode_real, envelope, mat, vec
 from ..core.intervals import IntervalUnion
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.scalars import INF, Infinity, Matrix
+from ..core.scalars import INF, Infinity, Matrix, fraction_of
+from ..core.sparse import SparseRows
 from ..core.tags import ClaimType
 from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import LinearSystem, Method, Polyhedron
@@ -157,7 +158,7 @@ def robust_problem_record(systems: Sequence[LinearSystem], polyhedron: Polyhedro
             "method": method_record(method)}
 
 
-def abscissa_bound(Hs: Sequence[Matrix], b: Sequence[Fraction]) -> tuple[Fraction, tuple[Fraction, ...]]:
+def abscissa_bound(Hs: Sequence[Matrix | SparseRows], b: Sequence[Fraction]) -> tuple[Fraction, tuple[Fraction, ...]]:
     """(beta, v): for every H = sum_i lambda_i H_i of the hull (lambda in the simplex),
     alpha(H) <= beta = max_i max_r (H_i v)_r / v_r, with v = b if b > 0 else all ones.
 
@@ -168,7 +169,7 @@ def abscissa_bound(Hs: Sequence[Matrix], b: Sequence[Fraction]) -> tuple[Fractio
     (Fraction(-1, 1), (Fraction(1, 1), Fraction(1, 1)))
     """
     v = tuple(b) if all(x > 0 for x in b) else tuple(Fraction(1) for _ in b)
-    beta = max(sum(h * x for h, x in zip(row, v)) / vr for H in Hs for row, vr in zip(H, v))
+    beta = max(fraction_of(hv) / vr for H in Hs for hv, vr in zip(SparseRows.of(H).times(v), v))
     return beta, v
 
 
@@ -237,7 +238,7 @@ def robust_threshold(systems: Sequence[LinearSystem], polyhedron: Polyhedron, me
                 candidates.append((_over(rho, gamma), radius.attained))
             pole = smallest_positive_pole(method)
             if pole is not None and P.m:
-                beta, v = abscissa_bound([g.H for g in vertices], P.b)
+                beta, v = abscissa_bound([g.H_sparse for g in vertices], P.b)
                 if beta > 0:
                     candidates.append((_over(pole, beta), False))
             value, attained = INF, True

@@ -18,10 +18,10 @@ from .algebraic import Real, RealAlgebraic
 from .flintq import exact_text
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
-__all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "envelope", "dumps"]
+__all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "sparse_mat", "sparse_of_dense", "envelope", "dumps"]
 
 FORMAT = "exactinv-certificate"
-VERSION = 2  # v2 = v1 + optional data (e.g. dt on discrete claims); the kernel checks both
+VERSION = 3  # v2 = v1 + optional data (dt on discrete claims); v3 = v2 with H and H~ sparse; the kernel checks all three
 
 def encode_real(v: Real) -> str | dict:
     """Fraction -> "p/q" (any size); INF -> "oo"; RealAlgebraic -> {"poly", "interval"}.
@@ -57,6 +57,33 @@ def mat(M: Iterable[Iterable[Any]]) -> list[list[str]]:
     [['1/2', '0'], ['0', '-1/3']]
     """
     return [vec(r) for r in M]
+
+
+def sparse_mat(rows: Iterable[Iterable[tuple[int, Any]]]) -> dict:
+    """A square matrix given by its rows of (column, value) pairs, in the version 3 encoding:
+    ``{"sparse": [[[k, "value"], ...], ...]}`` -- every row listed, the nonzero entries only, columns
+    strictly increasing (docs/certificate-format.md).  Zeros given are dropped; columns are sorted.
+
+    >>> sparse_mat([[(1, Fraction(1, 2)), (0, -1)], [], [(2, 0)]])
+    {'sparse': [[[0, '-1'], [1, '1/2']], [], []]}
+    """
+    out = []
+    for row in rows:
+        entries = sorted((int(k), v) for k, v in row if v != 0)
+        if any(a[0] == b[0] for a, b in zip(entries, entries[1:])):
+            raise ValueError("sparse_mat: a column repeats in a row")
+        out.append([[k, exact_text(v) if isinstance(v, (int, Fraction, flint.fmpz, flint.fmpq)) else str(v)]
+                    for k, v in entries])
+    return {"sparse": out}
+
+
+def sparse_of_dense(M: Iterable[Iterable[Any]]) -> dict:
+    """A dense matrix in the version 3 sparse encoding (its nonzero entries, by row).
+
+    >>> sparse_of_dense([[Fraction(1, 2), 0], [0, 0]])
+    {'sparse': [[[0, '1/2']], []]}
+    """
+    return sparse_mat([(k, v) for k, v in enumerate(row)] for row in M)
 
 
 def envelope(problem: dict, results: Iterable[Any] = ()) -> dict:

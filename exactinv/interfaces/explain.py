@@ -67,6 +67,18 @@ def _vec(v) -> str:
 
 
 def _matrix(M) -> str:
+    """A dense matrix as [a, b; c, d]; a version 3 sparse one by its nonzero entries (counted when many).
+
+    >>> _matrix([["1", "0"], ["0", "2"]]), _matrix({"sparse": [[[0, "1"]], [[1, "2"]]]})
+    ('[1, 0; 0, 2]', '(the 2 x 2 matrix with nonzero entries (0, 0): 1, (1, 1): 2)')
+    """
+    if isinstance(M, dict):
+        rows = M["sparse"]
+        entries = [(i, k, v) for i, row in enumerate(rows) for k, v in row]
+        if len(entries) > 12:
+            return f"(a {len(rows)} x {len(rows)} matrix with {len(entries)} nonzero entries)"
+        listed = ", ".join(f"({i}, {k}): {v}" for i, k, v in entries)
+        return f"(the {len(rows)} x {len(rows)} matrix with nonzero entries {listed})"
     return "[" + "; ".join(", ".join(row) for row in M) + "]"
 
 

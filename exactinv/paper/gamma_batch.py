@@ -31,6 +31,7 @@ from typing import Sequence
 import flint
 import numpy as np
 
+from ..core.sparse import SparseRows
 from ..lp import OPTIMAL, LPResult
 from ..lp.block import block_hints
 from ..lp.reconstruct import COMMON_DENOMINATOR
@@ -123,15 +124,15 @@ class RowBatch:
         y = _column(self.Yn[j].tolist() + [self.Ln[j].item()], self.D)
         return LPResult(OPTIMAL, -self.gamma(j), x, y, None, LPPath.ROUNDED)
 
-    def H_flint(self) -> flint.fmpq_mat:
-        """H = Hn/D as an fmpq matrix (built in C from the integers).
+    def H_rows(self) -> SparseRows:
+        """H = Hn/D by rows, its nonzero entries only.
 
-        >>> RowBatch(np.array([[-3.0, 1.0], [2.0, 0.0]]), np.zeros((2, 1)), np.zeros(2), 2, np.ones(2, bool)).H_flint()
-        [-3/2, 1/2]
-        [   1,   0]
+        >>> RowBatch(np.array([[-3.0, 1.0], [2.0, 0.0]]), np.zeros((2, 1)), np.zeros(2), 2, np.ones(2, bool)).H_rows().rows
+        (((0, -3/2), (1, 1/2)), ((0, 1),))
         """
         m = len(self.Hn)
-        return flint.fmpq_mat(flint.fmpz_mat(m, m, self.Hn.astype(np.int64).ravel().tolist())) / self.D
+        return SparseRows.of_rows(m, ([(k, flint.fmpq(int(self.Hn[j, k]), self.D)) for k in np.flatnonzero(self.Hn[j]).tolist()]
+                                      for j in range(m)))
 
 
 def is_sparse(G: tuple[np.ndarray, int] | None) -> bool:
@@ -173,7 +174,7 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron,
     m, n = polyhedron.m, polyhedron.n
     G = integer_G(polyhedron) if G is None else G
     data = IntegerData.from_G(G, system, polyhedron) if m and n and is_sparse(G) else None
-    if data is None:
+    if data is None or not fits_doubles(data):
         return None
     scale_G, scale_b = data.Gn / data.dG, data.bn / data.db
     constraint = np.vstack([scale_G.T, scale_b[None, :]])  # [G^T; b^T]: (n + 1) x m
@@ -189,6 +190,21 @@ def batch_rows(system: LinearSystem, polyhedron: Polyhedron,
     Yn, Ln = Wn[:, :n], Wn[:, n]
     ok = verify_rows(data, Hn, Yn, Ln, D)
     return None if ok is None else RowBatch(Hn, Yn, Ln, D, ok & rounded)
+
+
+def fits_doubles(data: IntegerData, D: int = COMMON_DENOMINATOR) -> bool:
+    """Can :func:`verify_rows` decide anything on this data?  Its bounds hold at best for
+    rows H with entries of size 1 (numerators D): m max|Gn| dA + D max|GAn| and dG db D below
+    2^53.  Long data (e.g. 50-bit facet normals) fails at once, before any block LP is solved
+    (gamma_star then takes the row-by-row route with the FLINT check, gamma_dense).
+
+    >>> fits_doubles(IntegerData.of(LinearSystem([[-1]]), Polyhedron.box([-1], [1])))
+    True
+    >>> fits_doubles(IntegerData.of(LinearSystem([[-1]]), Polyhedron([[2**50], [-1]], [1, 1])))
+    False
+    """
+    m = data.Gn.shape[0]
+    return max(m * _max(data.Gn) * data.dA + D * _max(data.GAn), data.dG * data.db * D) < _EXACT
 
 
 def verify_rows(data: IntegerData, Hn: np.ndarray, Yn: np.ndarray, Ln: np.ndarray, D: int) -> np.ndarray | None:

@@ -15,7 +15,13 @@ h_j = Hn_j/d_j and (y_j, lam_j) = Wn_j/e_j,
 * optimal -- d_j (Gn An)_j . (Wn_j without lam) = dG dA e_j Hn_jj.
 
 FLINT matrix products of integers (no size limit) and one sign test per
-entry: exact.  Rows failing any test go through the general engine.
+entry: exact; the m x m products are never formed (the primal checks run over
+each row's support, the dual ones in blocks of 64 rows).  Long data is
+scaled to integers once (Gn, bn, An and their common denominators).  A row
+whose float hint fails (HiGHS "unknown" after a retry from a fresh model) or
+misleads (ill-conditioned data: the check fails) is solved alone by PPL's
+exact simplex -- the row LP has only n + 1 rows -- and goes through the same
+check; only a row that fails even then goes through the general engine.
 """
 
 from __future__ import annotations
@@ -28,7 +34,9 @@ import flint
 import numpy as np
 
 from ..core.float_hint import float_hints
+from ..core.sparse import SparseRows
 from ..lp import OPTIMAL, LPResult
+from ..lp.exact import ppl_maximize
 from ..lp.floatlp import FloatLP
 from ..lp.hint import HighsHint
 from ..lp.reconstruct import COMMON_DENOMINATOR, basis_solution, snap_tolerance, snapped_numerators
@@ -98,23 +106,21 @@ class DenseRows:
         y = flint.fmpq_mat(len(row.w), 1, [flint.fmpq(v, row.e) for v in row.w])
         return LPResult(OPTIMAL, -self.gamma(j), x, y, None, row.path)
 
-    def H_flint(self) -> flint.fmpq_mat:
-        """H, row j = h_j (set entry by entry on the supports).
+    def H_rows(self) -> SparseRows:
+        """H by rows, row j = h_j on its support (no m x m object).
 
-        >>> DenseRows((SparseRow((0,), (-3,), 2, (4, 1), 2, LPPath.BASIS),), np.array([True]), 1).H_flint()
-        [-3/2]
+        >>> DenseRows((SparseRow((0,), (-3,), 2, (4, 1), 2, LPPath.BASIS),), np.array([True]), 1).H_rows().rows
+        (((0, -3/2),),)
         """
-        H = flint.fmpq_mat(self.m, self.m)
-        for j, row in enumerate(self.rows):
-            for k, v in zip(row.support, row.h):
-                H[j, k] = flint.fmpq(v, row.d)
-        return H
+        return SparseRows.of_rows(self.m, ([(k, flint.fmpq(v, row.d)) for k, v in zip(row.support, row.h)]
+                                           for row in self.rows))
 
 
 def dense_rows(system: LinearSystem, polyhedron: Polyhedron) -> DenseRows | None:
     """All m row LPs: HiGHS hints warm-started row to row, rounded or solved
-    on their basis, then proved together (module docstring); None if some
-    row has no optimal float hint (the general engine decides those LPs).
+    on their basis, then proved together (module docstring).  A row without an
+    optimal float hint (after one retry from a fresh model) is not proved here
+    (``ok[j]`` False: the general engine decides that LP); None if no row has one.
 
     >>> rows = dense_rows(LinearSystem([[-1]]), Polyhedron.box([-1], [1]))
     >>> rows.ok.tolist(), rows.gamma(0), rows.result(0).y
@@ -130,16 +136,31 @@ def dense_rows(system: LinearSystem, polyhedron: Polyhedron) -> DenseRows | None
     GA_float = float_hints(GA_rows).reshape(m, n) if n else np.zeros((m, 0))
     if not np.all(np.isfinite(GA_float)):  # beyond double range: no float hints, the exact route
         return None
-    rows = []
+    rows, hinted = [], np.ones(m, dtype=bool)
     for j in range(m):
         cost = np.zeros(m)
         cost[j] = 1.0
         hint = float_lp.solve_floats(cost, np.append(GA_float[j], 0.0), np.arange(m) != j)
-        if hint.status != OPTIMAL:
-            return None
+        if hint.status != OPTIMAL:  # a warm start gone astray (HiGHS: status unknown): once more, from a fresh model
+            hint = float_lp.solve_floats(cost, np.append(GA_float[j], 0.0), np.arange(m) != j)
+        if hint.status != OPTIMAL:  # this row alone is left to the general engine
+            hinted[j] = False
+            rows.append(SparseRow((), (), 1, (0,) * (n + 1), 1, LPPath.BASIS))
+            continue
         rhs = flint.fmpq_mat(n + 1, 1, GA_rows[j * n:(j + 1) * n] + [0])
         rows.append(_proposal(data, j, rhs, hint))
-    return DenseRows(tuple(rows), _verify(system, polyhedron, GA, rows), m)
+    if not hinted.any():
+        return None
+    ok = _verify(system, polyhedron, GA, rows) & hinted
+    failed = np.flatnonzero(~ok).tolist()
+    for j in failed:  # the float hint misled (ill-conditioned data): the row LP alone, exactly, then the same check
+        rhs = flint.fmpq_mat(n + 1, 1, GA_rows[j * n:(j + 1) * n] + [0])
+        repaired = _exact_proposal(data, constraint, j, rhs)
+        if repaired is not None:
+            rows[j] = repaired
+    if failed:
+        ok[failed] = _verify(system, polyhedron, GA, rows, failed)[failed]
+    return DenseRows(tuple(rows), ok, m)
 
 
 def _proposal(data: LPData, j: int, rhs: flint.fmpq_mat, hint) -> SparseRow:
@@ -168,6 +189,31 @@ def _proposal(data: LPData, j: int, rhs: flint.fmpq_mat, hint) -> SparseRow:
     return SparseRow(support, tuple(map(int, h.entries())), int(d), tuple(map(int, w.entries())), int(e), LPPath.BASIS)
 
 
+def _exact_proposal(data: LPData, constraint: flint.fmpq_mat, j: int, rhs: flint.fmpq_mat) -> SparseRow | None:
+    """Row j by PPL's exact simplex (the row LP has n + 1 rows: a few hundredths of a second at
+    m = 1000), its dual from the basis on the optimal point's support: a proposal for the same
+    integer check (None: not optimal, or a degenerate support that gives no square basis)."""
+    m = data.N
+    cost = flint.fmpq_mat(m, 1)
+    cost[j, 0] = 1
+    status, x = ppl_maximize(constraint, data.equality, rhs, cost, [k != j for k in range(m)])
+    if status != OPTIMAL:
+        return None
+    cols = tuple(sorted({k for k in range(m) if x[k, 0] != 0} | {j}))
+    equalities = tuple(data.eq_rows)
+    for rows in (equalities + (data.R - 1,), equalities):
+        if len(rows) == len(cols):
+            pair = basis_solution(data, cost, rhs, (cols, rows))
+            if pair is not None:
+                xq, yq = pair
+                support = tuple(k for k in cols if xq[k, 0] != 0)
+                h, d = flint.fmpq_mat(len(support), 1, [xq[k, 0] for k in support]).numer_denom()
+                w, e = yq.numer_denom()
+                return SparseRow(support, tuple(map(int, h.entries())), int(d), tuple(map(int, w.entries())), int(e),
+                                 LPPath.PPL)
+    return None
+
+
 def _support_basis(data: LPData, j: int, hint, tol: float):
     """The basis read off the float point when it is not degenerate: the
     columns off zero (and the free column j) against the tight rows; None if
@@ -180,29 +226,41 @@ def _support_basis(data: LPData, j: int, hint, tol: float):
     return (tuple(sorted(cols)), tuple(rows)) if len(cols) == len(rows) else None
 
 
-def _verify(system: LinearSystem, polyhedron: Polyhedron, GA: flint.fmpq_mat, rows: list[SparseRow]) -> np.ndarray:
-    """Per row: the three checks of the module docstring, exact (FLINT integers)."""
+def _verify(system: LinearSystem, polyhedron: Polyhedron, GA: flint.fmpq_mat, rows: list[SparseRow],
+            which: list[int] | None = None) -> np.ndarray:
+    """Per row (of ``which``; default all): the three checks of the module docstring, exact (FLINT
+    integers).  The primal checks run over each row's support (at most n + 1 entries); the dual
+    ones as products of the m x (n + 1) matrix [dG db Gn | dG bn] with blocks of ``_CHUNK`` duals
+    -- no m x m matrix.  Rows outside ``which`` are False."""
     m, n = polyhedron.m, polyhedron.n
     (Gn, dG), (bn, db), (An, dA) = (M.numer_denom() for M in (polyhedron.G_flint, polyhedron.b_flint, system.A_flint))
-    Hn, Ddiag = flint.fmpz_mat(m, m), flint.fmpz_mat(m, m)
-    for j, row in enumerate(rows):
-        Ddiag[j, j] = row.d
-        for k, v in zip(row.support, row.h):
-            Hn[j, k] = v
     GAn = Gn * An
-    residual = (Hn * Gn * dA - Ddiag * GAn).entries()
-    Hb = (Hn * bn).entries()
-    Wn = flint.fmpz_mat(m, n + 1, [v for row in rows for v in row.w])
-    Gb = flint.fmpz_mat(m, n + 1, [v for i in range(m) for v in [Gn[i, k] * db for k in range(n)] + [bn[i, 0] * dG]])
-    K = (Wn * Gb.transpose()).entries()  # row j: (g_k.y_j + lam_j b_k) dG db e_j over k
-    GA_rows, zero = GAn.entries(), flint.fmpz(0)
+    G_entries, GA_rows, b_list = Gn.entries(), GAn.entries(), bn.entries()
+    G_rows = [G_entries[k * n:(k + 1) * n] for k in range(m)]
+    zero = flint.fmpz(0)
     ok = np.zeros(m, dtype=bool)
-    for j, row in enumerate(rows):
-        k_row = K[j * m:(j + 1) * m]
-        others = k_row[:j] + k_row[j + 1:]
-        ok[j] = (not any(residual[j * n:(j + 1) * n]) and Hb[j] <= 0 and row.w[n] >= 0
-                 and all(v >= 0 for k, v in zip(row.support, row.h) if k != j)
-                 and k_row[j] == dG * db * row.e and (not others or min(others) >= zero)
+    which = list(range(m)) if which is None else list(which)
+    for j in which:
+        row = rows[j]
+        pairs = list(zip(row.support, row.h))
+        ok[j] = (all(sum((h * G_rows[k][c] for k, h in pairs), zero) * dA == row.d * GA_rows[j * n + c] for c in range(n))
+                 and sum((h * b_list[k] for k, h in pairs), zero) <= 0 and row.w[n] >= 0
+                 and all(h >= 0 for k, h in pairs if k != j)
                  and sum(map(mul, GA_rows[j * n:(j + 1) * n], row.w[:n]), zero) * row.d
                  == row.diagonal(j) * dG * dA * row.e)
+    GbT = flint.fmpz_mat(n + 1, m, [G_entries[i * n + k] * db for k in range(n) for i in range(m)]
+                         + [v * dG for v in b_list])
+    for start in range(0, len(which), _CHUNK):
+        block = which[start:start + _CHUNK]
+        W = flint.fmpz_mat(len(block), n + 1, [v for j in block for v in rows[j].w])
+        K = (W * GbT).entries()  # row t: (g_k.y_j + lam_j b_k) dG db e_j over k, j = start + t
+        for t, j in enumerate(block):
+            if not ok[j]:
+                continue
+            k_row = K[t * m:(t + 1) * m]
+            others = k_row[:j] + k_row[j + 1:]
+            ok[j] = k_row[j] == dG * db * rows[j].e and (not others or min(others) >= zero)
     return ok
+
+
+_CHUNK = 64  # duals checked per FLINT product: a 64 x m block, never m x m

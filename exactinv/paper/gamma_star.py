@@ -19,8 +19,9 @@ import flint
 import numpy as np
 
 from ..core.algebraic import ExactKey
-from ..core.encode import encode_real, mat, vec
+from ..core.encode import encode_real, vec
 from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
+from ..core.sparse import SparseRows
 from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed
@@ -81,6 +82,9 @@ class GammaRow:
 class OptimalGamma(LatexMixin):
     """gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, exactly.
 
+    ``H_sparse`` is H by rows, its nonzero entries only (at most n + 1 per row:
+    a :class:`~exactinv.core.sparse.SparseRows`); ``H_flint`` and ``H`` are the
+    dense m x m matrix, built only when asked for (the engine never needs it).
     ``value`` is a Fraction, ``INF`` (P is not invariant; ``witness`` then
     holds a :class:`FacetWitness`) or ``-INF`` (every row LP is unbounded,
     e.g. for a lower-dimensional P).  ``H`` attains the value (for a finite
@@ -90,7 +94,7 @@ class OptimalGamma(LatexMixin):
     """
 
     value: Fraction | Infinity
-    H_of: Callable[[], flint.fmpq_mat | None] = field(repr=False, compare=False)
+    H_of: Callable[[], SparseRows | None] = field(repr=False, compare=False)
     binding_row: int | None
     rows: tuple[GammaRow, ...] = field(repr=False)
     witness: FacetWitness | None
@@ -98,14 +102,23 @@ class OptimalGamma(LatexMixin):
     polyhedron: Polyhedron = field(repr=False)
 
     @cached_property
+    def H_sparse(self) -> SparseRows | None:
+        """The exact certificate H by rows, nonzero entries only (built on first use from the proved rows).
+
+        >>> optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).H_sparse.rows
+        (((0, -1/2), (1, 1/2)), ((0, 1/2), (1, -1/2)))
+        """
+        return self.H_of()
+
+    @cached_property
     def H_flint(self) -> flint.fmpq_mat | None:
-        """The exact certificate H (an fmpq matrix; built on first use from the proved rows).
+        """The exact certificate H as a dense fmpq matrix (m x m: built only on request).
 
         >>> optimal_gamma(LinearSystem([[-1]]), Polyhedron([[1], [-1]], [1, 1])).H_flint
         [-1/2,  1/2]
         [ 1/2, -1/2]
         """
-        return self.H_of()
+        return None if self.H_sparse is None else self.H_sparse.to_flint()
 
     @cached_property
     def H(self) -> Matrix | None:
@@ -142,7 +155,7 @@ class OptimalGamma(LatexMixin):
         >>> P = Polyhedron([[1], [-1]], [1, 1])
         >>> c = optimal_gamma(LinearSystem([[-1]]), P).claims()[0]
         >>> c["value"], c["H"], c["binding_row"], c["dual"]
-        ('1/2', [['-1/2', '1/2'], ['1/2', '-1/2']], 0, {'y': ['1/2'], 'lambda': '1/2'})
+        ('1/2', {'sparse': [[[0, '-1/2'], [1, '1/2']], [[0, '1/2'], [1, '-1/2']]]}, 0, {'y': ['1/2'], 'lambda': '1/2'})
         >>> optimal_gamma(LinearSystem([[1]]), P).claims()[0]["witness"]
         {'x': ['1'], 'facet': 0, 'value': '1'}
         """
@@ -151,13 +164,10 @@ class OptimalGamma(LatexMixin):
             claim["witness"] = self.witness.record()
         elif isinstance(self.value, Infinity):  # -oo: a point and a ray per row
             claim["rows"] = [{"h": vec(r.h), "ray": vec(r.ray)} for r in self.rows]
-            claim["H"] = mat(self.H)
+            claim["H"] = self.H_sparse.encode()
         else:
             y, lam = self.dual
-            m = self.H_flint.nrows()
-            H = self.H_flint.entries()
-            claim.update(H=[[str(v) for v in H[i * m:(i + 1) * m]] for i in range(m)], binding_row=self.binding_row,
-                         dual={"y": vec(y), "lambda": str(lam)})
+            claim.update(H=self.H_sparse.encode(), binding_row=self.binding_row, dual={"y": vec(y), "lambda": str(lam)})
         return [claim]
 
     def to_latex(self) -> str:
@@ -229,11 +239,14 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
 
 def _row_batch(S: LinearSystem, P: Polyhedron) -> RowBatch | DenseRows | None:
     """Every row LP solved in float and proved in one batch: one block-diagonal
-    float LP for a sparse G, warm-started row solves otherwise (HiGHS hints only)."""
+    float LP for a sparse G with short integer data, warm-started row solves and
+    one FLINT integer check otherwise -- also when the sparse route cannot decide
+    (long data: no row falls back to the general engine for that) (HiGHS hints only)."""
     if not isinstance(get_hint_backend(), HighsHint) or not P.m or not P.n:
         return None
     G = integer_G(P)
-    return batch_rows(S, P, G) if is_sparse(G) else dense_rows(S, P)
+    batch = batch_rows(S, P, G) if is_sparse(G) else None
+    return batch if batch is not None else dense_rows(S, P)
 
 
 def _solve_rows(S: LinearSystem, P: Polyhedron, which: list[int]) -> list[GammaRow]:
@@ -260,7 +273,7 @@ def _from_batch(S: LinearSystem, P: Polyhedron, batch: RowBatch | DenseRows) -> 
     rows = tuple(_batch_row(batch, j) for j in range(P.m))
     value = max(row.gamma for row in rows)
     binding = next(j for j, row in enumerate(rows) if row.gamma == value)
-    return OptimalGamma(value, batch.H_flint, binding, rows, None, S, P)
+    return OptimalGamma(value, batch.H_rows, binding, rows, None, S, P)
 
 
 def _batch_row(batch: RowBatch | DenseRows, j: int) -> GammaRow:
@@ -281,18 +294,18 @@ def _none() -> None:
     return None
 
 
-def _assemble_H(rows: list[GammaRow], gamma) -> flint.fmpq_mat:
-    """H from the row LPs; an unbounded row is pushed along its ray until
-    h_jj >= -gamma* (for gamma* = -INF: h_jj >= 0, any gamma >= 0 then works)."""
-    entries = []
+def _assemble_H(rows: list[GammaRow], gamma) -> SparseRows:
+    """H from the row LPs, by rows (nonzero entries only); an unbounded row is pushed along its
+    ray until h_jj >= -gamma* (for gamma* = -INF: h_jj >= 0, any gamma >= 0 then works)."""
+    out = []
     target = flint.fmpq(0) if isinstance(gamma, Infinity) else -fmpq_of(gamma)
     for j, row in enumerate(rows):
         h = row.lp.x_q
         ray = row.lp.ray_q
         if ray is not None and h[j, 0] < target:
             h = h + ray * ((target - h[j, 0]) / ray[j, 0])
-        entries.extend(h.entries())
-    return flint.fmpq_mat(len(rows), len(rows), entries)
+        out.append([(k, v) for k, v in enumerate(h.entries()) if v != 0])
+    return SparseRows.of_rows(len(rows), out)
 
 
 def _continuous_witness(S: LinearSystem, P: Polyhedron, first: list[int]) -> FacetWitness:
@@ -314,16 +327,21 @@ def _continuous_witness(S: LinearSystem, P: Polyhedron, first: list[int]) -> Fac
     raise VerificationFailed("continuous invariance: a row LP is infeasible but no facet witness was found")
 
 
-def _recheck_continuous(S: LinearSystem, P: Polyhedron, Hq: flint.fmpq_mat, gamma) -> None:
-    m = P.m
-    ok = Hq * P.G_flint == P.G_flint * S.A_flint and all(v <= 0 for v in (Hq * P.b_flint).entries())
-    entries = Hq.entries()
-    for i in range(m):  # off-diagonal entries >= 0 (min runs in C)
-        row = entries[i * m:(i + 1) * m]
-        del row[i]
-        ok = ok and (not row or min(row) >= 0)
+def _recheck_continuous(S: LinearSystem, P: Polyhedron, H: SparseRows, gamma) -> None:
+    """HG = GA, Hb <= 0, off-diagonal >= 0 and H + gamma I >= 0, over H's nonzero entries (exact)."""
+    n = P.n
+    G_entries = P.G_flint.entries()
+    G_rows = [G_entries[k * n:(k + 1) * n] for k in range(P.m)]
+    GA = (P.G_flint * S.A_flint).entries()
+    zero = flint.fmpq(0)
+    ok = all(x >= 0 for i, row in enumerate(H.rows) for k, x in row if k != i)
+    ok = ok and all(v <= 0 for v in H.times(P.b))
+    for i, row in enumerate(H.rows):
+        if not ok:
+            break
+        ok = [sum((x * G_rows[k][c] for k, x in row), zero) for c in range(n)] == GA[i * n:(i + 1) * n]
     if not isinstance(gamma, Infinity):
         g = fmpq_of(gamma)
-        ok = ok and all(entries[i * (m + 1)] + g >= 0 for i in range(m))
+        ok = ok and all(h + g >= 0 for h in H.diagonal())
     if not ok:
         raise VerificationFailed("optimal_gamma: the assembled H failed its exact re-check")

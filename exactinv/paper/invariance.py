@@ -20,7 +20,7 @@ from typing import Any
 
 import flint
 
-from ..core.encode import mat
+from ..core.encode import mat, sparse_of_dense
 from ..core.latex import LatexMixin, latex_column, latex_matrix
 from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
 from ..core.tags import ClaimType
@@ -65,7 +65,7 @@ class _Invariance(LatexMixin):
     def _claim(self, **data) -> list[dict]:
         claim = {"type": self._kind, "holds": self.holds, **data}
         if self.holds:
-            claim["H"] = mat(self.H)
+            claim["H"] = sparse_of_dense(self.H)  # certificate version 3: the nonzero entries by row
         else:
             claim["witness"] = self.witness.record()
         return [claim]
@@ -138,7 +138,8 @@ class DiscreteInvariance(_Invariance):
 
     def claims(self) -> list[dict]:
         """With dt (A_d = r(dt A) built from a system and a method), the claim names
-        dt, and the kernel recomputes A_d itself (certificate version 2).
+        dt, and the kernel recomputes A_d itself (certificate version 2); H~ is written by
+        rows, its nonzero entries only (version 3).
 
         Forward Euler with dt = 3 on x' = -x: A_d = 1 - 3 = -2 maps x = -1 in
         P = [-1, 1] to 2 > b_0 = 1.
@@ -148,7 +149,7 @@ class DiscreteInvariance(_Invariance):
         >>> discrete_invariance(LinearSystem([[-1]]), P, methods.forward_euler(), 3).claims()
         [{'type': 'discrete_invariance', 'holds': False, 'Ad': [['-2']], 'dt': '3', 'witness': {'x': ['-1'], 'facet': 0, 'value': '2'}}]
         >>> discrete_invariance([["1/2"]], P).claims()   # H~ = I/2: H~G = G/2, H~b = b/2 <= b
-        [{'type': 'discrete_invariance', 'holds': True, 'Ad': [['1/2']], 'H': [['1/2', '0'], ['0', '1/2']]}]
+        [{'type': 'discrete_invariance', 'holds': True, 'Ad': [['1/2']], 'H': {'sparse': [[[0, '1/2']], [[1, '1/2']]]}}]
         """
         return self._claim(Ad=mat(self.Ad), **({} if self.dt is None else {"dt": str(self.dt)}))
 

@@ -22,14 +22,13 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from math import comb
 
-import flint
-
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
 from ..core.latex import dt_poly_latex, latex_real, latex_text
 from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
+from ..core.sparse import SparseRows
 from ..core.tags import ClaimType
 from ..model import Method
 from ..model.record import certificate as make_certificate
@@ -76,7 +75,7 @@ class SteplengthThreshold(ExactValueMixin):
     pole: Real | None = field(default=None, repr=False)
     spectral_abscissa: Real | None = field(default=None, repr=False)
     paper_value: Real | None = field(default=None, repr=False)
-    certificate_H: tuple[flint.fmpq_mat, Real] | None = field(default=None, repr=False)
+    certificate_H: tuple[SparseRows, Real] | None = field(default=None, repr=False)
 
     @property
     def paper(self) -> Real:
@@ -115,8 +114,7 @@ class SteplengthThreshold(ExactValueMixin):
         }
         if self.certificate_H is not None:  # another H than gamma*'s was better for the E2 bound
             H, g_H = self.certificate_H
-            m = H.nrows()
-            claim["H"] = [[str(H[i, j]) for j in range(m)] for i in range(m)]
+            claim["H"] = H.encode()
             claim["gamma_H"] = str(g_H)
         return self.radius.claims() + [claim]
 

@@ -35,6 +35,7 @@ from ..core.algebraic import ExactKey, RealAlgebraic
 from ..core.polys import interpolate
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fraction_of
+from ..core.sparse import SparseRows
 from ..model.methods import Method, matrix_polynomial
 from .gamma_star import OptimalGamma
 from .monotonicity import absolute_monotonicity_radius
@@ -105,11 +106,11 @@ def _certificate_candidates(gamma: OptimalGamma):
     """(H, gamma_H) pairs with H + gamma_H I >= 0, HG = GA, Hb <= 0: the gamma*-optimal H
     and, when some row LP is unbounded, the H of the unpushed row points (its spectral
     abscissa can be smaller; the E2 bound depends on the choice of H)."""
-    yield gamma.H_flint, gamma.value
+    yield gamma.H_sparse, gamma.value
     if any(row.lp.ray_q is not None for row in gamma.rows):
         m = len(gamma.rows)
-        H = flint.fmpq_mat(m, m, [v for row in gamma.rows for v in row.lp.x_q.entries()])
-        yield H, max(-fraction_of(H[i, i]) for i in range(m))
+        H = SparseRows.of_rows(m, ([(k, v) for k, v in enumerate(row.lp.x_q.entries())] for row in gamma.rows))
+        yield H, max(-fraction_of(h) for h in H.diagonal())
 
 
 def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
@@ -162,7 +163,7 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
             notes.append("the bound is not attained there")
         value, attained = singular, False
         theorem = "Theorem 3.12 corrected (erratum E2': r(dt A) must exist)"
-    certificate_H = None if H is gamma.H_flint else (H, g_H)
+    certificate_H = None if H is gamma.H_sparse else (H, g_H)
     return SteplengthThreshold(value, attained, theorem, method, gamma, notes=tuple(notes), radius=radius,
                                pole=z_p, spectral_abscissa=alpha, paper_value=paper, certificate_H=certificate_H)
 
@@ -187,7 +188,7 @@ def _e2_may_bind(H, gamma: OptimalGamma, z_p, value, nonpositive) -> bool:
     not needed, and not computed): no pole; alpha(H) <= U = max_i (Hv)_i / v_i (Collatz-Wielandt,
     v = b when b > 0, else 1, as the kernel does) with U <= 0 or z_p/U > value; or alpha(H) <= 0
     because A has no positive real eigenvalue on a full-dimensional P (paper/spectral.py)."""
-    if z_p is None or H.nrows() == 0:
+    if z_p is None or H.m == 0:
         return False
     b = gamma.polyhedron.b
     U = collatz_wielandt_upper(H, b if all(x > 0 for x in b) else [Fraction(1)] * len(b))

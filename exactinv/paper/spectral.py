@@ -24,7 +24,11 @@ time the bound cannot bind.  What is decided here, exactly, and in this order:
    Hv >= mu v there and (Hv)_i >= 0 off it), and only the blocks whose upper bound
    reaches the best lower bound get an exact characteristic polynomial.
 
-Every bound is a rational computed exactly; floats only choose the vectors.
+Every bound is a rational computed exactly; floats only choose the vectors.  H may be
+given by rows (:class:`~exactinv.core.sparse.SparseRows`, what gamma* produces) or as
+an fmpq matrix: products, the graph and the blocks use its nonzero entries only, and
+no m x m matrix is built (only the components' blocks, where a characteristic
+polynomial needs them).
 """
 
 from __future__ import annotations
@@ -39,21 +43,22 @@ from ..core.algebraic import ExactKey, RealAlgebraic
 from ..core.float_hint import float_hints
 from ..core.roots import positive_roots, real_roots
 from ..core.scalars import fraction_of
+from ..core.sparse import SparseRows
 
 __all__ = ["collatz_wielandt_upper", "perron_lower", "abscissa_is_nonpositive", "components", "spectral_abscissa"]
 
 
-def collatz_wielandt_upper(H: flint.fmpq_mat, v: Sequence[Fraction]) -> Fraction:
+def collatz_wielandt_upper(H: flint.fmpq_mat | SparseRows, v: Sequence[Fraction]) -> Fraction:
     """max_i (Hv)_i / v_i for a vector v > 0: an upper bound on alpha(H) for a Metzler H, exact.
 
     >>> collatz_wielandt_upper(flint.fmpq_mat([[-2, 1], [1, -2]]), [1, 1])   # alpha = -1
     Fraction(-1, 1)
     """
-    Hv = H * flint.fmpq_mat(len(v), 1, [flint.fmpq(x.numerator, x.denominator) for x in map(Fraction, v)])
-    return max(fraction_of(Hv[i, 0]) / Fraction(x) for i, x in enumerate(v))
+    Hv = SparseRows.of(H).times(v)
+    return max(fraction_of(Hv[i]) / Fraction(x) for i, x in enumerate(v))
 
 
-def perron_lower(H: flint.fmpq_mat, v: Sequence[Fraction]) -> Fraction | None:
+def perron_lower(H: flint.fmpq_mat | SparseRows, v: Sequence[Fraction]) -> Fraction | None:
     """min over {i : v_i > 0} of (Hv)_i / v_i for a vector v >= 0, v != 0 (None otherwise): a lower
     bound on alpha(H) for a Metzler H, exact (Hv >= mu v on the support, and (Hv)_i >= 0 off it
     since the off-diagonal entries are >= 0; subinvariance).
@@ -64,8 +69,8 @@ def perron_lower(H: flint.fmpq_mat, v: Sequence[Fraction]) -> Fraction | None:
     support = [i for i, x in enumerate(v) if x > 0]
     if not support or any(x < 0 for x in v):
         return None
-    Hv = H * flint.fmpq_mat(len(v), 1, [flint.fmpq(x.numerator, x.denominator) for x in map(Fraction, v)])
-    return min(fraction_of(Hv[i, 0]) / Fraction(v[i]) for i in support)
+    Hv = SparseRows.of(H).times(v)
+    return min(fraction_of(Hv[i]) / Fraction(v[i]) for i in support)
 
 
 def abscissa_is_nonpositive(A: flint.fmpq_mat, full_dimensional: bool) -> bool:
@@ -85,7 +90,7 @@ def abscissa_is_nonpositive(A: flint.fmpq_mat, full_dimensional: bool) -> bool:
     return not positive_roots(flint.fmpq_poly(A.charpoly().coeffs()))
 
 
-def components(H: flint.fmpq_mat) -> list[list[int]]:
+def components(H: flint.fmpq_mat | SparseRows) -> list[list[int]]:
     """The strongly connected components of the graph i -> j (i != j, H_ij != 0), each sorted
     (Tarjan, iterative).  For a Metzler H, alpha(H) is the largest alpha over the principal
     submatrices on these components (the diagonal blocks of the Frobenius normal form).
@@ -93,9 +98,9 @@ def components(H: flint.fmpq_mat) -> list[list[int]]:
     >>> components(flint.fmpq_mat([[-1, 1, 0], [1, -1, 0], [1, 0, -3]]))
     [[0, 1], [2]]
     """
-    m = H.nrows()
-    entries = H.entries()
-    succ = [[j for j in range(m) if j != i and entries[i * m + j] != 0] for i in range(m)]
+    S = SparseRows.of(H)
+    m = S.m
+    succ = S.successors()
     index, low, on_stack, stack, out = [-1] * m, [0] * m, [False] * m, [], []
     counter = 0
     for root in range(m):
@@ -135,10 +140,6 @@ def components(H: flint.fmpq_mat) -> list[list[int]]:
     return sorted(out)
 
 
-def _block(H: flint.fmpq_mat, rows: list[int]) -> flint.fmpq_mat:
-    return flint.fmpq_mat(len(rows), len(rows), [H[i, j] for i in rows for j in rows])
-
-
 def _perron_hint(B: flint.fmpq_mat) -> np.ndarray | None:
     """A float right Perron vector of the block (entries > 0), or None (a hint only)."""
     k = B.nrows()
@@ -170,7 +171,7 @@ def _exact(B: flint.fmpq_mat) -> Fraction | RealAlgebraic:
     return real_roots(B.charpoly())[-1][0]
 
 
-def spectral_abscissa(H: flint.fmpq_mat) -> Fraction | RealAlgebraic:
+def spectral_abscissa(H: flint.fmpq_mat | SparseRows) -> Fraction | RealAlgebraic:
     """alpha(H) = max Re(lambda) over the eigenvalues of a Metzler matrix H (off-diagonal
     >= 0): by Perron-Frobenius for H + cI >= 0 the largest real eigenvalue, exact.  Block by
     block over the strongly connected components; a block whose certified upper bound is below
@@ -183,7 +184,8 @@ def spectral_abscissa(H: flint.fmpq_mat) -> Fraction | RealAlgebraic:
     >>> spectral_abscissa(flint.fmpq_mat([[1, 0, 0], [5, -1, 1], [0, 1, -1]]))   # blocks {0}: 1, {1, 2}: 0
     Fraction(1, 1)
     """
-    blocks = [_block(H, rows) for rows in components(H)]
+    S = SparseRows.of(H)
+    blocks = [S.block(rows) for rows in components(S)]
     bounds = [(fraction_of(B[0, 0]),) * 2 if B.nrows() == 1 else _bounds(B) for B in blocks]
     floor = max((lo for lo, _ in bounds if lo is not None), default=None)
     unbounded = [k for k in range(len(blocks)) if bounds[k][1] is None]
