@@ -24,7 +24,7 @@ import exactinv as ei
 from exactinv import methods as M
 from exactinv.certificates import certificate
 from exactinv.core.encode import sparse_of_dense
-from exactinv.paper.forward_euler import forward_euler_threshold
+from exactinv import forward_euler_threshold
 from exactinv_check import check
 from exactinv_check.rationals import CheckFailure
 from exactinv_check.sparse import read_square, sparse_matrix

@@ -201,12 +201,13 @@ def test_gamma_unbounded_below():
     cert = be.certificate
     assert ei.check(cert).ok
     for vertex in cert["claims"][-1]["vertices"]:
-        assert all(Fraction(x) >= 0 for row in vertex["H"] for x in row)
+        assert all(Fraction(x) >= 0 for row in vertex["H"]["sparse"] for _, x in row)  # v3: rows of nonzeros
     assert be.beta > 0 and be.value == Fraction(1) / be.beta and not be.attained
     for lam in ([1, 0], [0, 1], [Fraction(1, 2)] * 2, [Fraction(1, 3), Fraction(2, 3)]):
         A = _combination(systems, lam).A
         for h in (be.value * Fraction(k, 8) for k in range(8)):
             assert _matrix([[int(i == j) - h * A[i][j] for j in range(2)] for i in range(2)]).det() != 0
     forged = copy.deepcopy(cert)
-    forged["claims"][-1]["vertices"][0]["H"][0][0] = "-1"
+    row = forged["claims"][-1]["vertices"][0]["H"]["sparse"][0]
+    row[:] = [[0, "-1"]] + [entry for entry in row if entry[0] != 0]  # h_00 = -1
     assert not ei.check(forged).ok
