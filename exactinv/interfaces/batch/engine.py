@@ -26,8 +26,8 @@ when a batch actually runs.
 
 from __future__ import annotations
 
+import collections
 import contextlib
-import itertools
 import logging
 import math
 import os
@@ -39,11 +39,12 @@ from ...core.scalars import to_rational
 from ...errors import InvalidInput
 from ..files import atomic_write, check_writable, is_results_file, refuse_foreign, refuse_inputs
 from .certdir import prepare_cert_dir
+from .chunks import ChunkSizer
 from .corpus import Task, scan_corpus
 from .results import ResultsFile, read_records
 from .signals import CtrlC, sigint_ignored
 from .summary import BatchSummary, Tally
-from .task import Limits, engine_version, run_task
+from .task import Limits, engine_version, run_chunk
 
 __all__ = ["run_batch", "BatchInterrupted"]
 
@@ -56,7 +57,7 @@ class BatchInterrupted(KeyboardInterrupt):
         super().__init__(f"interrupted: {done} done, resumable")
         self.done, self.out = done, out
 
-_WINDOW = 4  # tasks in flight per worker thread: enough to keep workers busy, few enough to scale to 10^5 tasks
+_WINDOW = 2  # chunks in flight per worker thread: one running, one queued behind it (chunks last about a second)
 _CONNECT_TIMEOUT = "30s"  # to reach an existing scheduler
 _RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may grow, e.g. SLURM jobs starting)
 
@@ -214,12 +215,13 @@ def _dask() -> Any:
 
 def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
          out: str, targets: dict[str, str], bar: "_Bar") -> tuple[int, int]:
-    """Submit ``todo`` to Dask, about ``_WINDOW`` tasks per worker thread in flight (re-counted as
-    workers join or leave), append each record to ``out`` as it comes (its certificate to
-    ``targets[id]`` first); (the most worker threads seen, records written).  Ctrl-C: a quiet
-    shutdown, then :class:`_Interrupted`."""
+    """Submit ``todo`` to Dask in chunks (:mod:`.chunks`, each run by :func:`.task.run_chunk`),
+    about ``_WINDOW`` chunks per worker thread in flight (re-counted as workers join or leave),
+    append each record to ``out`` as its chunk comes back (its certificate to ``targets[id]``
+    first); (the most worker threads seen, records written).  Ctrl-C: a quiet shutdown, then
+    :class:`_Interrupted`."""
     client = cluster = sink = None
-    futures: dict[Any, Task] = {}
+    futures: dict[Any, list[Task]] = {}
     written, interrupted = 0, False
     ctrl_c = CtrlC()
     try:
@@ -227,24 +229,28 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
         ctrl_c.__enter__()
         _same_engine(client)
         sink = ResultsFile(out)
-        pending, stream = iter(todo), dask.as_completed()
+        pending, stream, sizer = collections.deque(todo), dask.as_completed(), ChunkSizer()
         threads, counted = _threads(client), time.monotonic()
         most = threads
 
         def top_up() -> None:
-            for task in itertools.islice(pending, max(max(threads, 1) * _WINDOW - len(futures), 0)):
-                future = client.submit(run_task, task, limits, pure=False)
-                futures[future] = task
+            while pending and len(futures) < max(threads, 1) * _WINDOW:
+                size = sizer.next_size(len(pending), threads)
+                chunk = [pending.popleft() for _ in range(size)]
+                future = client.submit(run_chunk, chunk, limits, pure=False)
+                futures[future] = chunk
                 stream.add(future)
 
         top_up()
         for future in stream:
-            record = _record(future, futures.pop(future))
-            with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
-                _keep_certificate(record, targets)
-                sink.append(record)
-                written += 1
-            bar.step(record["status"])
+            records = _records(future, futures.pop(future))
+            sizer.observe(records)
+            for record in records:
+                with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
+                    _keep_certificate(record, targets)
+                    sink.append(record)
+                    written += 1
+                bar.step(record["status"])
             if time.monotonic() - counted > _RECOUNT:
                 threads, counted = _threads(client), time.monotonic()
                 most = max(most, threads)
@@ -296,12 +302,15 @@ def _threads(client: Any) -> int:
     return sum(client.nthreads().values())
 
 
-def _record(future: Any, task: Task) -> dict:
+def _records(future: Any, chunk: list[Task]) -> list[dict]:
+    """The records of a finished chunk; if Dask gave up on it (its workers died ``allowed-failures``
+    times, or it could not be shipped), an ``error`` record for each of its tasks: never fatal."""
     try:
         return future.result()
-    except Exception as exc:  # the worker itself died or the task could not be shipped: recorded, never fatal
-        return {"id": task.id, "kind": task.kind, "source": task.source, "status": "error",
-                "error": f"the Dask worker failed: {type(exc).__name__}: {exc}", "seconds": 0.0, "peak_mb": 0.0}
+    except Exception as exc:
+        return [{"id": task.id, "kind": task.kind, "source": task.source, "status": "error", "outcome": "error",
+                 "error": f"the Dask worker failed: {type(exc).__name__}: {exc}", "seconds": 0.0, "peak_mb": 0.0}
+                for task in chunk]
 
 
 def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any, Any]:
