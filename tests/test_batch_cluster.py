@@ -25,7 +25,7 @@ from exactinv.interfaces.cli import main  # noqa: E402
 from exactinv.interfaces.pipeline import certify  # noqa: E402
 from exactinv.interfaces.problem import load_problem  # noqa: E402
 
-N = 80
+N = 40
 STARTUP = 90  # seconds for the scheduler and both workers to come up (imports on a loaded machine)
 
 
@@ -36,14 +36,14 @@ def _free_port() -> int:
 
 
 def _problems() -> list[dict]:
-    """N small problems (about 20-60 ms each with the kernel check): 2-D systems on 12-gons with
-    integer vertices, Taylor 1-4, RK4, backward Euler, Pade(1,2); some sets are not invariant."""
+    """N small problems (tens of milliseconds each with the kernel check): 2-D systems on hexagons
+    with integer vertices, Taylor 1-4, RK4, backward Euler, Pade(1,2); some sets are not invariant."""
     import math
     methods = [{"taylor": 1}, {"taylor": 2}, {"taylor": 3}, {"taylor": 4}, "rk4", "backward_euler", {"pade": [1, 2]}]
     out = []
     for i in range(N):
-        pts = [[round(50 * math.cos(2 * math.pi * j / 12 + i / 7)), round(50 * math.sin(2 * math.pi * j / 12 + i / 7))]
-               for j in range(12)]
+        pts = [[round(10 * math.cos(2 * math.pi * j / 6 + i / 7)), round(10 * math.sin(2 * math.pi * j / 6 + i / 7))]
+               for j in range(6)]
         a, b = 1 + i % 4, i % 3
         out.append({"name": f"c{i:03d}", "system": {"A": [[-a, b], [-b, -a + (i % 5 == 0) * 6]]},
                     "polyhedron": {"vertices": pts}, "method": methods[i % len(methods)]})
@@ -91,22 +91,27 @@ def test_a_killed_worker_on_a_real_cluster_loses_nothing(tmp_path):
                                  "--death-timeout", "60"], log))
         with distributed.Client(address, timeout=STARTUP) as client:
             client.wait_for_workers(2, timeout=STARTUP)
-            victim_address = next(addr for addr, info in client.scheduler_info()["workers"].items()
-                                  if info["pid"] == procs[1].pid)
+            victim_address = next(addr for addr, pid in client.run(os.getpid).items() if pid == procs[1].pid)
         killed = {}
 
-        def kill_mid_run() -> None:  # once a quarter of the corpus is recorded, SIGKILL the first worker
+        def kill_mid_run() -> None:
+            """Once a fifth of the corpus is recorded and the victim is running a chunk, SIGKILL it."""
             deadline = time.monotonic() + 120
-            while _lines(out) < N // 4 and time.monotonic() < deadline:
-                time.sleep(0.01)
-            killed["lines"] = _lines(out)
-            os.kill(procs[1].pid, signal.SIGKILL)
+            with distributed.Client(address, timeout=30) as watcher:
+                while time.monotonic() < deadline:
+                    busy = watcher.processing(workers=[victim_address]).get(victim_address, ())
+                    if _lines(out) >= N // 5 and busy:
+                        break
+                    time.sleep(0.02)
+                killed["lines"], killed["busy"] = _lines(out), len(busy)
+                os.kill(procs[1].pid, signal.SIGKILL)
 
         killer = threading.Thread(target=kill_mid_run, daemon=True)
         killer.start()
         code = main(["batch", str(corpus), "-o", str(out), "--scheduler", address, "--timeout", "60"])
         killer.join(timeout=30)
-        assert procs[1].wait(timeout=30) == -signal.SIGKILL and N // 4 <= killed["lines"] < N  # killed mid-run
+        assert procs[1].wait(timeout=30) == -signal.SIGKILL
+        assert N // 5 <= killed["lines"] < N and killed["busy"] >= 1  # killed mid-run, with a chunk in flight
         with distributed.Client(address, timeout=30) as client:  # the scheduler saw it go
             assert victim_address not in client.scheduler_info()["workers"]
     finally:
