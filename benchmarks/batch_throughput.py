@@ -17,6 +17,11 @@ Each batch configuration is measured twice:
   before the clock starts -- the steady-state cost per problem.
 
 The plain loop runs in this process (no Dask, no isolation, no limits).
+CPU (user + system), which depends far less on the machine's load than wall
+time: the loop's is this process's; a batch's on a running cluster is the
+workers' own CPU (Dask, the sandbox's parent side) plus the CPU its records
+report for the problems (the sandbox children) plus this process's (the
+client, the results file).
 Ratios: batch wall / loop wall (1 worker; target <= 1.2 on a running
 cluster) and 1-worker wall / 2-worker wall (target >= 1.7).  The load
 average is printed with each row: on a shared machine the 2-worker speed-up
@@ -68,11 +73,21 @@ def generate(count: int, seed: int = 24) -> list[dict]:
     return problems
 
 
-def plain_loop(problems: list[dict]) -> tuple[float, int]:
-    start, ok = time.perf_counter(), 0
+def _cpu() -> float:
+    t = os.times()
+    return t.user + t.system
+
+
+def plain_loop(problems: list[dict]) -> tuple[float, float, int]:
+    start, cpu, ok = time.perf_counter(), _cpu(), 0
     for p in problems:
         ok += certify(load_problem(json.dumps(p))).ok
-    return time.perf_counter() - start, ok
+    return time.perf_counter() - start, _cpu() - cpu, ok
+
+
+def _records_cpu(out: str) -> float:
+    with open(out) as fh:
+        return sum(json.loads(line).get("cpu_seconds", 0.0) for line in fh)
 
 
 def _warm() -> str:
@@ -80,12 +95,17 @@ def _warm() -> str:
     return exactinv.__version__
 
 
-def batch(corpus: str, work: str, label: str, **where) -> tuple[float, int]:
+def batch(corpus: str, work: str, label: str, client: Client | None = None, **where) -> tuple[float, float, int]:
+    """(wall s, CPU s or nan, verified) of one batch; CPU only on a running cluster (``client``)."""
     out = os.path.join(work, f"{label}.jsonl")
-    start = time.perf_counter()
+    workers0 = sum(client.run(_cpu).values()) if client is not None else 0.0
+    start, cpu = time.perf_counter(), _cpu()
     summary = run_batch([corpus], out, progress=False, **where)
-    seconds = time.perf_counter() - start
-    return seconds, summary.count("ok")
+    seconds, cpu = time.perf_counter() - start, _cpu() - cpu
+    if client is None:
+        return seconds, float("nan"), summary.count("ok")
+    workers = sum(client.run(_cpu).values()) - workers0
+    return seconds, cpu + workers + _records_cpu(out), summary.count("ok")
 
 
 def main() -> None:
@@ -103,26 +123,27 @@ def main() -> None:
     for rep in range(args.repeat):
         rows = []
         load0 = os.getloadavg()[0]
-        loop, ok = plain_loop(problems)
-        rows.append(("plain loop", loop, ok, load0))
+        loop, loop_cpu, ok = plain_loop(problems)
+        rows.append(("plain loop", loop, loop_cpu, ok, load0))
         walls = {}
         for k in (1, 2):
             load = os.getloadavg()[0]
-            seconds, ok = batch(corpus, work, f"e2e-{k}-{rep}", workers=k)
-            rows.append((f"batch --workers {k} (end to end)", seconds, ok, load))
+            seconds, cpu, ok = batch(corpus, work, f"e2e-{k}-{rep}", workers=k)
+            rows.append((f"batch --workers {k} (end to end)", seconds, cpu, ok, load))
             walls[("e2e", k)] = seconds
             with LocalCluster(n_workers=k, threads_per_worker=1, processes=True, dashboard_address=None,
                               silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
                 client.run(_warm)
                 load = os.getloadavg()[0]
-                seconds, ok = batch(corpus, work, f"run-{k}-{rep}", scheduler=cluster.scheduler_address)
-            rows.append((f"batch, {k} worker{'s' * (k > 1)} (running cluster)", seconds, ok, load))
+                seconds, cpu, ok = batch(corpus, work, f"run-{k}-{rep}", client, scheduler=cluster.scheduler_address)
+            rows.append((f"batch, {k} worker{'s' * (k > 1)} (running cluster)", seconds, cpu, ok, load))
             walls[("run", k)] = seconds
-        print(f"\n| run | wall s | problems/s | ms / problem | x loop | verified | load |")
-        print("|---|---:|---:|---:|---:|---:|---:|")
-        for label, seconds, ok, load in rows:
+        print("\n| run | wall s | problems/s | ms / problem | wall x loop | CPU s | CPU x loop | verified | load |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for label, seconds, cpu, ok, load in rows:
+            cpus = "-" if cpu != cpu else f"{cpu:.2f} | {cpu / loop_cpu:.2f}"
             print(f"| {label} | {seconds:.2f} | {args.n / seconds:.0f} | {1000 * seconds / args.n:.2f} | "
-                  f"{seconds / loop:.2f} | {ok} | {load:.1f} |")
+                  f"{seconds / loop:.2f} | {cpus if cpu == cpu else '- | -'} | {ok} | {load:.1f} |")
         print(f"\n1 worker / loop: {walls['run', 1] / loop:.2f} (running cluster), {walls['e2e', 1] / loop:.2f} "
               f"(end to end); 2 workers speed-up over 1: {walls['run', 1] / walls['run', 2]:.2f} (running cluster), "
               f"{walls['e2e', 1] / walls['e2e', 2]:.2f} (end to end)")
