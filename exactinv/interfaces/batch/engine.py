@@ -4,13 +4,18 @@ distributed, results streamed to a JSON-lines file.
 The scheduling is Dask's: by default a ``LocalCluster`` with one
 single-threaded worker process per core of this machine; with ``scheduler``
 an existing Dask cluster (``dask scheduler`` / ``dask worker``, dask-jobqueue,
-dask-kubernetes; docs/scale.md).  Each task runs on a worker in a forked
-child under the per-task time and memory limits (:mod:`.sandbox`), so a
-runaway problem is stopped and recorded and the batch goes on.
+dask-kubernetes; docs/scale.md).  A Dask task is a chunk of problems, sized
+from the durations measured so far to last about a second (:mod:`.chunks`);
+a worker thread runs its chunks' problems one after another in one
+long-lived forked sandbox, each under its own time and memory limits
+(:mod:`.resident`), so a runaway problem is stopped and recorded, its
+sandbox replaced, and the chunk and the batch go on.  A worker that dies
+takes its chunks in flight with it; Dask runs them again elsewhere, and as a
+chunk's records are written only when it comes back, none is written twice.
 
 Resumable: ids already in ``out`` are skipped, and every record is appended
-as one whole line the moment it arrives (:mod:`.results`), so an interrupted
-batch loses at most the tasks in flight.  Ctrl-C raises
+as one whole line the moment its chunk arrives (:mod:`.results`), so an
+interrupted batch loses at most the chunks in flight.  Ctrl-C raises
 :class:`BatchInterrupted` after a quiet shutdown: the futures are cancelled,
 the cluster is closed, and the worker processes of a local cluster ignore
 the signal (:func:`_connect`), so no worker prints a traceback.

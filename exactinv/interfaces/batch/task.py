@@ -1,7 +1,9 @@
 """One task of a batch, as a worker runs it: certify (and kernel-check) a
 problem, or judge an oracle row, inside the sandbox's time and memory
-limits, and return one JSON-able record.  :func:`run_task` never raises: a
-problem that fails is recorded and the batch goes on.
+limits, and return one JSON-able record -- alone in a fresh child
+(:func:`run_task`) or as one of a chunk in the thread's long-lived sandbox
+(:func:`run_chunk`, what the engine runs); the records are the same.
+Neither raises: a problem that fails is recorded and the batch goes on.
 
 A record holds exact values only as the certificate encodes them
 (:func:`exactinv.core.encode.encode_real`): a rational as ``"p/q"``,
