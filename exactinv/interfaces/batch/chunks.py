@@ -48,7 +48,11 @@ class ChunkSizer:
         self.seconds, self.count = 0.0, 0
 
     def observe(self, records: Iterable[dict]) -> None:
-        """Count the measured wall time of finished tasks."""
+        """Count the measured wall time of finished tasks (records without a number are skipped).
+
+        >>> sizer = ChunkSizer(); sizer.observe([{"seconds": 0.5}, {"status": "error"}]); sizer.count
+        1
+        """
         for record in records:
             seconds = record.get("seconds")
             if isinstance(seconds, (int, float)) and not isinstance(seconds, bool) and math.isfinite(seconds):
@@ -56,7 +60,12 @@ class ChunkSizer:
                 self.count += 1
 
     def next_size(self, remaining: int, threads: int) -> int:
-        """How many of the ``remaining`` tasks the next chunk takes, with ``threads`` worker threads."""
+        """How many of the ``remaining`` tasks the next chunk takes, with ``threads`` worker threads.
+
+        >>> sizer = ChunkSizer(); sizer.observe([{"seconds": 0.25}])
+        >>> sizer.next_size(10**6, 4), sizer.next_size(64, 4), sizer.next_size(1, 4)
+        (4, 2, 1)
+        """
         if self.count == 0:
             size = self.first
         else:

@@ -80,7 +80,15 @@ class Sandbox:
 
     def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
         """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
-        ``memory_mb`` megabytes more than the child holds when the run starts (None: no limit)."""
+        ``memory_mb`` megabytes more than the child holds when the run starts (None: no limit).
+
+        >>> box = Sandbox(bytearray)
+        >>> [(o.status, o.message) for o in (box.run(10**10, timeout=30, memory_mb=64),)]
+        [('memory', 'MemoryError (the --memory limit)')]
+        >>> box.run(3, timeout=30).status, box.forks  # not JSON-able: a crash, in a new child
+        ('crash', 2)
+        >>> box.close()
+        """
         if self.pid is not None and self._runs >= RENEW_AFTER:
             self.close()
         if self.pid is None:
@@ -112,7 +120,13 @@ class Sandbox:
         return replace(outcome, cpu_seconds=cpu)
 
     def close(self) -> None:
-        """Kill and reap the child, if any; the next run forks a new one."""
+        """Kill and reap the child, if any; the next run forks a new one.
+
+        >>> box = Sandbox(abs); box.run(-2).value, box.pid is not None
+        (2, True)
+        >>> box.close(); box.pid is None
+        True
+        """
         if self.pid is not None:
             os.kill(self.pid, signal.SIGKILL)
             self._reap()
@@ -155,7 +169,12 @@ _local = threading.local()
 
 def resident(fn: Callable[[Any], Any]) -> Sandbox:
     """This thread's sandbox for ``fn``, forked on first use and kept for the thread's life (a
-    Dask worker thread runs chunk after chunk in the same child)."""
+    Dask worker thread runs chunk after chunk in the same child).
+
+    >>> resident(abs) is resident(abs), resident(abs).run(-7, timeout=30).value
+    (True, 7)
+    >>> resident(abs).close()
+    """
     boxes = getattr(_local, "boxes", None)
     if boxes is None:
         boxes = _local.boxes = {}

@@ -135,7 +135,12 @@ def _limit(timeout: float | None, memory_mb: float | None) -> None:
 
 def plain_fatal_signals() -> None:
     """In a child: a fatal signal ends it at once -- no crash handler (cysignals, loaded by pplpy,
-    would attach a debugger) and no core dump."""
+    would attach a debugger) and no core dump.
+
+    >>> run_limited(lambda _: plain_fatal_signals() or signal.getsignal(signal.SIGSEGV) == signal.SIG_DFL,
+    ...             None, timeout=30).value
+    True
+    """
     for sig in _FATAL:
         signal.signal(sig, signal.SIG_DFL)
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
@@ -143,7 +148,11 @@ def plain_fatal_signals() -> None:
 
 def die_with_parent() -> None:
     """SIGKILL this child when the thread that forked it dies (Linux ``PR_SET_PDEATHSIG``): a worker
-    closed by an interrupted batch leaves no orphan computing on."""
+    closed by an interrupted batch leaves no orphan computing on.
+
+    >>> run_limited(lambda _: die_with_parent() is None, None, timeout=30).value
+    True
+    """
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
@@ -154,7 +163,11 @@ def die_with_parent() -> None:
 
 
 def address_space() -> int:
-    """The current virtual memory size of this process, in bytes (Linux /proc)."""
+    """The current virtual memory size of this process, in bytes (Linux /proc).
+
+    >>> before = address_space(); block = bytearray(2**26); address_space() - before >= 2**26
+    True
+    """
     with open("/proc/self/status", encoding="ascii") as fh:
         for line in fh:
             if line.startswith("VmSize:"):
