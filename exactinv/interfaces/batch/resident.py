@@ -131,6 +131,12 @@ class Sandbox:
             os.kill(self.pid, signal.SIGKILL)
             self._reap()
 
+    def __del__(self) -> None:  # a thread that ends drops its sandbox: reap the child, close the pipes
+        try:
+            self.close()
+        except Exception:
+            pass
+
     def _spawn(self) -> None:
         jobs_r, jobs_w = os.pipe()
         replies_r, replies_w = os.pipe()
