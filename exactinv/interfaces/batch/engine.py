@@ -329,7 +329,10 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     # they start with it ignored (inherited from this process while the cluster starts), and the
     # preload re-ignores it after importing cysignals (pplpy's), which installs its own handler.
     # This process alone handles Ctrl-C and shuts the cluster down quietly: no worker traceback.
-    with sigint_ignored():
+    # Dask's statistical profiler samples every worker thread every 10 ms: about 1 % of a core per
+    # worker, for a dashboard a local batch does not start.
+    import dask as dask_core
+    with sigint_ignored(), dask_core.config.set({"distributed.worker.profile.enabled": False}):
         cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                     dashboard_address=None, silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
     try:
