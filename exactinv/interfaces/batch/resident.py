@@ -111,13 +111,14 @@ class Sandbox:
                                cpu)
             return replace(decode_exit(b"", wait_status, memory_mb, seconds, peak, self._said(said_from)),
                            cpu_seconds=cpu)
-        meta = json.loads(reply)
-        cpu, peak = meta.pop("cpu"), meta.pop("peak")
+        answer = json.loads(reply)
+        cpu, peak = answer["cpu"], answer["peak"]
         self._cpu += cpu
-        outcome = decode_exit(json.dumps(meta).encode(), 0, memory_mb, seconds, peak, "")
-        if outcome.status != "ok":  # a breach or a bug: never reuse that process
-            self.close()
-        return replace(outcome, cpu_seconds=cpu)
+        if "ok" in answer:
+            return Outcome("ok", answer["ok"], seconds, peak, cpu_seconds=cpu)
+        self.close()  # a breach or a bug: never reuse that process
+        status = "memory" if "memory" in answer else "crash"
+        return Outcome(status, None, seconds, peak, answer[status], cpu_seconds=cpu)
 
     def close(self) -> None:
         """Kill and reap the child, if any; the next run forks a new one.
@@ -140,6 +141,8 @@ class Sandbox:
     def _spawn(self) -> None:
         jobs_r, jobs_w = os.pipe()
         replies_r, replies_w = os.pipe()
+        if self._stderr is not None:
+            self._stderr.close()  # the previous child's
         self._stderr = tempfile.TemporaryFile()
         pid = os.fork()
         if pid == 0:  # the child: never returns
