@@ -84,7 +84,7 @@ class Sandbox:
 
         >>> box = Sandbox(bytearray)
         >>> [(o.status, o.message) for o in (box.run(10**10, timeout=30, memory_mb=64),)]
-        [('memory', 'MemoryError (the --memory limit)')]
+        [('memory', 'MemoryError (the --memory limit of 64 MB)')]
         >>> box.run(3, timeout=30).status, box.forks  # not JSON-able: a crash, in a new child
         ('crash', 2)
         >>> box.close()
@@ -222,7 +222,8 @@ def _one(fn: Callable[[Any], Any], arg: Any, timeout: float | None, memory_mb: f
         try:
             reply: dict = {"ok": fn(arg)}
         except MemoryError:
-            reply = {"memory": "MemoryError (the --memory limit)"}
+            reply = {"memory": f"MemoryError (the --memory limit of {memory_mb:g} MB)" if memory_mb is not None
+                     else "MemoryError"}
         except BaseException as exc:  # the function's own bug: report it, never hang the batch
             reply = {"crash": f"{type(exc).__name__}: {exc}"}
     finally:
