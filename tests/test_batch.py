@@ -319,3 +319,28 @@ def test_command_line_refuses_bad_limits(tmp_path, capsys, argument):
     with pytest.raises(SystemExit) as stop:
         main(["batch", EXAMPLES, "-o", str(tmp_path / "r.jsonl"), *argument])
     assert stop.value.code == 2 and argument[0] in capsys.readouterr().err
+
+
+def test_chunked_batch_records_equal_one_by_one_records_and_resume(scheduler, tmp_path):
+    """The engine ships chunks (sizes from measured durations); its records are exactly the records
+    of each task run alone in a fresh child (run_task), measurements aside.  An interrupted run --
+    the first 13 records kept, the 14th torn -- is completed by the next run, each id once."""
+    from exactinv.interfaces.batch.task import Limits, run_task
+
+    problems = _generated(40, seed=5) + [_decay(c, p) for c in (2, 7) for p in (1, 2)]
+    corpus = tmp_path / "corpus.jsonl"
+    corpus.write_text("".join(json.dumps(p) + "\n" for p in problems))
+    measured = ("seconds", "cpu_seconds", "peak_mb")
+    alone = {t.id: {k: v for k, v in run_task(t, Limits(timeout=120)).items() if k not in measured}
+             for t in read_corpus([corpus])}
+    out = tmp_path / "results.jsonl"
+    first = run_batch([corpus], out, scheduler=scheduler, timeout=120, progress=False)
+    assert first.ran == len(problems) == len(alone)
+    records = _records(out)
+    assert {i: {k: v for k, v in r.items() if k not in measured} for i, r in records.items()} == alone
+    lines = out.read_text().splitlines(keepends=True)
+    out.write_text("".join(lines[:13]) + lines[13][:25])  # an interrupted run: 13 whole records, one torn
+    second = run_batch([corpus], out, scheduler=scheduler, timeout=120, progress=False)
+    assert (second.skipped, second.ran) == (13, len(problems) - 13)
+    again = _records(out, torn=1)
+    assert {i: {k: v for k, v in r.items() if k not in measured} for i, r in again.items()} == alone

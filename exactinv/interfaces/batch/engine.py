@@ -4,13 +4,18 @@ distributed, results streamed to a JSON-lines file.
 The scheduling is Dask's: by default a ``LocalCluster`` with one
 single-threaded worker process per core of this machine; with ``scheduler``
 an existing Dask cluster (``dask scheduler`` / ``dask worker``, dask-jobqueue,
-dask-kubernetes; docs/scale.md).  Each task runs on a worker in a forked
-child under the per-task time and memory limits (:mod:`.sandbox`), so a
-runaway problem is stopped and recorded and the batch goes on.
+dask-kubernetes; docs/scale.md).  A Dask task is a chunk of problems, sized
+from the durations measured so far to last about a second (:mod:`.chunks`);
+a worker thread runs its chunks' problems one after another in one
+long-lived forked sandbox, each under its own time and memory limits
+(:mod:`.resident`), so a runaway problem is stopped and recorded, its
+sandbox replaced, and the chunk and the batch go on.  A worker that dies
+takes its chunks in flight with it; Dask runs them again elsewhere, and as a
+chunk's records are written only when it comes back, none is written twice.
 
 Resumable: ids already in ``out`` are skipped, and every record is appended
-as one whole line the moment it arrives (:mod:`.results`), so an interrupted
-batch loses at most the tasks in flight.  Ctrl-C raises
+as one whole line the moment its chunk arrives (:mod:`.results`), so an
+interrupted batch loses at most the chunks in flight.  Ctrl-C raises
 :class:`BatchInterrupted` after a quiet shutdown: the futures are cancelled,
 the cluster is closed, and the worker processes of a local cluster ignore
 the signal (:func:`_connect`), so no worker prints a traceback.
@@ -26,8 +31,8 @@ when a batch actually runs.
 
 from __future__ import annotations
 
+import collections
 import contextlib
-import itertools
 import logging
 import math
 import os
@@ -39,11 +44,12 @@ from ...core.scalars import to_rational
 from ...errors import InvalidInput
 from ..files import atomic_write, check_writable, is_results_file, refuse_foreign, refuse_inputs
 from .certdir import prepare_cert_dir
+from .chunks import ChunkSizer
 from .corpus import Task, scan_corpus
 from .results import ResultsFile, read_records
 from .signals import CtrlC, sigint_ignored
 from .summary import BatchSummary, Tally
-from .task import Limits, engine_version, run_task
+from .task import Limits, engine_version, run_chunk
 
 __all__ = ["run_batch", "BatchInterrupted"]
 
@@ -56,7 +62,7 @@ class BatchInterrupted(KeyboardInterrupt):
         super().__init__(f"interrupted: {done} done, resumable")
         self.done, self.out = done, out
 
-_WINDOW = 4  # tasks in flight per worker thread: enough to keep workers busy, few enough to scale to 10^5 tasks
+_WINDOW = 2  # chunks in flight per worker thread: one running, one queued behind it (chunks last about a second)
 _CONNECT_TIMEOUT = "30s"  # to reach an existing scheduler
 _RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may grow, e.g. SLURM jobs starting)
 
@@ -214,12 +220,13 @@ def _dask() -> Any:
 
 def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, scheduler: str | None,
          out: str, targets: dict[str, str], bar: "_Bar") -> tuple[int, int]:
-    """Submit ``todo`` to Dask, about ``_WINDOW`` tasks per worker thread in flight (re-counted as
-    workers join or leave), append each record to ``out`` as it comes (its certificate to
-    ``targets[id]`` first); (the most worker threads seen, records written).  Ctrl-C: a quiet
-    shutdown, then :class:`_Interrupted`."""
+    """Submit ``todo`` to Dask in chunks (:mod:`.chunks`, each run by :func:`.task.run_chunk`),
+    about ``_WINDOW`` chunks per worker thread in flight (re-counted as workers join or leave),
+    append each record to ``out`` as its chunk comes back (its certificate to ``targets[id]``
+    first); (the most worker threads seen, records written).  Ctrl-C: a quiet shutdown, then
+    :class:`_Interrupted`."""
     client = cluster = sink = None
-    futures: dict[Any, Task] = {}
+    futures: dict[Any, list[Task]] = {}
     written, interrupted = 0, False
     ctrl_c = CtrlC()
     try:
@@ -227,24 +234,28 @@ def _run(dask: Any, todo: list[Task], limits: Limits, workers: int | None, sched
         ctrl_c.__enter__()
         _same_engine(client)
         sink = ResultsFile(out)
-        pending, stream = iter(todo), dask.as_completed()
+        pending, stream, sizer = collections.deque(todo), dask.as_completed(), ChunkSizer()
         threads, counted = _threads(client), time.monotonic()
         most = threads
 
         def top_up() -> None:
-            for task in itertools.islice(pending, max(max(threads, 1) * _WINDOW - len(futures), 0)):
-                future = client.submit(run_task, task, limits, pure=False)
-                futures[future] = task
+            while pending and len(futures) < max(threads, 1) * _WINDOW:
+                size = sizer.next_size(len(pending), threads)
+                chunk = [pending.popleft() for _ in range(size)]
+                future = client.submit(run_chunk, chunk, limits, pure=False)
+                futures[future] = chunk
                 stream.add(future)
 
         top_up()
         for future in stream:
-            record = _record(future, futures.pop(future))
-            with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
-                _keep_certificate(record, targets)
-                sink.append(record)
-                written += 1
-            bar.step(record["status"])
+            records = _records(future, futures.pop(future))
+            sizer.observe(records)
+            for record in records:
+                with ctrl_c.deferred():  # the certificate, then its record: both whole or neither
+                    _keep_certificate(record, targets)
+                    sink.append(record)
+                    written += 1
+                bar.step(record["status"])
             if time.monotonic() - counted > _RECOUNT:
                 threads, counted = _threads(client), time.monotonic()
                 most = max(most, threads)
@@ -296,12 +307,15 @@ def _threads(client: Any) -> int:
     return sum(client.nthreads().values())
 
 
-def _record(future: Any, task: Task) -> dict:
+def _records(future: Any, chunk: list[Task]) -> list[dict]:
+    """The records of a finished chunk; if Dask gave up on it (its workers died ``allowed-failures``
+    times, or it could not be shipped), an ``error`` record for each of its tasks: never fatal."""
     try:
         return future.result()
-    except Exception as exc:  # the worker itself died or the task could not be shipped: recorded, never fatal
-        return {"id": task.id, "kind": task.kind, "source": task.source, "status": "error",
-                "error": f"the Dask worker failed: {type(exc).__name__}: {exc}", "seconds": 0.0, "peak_mb": 0.0}
+    except Exception as exc:
+        return [{"id": task.id, "kind": task.kind, "source": task.source, "status": "error", "outcome": "error",
+                 "error": f"the Dask worker failed: {type(exc).__name__}: {exc}", "seconds": 0.0, "peak_mb": 0.0}
+                for task in chunk]
 
 
 def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any, Any]:
@@ -317,7 +331,10 @@ def _connect(dask: Any, workers: int | None, scheduler: str | None) -> tuple[Any
     # This process alone handles Ctrl-C and shuts the cluster down quietly: no worker traceback.
     # dashboard_address=None does not stop the scheduler's HTTP server: it then asks for port 8787
     # and warns on stderr when that is taken (two batches at once); a free local port is quiet.
-    with sigint_ignored():
+    # Dask's statistical profiler samples every worker thread every 10 ms: about 1 % of a core per
+    # worker, for a dashboard a local batch does not start.
+    import dask as dask_core
+    with sigint_ignored(), dask_core.config.set({"distributed.worker.profile.enabled": False}):
         cluster = dask.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                     dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL, preload=[_WORKER_PRELOAD])
     try:

@@ -39,11 +39,12 @@ import time
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
-__all__ = ["Outcome", "run_limited"]
+__all__ = ["Outcome", "run_limited", "decode_exit", "address_space", "die_with_parent", "plain_fatal_signals",
+           "STDERR_TAIL", "CPU_GRACE"]
 
 _FATAL = (signal.SIGSEGV, signal.SIGFPE, signal.SIGABRT, signal.SIGBUS, signal.SIGILL)
-_STDERR_TAIL = 4096  # bytes of the child's standard error kept for the message
-_CPU_GRACE = 5  # seconds of CPU time above the wall-clock timeout before the kernel stops an orphan
+STDERR_TAIL = 4096  # bytes of the child's standard error kept for the message
+CPU_GRACE = 5  # seconds of CPU time above the wall-clock timeout before the kernel stops an orphan
 
 
 @dataclass(frozen=True)
@@ -91,13 +92,13 @@ def run_limited(fn: Callable[[Any], Any], arg: Any, timeout: float | None = None
             os.kill(pid, signal.SIGKILL)
         _, wait_status, usage = os.wait4(pid, 0)
         seconds = time.monotonic() - start
-        stderr.seek(max(os.fstat(stderr.fileno()).st_size - _STDERR_TAIL, 0))
+        stderr.seek(max(os.fstat(stderr.fileno()).st_size - STDERR_TAIL, 0))
         said = stderr.read().decode("utf-8", "replace").strip()
     peak = usage.ru_maxrss / 1024  # kilobytes on Linux
     if timed_out:
         outcome = Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)")
     else:
-        outcome = _decode(data, wait_status, memory_mb, seconds, peak, said)
+        outcome = decode_exit(data, wait_status, memory_mb, seconds, peak, said)
     return replace(outcome, cpu_seconds=usage.ru_utime + usage.ru_stime)
 
 
@@ -123,23 +124,36 @@ def _child(fn, arg, fd: int, timeout, memory_mb) -> None:
 
 
 def _limit(timeout: float | None, memory_mb: float | None) -> None:
-    # a fatal signal ends the child at once: no crash handler (cysignals, loaded by
-    # pplpy, would attach a debugger) and no core dump
-    for sig in _FATAL:
-        signal.signal(sig, signal.SIG_DFL)
-    _die_with_parent()
-    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    plain_fatal_signals()
+    die_with_parent()
     if memory_mb is not None:
-        ceiling = min(_address_space() + int(memory_mb * 2**20), 2**62)
+        ceiling = min(address_space() + int(memory_mb * 2**20), 2**62)
         resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
     if timeout is not None:
-        cpu = int(math.ceil(timeout)) + _CPU_GRACE
+        cpu = int(math.ceil(timeout)) + CPU_GRACE
         resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
 
 
-def _die_with_parent() -> None:
+def plain_fatal_signals() -> None:
+    """In a child: a fatal signal ends it at once -- no crash handler (cysignals, loaded by pplpy,
+    would attach a debugger) and no core dump.
+
+    >>> run_limited(lambda _: plain_fatal_signals() or signal.getsignal(signal.SIGSEGV) == signal.SIG_DFL,
+    ...             None, timeout=30).value
+    True
+    """
+    for sig in _FATAL:
+        signal.signal(sig, signal.SIG_DFL)
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def die_with_parent() -> None:
     """SIGKILL this child when the thread that forked it dies (Linux ``PR_SET_PDEATHSIG``): a worker
-    closed by an interrupted batch leaves no orphan computing on."""
+    closed by an interrupted batch leaves no orphan computing on.
+
+    >>> run_limited(lambda _: die_with_parent() is None, None, timeout=30).value
+    True
+    """
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
@@ -149,8 +163,12 @@ def _die_with_parent() -> None:
         os._exit(3)
 
 
-def _address_space() -> int:
-    """The current virtual memory size of this process, in bytes (Linux /proc)."""
+def address_space() -> int:
+    """The current virtual memory size of this process, in bytes (Linux /proc).
+
+    >>> before = address_space(); block = bytearray(2**26); address_space() - before >= 2**26
+    True
+    """
     with open("/proc/self/status", encoding="ascii") as fh:
         for line in fh:
             if line.startswith("VmSize:"):
@@ -175,7 +193,20 @@ def _read_until(fd: int, deadline: float | None) -> tuple[bytes, bool]:
         os.close(fd)
 
 
-def _decode(data: bytes, wait_status: int, memory_mb, seconds: float, peak: float, said: str) -> Outcome:
+def decode_exit(data: bytes, wait_status: int, memory_mb: float | None, seconds: float, peak: float,
+                said: str) -> Outcome:
+    """What became of a child from its reply ``data`` (JSON: ``{"ok": value}``, ``{"memory": why}`` or
+    ``{"crash": why}``; empty if it died first), its wait status and ``said``, its last words on
+    standard error: a fatal signal under a memory limit, or glibc's exit on failed thread-local
+    allocation, is ``"memory"``; any other death without a reply is a ``"crash"``.
+
+    >>> decode_exit(b'{"ok": 6}', 0, None, 0.1, 70.0, "").value
+    6
+    >>> decode_exit(b"", 127 << 8, 200, 0.1, 70.0, "cannot allocate memory for thread-local data: ABORT").status
+    'memory'
+    >>> decode_exit(b"", 5 << 8, None, 0.1, 70.0, "").message
+    'the child exited with code 5 without a result'
+    """
     if os.WIFSIGNALED(wait_status):
         sig = signal.Signals(os.WTERMSIG(wait_status)).name
         if sig == "SIGXCPU":

@@ -1,7 +1,9 @@
 """One task of a batch, as a worker runs it: certify (and kernel-check) a
 problem, or judge an oracle row, inside the sandbox's time and memory
-limits, and return one JSON-able record.  :func:`run_task` never raises: a
-problem that fails is recorded and the batch goes on.
+limits, and return one JSON-able record -- alone in a fresh child
+(:func:`run_task`) or as one of a chunk in the thread's long-lived sandbox
+(:func:`run_chunk`, what the engine runs); the records are the same.
+Neither raises: a problem that fails is recorded and the batch goes on.
 
 A record holds exact values only as the certificate encodes them
 (:func:`exactinv.core.encode.encode_real`): a rational as ``"p/q"``,
@@ -28,7 +30,7 @@ import sys
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable, Sequence
 
 from ...core.algebraic import RealAlgebraic
 from ...core.encode import dumps, encode_real
@@ -39,9 +41,10 @@ from ..oracle import judge_row
 from ..pipeline import certify
 from ..problem import load_problem
 from .corpus import Task
-from .sandbox import run_limited
+from .resident import resident
+from .sandbox import Outcome, run_limited
 
-__all__ = ["Limits", "STATUSES", "run_task", "engine_version", "record_outcome"]
+__all__ = ["Limits", "STATUSES", "run_task", "run_chunk", "engine_version", "record_outcome"]
 
 STATUSES = ("ok", "rejected", "error", "timeout", "memory")
 """A record's status: the kernel verified the certificate (or, with
@@ -114,10 +117,31 @@ def run_task(task: Task, limits: Limits) -> dict:
     >>> run_task(Task("bad", "certify", error="bad.json: cannot read"), Limits())["status"]
     'error'
     """
+    return _run(task, limits, lambda job, timeout, memory_mb: run_limited(_solve, job, timeout, memory_mb))
+
+
+def run_chunk(tasks: Sequence[Task], limits: Limits) -> list[dict]:
+    """The records of ``tasks``, in order, each run under ``limits`` as :func:`run_task` runs it,
+    but one after another in this thread's long-lived sandbox (:mod:`.resident`): one fork for
+    the whole chunk (and for every later chunk of this thread), not one per task.  A task that
+    breaches a limit is recorded, the sandbox is replaced, and the rest of the chunk runs.  The
+    records are :func:`run_task`'s, exact values and all; only the measurements differ.
+
+    >>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": %d}}'
+    >>> chunk = [Task(f"t{p}", "certify", text=box % p) for p in (1, 2)] + [Task("bad", "certify", error="unread")]
+    >>> [(r["id"], r["status"], r["values"]["largest_threshold"] if "values" in r else None)
+    ...  for r in run_chunk(chunk, Limits(timeout=60))]
+    [('t1', 'ok', '2'), ('t2', 'ok', '2'), ('bad', 'error', None)]
+    """
+    box = resident(_solve)
+    return [_run(task, limits, box.run) for task in tasks]
+
+
+def _run(task: Task, limits: Limits, runner: Callable[..., Outcome]) -> dict:
     head = {"id": task.id, "kind": task.kind, "source": task.source}
     if task.error:
         return {**head, "status": "error", "outcome": "bad_input", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
-    outcome = run_limited(_solve, (task, limits), limits.timeout, limits.memory_mb)
+    outcome = runner((task, limits), limits.timeout, limits.memory_mb)
     record = dict(outcome.value) if outcome.status == "ok" else {
         "status": "error" if outcome.status == "crash" else outcome.status, "outcome": "error",
         "error": outcome.message}

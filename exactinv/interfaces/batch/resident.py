@@ -1,0 +1,312 @@
+"""A long-lived sandbox: one forked child that runs one function on argument
+after argument, each run under its own time and memory limit.
+
+:func:`.sandbox.run_limited` forks a child per run: about 5 ms of ``fork``
+plus the copy-on-write pages the child touches, more than a small problem
+costs.  A :class:`Sandbox` forks once and keeps the child; the parent sends
+it one argument at a time (pickled, through a pipe) and reads the JSON reply
+(through another).  The limits are those of ``run_limited``, per run:
+
+* memory: before each run the child sets its ``RLIMIT_AS`` (soft) to its
+  address space at that moment plus ``memory_mb``, and lifts it after.
+  Python's :class:`MemoryError` comes back as a ``"memory"`` reply; FLINT's
+  and GMP's abort and glibc's exit 127 end the child, and the parent reads
+  its wait status and last words (:func:`.sandbox.decode_exit`).
+* time: the parent waits at most ``timeout`` seconds of wall time for the
+  reply, then sends ``SIGKILL``; a CPU-time limit ``timeout`` + 5 s above
+  the child's CPU time so far guards against the parent itself dying, and
+  ``PR_SET_PDEATHSIG`` ends the child with the thread that forked it.
+
+After any outcome other than ``"ok"`` the child is killed and the next run
+forks a fresh one, so a run that breached a limit never leaves a damaged
+process behind; the child is also renewed every :data:`RENEW_AFTER` runs.
+``seconds`` is the wall time of the run seen from the parent,
+``cpu_seconds`` the child's CPU time for this run and ``peak_mb`` its peak
+resident memory during the run (Linux's ``VmHWM``, reset before each run
+through ``/proc/self/clear_refs``; it includes the pages shared with the
+parent that the child touched).
+
+Linux (POSIX ``fork``, ``RLIMIT_AS``, ``/proc``).
+
+>>> box = Sandbox(len)
+>>> [box.run(x, timeout=30).value for x in ("ab", [1, 2, 3])], box.forks
+([2, 3], 1)
+>>> box.run(10, timeout=30).status, box.forks  # a crash costs the child ...
+('crash', 1)
+>>> box.run("abcd", timeout=30).value, box.forks  # ... and the next run forks a new one
+(4, 2)
+>>> box.close()
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import pickle
+import resource
+import select
+import signal
+import struct
+import tempfile
+import threading
+import time
+from dataclasses import replace
+from typing import Any, Callable
+
+from .sandbox import (CPU_GRACE, STDERR_TAIL, Outcome, address_space, decode_exit, die_with_parent,
+                      plain_fatal_signals)
+
+__all__ = ["Sandbox", "resident", "RENEW_AFTER"]
+
+RENEW_AFTER = 2000
+"""Runs after which a child is replaced by a fresh fork (bounds what a long life may accumulate)."""
+
+_HEADER = struct.Struct(">Q")
+
+
+class Sandbox:
+    """A long-lived child running ``fn`` (see the module docstring); ``fn``'s result must be
+    JSON-able, its argument picklable.  Not thread-safe: one per thread (:func:`resident`)."""
+
+    def __init__(self, fn: Callable[[Any], Any]):
+        self.fn = fn
+        self.pid: int | None = None
+        self.forks = 0
+        self._jobs = self._replies = -1
+        self._stderr: Any = None
+        self._runs = 0
+        self._cpu = 0.0  # CPU seconds of the current child accounted to runs so far
+
+    def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
+        """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
+        ``memory_mb`` megabytes more than the child holds when the run starts (None: no limit).
+
+        >>> box = Sandbox(bytearray)
+        >>> [(o.status, o.message) for o in (box.run(10**10, timeout=30, memory_mb=64),)]
+        [('memory', 'MemoryError (the --memory limit of 64 MB)')]
+        >>> box.run(3, timeout=30).status, box.forks  # not JSON-able: a crash, in a new child
+        ('crash', 2)
+        >>> box.close()
+        """
+        if self.pid is not None and self._runs >= RENEW_AFTER:
+            self.close()
+        if self.pid is None:
+            self._spawn()
+        self._runs += 1
+        said_from = os.fstat(self._stderr.fileno()).st_size
+        start = time.monotonic()
+        try:
+            _write_all(self._jobs, _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL)))
+            reply, timed_out = _read_frame(self._replies, None if timeout is None else start + timeout)
+        except BrokenPipeError:  # the child is gone: its wait status says why
+            reply, timed_out = None, False
+        seconds = time.monotonic() - start
+        if timed_out:
+            os.kill(self.pid, signal.SIGKILL)
+        if reply is None:  # killed at the deadline, or died by itself
+            wait_status, cpu, peak = self._reap()
+            if timed_out:
+                return Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)",
+                               cpu)
+            return replace(decode_exit(b"", wait_status, memory_mb, seconds, peak, self._said(said_from)),
+                           cpu_seconds=cpu)
+        answer = json.loads(reply)
+        cpu, peak = answer["cpu"], answer["peak"]
+        self._cpu += cpu
+        if "ok" in answer:
+            return Outcome("ok", answer["ok"], seconds, peak, cpu_seconds=cpu)
+        self.close()  # a breach or a bug: never reuse that process
+        status = "memory" if "memory" in answer else "crash"
+        return Outcome(status, None, seconds, peak, answer[status], cpu_seconds=cpu)
+
+    def close(self) -> None:
+        """Kill and reap the child, if any; the next run forks a new one.
+
+        >>> box = Sandbox(abs); box.run(-2).value, box.pid is not None
+        (2, True)
+        >>> box.close(); box.pid is None
+        True
+        """
+        if self.pid is not None:
+            os.kill(self.pid, signal.SIGKILL)
+            self._reap()
+
+    def __del__(self) -> None:  # a thread that ends drops its sandbox: reap the child, close the pipes
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def _spawn(self) -> None:
+        jobs_r, jobs_w = os.pipe()
+        replies_r, replies_w = os.pipe()
+        if self._stderr is not None:
+            self._stderr.close()  # the previous child's
+        self._stderr = tempfile.TemporaryFile()
+        pid = os.fork()
+        if pid == 0:  # the child: never returns
+            os.close(jobs_w)
+            os.close(replies_r)
+            os.dup2(self._stderr.fileno(), 2)
+            _serve(self.fn, jobs_r, replies_w)
+        os.close(jobs_r)
+        os.close(replies_w)
+        self.pid, self._jobs, self._replies = pid, jobs_w, replies_r
+        self.forks += 1
+        self._runs, self._cpu = 0, 0.0
+
+    def _reap(self) -> tuple[int, float, float]:
+        """Wait for the dead (or killed) child; its wait status, the CPU seconds it spent since the
+        last accounted run, and its peak resident memory (MB) over its life."""
+        _, wait_status, usage = os.wait4(self.pid, 0)
+        for fd in (self._jobs, self._replies):
+            os.close(fd)
+        cpu = max(usage.ru_utime + usage.ru_stime - self._cpu, 0.0)
+        self.pid, self._jobs, self._replies = None, -1, -1
+        return wait_status, cpu, usage.ru_maxrss / 1024
+
+    def _said(self, offset: int) -> str:
+        """The child's standard error since ``offset`` (its last STDERR_TAIL bytes)."""
+        end = os.fstat(self._stderr.fileno()).st_size
+        self._stderr.seek(max(offset, end - STDERR_TAIL))
+        return self._stderr.read().decode("utf-8", "replace").strip()
+
+
+_local = threading.local()
+
+
+def resident(fn: Callable[[Any], Any]) -> Sandbox:
+    """This thread's sandbox for ``fn``, forked on first use and kept for the thread's life (a
+    Dask worker thread runs chunk after chunk in the same child).
+
+    >>> resident(abs) is resident(abs), resident(abs).run(-7, timeout=30).value
+    (True, 7)
+    >>> resident(abs).close()
+    """
+    boxes = getattr(_local, "boxes", None)
+    if boxes is None:
+        boxes = _local.boxes = {}
+    box = boxes.get(fn)
+    if box is None:
+        box = boxes[fn] = Sandbox(fn)
+    return box
+
+
+# --- the child ---------------------------------------------------------------------------------
+
+def _serve(fn: Callable[[Any], Any], jobs: int, replies: int) -> None:
+    """The child's loop: one job in, one reply out, until the parent closes the pipe."""
+    code = 0
+    try:
+        plain_fatal_signals()
+        die_with_parent()
+        while True:
+            job, _ = _read_frame(jobs, None)
+            if job is None:
+                break
+            arg, timeout, memory_mb = pickle.loads(job)
+            _write_all(replies, _frame(_one(fn, arg, timeout, memory_mb)))
+    except BaseException:
+        code = 3
+    finally:
+        os._exit(code)  # skip the parent's atexit handlers and buffered output
+
+
+def _one(fn: Callable[[Any], Any], arg: Any, timeout: float | None, memory_mb: float | None) -> bytes:
+    """One run under the limits: the JSON reply with the run's CPU seconds and peak memory."""
+    cpu0 = _cpu()
+    _reset_peak()
+    _set_limits(timeout, memory_mb, cpu0)
+    try:
+        try:
+            reply: dict = {"ok": fn(arg)}
+        except MemoryError:
+            reply = {"memory": f"MemoryError (the --memory limit of {memory_mb:g} MB)" if memory_mb is not None
+                     else "MemoryError"}
+        except BaseException as exc:  # the function's own bug: report it, never hang the batch
+            reply = {"crash": f"{type(exc).__name__}: {exc}"}
+    finally:
+        _lift_limits()
+    meta = {"cpu": _cpu() - cpu0, "peak": _peak_mb()}
+    try:
+        return json.dumps({**reply, **meta}).encode()
+    except (TypeError, ValueError) as exc:
+        return json.dumps({"crash": f"the result is not JSON-able: {exc}", **meta}).encode()
+
+
+def _cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _set_limits(timeout: float | None, memory_mb: float | None, cpu_now: float) -> None:
+    if memory_mb is not None:
+        _, hard = resource.getrlimit(resource.RLIMIT_AS)
+        soft = min(address_space() + int(memory_mb * 2**20), 2**62)
+        resource.setrlimit(resource.RLIMIT_AS, (soft if hard == resource.RLIM_INFINITY else min(soft, hard), hard))
+    if timeout is not None:
+        _, hard = resource.getrlimit(resource.RLIMIT_CPU)
+        soft = int(math.ceil(cpu_now + timeout)) + CPU_GRACE
+        resource.setrlimit(resource.RLIMIT_CPU, (soft if hard == resource.RLIM_INFINITY else min(soft, hard), hard))
+
+
+def _lift_limits() -> None:
+    for which in (resource.RLIMIT_AS, resource.RLIMIT_CPU):
+        _, hard = resource.getrlimit(which)
+        resource.setrlimit(which, (hard, hard))
+
+
+def _reset_peak() -> None:
+    """Reset this process's resident high-water mark (VmHWM; Linux 4.0 and later)."""
+    try:
+        with open("/proc/self/clear_refs", "w", encoding="ascii") as fh:
+            fh.write("5")
+    except OSError:
+        pass
+
+
+def _peak_mb() -> float:
+    """This process's resident high-water mark in MB: VmHWM, else the life-long ru_maxrss."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except (OSError, ValueError):
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+# --- frames ------------------------------------------------------------------------------------
+
+def _frame(payload: bytes) -> bytes:
+    return _HEADER.pack(len(payload)) + payload
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
+
+
+def _read_frame(fd: int, deadline: float | None) -> tuple[bytes | None, bool]:
+    """One frame from ``fd``: (payload, False); (None, False) at end of file (also mid-frame: the
+    writer died); (None, True) at the deadline."""
+    buf = bytearray()
+    need = _HEADER.size
+    header_done = False
+    while True:
+        while len(buf) < need:
+            if deadline is not None:
+                ready, _, _ = select.select([fd], [], [], max(deadline - time.monotonic(), 0))
+                if not ready:
+                    return None, True
+            chunk = os.read(fd, min(need - len(buf), 1 << 20))
+            if not chunk:
+                return None, False
+            buf += chunk
+        if header_done:
+            return bytes(buf[_HEADER.size:]), False
+        header_done = True
+        need = _HEADER.size + _HEADER.unpack(bytes(buf[:_HEADER.size]))[0]

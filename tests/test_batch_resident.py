@@ -1,0 +1,144 @@
+"""The long-lived sandbox of `exactinv batch` (exactinv/interfaces/batch/resident.py):
+one forked child runs argument after argument; a run that breaches its time
+or memory limit (Python's MemoryError, FLINT's abort, glibc's exit 127) or
+crashes is recorded as such, the child is replaced, and the next run
+completes; each run's limit and measurements are its own."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+
+import flint
+
+from exactinv.interfaces.batch.resident import Sandbox
+
+
+_kept: list = []  # what a run leaves behind in the child (a long-lived process's growth)
+
+
+def _work(job):
+    """One job per kind: the sandbox's function is fixed, the argument says what to do."""
+    kind, x = job
+    if kind == "square":
+        return str(flint.fmpq(*x) ** 2)
+    if kind == "pid":
+        return os.getpid()
+    if kind == "forever":  # FLINT multiplications that never return to Python for long
+        y = flint.fmpz(3) ** 100000
+        while True:
+            y = (y * y) % (flint.fmpz(10) ** 200000 + 7)
+    if kind == "bytes":  # Python's allocation of x bytes
+        return len(bytearray(x))
+    if kind == "keep":  # x bytes kept in the child after the run
+        _kept.append(bytearray(x))
+        return sum(len(b) for b in _kept)
+    if kind == "flint":  # 3^x: FLINT/GMP abort when the allocation fails
+        return str(flint.fmpz(3) ** x)[:3]
+    if kind == "tls":  # glibc's exit on failed thread-local allocation (dl-tls.c)
+        os.write(2, b"cannot allocate memory for thread-local data: ABORT\n")
+        os._exit(127)
+    if kind == "segv":
+        os.kill(os.getpid(), signal.SIGSEGV)
+    if kind == "raise":
+        raise ZeroDivisionError(x)
+    if kind == "object":
+        return object()
+    if kind == "spin":  # about x seconds of CPU
+        end = time.process_time() + x
+        while time.process_time() < end:
+            pass
+        return x
+    raise AssertionError(kind)
+
+
+def test_one_child_runs_job_after_job():
+    box = Sandbox(_work)
+    try:
+        pids = {box.run(("pid", None), timeout=30).value for _ in range(20)}
+        assert len(pids) == 1 and os.getpid() not in pids and box.forks == 1
+        assert [box.run(("square", (k, 3)), timeout=30).value for k in range(1, 4)] == ["1/9", "4/9", "1"]
+    finally:
+        box.close()
+
+
+def test_a_timeout_mid_sequence_kills_the_child_and_the_next_job_runs_in_a_new_one():
+    box = Sandbox(_work)
+    try:
+        first = box.run(("pid", None), timeout=30).value
+        out = box.run(("forever", None), timeout=1)
+        assert out.status == "timeout" and "1 s" in out.message and out.seconds >= 1
+        with __import__("pytest").raises(ChildProcessError):
+            os.waitpid(first, os.WNOHANG)  # reaped: the old child is gone
+        after = box.run(("square", (2, 5)), timeout=30)
+        assert after.status == "ok" and after.value == "4/25" and box.forks == 2
+    finally:
+        box.close()
+
+
+def test_memory_breaches_mid_sequence_are_memory_outcomes_and_the_rest_completes():
+    box = Sandbox(_work)
+    try:
+        outcomes = [box.run(job, timeout=60, memory_mb=200) for job in (
+            ("bytes", 10**7), ("bytes", 2 * 10**9), ("square", (1, 2)), ("flint", 10**10), ("square", (1, 3)),
+            ("tls", None), ("square", (1, 4)))]
+        assert [o.status for o in outcomes] == ["ok", "memory", "ok", "memory", "ok", "memory", "ok"]
+        assert outcomes[1].message == "MemoryError (the --memory limit of 200 MB)" and "SIGABRT" in outcomes[3].message
+        assert "code 127" in outcomes[5].message and "thread-local" in outcomes[5].message
+        assert [o.value for o in outcomes[::2]] == [10**7, "1/4", "1/9", "1/16"]
+        assert box.forks == 4  # the first child, then one after each breach
+    finally:
+        box.close()
+
+
+def test_the_memory_limit_is_counted_from_where_each_run_starts():
+    box = Sandbox(_work)
+    try:
+        for k in range(1, 4):  # 150 MB kept per run: 450 MB in all, each run within its own 200 MB
+            out = box.run(("keep", 150 * 2**20), timeout=60, memory_mb=200)
+            assert out.status == "ok" and out.value == k * 150 * 2**20
+        assert box.forks == 1
+        assert box.run(("bytes", 300 * 2**20), timeout=60, memory_mb=200).status == "memory"
+    finally:
+        box.close()
+
+
+def test_crashes_are_reported_and_never_raised():
+    box = Sandbox(_work)
+    try:
+        raised = box.run(("raise", "1/0 in the child"), timeout=30)
+        assert raised.status == "crash" and raised.message == "ZeroDivisionError: 1/0 in the child"
+        died = box.run(("segv", None), timeout=30)
+        assert died.status == "crash" and "SIGSEGV" in died.message
+        odd = box.run(("object", None), timeout=30)
+        assert odd.status == "crash" and "not JSON-able" in odd.message
+        unlimited = box.run(("tls", None), timeout=30)  # without a memory limit glibc's exit is a crash
+        assert unlimited.status == "crash" and "thread-local" in unlimited.message
+        assert box.run(("square", (3, 1)), timeout=30).value == "9"
+    finally:
+        box.close()
+
+
+def test_measurements_are_per_run():
+    box = Sandbox(_work)
+    try:
+        big = box.run(("bytes", 400 * 2**20), timeout=60)
+        small = box.run(("square", (1, 2)), timeout=60)
+        assert big.peak_mb >= 400 and small.peak_mb < big.peak_mb - 300  # the high-water mark is reset per run
+        spin = box.run(("spin", 0.3), timeout=60)
+        assert spin.cpu_seconds >= 0.29 and box.run(("square", (1, 2)), timeout=60).cpu_seconds < spin.cpu_seconds
+    finally:
+        box.close()
+
+
+def test_the_child_is_renewed_after_many_runs(monkeypatch):
+    from exactinv.interfaces.batch import resident
+
+    monkeypatch.setattr(resident, "RENEW_AFTER", 5)
+    box = Sandbox(_work)
+    try:
+        pids = [box.run(("pid", None), timeout=30).value for _ in range(12)]
+        assert pids[:5] == [pids[0]] * 5 and pids[5:10] == [pids[5]] * 5 and len(set(pids)) == 3
+    finally:
+        box.close()
