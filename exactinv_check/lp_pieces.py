@@ -89,6 +89,9 @@ class _Bases:
     def __init__(self, G, b):
         self.rows = integer_rows(G, b)  # (g, beta) in integers, the same half-spaces
         self.proved = {}
+        self.packs = {}
+        self.norm1 = max(sum(abs(v) for v in g) for g, _ in self.rows)
+        self.beta_max = max(abs(beta) for _, beta in self.rows)
 
     def adjugate(self, basis, previous):
         """(order, det B, adj B) for B the integer rows ``order`` of G (``basis`` in some order), B
@@ -115,15 +118,43 @@ class _Bases:
         if key not in self.proved:
             beta = [self.rows[r][1] for r in order]
             x = [sum(map(mul, row, beta)) for row in adj]  # x_B = x / d
-            m, n = len(self.rows), len(x)
-            charge(m * n * (PYTHON_OP + words(max(abs(v).bit_length() for v in x) + 64)),
-                   "the slacks of a basis' vertex")
             s = 1 if d > 0 else -1
-            for k, (g, beta_k) in enumerate(self.rows):
-                require(s * sum(map(mul, g, x)) <= s * beta_k * d,
-                        f"x_B of the basis {list(basis)} violates row {k} of G x <= b")
+            if not self.packed_slacks([s * v for v in x], s * d):
+                for k, (g, beta_k) in enumerate(self.rows):
+                    require(s * sum(map(mul, g, x)) <= s * beta_k * d,
+                            f"x_B of the basis {list(basis)} violates row {k} of G x <= b")
             self.proved[key] = [Fraction(v, d) for v in x]
         return self.proved[key]
+
+    def packed_slacks(self, x, d):
+        """True proves v_k = g_k x - beta_k d <= 0 for every row k (x integers, d > 0); False says nothing.
+
+        All m rows in n big-integer products (Kronecker substitution): with fields of K bits,
+        S = sum_j x_j P_j - d P_b - U + O, where P_j = sum_k g_kj 2^(K k) packs column j of G,
+        P_b packs beta, U = sum_k 2^(K k) and O = sum_k 2^(K-1) 2^(K k), equals
+        sum_k (v_k - 1 + 2^(K-1)) 2^(K k) as an integer identity.  K is chosen so that
+        |v_k - 1| < 2^(K-1) for every k (from |v_k| <= |g_k|_1 max|x_j| + |beta_k| d), so each
+        coefficient lies in [0, 2^K): they are S's base-2^K digits, and v_k <= 0 iff v_k - 1 < 0 iff
+        digit k is below 2^(K-1), i.e. bit K-1 of field k is clear -- one AND with the mask of
+        those bits decides all rows."""
+        m = len(self.rows)
+        bound = self.norm1 * max(abs(v) for v in x) + self.beta_max * d + 1
+        K = 64 * (1 + (bound.bit_length() + 1) // 64)
+        charge(len(x) * (PYTHON_OP + m * K // 64) + 8 * m * K // 64, "the slacks of a basis' vertex (packed)")
+        if K not in self.packs:
+            self.packs[K] = self._pack(K)
+        columns, pb, U, O, top = self.packs[K]
+        S = sum(map(mul, x, columns)) - d * pb - U + O
+        return S >= 0 and S.bit_length() <= m * K and not S & top
+
+    def _pack(self, K):
+        """(P_j for every column j, P_b, U, O, the mask of bit K-1 of every field) for fields of K bits."""
+        rows = self.rows
+        n = len(rows[0][0])
+        columns = [sum(g[j] << (K * k) for k, (g, _) in enumerate(rows)) for j in range(n)]
+        pb = sum(beta << (K * k) for k, (_, beta) in enumerate(rows))
+        U = sum(1 << (K * k) for k in range(len(rows)))
+        return columns, pb, U, U << (K - 1), U << (K - 1)
 
 
 def _exchange(rows, previous, p, come):
@@ -339,16 +370,15 @@ def lp_conditions(problem, record):
 
 def _negative_beyond(p, E):
     """True proves p < 0 on the open (E, oo) (E finite); False says nothing.  A rational E: the Taylor
-    shift at E (:func:`_positive_around` of -p); an algebraic E: the same at its upper end, and Descartes
-    on its enclosure (lo, hi) with -p > 0 at hi."""
+    shift at E (:func:`_positive_around` of -p); an algebraic E: the same at its upper end, and
+    -p > 0 on (E, hi] (:func:`_sliver`: p may vanish at E itself)."""
     ints = polys.integer_coefficients(p)
     if not ints or ints[-1] >= 0:
         return False
     neg = [-c for c in ints]
     if E.poly is None:
         return _positive_around(neg, E.q, None)
-    return (_positive_around(neg, E.hi, None) and polys.sign_at(neg, E.hi) > 0
-            and polys.descartes_variations(neg, E.lo, E.hi) == 0)
+    return _positive_around(neg, E.hi, None) and _sliver(neg, neg, E, E.hi)  # -p > 0 on (E, hi] and beyond
 
 
 def require_horizon(D, inequalities, horizon, context, key):
