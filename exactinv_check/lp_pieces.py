@@ -23,7 +23,13 @@ When E < oo the kernel also requires that the set of these conditions lies in
 :func:`exactinv_check.conditions.condition_polynomials` on the points x_B.
 
 No vertex enumeration and no edge walk: the work is priced first, per piece one
-fraction-free n x n solve and n components of degree deg N + deg D.
+fraction-free n x n solve and n components of degree deg N + deg D.  What runs
+is cheaper where it can be, each step proved: adj B and det B exchanged one row
+at a time between adjacent pieces (:func:`_exchange`), the m slacks of x_B in
+one packed big-integer product (:meth:`_Bases.packed_slacks`), Descartes' rule
+for all components of a piece in one matrix product (:func:`_batch_positive`),
+the horizon by one condition negative beyond it (:func:`_negative_beyond`); each
+falls back to the direct computation when it proves nothing.
 """
 
 from fractions import Fraction
