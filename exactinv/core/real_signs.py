@@ -30,6 +30,7 @@ from .polys import integer_part, no_root_between, sign_at, sign_right_of
 from .roots import first_sign_change
 from .scalars import INF
 from .flintq import dyadic_of
+from .float_hint import float_hint
 
 __all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
            "positive_after"]
@@ -67,9 +68,9 @@ def _newton(p: flint.fmpz_poly, lower: Fraction, upper: Fraction) -> RealAlgebra
     """A narrow enclosure of p's one root in (lower, upper) from a float Newton iteration, proved by an
     exact sign change inside (lower, upper); None when the hint does not help (never raises)."""
     try:
-        c = [float(v) for v in p.coeffs()]
+        c = [float_hint(v) for v in p.coeffs()]
         dc = [k * c[k] for k in range(1, len(c))]
-        x = (float(lower) + float(upper)) / 2
+        x = (float_hint(lower) + float_hint(upper)) / 2
         for _ in range(30):
             f = df = 0.0
             for v in reversed(c):
