@@ -359,10 +359,12 @@ def lp_conditions(problem, record):
             Y = _components(order, d, adj, C_int)
             a = start.bounds()[0]
             b = None if end.inf else end.bounds()[1]
-            for l, ok in enumerate(_batch_positive(Y, D_int, a, b)):
+            batch = len(C_int[0]) < len(Y)  # L transforms and a product beat n transforms only when L < n
+            flags = _batch_positive(Y, D_int, a, b) if batch else [False] * len(Y)
+            for l, ok in enumerate(flags):
                 if not ok:
                     p = polys.trim(polys.mul_integers(Y[l], D_int))
-                    _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B", tried=True)
+                    _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B", tried=batch)
             points.append(x)
             facet_of.append(i)
             start = end
