@@ -24,6 +24,7 @@ threshold (relative difference; absolute when that is 0).  Times are CPU seconds
 shared, and wall-clock times there move with the other jobs' load.
 
 Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200]
+      (methods: taylor1 ... taylor8, pade11, pade22, backward_euler)
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ from exactinv.model.record import certificate
 
 SIZES = [(6, 12), (6, 36), (6, 60), (8, 16), (8, 32), (8, 48), (10, 40), (12, 60), (16, 100), (20, 200)]
 QUICK = [(6, 12), (8, 32), (10, 40)]
-METHODS = {"taylor1": ei.methods.taylor(1), "taylor4": ei.methods.taylor(4), "taylor8": ei.methods.taylor(8),
+METHODS = {**{f"taylor{k}": ei.methods.taylor(k) for k in range(1, 9)},
            "pade11": ei.methods.pade(1, 1), "pade22": ei.methods.pade(2, 2),
            "backward_euler": ei.methods.backward_euler()}
 

@@ -23,13 +23,21 @@ When E < oo the kernel also requires that the set of these conditions lies in
 :func:`exactinv_check.conditions.condition_polynomials` on the points x_B.
 
 No vertex enumeration and no edge walk: the work is priced first, per piece one
-fraction-free n x n solve and n components of degree deg N + deg D.
+fraction-free n x n solve and n components of degree deg N + deg D.  What runs
+is cheaper where it can be, each step proved: adj B and det B exchanged one row
+at a time between adjacent pieces (:func:`_exchange`), the m slacks of x_B in
+one packed big-integer product (:meth:`_Bases.packed_slacks`), Descartes' rule
+for all components of a piece in one matrix product (:func:`_batch_positive`),
+the horizon by one condition negative beyond it (:func:`_negative_beyond`); each
+falls back to the direct computation when it proves nothing.
 """
 
 from fractions import Fraction
+from operator import mul
 from types import SimpleNamespace
 
 from . import polys
+from .budget import PYTHON_OP, charge, descartes_node_cost, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .linalg import integer_solve
 from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, within_budget
@@ -87,36 +95,152 @@ class _Bases:
     def __init__(self, G, b):
         self.rows = integer_rows(G, b)  # (g, beta) in integers, the same half-spaces
         self.proved = {}
+        self.packs = {}
+        self.norm1 = max(sum(abs(v) for v in g) for g, _ in self.rows)
+        self.beta_max = max(abs(beta) for _, beta in self.rows)
 
-    def vertex(self, basis):
-        """x_B as Fractions, after proving B nonsingular and G x_B <= b."""
-        if basis not in self.proved:
-            B = [self.rows[r][0] for r in basis]
-            d, X = integer_solve(B, [[self.rows[r][1]] for r in basis])
-            require(d != 0, f"the basis {list(basis)} is singular")
-            x = [row[0] for row in X]  # x_B = x / d
+    def adjugate(self, basis, previous):
+        """(order, det B, adj B) for B the integer rows ``order`` of G (``basis`` in some order), B
+        nonsingular or CheckFailure.  When ``previous`` (an earlier (order, det, adj)) differs from
+        ``basis`` in exactly one row, the exchange of that row (:func:`_exchange`, n^2 operations);
+        else Bareiss' fraction-free elimination on [B | I] (n^3).  Both exact, charged."""
+        if previous is not None:
+            order = previous[0]
+            out = [r for r in order if r not in basis]
+            if len(out) == 1:
+                come = [r for r in basis if r not in order]
+                return _exchange(self.rows, previous, order.index(out[0]), come[0])
+        B = [self.rows[r][0] for r in basis]
+        n = len(B)
+        bits = max((abs(v).bit_length() for row in B for v in row), default=1)
+        charge(n ** 3 * (PYTHON_OP + words(n * bits) ** 2), "a basis' adjugate (Bareiss)")
+        d, adj = integer_solve(B, [[int(i == j) for j in range(n)] for i in range(n)])
+        require(d != 0, f"the basis {list(basis)} is singular")
+        return tuple(basis), d, adj
+
+    def vertex(self, basis, order, d, adj):
+        """x_B as Fractions, after proving G x_B <= b (x_B = adj(B) b_B / det B, B the rows ``order``)."""
+        key = tuple(sorted(basis))
+        if key not in self.proved:
+            beta = [self.rows[r][1] for r in order]
+            x = [sum(map(mul, row, beta)) for row in adj]  # x_B = x / d
             s = 1 if d > 0 else -1
-            for k, (g, beta) in enumerate(self.rows):
-                require(s * sum(a * v for a, v in zip(g, x) if a) <= s * beta * d,
-                        f"x_B of the basis {list(basis)} violates row {k} of G x <= b")
-            self.proved[basis] = [Fraction(v, d) for v in x]
-        return self.proved[basis]
+            if not self.packed_slacks([s * v for v in x], s * d):
+                for k, (g, beta_k) in enumerate(self.rows):
+                    require(s * sum(map(mul, g, x)) <= s * beta_k * d,
+                            f"x_B of the basis {list(basis)} violates row {k} of G x <= b")
+            self.proved[key] = [Fraction(v, d) for v in x]
+        return self.proved[key]
+
+    def packed_slacks(self, x, d):
+        """True proves v_k = g_k x - beta_k d <= 0 for every row k (x integers, d > 0); False says nothing.
+
+        All m rows in n big-integer products (Kronecker substitution): with fields of K bits,
+        S = sum_j x_j P_j - d P_b - U + O, where P_j = sum_k g_kj 2^(K k) packs column j of G,
+        P_b packs beta, U = sum_k 2^(K k) and O = sum_k 2^(K-1) 2^(K k), equals
+        sum_k (v_k - 1 + 2^(K-1)) 2^(K k) as an integer identity.  K is chosen so that
+        |v_k - 1| < 2^(K-1) for every k (from |v_k| <= |g_k|_1 max|x_j| + |beta_k| d), so each
+        coefficient lies in [0, 2^K): they are S's base-2^K digits, and v_k <= 0 iff v_k - 1 < 0 iff
+        digit k is below 2^(K-1), i.e. bit K-1 of field k is clear -- one AND with the mask of
+        those bits decides all rows."""
+        m = len(self.rows)
+        bound = self.norm1 * max(abs(v) for v in x) + self.beta_max * d + 1
+        K = 64 * (1 + (bound.bit_length() + 1) // 64)
+        charge(len(x) * (PYTHON_OP + m * K // 64) + 8 * m * K // 64, "the slacks of a basis' vertex (packed)")
+        if K not in self.packs:
+            self.packs[K] = self._pack(K)
+        columns, pb, U, O, top = self.packs[K]
+        S = sum(map(mul, x, columns)) - d * pb - U + O
+        return S >= 0 and S.bit_length() <= m * K and not S & top
+
+    def _pack(self, K):
+        """(P_j for every column j, P_b, U, O, the mask of bit K-1 of every field) for fields of K bits."""
+        rows = self.rows
+        n = len(rows[0][0])
+        columns = [sum(g[j] << (K * k) for k, (g, _) in enumerate(rows)) for j in range(n)]
+        pb = sum(beta << (K * k) for k, (_, beta) in enumerate(rows))
+        U = sum(1 << (K * k) for k in range(len(rows)))
+        return columns, pb, U, U << (K - 1), U << (K - 1)
 
 
-def _components(bases, basis, C_int, D_int):
-    """The components of a positive multiple of z_B = D B^-T C (h), as integer coefficient lists
-    (B^T with the integer rows of G: a positive row scaling of B scales each component by a
-    positive factor)."""
-    BT = [list(col) for col in zip(*(bases.rows[r][0] for r in basis))]
-    d, X = integer_solve(BT, C_int)
-    require(d != 0, f"the basis {list(basis)} is singular")
+def _exchange(rows, previous, p, come):
+    """(order, det, adj) after row ``p`` of B (the rows ``order``) is replaced by row ``come`` of G,
+    from (order, det, adj) of B; CheckFailure if the new B is singular.
+
+    With g the new row and a = column p of adj B: the cofactors of row p do not change, so
+    det B' = g . a (Laplace along row p); and with w = g^T adj B (so w_p = det B'), Sherman-Morrison
+    on B' = B + e_p (g - B_p)^T, using B_p^T adj B = det B e_p^T, gives
+    adj B' = (det B' adj B - a w^T + det B a e_p^T) / det B -- integral, so every division is exact.
+    Column p of adj B' is a itself."""
+    order, d, adj = previous
+    g = rows[come][0]
+    n = len(g)
+    bits = max(abs(v).bit_length() for row in adj for v in row) + max(abs(v).bit_length() for v in g)
+    charge(3 * n * n * (PYTHON_OP + words(bits) ** 2), "a basis' adjugate (one row exchanged)")
+    w = [sum(map(mul, g, col)) for col in zip(*adj)]
+    d2 = w[p]
+    order = order[:p] + (come,) + order[p + 1:]
+    require(d2 != 0, f"the basis {sorted(order)} is singular")
+    new = []
+    for row in adj:
+        a = row[p]
+        if a:
+            out = [(d2 * x - a * y) // d for x, y in zip(row, w)]
+        else:
+            out = [d2 * x // d for x in row]
+        out[p] = a
+        new.append(out)
+    return order, d2, new
+
+
+def _components(order, d, adj, C_int):
+    """The components of a positive multiple of B^-T C (h), before the factor D: integer coefficient
+    lists, one per row of B (``order``), each times sign(det B) (adj(B)^T C: a positive row scaling of
+    B -- the integer rows of G -- scales each component by a positive factor)."""
     s = 1 if d > 0 else -1
+    cols = list(zip(*C_int))
+    return [[s * sum(map(mul, col, c)) for c in cols] for col in zip(*adj)]
+
+
+def _transform(ints, a, b):
+    """The coefficients whose sign variations :func:`polys.descartes_variations` counts, for ``ints``
+    of any length (zeros on top allowed, no trimming): (1+x)^D q(1/(1+x)) times s^D, q(y) = p(a + (b-a) y),
+    s > 0 a common denominator; for b None, v^D p(a + y) (a = u/v).  Linear in ``ints``."""
+    if b is None:
+        return _shift_signs(ints, a)
+    D = len(ints) - 1
+    w = b - a
+    s = a.denominator * w.denominator
+    u, v = a.numerator * w.denominator, w.numerator * a.denominator
+    q = [ints[-1]]
+    for k in range(D - 1, -1, -1):
+        q = [u * q[0]] + [u * q[i] + v * q[i - 1] for i in range(1, len(q))] + [v * q[-1]]
+        q[0] += ints[k] * s ** (D - k)
+    q.reverse()
+    for i in range(D):
+        for k in range(D - 1, i - 1, -1):
+            q[k] += q[k + 1]
+    return q
+
+
+def _batch_positive(Y, D_int, a, b):
+    """For each row y of Y (integer coefficients, L of them): True proves D y > 0 on the open (a, b)
+    (b None: (a, oo)) or D y = 0.  One matrix for all rows: the transform of Descartes' rule is linear,
+    so the transformed coefficients of D y are y times T (row k of T: the transform of D h^k); all of one
+    sign and not all zero proves that sign on (a, b) (the transform is a positive multiple of p at each
+    point of (a, b), by the Moebius map from (0, oo)), all zero means D y = 0."""
+    L = len(Y[0]) if Y else 0
+    W = L + len(D_int) - 1
+    T = [_transform([0] * k + list(D_int) + [0] * (W - k - len(D_int)), a, b) for k in range(L)]
+    tbits = max(abs(v).bit_length() for row in T for v in row)
+    ybits = max((abs(v).bit_length() for row in Y for v in row), default=1)
+    charge(descartes_node_cost(W - 1, tbits) * L + len(Y) * L * W * (PYTHON_OP + words(tbits) * words(ybits)),
+           "Descartes' rule on one piece, all components at once")
     out = []
-    for row in X:
-        p = polys.trim([s * v for v in row])
-        if p and len(D_int) > 1:
-            p = polys.trim(polys.mul_integers(p, D_int))
-        out.append(p)
+    cols = list(zip(*T))
+    for y in Y:
+        q = [sum(map(mul, y, col)) for col in cols]
+        out.append(all(c >= 0 for c in q))  # >= 0 on (a, b), so on the closed piece inside [a, b]
     return out
 
 
@@ -135,6 +259,8 @@ def _shift_signs(ints, a):
 def _positive_around(ints, a, b):
     """True proves p > 0 on the open (a, b) (b None: (a, oo)); False says nothing."""
     if b is None:
+        charge(descartes_node_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints),
+                                   a.numerator.bit_length() + a.denominator.bit_length()), "a Taylor shift")
         q = _shift_signs(ints, a)
         return all(c >= 0 for c in q) and any(c > 0 for c in q)
     return polys.descartes_variations(ints, a, b) == 0 and polys.sign_at(ints, (a + b) / 2) > 0
@@ -151,9 +277,16 @@ def _vanishes_at(p, r):
 def _sliver(p, ints, r, inner):
     """True proves p > 0 on the part of r's enclosure inside the piece ([r, hi] when r starts it,
     [lo, r) when r ends it; ``inner`` is the other end of the enclosure, hi or lo): Descartes sees
-    no root in (lo, hi), or exactly one and it is r itself; and p > 0 at ``inner``."""
+    no root in (lo, hi), or exactly one and it is r itself; and p > 0 at ``inner``.  When p is r's own
+    polynomial (up to a nonzero factor and a power of h, with lo >= 0), r is its only root in (lo, hi),
+    proved when r was read."""
     if polys.sign_at(ints, inner) <= 0:
         return False
+    own = polys.integer_coefficients(r.poly)
+    k = next(j for j, c in enumerate(ints) if c)  # p = h^k q, q(0) != 0; h^k > 0 on (lo, hi) when lo >= 0
+    q = ints[k:]
+    if (k == 0 or r.lo >= 0) and (own == q or own == [-c for c in q]):
+        return True
     v = polys.descartes_variations(ints, r.lo, r.hi)
     return v == 0 or (v == 1 and _vanishes_at(p, r))
 
@@ -172,14 +305,15 @@ def _fast(p, ints, start, end):
     return end.inf or end.poly is None or _sliver(p, ints, end, end.lo)
 
 
-def _require_nonnegative(p, start, end, what):
-    """p >= 0 on the closed piece [start, end] (end may be oo), or CheckFailure."""
+def _require_nonnegative(p, start, end, what, tried=False):
+    """p >= 0 on the closed piece [start, end] (end may be oo), or CheckFailure.  ``tried``: Descartes'
+    rule on the enclosing (lower end of start, upper end of end) already failed (:func:`_batch_positive`)."""
     if not p:
         return
     ints = polys.integer_coefficients(p)
     a = start.bounds()[0]
     b = None if end.inf else end.bounds()[1]
-    if _positive_around(ints, a, b) or _fast(p, ints, start, end):
+    if (not tried and _positive_around(ints, a, b)) or _fast(p, ints, start, end):
         return  # p > 0 on (a, b), which holds (start, end); >= 0 at the ends by continuity
     points = [start]
     for lo, hi in polys.positive_roots(p):
@@ -215,13 +349,22 @@ def lp_conditions(problem, record):
         C_int = [[sum(g[j] * N_int[k * n + j][l] for j in range(n) if g[j]) for k in range(len(N))]
                  for l in range(n)]
         start = Real.rational(0)
+        previous = None
         for k, (data, basis) in enumerate(zip(ends, rows)):
             end = Real.parse(data, f"lp facet {i} end {k}")
             require(start.compare(end) < 0, f"lp facet {i}: the ends are not increasing after piece {k}")
             require(not end.inf or k == len(ends) - 1, f"lp facet {i}: only the last piece may end at oo")
-            x = bases.vertex(basis)
-            for l, p in enumerate(_components(bases, basis, C_int, D_int)):
-                _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B")
+            previous = order, d, adj = bases.adjugate(basis, previous)
+            x = bases.vertex(basis, order, d, adj)
+            Y = _components(order, d, adj, C_int)
+            a = start.bounds()[0]
+            b = None if end.inf else end.bounds()[1]
+            batch = len(C_int[0]) < len(Y)  # L transforms and a product beat n transforms only when L < n
+            flags = _batch_positive(Y, D_int, a, b) if batch else [False] * len(Y)
+            for l, ok in enumerate(flags):
+                if not ok:
+                    p = polys.trim(polys.mul_integers(Y[l], D_int))
+                    _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B", tried=batch)
             points.append(x)
             facet_of.append(i)
             start = end
@@ -233,10 +376,25 @@ def lp_conditions(problem, record):
     return generators, D2, inequalities, horizon
 
 
+def _negative_beyond(p, E):
+    """True proves p < 0 on the open (E, oo) (E finite); False says nothing.  A rational E: the Taylor
+    shift at E (:func:`_positive_around` of -p); an algebraic E: the same at its upper end, and
+    -p > 0 on (E, hi] (:func:`_sliver`: p may vanish at E itself)."""
+    ints = polys.integer_coefficients(p)
+    if not ints or ints[-1] >= 0:
+        return False
+    neg = [-c for c in ints]
+    if E.poly is None:
+        return _positive_around(neg, E.q, None)
+    return _positive_around(neg, E.hi, None) and _sliver(neg, neg, E, E.hi)  # -p > 0 on (E, hi] and beyond
+
+
 def require_horizon(D, inequalities, horizon, context, key):
     """When the pieces stop at E < oo: the set of the conditions lies in [0, E] (then it is the valid set)."""
     if horizon.inf:
         return
+    if any(_negative_beyond(p, horizon) for p in inequalities):
+        return  # at every h > E some condition is < 0
     if key not in context:
         context[key] = valid_set(D, list(inequalities), [])
     W = context[key]

@@ -11,7 +11,7 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import lp_pieces
+from exactinv_check import lp_pieces, polys
 from exactinv_check.reals import Real, separate
 
 M = ei.methods
@@ -172,3 +172,102 @@ def test_a_breakpoint_moved_a_hair_early_is_rejected():
 def test_the_pieces_together_are_priced_first(monkeypatch):
     monkeypatch.setattr(lp_pieces, "LP_WORK_BUDGET", 10**3)
     _rejected(_certificate(), "the LP route's")
+
+
+# ------------------------------------------------------------------ the cheap paths, against the direct ones
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+from exactinv_check.linalg import integer_determinant, integer_solve  # noqa: E402
+from exactinv_check.rationals import CheckFailure  # noqa: E402
+
+_small = st.integers(-6, 6)
+
+
+def _adjugate(B):
+    n = len(B)
+    return integer_solve(B, [[int(i == j) for j in range(n)] for i in range(n)])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 5).flatmap(lambda n: st.tuples(
+    st.lists(st.lists(_small, min_size=n, max_size=n), min_size=n, max_size=n),
+    st.lists(_small, min_size=n, max_size=n), st.integers(0, n - 1))))
+def test_a_row_exchange_gives_the_adjugate_and_determinant_of_bareiss(data):
+    """adj and det after replacing one row (n^2 update) equal Bareiss' on the new matrix; a
+    singular result is rejected, never returned."""
+    B, g, p = data
+    d, adj = _adjugate(B)
+    if d == 0:
+        return
+    n = len(B)
+    rows = [(list(r), 0) for r in B] + [(list(g), 0)]
+    new = [list(r) for r in B]
+    new[p] = list(g)
+    if integer_determinant(new) == 0:
+        with pytest.raises(CheckFailure, match="singular"):
+            lp_pieces._exchange(rows, (tuple(range(n)), d, adj), p, n)
+        return
+    order, d2, adj2 = lp_pieces._exchange(rows, (tuple(range(n)), d, adj), p, n)
+    assert order == tuple(n if k == p else k for k in range(n))
+    assert (d2, adj2) == _adjugate(new)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 4).flatmap(lambda n: st.tuples(
+    st.lists(st.tuples(st.lists(_small, min_size=n, max_size=n), st.integers(-20, 20)), min_size=1, max_size=9),
+    st.lists(st.integers(-10**30, 10**30), min_size=n, max_size=n), st.integers(1, 10**25))))
+def test_the_packed_slack_test_agrees_with_the_row_by_row_one(data):
+    """All rows at once by Kronecker substitution: True exactly when every g_k x <= beta_k d."""
+    rows, x, d = data
+    bases = lp_pieces._Bases([g for g, _ in rows], [beta for _, beta in rows])
+    truth = all(sum(a * v for a, v in zip(g, x)) <= beta * d for g, beta in bases.rows)
+    assert bases.packed_slacks(x, d) == truth
+
+
+def test_a_slack_of_exactly_zero_passes_and_minus_one_fails_the_packed_test():
+    bases = lp_pieces._Bases([[1, 0], [0, 1], [-1, -1]], [1, 1, 5])
+    assert bases.packed_slacks([1, 1], 1)        # rows 0, 1 tight: v = 0
+    assert not bases.packed_slacks([2, 1], 1)    # row 0: 2 > 1
+    assert not bases.packed_slacks([-3, -3], 1)  # row 2: 6 > 5
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.lists(st.integers(-30, 30), min_size=3, max_size=3), min_size=1, max_size=5),
+       st.lists(st.integers(-3, 3), min_size=1, max_size=3).filter(lambda D: D[0] != 0),
+       st.fractions(0, 4, max_denominator=16), st.one_of(st.none(), st.fractions(0, 3, max_denominator=16)))
+def test_the_batched_descartes_test_is_sound_and_matches_the_single_one(Y, D, a, width):
+    """Every row the batch accepts is >= 0 on (a, b) (sampled exactly), and it accepts every row whose
+    product with D the single-polynomial test (Descartes, or the Taylor shift for b = oo) proves > 0."""
+    b = None if width is None or width == 0 else a + width
+    flags = lp_pieces._batch_positive(Y, D, a, b)
+    for y, ok in zip(Y, flags):
+        p = polys.trim(polys.mul_integers(y, D))
+        if not p:
+            assert ok
+            continue
+        if ok:
+            top = b if b is not None else a + 10
+            for k in range(1, 40):
+                assert polys.sign_at(p, a + (top - a) * F(k, 40)) >= 0
+        assert ok or not lp_pieces._positive_around(polys.integer_coefficients(p), a, b)
+
+
+def test_negative_beyond_a_rational_and_an_algebraic_horizon():
+    two = Real.rational(2)
+    assert lp_pieces._negative_beyond([F(2), F(-1)], two)          # 2 - h < 0 beyond 2
+    assert not lp_pieces._negative_beyond([F(3), F(-1)], two)      # 3 - h > 0 on (2, 3)
+    assert not lp_pieces._negative_beyond([F(1), F(1)], two)       # positive leading coefficient
+    sqrt2 = Real.claimed([F(-2), F(0), F(1)], F(1), F(2))
+    assert lp_pieces._negative_beyond([F(2), F(0), F(-1)], sqrt2)  # 2 - h^2 < 0 beyond sqrt 2
+    assert not lp_pieces._negative_beyond([F(3), F(0), F(-1)], sqrt2)
+
+
+def test_a_sliver_of_the_end_polynomial_times_a_power_of_h():
+    """p = h q with q the end's own polynomial: recognised without a gcd, but only when the enclosure
+    lies in h >= 0 (else h could vanish inside it)."""
+    r = Real.claimed([F(-2), F(0), F(1)], F(1), F(2))   # sqrt 2, enclosure (1, 2)
+    p = [0, 2, 0, -1]                                     # h (2 - h^2): > 0 on (1, sqrt 2)
+    assert lp_pieces._sliver(p, p, r, r.lo)
+    q = [0, -2, 0, 1]                                     # h (h^2 - 2): < 0 there
+    assert not lp_pieces._sliver(q, q, r, r.lo)

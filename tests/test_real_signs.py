@@ -73,3 +73,25 @@ def test_narrowed_keeps_the_number():
         a = RealAlgebraic.from_isolating_interval(list(poly), lo, hi)
         b = narrowed(a)
         assert b == a and b.upper - b.lower < F(1, 2**40)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(-40, 40), min_size=2, max_size=6).filter(lambda c: c[-1] != 0))
+def test_narrowed_by_the_newton_hint_keeps_every_root(coeffs):
+    """Every real root of a squarefree factor, narrowed (a float Newton hint proved by an exact sign
+    change, or the Arb fallback): the same number, a narrow enclosure inside the old one."""
+    for p, _ in flint.fmpz_poly(coeffs).factor()[1]:
+        for root, _ in real_roots(flint.fmpq_poly(p)):
+            if not isinstance(root, RealAlgebraic):
+                continue
+            old = (root.lower, root.upper)
+            b = narrowed(RealAlgebraic(root.poly, root.lower, root.upper))
+            assert b == root and old[0] <= b.lower < b.upper <= old[1] and b.upper - b.lower < F(1, 2**40)
+
+
+def test_the_newton_hint_never_raises_and_only_helps():
+    """Coefficients beyond double range, and an enclosure the float iteration leaves: no hint, no error."""
+    from exactinv.core.real_signs import _newton
+    assert _newton(flint.fmpz_poly([-2 * 10**400, 0, 10**400]), F(1), F(2)) is None  # overflow: no hint
+    far = _newton(flint.fmpz_poly([-2, 0, 1]), F(-2), F(-1))      # the root -sqrt 2, from the midpoint
+    assert far is not None and far.upper < 0 and far.upper ** 2 < 2 < far.lower ** 2

@@ -65,6 +65,7 @@ from .conditions import Condition, ConditionSet, Kind, never_binds
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "lp_route", "vertex_bound"]
 
+_ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
 _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
 
 
@@ -123,12 +124,18 @@ class LPRoute:
 
 
 class _Basis:
-    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks b - G x_B."""
+    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
+    b - G x_B (exact, and their numerators over a positive common denominator)."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack")
+    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack")
 
-    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list):
-        self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
+    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
+        self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
+        self.slack = slack_q.numer_denom()[0].entries()
+
+    @property
+    def feasible(self) -> bool:
+        return not any(v < _ZERO for v in self.slack)
 
 
 class _Problem:
@@ -169,9 +176,9 @@ class _Problem:
                 inv = None
             if inv is not None:
                 x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
-                slack = (self.b - self.G * x).entries()
-                if all(v >= 0 for v in slack):
-                    out = _Basis(rows, inv.transpose(), x, slack)
+                out = _Basis(rows, inv.transpose(), x, self.b - self.G * x)
+                if not out.feasible:
+                    out = None
             self._bases[rows] = out
         return self._bases[rows]
 
@@ -242,14 +249,15 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     stops d (P is unbounded)."""
     P.pivots += 1
     d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
-    Gd = (P.G * d).entries()
+    numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
+    Gd = numerators.entries()
+    s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
     for r in range(P.m):
-        if Gd[r] > 0 and r not in basis.rows:
-            ratio = basis.slack[r] / Gd[r]
-            if best is None or ratio < best:
-                best, enter = ratio, [r]
-            elif ratio == best:
+        if Gd[r] > _ZERO and r not in basis.rows:
+            if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
+                best, enter = r, [r]
+            elif s[r] * Gd[best] == s[best] * Gd[r]:
                 enter.append(r)
     if best is None:
         raise LPRouteDeclined("an edge of P is a ray: P is unbounded, which the LP route does not handle yet")
@@ -264,7 +272,9 @@ def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[flo
     n, W = Y.nrows(), Y.ncols()
     try:
         with np.errstate(all="ignore"):
-            M = np.array([float(v) for v in Y.entries()], dtype=float).reshape(n, W)
+            numerators, _ = Y.numer_denom()  # a positive common factor: the same first negative points
+            M = np.array([float(v) for v in numerators.entries()], dtype=float).reshape(n, W)
+            M /= np.abs(M).max() or 1.0
             grid = float(lo) + float(span) * (np.arange(1, 65) / 64.0) ** 2
             values = M @ np.vstack([grid ** k for k in range(W)])
             negative = values < 0

@@ -20,8 +20,8 @@ No float anywhere.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
-from math import comb
 
 import flint
 
@@ -30,15 +30,19 @@ from .polys import integer_part, no_root_between, sign_at, sign_right_of
 from .roots import first_sign_change
 from .scalars import INF
 from .flintq import dyadic_of
+from .float_hint import float_hint
 
 __all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
            "positive_after"]
 
 
 def narrowed(alpha: FiniteReal) -> FiniteReal:
-    """alpha itself, for an algebraic alpha with a narrow isolating interval: the enclosure of the
-    matching root from FLINT's certified complex roots (Arb balls), kept only if it lies inside the
-    old one and an exact sign change confirms it; else exact bisection to width 2^-48.
+    """alpha itself, for an algebraic alpha with a narrow isolating interval.  First a float hint:
+    Newton's iteration from the enclosure's midpoint, a dyadic x, and the enclosure
+    [x - 2^-44 (1 + |x|), x + 2^-44 (1 + |x|)] kept only if it lies inside the old one and an exact
+    sign change of the polynomial confirms it (the old enclosure holds one root, so it is alpha).
+    Then the enclosure of the matching root from FLINT's certified complex roots (Arb balls), checked
+    the same way; else exact bisection to width 2^-48.
 
     >>> r = narrowed(RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2))
     >>> r.upper - r.lower < Fraction(1, 2**40), r.lower ** 2 < 2 < r.upper ** 2
@@ -47,6 +51,9 @@ def narrowed(alpha: FiniteReal) -> FiniteReal:
     if not isinstance(alpha, RealAlgebraic):
         return alpha
     p = alpha.poly
+    hint = _newton(p, alpha.lower, alpha.upper)
+    if hint is not None:
+        return hint
     for z, _ in p.complex_roots():
         if not z.imag.is_zero():
             continue
@@ -57,12 +64,44 @@ def narrowed(alpha: FiniteReal) -> FiniteReal:
     return alpha.refine(48)
 
 
+def _newton(p: flint.fmpz_poly, lower: Fraction, upper: Fraction) -> RealAlgebraic | None:
+    """A narrow enclosure of p's one root in (lower, upper) from a float Newton iteration, proved by an
+    exact sign change inside (lower, upper); None when the hint does not help (never raises)."""
+    try:
+        c = [float_hint(v) for v in p.coeffs()]
+        dc = [k * c[k] for k in range(1, len(c))]
+        x = (float_hint(lower) + float_hint(upper)) / 2
+        for _ in range(30):
+            f = df = 0.0
+            for v in reversed(c):
+                f = f * x + v
+            for v in reversed(dc):
+                df = df * x + v
+            if not df or not math.isfinite(f / df):
+                return None
+            step = f / df
+            x -= step
+            if abs(step) <= 1e-15 * (1 + abs(x)):
+                break
+        if not math.isfinite(x):
+            return None
+        mid = Fraction(x)
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return None
+    width = (1 + abs(mid)) / 2**44
+    width = Fraction(1, 2 ** max(0, -(width.numerator.bit_length() - width.denominator.bit_length())))
+    lo, hi = mid - width, mid + width
+    if lower <= lo and hi <= upper and sign_at(p, lo) * sign_at(p, hi) < 0:
+        return RealAlgebraic(p, lo, hi, _trusted=True)
+    return None
+
+
 def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
     """For each row of M (the coefficients, constant first, of a polynomial p): +1 if Descartes'
     rule proves p > 0 on the open interval (lo, hi) (hi None: (lo, oo)) or p = 0, -1 if it proves
     p < 0 there, 0 if it proves nothing.  All rows at once: p(lo + y) by one product with the
-    Taylor-shift matrix, then for a finite hi = lo + P/Q the coefficients of
-    Q^d (1 + y)^d p(lo + (P/Q) y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
+    Taylor-shift matrix, then for a finite hi = lo + H the coefficients of
+    (1 + y)^d p(lo + H y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
     (as in :func:`exactinv.core.polys.positive_below`).  Exact.
 
     >>> M = flint.fmpq_mat([[2, -3, 1], [-2, 0, 1], [0, 0, 0], [-1, 0, -1]])  # (x-1)(x-2), x^2-2, 0, -1-x^2
@@ -73,19 +112,24 @@ def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list
     W = M.ncols()
     d = W - 1
     x = flint.fmpq(lo.numerator, lo.denominator)
-    S = flint.fmpq_mat(W, W, [comb(k, j) * x ** (k - j) if j <= k else 0 for k in range(W) for j in range(W)])
-    T = S
-    if hi is not None:
+    if hi is None:  # p(lo + y): row k of T is (lo + y)^k
+        base, one = flint.fmpq_poly([x, 1]), flint.fmpq_poly([1])
+    else:  # (1 + y)^d p(lo + H y/(1 + y)): row k is (lo + (lo + H) y)^k (1 + y)^(d - k)
         H = hi - lo
-        P, Q = H.numerator, H.denominator
-        T = S * flint.fmpq_mat(W, W, [P ** k * Q ** (d - k) * comb(d - k, m - k) if m >= k else 0
-                                      for k in range(W) for m in range(W)])
+        base, one = flint.fmpq_poly([x, x + flint.fmpq(H.numerator, H.denominator)]), flint.fmpq_poly([1, 1])
+    rows = []
+    for k in range(W):
+        c = ((base ** k) * (one ** (d - k))).coeffs()
+        rows.extend(c + [0] * (W - len(c)))
+    T = flint.fmpq_mat(W, W, rows)
     out = []
-    entries = (M * T).entries()
+    numerators, _ = (M * T).numer_denom()  # a positive common denominator: the signs of the numerators
+    entries = numerators.entries()
+    zero = flint.fmpz(0)  # fmpz against fmpz: compared in C
     for r in range(M.nrows()):
         row = entries[r * W:(r + 1) * W]
-        positive = any(c > 0 for c in row)
-        negative = any(c < 0 for c in row)
+        positive = any(c > zero for c in row)
+        negative = any(c < zero for c in row)
         out.append(0 if positive and negative else -1 if negative else 1)
     return out
 
