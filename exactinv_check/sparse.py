@@ -7,8 +7,10 @@ increasing along the row, and the value an exact nonzero number.  Every row is
 present (an empty row is ``[]``).  The reader is strict: a row count other
 than m, an index out of range, a repeated or unsorted index, an explicit zero,
 a pair that is not a two-element list, or a bool or float index rejects the
-matrix.  The structural tests come first and cost one pass over the pairs; the
-numbers are parsed only after the whole matrix is priced (:mod:`.budget`).
+matrix.  The row count and lengths come first and price the pass over the
+pairs; the structural tests of that pass come next, and the numbers are parsed
+only after the whole read is priced by the length of its longest number
+(:mod:`.budget`, ``sparse_read_cost``).
 
 Whatever the version, the kernel works on the same form: a list of m rows,
 each a list of ``(k, x)`` pairs with x != 0 and k increasing (a dense matrix of
@@ -42,10 +44,15 @@ def sparse_matrix(value, what, rows, cols):
     require(isinstance(data, list), f"{what}: sparse is a list of rows")
     require(len(data) == rows, f"{what}: expected {rows} rows, got {len(data)} (every row is listed, [] if empty)")
     require(cols <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too wide")
-    total, longest = 0, 0
-    for i, row in enumerate(data):  # structure first: one pass, no number parsed
+    for i, row in enumerate(data):  # the row lengths first: the count prices the pass over the pairs
         require(isinstance(row, list), f"{what}: row {i} is not a list")
         require(len(row) <= cols, f"{what}: row {i} has more entries than columns")
+    total = sum(map(len, data))
+    require(total <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too many entries")
+    floor = sparse_read_cost(total, 1)
+    within_budget(floor, f"reading the {total} entries of {what}", limit=CERTIFICATE_BUDGET)
+    longest = 0
+    for i, row in enumerate(data):  # structure next: one pass, no number parsed
         last = -1
         for pair in row:
             require(isinstance(pair, list) and len(pair) == 2, f"{what}: row {i}: an entry is a pair [column, value]")
@@ -58,9 +65,8 @@ def sparse_matrix(value, what, rows, cols):
                 longest = max(longest, len(x))
             elif type(x) is int:  # a JSON integer (the kernel reads one where a number is expected)
                 longest = max(longest, x.bit_length() // 3 + 1)
-        total += len(row)
-    require(total <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too many entries")
-    within_budget(sparse_read_cost(total, longest), f"reading the {total} entries of {what}", limit=CERTIFICATE_BUDGET)
+    within_budget(sparse_read_cost(total, longest) - floor, f"reading the {total} entries of {what} "
+                  f"(numbers of up to {longest} digits)", limit=CERTIFICATE_BUDGET)
     out = []
     for i, row in enumerate(data):
         parsed = []

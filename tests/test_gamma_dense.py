@@ -14,7 +14,6 @@ import sys
 from fractions import Fraction as F
 from pathlib import Path
 
-import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 

@@ -170,15 +170,22 @@ def test_forged_h_tilde_and_robust_vertices_are_rejected():
 
 
 def test_a_huge_sparse_matrix_is_priced_before_its_numbers_are_parsed():
-    """2000 rows of 2000 entries of 4000-digit strings: rejected by the price of reading them
-    (entries x words^2), before one number is parsed."""
-    m, big = 2000, "7" * 4000
-    value = {"sparse": [[[k, big] for k in range(m)] for _ in range(m)]}
-    from exactinv_check import budget
+    """1000 rows of 200 entries of 4000-digit strings: rejected by the price of reading them
+    (entries x words^2, over the certificate's budget), before one number is parsed."""
+    m, big = 1000, "7" * 4000
+    value = {"sparse": [[[k, big] for k in range(200)] for _ in range(m)]}
+    from exactinv_check import budget, rationals
+    parsed = []
+    real = rationals.rational
     with budget.account() as acc:
-        with pytest.raises(CheckFailure, match="over the"):
-            sparse_matrix(value, "H", m, m)
-        assert acc.spent == 0  # rejected by its price, nothing charged
+        import exactinv_check.sparse as sparse
+        sparse.rational = lambda *a: parsed.append(1) or real(*a)
+        try:
+            with pytest.raises(CheckFailure, match="numbers of up to 4000 digits"):
+                sparse_matrix(value, "H", m, m)
+        finally:
+            sparse.rational = real
+        assert not parsed and acc.spent <= budget.sparse_read_cost(200 * m, 1)  # only the count was charged
 
 
 @st.composite

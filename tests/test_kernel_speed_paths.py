@@ -343,6 +343,11 @@ def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
     assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
 
 
+def _rows(H):
+    """The kernel's form of H (exactinv_check/sparse.py): per row, the (column, nonzero value) pairs."""
+    return [[(k, x) for k, x in enumerate(row) if x] for row in H]
+
+
 def test_a_sparse_H_is_checked_like_a_dense_one():
     """check_H reads only the nonzero entries of H's rows: a correct H passes, and each of the
     three conditions fails when one entry is spoiled."""
@@ -350,7 +355,7 @@ def test_a_sparse_H_is_checked_like_a_dense_one():
     G = [[F(1), F(0)], [F(-1), F(0)], [F(0), F(1)], [F(0), F(-1)]]
     problem = SimpleNamespace(A=[[F(-1), F(0)], [F(0), F(-1)]], G=G, b=[F(1)] * 4, n=2, m=4)
     H = [[F(-1) if i == k else F(0) for k in range(4)] for i in range(4)]
-    check_H(problem, H)
+    check_H(problem, _rows(H))
     # rows 0 and 1 of G are g and -g: adding t (e_0 + e_1) to row 0 of H keeps HG = GA
     for changes, message in [({(0, 0): F(-2)}, "HG"), ({(0, 0): F(-2), (0, 1): F(-1)}, "off-diagonal"),
                              ({(1, 1): F(0)}, "HG")]:
@@ -358,11 +363,11 @@ def test_a_sparse_H_is_checked_like_a_dense_one():
         for (i, k), value in changes.items():
             spoiled[i][k] = value
         with pytest.raises(CheckFailure, match=message):
-            check_H(problem, spoiled)
-    check_H(problem, [[F(-1) + F(1, 2), F(1, 2), F(0), F(0)]] + H[1:])  # t = 1/2: still a certificate
+            check_H(problem, _rows(spoiled))
+    check_H(problem, _rows([[F(-1) + F(1, 2), F(1, 2), F(0), F(0)]] + H[1:]))  # t = 1/2: still a certificate
     # Hb <= 0: x' = 0 on the square and H with rows e_i + e_(i xor 1): HG = 0 = GA (g and -g cancel),
     # off-diagonal 1 >= 0, but Hb = (2, 2, 2, 2) > 0
     zero = SimpleNamespace(A=[[F(0), F(0)], [F(0), F(0)]], G=G, b=[F(1)] * 4, n=2, m=4)
     swap = [[F(int(k in (i, i ^ 1))) for k in range(4)] for i in range(4)]
     with pytest.raises(CheckFailure, match="Hb"):
-        check_H(zero, swap)
+        check_H(zero, _rows(swap))

@@ -22,8 +22,6 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from math import comb
 
-import flint
-
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
 from ..core.latex import dt_poly_latex, latex_real, latex_text
