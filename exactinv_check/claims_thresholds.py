@@ -19,6 +19,7 @@ from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
+from .budget import fraction_products_cost
 from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
 from .reals import Real, quotient
 from .sparse import dense, diagonal, row_dot
@@ -109,6 +110,7 @@ def rational_threshold(problem, claim, context):
         require(H is not None, "the gamma_star claim carries no H: the convergence bound of erratum E2 cannot be computed")
         alpha = None
         if claim.get("alpha") is not None or _e2_may_bind(H, problem.b, pole, candidates):
+            _price_characteristic_polynomial(H, problem.m)
             alpha = largest_real_root(characteristic_polynomial(dense(H, problem.m)))
             if alpha is not None and alpha.compare(ZERO) > 0:
                 candidates.append((quotient(pole, alpha), False))  # E2: the series at -rho stops converging
@@ -139,6 +141,18 @@ def _e2_may_bind(H, b, pole, candidates):
         return False
     lower = quotient(pole, Real.rational(U))  # z_p/alpha(H) >= z_p/U
     return not any(lower.compare(bound) > 0 for bound, _ in candidates)
+
+
+def _price_characteristic_polynomial(H, m):
+    """Cheap tests before det(xI - H) is expanded (H in sparse rows, m x m): its degree m within the
+    kernel's polynomial bound (a larger one is rejected by root isolation anyway, so no verdict changes),
+    then the Hessenberg reduction priced -- about m^3 Fraction operations on H's numbers -- before the
+    dense m x m copy is built.  Version 3 makes a large m with few entries cheap to write (a
+    100 KB certificate with m = 2000), so neither the m^2 copy nor the m^3 reduction may run unpriced."""
+    require(m <= polys.MAX_DEGREE, f"the characteristic polynomial of the {m} x {m} H has degree {m}, above the "
+            f"kernel's bound {polys.MAX_DEGREE}: alpha(H) cannot be certified")
+    bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length() for row in H for _, x in row])
+    within_budget(fraction_products_cost(m ** 3, bits), f"the characteristic polynomial of a {m} x {m} H")
 
 
 def _same(recorded, computed, what):
