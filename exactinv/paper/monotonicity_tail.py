@@ -63,7 +63,8 @@ from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .bernstein import completely_monotone
-from .poles import dominance_tie, pole_structure, precision, tail_index
+from .line_poles import on_line_indices
+from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
@@ -167,11 +168,38 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
     if _sign_at_real(method.g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu <= 0:
         return _zero_radius(method, RadiusReason.PRINCIPAL_PART_SIGN, p_star)
     with precision(_BITS):
-        s = pole_structure(method.numerator, method.denominator, p_star)
+        s = _with_line_poles(method, p_star)
         tie = dominance_tie(s, h, exact=False)
         if tie is not None and tie.kappa < 0:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         return _decide(method, s, tie, p_star)
+
+
+def _with_line_poles(method: Method, p_star) -> PoleStructure:
+    """The pole structure, with every non-real pole whose real part Arb cannot separate from p*'s proved to be
+    p* + iy exactly (exactinv.paper.line_poles); the precision is raised (to 4096 bits) for a pole that is not
+    on the line.  Undecided for p* irrational with such a pole (the exact proof needs p* rational)."""
+    bits = _BITS
+    while True:
+        with precision(bits):
+            s = pole_structure(method.numerator, method.denominator, p_star)
+            left = ambiguous_line_poles(s)
+            if not left:
+                return s
+            if isinstance(p_star, Fraction):
+                proved = on_line_indices(method.h, p_star, s.balls, left)
+                s = PoleStructure(s.balls, s.star, s.mu, proved)
+                if len(proved) == len(left):
+                    break
+        if bits >= 4096:
+            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part equals the "
+                            f"irrational p* = {p_star} to {bits} bits; the exact proof that Re z = p* is implemented "
+                            "for rational p* only (not an open problem: a gap of this implementation)"
+                            if not isinstance(p_star, Fraction) else
+                            f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
+                            f"equal to p* = {p_star} nor separated from it at {bits} bits")
+        bits *= 4
+    return s  # balls from a higher precision stay valid enclosures at _BITS
 
 
 def _tie_positive(s, tie) -> bool | None:
@@ -217,7 +245,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         infinite = _infinite_radius_certificate(method, s.balls, s.star)
         if infinite is not None:
             return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
-        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
+        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS, p_star)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
         if verdict.finite and verdict.bound is None:
