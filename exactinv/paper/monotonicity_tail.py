@@ -62,6 +62,7 @@ from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
+from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
 from .line_poles import on_line_indices
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
@@ -222,7 +223,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     c_j(0) < 0 (Undecided without one)."""
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
-    balanced = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else None
+    balanced, listed = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else (None, ())
     if tie is not None and positive_tie is None and balanced is None:
         raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
                         "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
@@ -284,7 +285,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             value, binding, exact_bound = end, j, end
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
-    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None, listed)
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -310,29 +311,32 @@ def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
                     "linear recurrence with several dominant characteristic roots (open in general)")
 
 
-def _balanced_tie_kappa(method: Method) -> Fraction | None:
-    """kappa* = -(a + p*)/2 when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
-    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); else None.  With s = sqrt(D) the
-    poles are (-h1 +- s)/(2 h2), g there is G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
+def _balanced_tie_kappa(method: Method) -> tuple[Fraction | None, tuple]:
+    """(kappa*, ()) when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
+    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); (kappa*, poles) for a balanced tie of
+    several Gaussian-rational simple poles (:mod:`exactinv.paper.balanced_tie`, the poles listed in the
+    certificate); else (None, ()).  With s = sqrt(D) the two poles are (-h1 +- s)/(2 h2), g there is
+    G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
     h, g = method.denominator, method.numerator
     if len(h) != 3:
-        return None
+        several = balanced_tie(g, h)
+        return (None, ()) if several is None else several
     h0, h1, h2 = h
     D = h1 * h1 - 4 * h0 * h2
     if D <= 0 or h0 / h2 >= 0 or -h1 / h2 >= 0:
-        return None
+        return None, ()
     x, y = Fraction(0), Fraction(0)
     zr, zs = -h1 / (2 * h2), 1 / (2 * h2)
     for c in reversed(g):
         x, y = x * zr + y * zs * D + c, x * zs + y * zr
-    return h1 / (2 * h2) if x == 0 or y == 0 else None
+    return (h1 / (2 * h2), ()) if x == 0 or y == 0 else (None, ())
 
 
-def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False) -> AbsoluteMonotonicityRadius:
+def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False, listed=()) -> AbsoluteMonotonicityRadius:
     if value is None and tie is None:  # cannot happen: a witness c_j(K) < 0 has j < N
         raise Undecided(f"absolute monotonicity of {method.name}: no coefficient ends below the witness bound")
     if value is None and balanced:  # the closed form covers every c_j beyond the scanned ones
-        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star)
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star, poles=listed)
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
