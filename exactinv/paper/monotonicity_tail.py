@@ -35,14 +35,19 @@ the engine argues in four exact or certified steps:
    exact witness c_j(K) < 0 gives the bound K for step 4.
 7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
-   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``).
+   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
+   :mod:`exactinv.paper.balanced_tie` (the poles go into the claim).
+8. Non-real poles with exactly p*'s real part (p* rational) are proved on the line
+   (:mod:`exactinv.paper.line_poles`) and never tie; Bernstein then decides.
 
 Undecided (documented, never a guess; docs/design.md): (a) an exact balance
 with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
 negative below kappa_A -- the positivity problem of linear recurrences with
 several dominant characteristic roots, open in general; (c) f touching 0 with
 exponents not all rational -- the continuous positivity problem, open in
-general; (d) a non-real pole with exactly p*'s real part (not implemented).
+general; (d) a non-real pole with exactly p*'s real part when p* is irrational (proved on the line for p*
+rational: :mod:`exactinv.paper.line_poles`); an exact balance of several poles that are not all Gaussian
+rationals (:mod:`exactinv.paper.balanced_tie` decides the rest).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
@@ -226,8 +231,10 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     balanced, listed = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else (None, ())
     if tie is not None and positive_tie is None and balanced is None:
         raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
-                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
-                        "inequality, and an exact balance needs a finer argument than the tail bound")
+                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision) and the closed form does not apply "
+                        "(decided when every pole is simple and a Gaussian rational with the other poles real, positive "
+                        "and b_k > 0): the tied part of c_j(kappa_A) can vanish for infinitely many j, and the sign of "
+                        "the rest there is the positivity problem for linear recurrences (open in general)")
     bound = None if tie is None else _short_upper(dyadic_of(tie.kappa.upper()))  # rational K >= the bound
     exact_bound = None
     tied = ()
@@ -254,9 +261,11 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
                             f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
                             "scan (the binding coefficient index lies beyond the searched j <= 8192)")
         if not verdict.finite:
-            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo "
+            line = ("; poles on Re z = p* balance p* exactly here, so e^(p* t) f(t) comes arbitrarily close to 0 and "
+                    "deciding its sign is the continuous positivity problem (open in general)") if s.on_line else ""
+            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z >= p*, so rho = oo "
                             f"iff r(-x) is completely monotone (Bernstein's theorem), and that is not decided: "
-                            f"{verdict.how}")
+                            f"{verdict.how}{line}")
         if verdict.bound is not None:  # rho < K = verdict.bound: the tail on [0, K] has an index
             bound = exact_bound = verdict.bound
             N = tail_index(s, bound, first)
