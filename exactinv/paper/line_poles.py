@@ -19,11 +19,12 @@ The kernel re-proves each (exactinv_check.line_poles, exactinv_check.bernstein).
 from __future__ import annotations
 
 from fractions import Fraction
+from cmath import phase
 from math import atan, gcd, pi
 
 import flint
 
-from ..core.polys import integer_part
+from ..core.polys import integer_part, sign_right_of
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
 
@@ -189,7 +190,6 @@ def line_density(g: list, h: list, p: Fraction):
 
 def nonnegative(Q: list) -> bool:
     """Q >= 0 on R, exactly (positive right of 0, no real root of odd multiplicity)."""
-    from ..core.polys import sign_right_of
     if not Q:
         return False
     q = flint.fmpq_poly([fmpq_of(c) for c in Q])
@@ -221,7 +221,6 @@ def trig_minimum_points(Q: list, L: int) -> list[Fraction]:
 def pair_minimum_points(g: list, h: list, p: Fraction, Y: Fraction) -> list[Fraction]:
     """Rational t > 0 near the minima of b_* + 2 Re(b e^(-iyt)), z = p + iy, y = sqrt(Y), b = -g(z)/h'(z):
     yt = arg b - pi mod 2 pi (float hints only; they never raise, they may only fail to help)."""
-    from cmath import phase
     try:
         y = float(Y) ** 0.5
         z = complex(float(p), y)
