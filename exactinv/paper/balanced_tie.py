@@ -28,7 +28,14 @@ __all__ = ["gaussian_poles", "balanced_tie"]
 def gaussian_poles(h: list) -> list[tuple[Fraction, Fraction]] | None:
     """Every root of h as an exact Gaussian rational (x, y), when h is squarefree and every root is one; else None.
     (A quadratic factor a z^2 + b z + c has the roots (-b +- sqrt(b^2 - 4ac))/(2a), Gaussian rational iff
-    4ac - b^2 is a square.)"""
+    4ac - b^2 is a square.)
+
+    >>> from fractions import Fraction as F
+    >>> sorted(gaussian_poles([F(20), F(-4), F(1)]))     # z^2 - 4z + 20: 2 +- 4i
+    [(Fraction(2, 1), Fraction(-4, 1)), (Fraction(2, 1), Fraction(4, 1))]
+    >>> gaussian_poles([F(3), F(0), F(1)]) is None        # +- i sqrt 3
+    True
+    """
     hq = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in h])
     _, factors = integer_part(hq).factor()
     out = []

@@ -56,7 +56,17 @@ def line_gcd(f: flint.fmpq_poly, p: Fraction) -> flint.fmpq_poly:
 def on_line_indices(h: flint.fmpq_poly, p: Fraction, balls, candidates) -> frozenset:
     """The indices k in ``candidates`` whose pole (the one root of h in the Arb box balls[k][0]) is proved to
     be p + iy, y != 0 real: a real root y != 0 of :func:`line_gcd` lies in the box's imaginary part (refined
-    until it does or is outside) and p in its real part."""
+    until it does or is outside) and p in its real part.
+
+    >>> from exactinv.paper.poles import pole_structure, precision, ambiguous_line_poles
+    >>> from fractions import Fraction as F
+    >>> h = [F(1), F(-2), F(3, 2), F(-1, 2)]                     # poles 1, 1 +- i
+    >>> with precision(256):
+    ...     s = pole_structure([F(1)], h, F(1))
+    ...     left = ambiguous_line_poles(s)
+    ...     len(left), on_line_indices(flint.fmpq_poly([2, -4, 3, -1]), F(1), s.balls, left) == frozenset(left)
+    (2, True)
+    """
     sq = integer_part(h)
     sq = flint.fmpq_poly(sq // sq.gcd(sq.derivative()))
     G = line_gcd(sq, p)
@@ -189,7 +199,11 @@ def line_density(g: list, h: list, p: Fraction):
 
 
 def nonnegative(Q: list) -> bool:
-    """Q >= 0 on R, exactly (positive right of 0, no real root of odd multiplicity)."""
+    """Q >= 0 on R, exactly (positive right of 0, no real root of odd multiplicity).
+
+    >>> nonnegative([0, 0, 4]), nonnegative([-1, 0, 1]), nonnegative([1, -2, 1])   # 4x^2; x^2 - 1; (x - 1)^2
+    (True, False, True)
+    """
     if not Q:
         return False
     q = flint.fmpq_poly([fmpq_of(c) for c in Q])
@@ -202,7 +216,12 @@ def nonnegative(Q: list) -> bool:
 
 def trig_minimum_points(Q: list, L: int) -> list[Fraction]:
     """Rational t > 0 near points where Q(tan(t/(2L))) < 0 (hints for the witness search; floats only here,
-    never raising): theta = 2 atan x at the negative values of Q on a grid."""
+    never raising): theta = 2 atan x at the negative values of Q on a grid.
+
+    >>> pts = trig_minimum_points([-1, 0, 1], 1)        # Q = x^2 - 1 < 0 for |x| < 1: theta in (-pi/2, pi/2)
+    >>> 0 < len(pts) <= 8 and all(t > 0 for t in pts)
+    True
+    """
     out = []
     for k in range(-400, 401):
         x = k / 40
@@ -220,7 +239,13 @@ def trig_minimum_points(Q: list, L: int) -> list[Fraction]:
 
 def pair_minimum_points(g: list, h: list, p: Fraction, Y: Fraction) -> list[Fraction]:
     """Rational t > 0 near the minima of b_* + 2 Re(b e^(-iyt)), z = p + iy, y = sqrt(Y), b = -g(z)/h'(z):
-    yt = arg b - pi mod 2 pi (float hints only; they never raise, they may only fail to help)."""
+    yt = arg b - pi mod 2 pi (float hints only; they never raise, they may only fail to help).
+
+    >>> from fractions import Fraction as F
+    >>> pts = pair_minimum_points([F(1)], [F(1), F(-2), F(3, 2), F(-1, 2)], F(1), F(1))   # b = -1: minima at t = 2 pi n
+    >>> [round(float(t), 4) for t in pts[:2]]
+    [6.2832, 12.5664]
+    """
     try:
         y = float(Y) ** 0.5
         z = complex(float(p), y)
@@ -235,7 +260,12 @@ def pair_minimum_points(g: list, h: list, p: Fraction, Y: Fraction) -> list[Frac
 
 def single_pair(g: list, h: list, p: Fraction):
     """For h = c (z - p)((z - p)^2 + Y), Y > 0: (b_*, |b|^2, Y) exactly (f(t) = e^(-p t)(b_* + 2 Re(b e^(-i sqrt(Y) t))),
-    so f >= 0 iff b_* >= 0 and b_*^2 >= 4|b|^2); None otherwise."""
+    so f >= 0 iff b_* >= 0 and b_*^2 >= 4|b|^2); None otherwise.
+
+    >>> from fractions import Fraction as F
+    >>> single_pair([F(1)], [F(1), F(-5, 3), F(1), F(-1, 3)], F(1))   # (1 - z)(1 - 2z/3 + z^2/3): 1, 1 +- i sqrt 2
+    (Fraction(3, 2), Fraction(9, 16), Fraction(2, 1))
+    """
     if len(h) != 4:
         return None
     hq = flint.fmpq_poly([fmpq_of(c) for c in h])

@@ -120,7 +120,13 @@ def pole_structure(numerator, denominator, p_star) -> PoleStructure:
 
 
 def ambiguous_line_poles(s: PoleStructure) -> list[int]:
-    """The non-real poles (not yet proved on the line) whose real part Arb cannot separate from p*'s."""
+    """The non-real poles (not yet proved on the line) whose real part Arb cannot separate from p*'s.
+
+    >>> from fractions import Fraction as F
+    >>> with precision(128):                                   # poles 1, 1 +- i
+    ...     len(ambiguous_line_poles(pole_structure([F(1)], [F(1), F(-2), F(3, 2), F(-1, 2)], F(1))))
+    2
+    """
     p = s.balls[s.star][0].real
     return [k for k, (z, _, _) in enumerate(s.balls)
             if k != s.star and k not in s.on_line and not z.imag.is_zero() and not z.real > p and not z.real < p]
