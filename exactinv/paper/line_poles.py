@@ -24,6 +24,7 @@ from math import atan, gcd, pi
 
 import flint
 
+from ..core.float_hint import float_hint
 from ..core.polys import integer_part, sign_right_of
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
@@ -226,7 +227,7 @@ def trig_minimum_points(Q: list, L: int) -> list[Fraction]:
     for k in range(-400, 401):
         x = k / 40
         try:
-            v = sum(float(c) * x ** i for i, c in enumerate(Q))
+            v = sum(float_hint(c) * x ** i for i, c in enumerate(Q))
         except (OverflowError, ValueError):
             continue
         if v < 0:
@@ -242,15 +243,16 @@ def pair_minimum_points(g: list, h: list, p: Fraction, Y: Fraction) -> list[Frac
     yt = arg b - pi mod 2 pi (float hints only; they never raise, they may only fail to help).
 
     >>> from fractions import Fraction as F
+    >>> from exactinv.core.float_hint import float_hint
     >>> pts = pair_minimum_points([F(1)], [F(1), F(-2), F(3, 2), F(-1, 2)], F(1), F(1))   # b = -1: minima at t = 2 pi n
-    >>> [round(float(t), 4) for t in pts[:2]]
+    >>> [round(float_hint(t), 4) for t in pts[:2]]
     [6.2832, 12.5664]
     """
     try:
-        y = float(Y) ** 0.5
-        z = complex(float(p), y)
-        gz = sum(float(c) * z ** k for k, c in enumerate(g))
-        dz = sum(k * float(c) * z ** (k - 1) for k, c in enumerate(h) if k)
+        y = float_hint(Y) ** 0.5
+        z = complex(float_hint(p), y)
+        gz = sum(float_hint(c) * z ** k for k, c in enumerate(g))
+        dz = sum(k * float_hint(c) * z ** (k - 1) for k, c in enumerate(h) if k)
         t = (phase(-gz / dz) - pi) / y
         period = 2 * pi / y
         return [Fraction(t + k * period).limit_denominator(1 << 24) for k in range(8) if t + k * period > 0]
