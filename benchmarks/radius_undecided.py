@@ -10,7 +10,13 @@ the numerator g has g(0) = 1 and degree <= 4.  Each radius runs under an alarm o
 engine only; a time-out is counted apart from Undecided).  For every decided case the
 certificate is checked by the trusted kernel (``--no-check`` skips it); a rejected certificate is counted.
 
-Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check]
+``--family ties`` (issue 22, the gap it left): in two equal parts --
+  * line:      p* and a pair p* +- iy on its vertical line (random residues b_*, u +- iv; half of them with a
+               farther real pole), built from partial fractions (r(0) = 1);
+  * balanced:  p* and tied poles on the circle |w| = R around -kappa* (Gaussian rationals: a pair, a negative
+               pole and a pair, or two pairs) whose residues' moduli add up to b_* exactly.
+
+Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check] [--family ties]
 """
 
 from __future__ import annotations
@@ -79,6 +85,79 @@ def family(count: int, seed: int) -> list[tuple[str, list, list]]:
     return out
 
 
+_UNITS = [(Fraction(3, 5), Fraction(4, 5)), (Fraction(-3, 5), Fraction(4, 5)), (Fraction(5, 13), Fraction(12, 13)),
+          (Fraction(-8, 17), Fraction(15, 17)), (Fraction(0), Fraction(1)), (Fraction(4, 5), Fraction(3, 5))]
+
+
+def _from_partial_fractions(terms) -> tuple[list, list]:
+    """(g, h), h(0) = 1 and r(0) = 1, for r = c + sum -b_k/(z - z_k) (simple poles, conjugate pairs both listed)."""
+    def mul(a, b):
+        out = [(Fraction(0), Fraction(0))] * (len(a) + len(b) - 1)
+        for i, x in enumerate(a):
+            for j, y in enumerate(b):
+                out[i + j] = (out[i + j][0] + x[0] * y[0] - x[1] * y[1], out[i + j][1] + x[0] * y[1] + x[1] * y[0])
+        return out
+    zs = [z for z, _ in terms]
+    h = [(Fraction(1), Fraction(0))]
+    for z in zs:
+        h = mul(h, [(-z[0], -z[1]), (Fraction(1), Fraction(0))])
+    num = [(Fraction(0), Fraction(0))] * len(h)
+    for k, (_, b) in enumerate(terms):
+        q = [(Fraction(1), Fraction(0))]
+        for i, w in enumerate(zs):
+            if i != k:
+                q = mul(q, [(-w[0], -w[1]), (Fraction(1), Fraction(0))])
+        for i, c in enumerate(q):
+            num[i] = (num[i][0] - b[0] * c[0] + b[1] * c[1], num[i][1] - b[0] * c[1] - b[1] * c[0])
+    h, num = [c[0] for c in h], [c[0] for c in num]
+    c = 1 - num[0] / h[0]
+    g = [(c * h[i] + num[i]) / h[0] for i in range(len(h))]
+    while len(g) > 1 and g[-1] == 0:
+        g.pop()
+    return g, [x / h[0] for x in h]
+
+
+def family_ties(count: int, seed: int) -> list:
+    """count (kind, method): line-pole and balanced-tie cases (module docstring)."""
+    rng = random.Random(seed)
+    out = []
+    while len(out) < count:
+        kind = ("line", "balanced")[len(out) % 2]
+        if kind == "line":
+            p = Fraction(rng.randint(1, 16), 4)
+            y = Fraction(rng.randint(1, 12), 4)
+            u, v = Fraction(rng.randint(-8, 8), 4), Fraction(rng.randint(-8, 8), 4)
+            if u == 0 and v == 0:
+                continue
+            terms = [((p, Fraction(0)), (Fraction(rng.randint(1, 16), 4), Fraction(0))), ((p, y), (u, v)), ((p, -y), (u, -v))]
+            if rng.random() < 0.5:
+                terms.append(((p + 2, Fraction(0)), (Fraction(1), Fraction(0))))
+        else:
+            R, kappa = rng.randint(2, 9), Fraction(rng.randint(1, 6), 4)
+            p, b_star = R - kappa, Fraction(rng.randint(2, 12), 4)
+            split = Fraction(rng.randint(1, 7), 8)
+
+            def pair(modulus):
+                w, ph = _UNITS[rng.randrange(len(_UNITS))], _UNITS[rng.randrange(len(_UNITS))]
+                b = (modulus * ph[0], modulus * ph[1])
+                return [((R * w[0] - kappa, R * w[1]), b), ((R * w[0] - kappa, -R * w[1]), (b[0], -b[1]))]
+
+            terms = [((p, Fraction(0)), (b_star, Fraction(0)))]
+            shape = rng.randrange(3)
+            if shape == 0:
+                terms += pair(b_star / 2)
+            elif shape == 1:
+                terms += [((-R - kappa, Fraction(0)), (b_star * split * rng.choice([1, -1]), Fraction(0)))]
+                terms += pair(b_star * (1 - split) / 2)
+            else:
+                terms += pair(b_star * split / 2) + pair(b_star * (1 - split) / 2)
+            if len({z for z, _ in terms}) != len(terms):
+                continue
+        num, den = _from_partial_fractions(terms)
+        out.append((kind, M.rational(num, den, name=f"r{len(out)}")))
+    return out
+
+
 class _Timeout(Exception):
     pass
 
@@ -87,8 +166,8 @@ def _alarm(*_):
     raise _Timeout
 
 
-def run(count: int, seed: int, cap: float, check: bool) -> None:
-    cases = family(count, seed)
+def run(count: int, seed: int, cap: float, check: bool, ties: bool = False) -> None:
+    cases = family_ties(count, seed) if ties else family(count, seed)
     signal.signal(signal.SIGALRM, _alarm)
     outcome: dict[str, Counter] = {}
     reasons: Counter = Counter()
@@ -119,7 +198,7 @@ def run(count: int, seed: int, cap: float, check: bool) -> None:
         total.update(c)
     print(f"{count} random r = g/h, degree <= 4, seed {seed}, cap {cap:g} s, {time.perf_counter() - start:.1f} s")
     print(f"{'family':<10} {'cases':>6} {'decided':>8} {'undecided':>10} {'timeout':>8} {'undecided rate':>15}")
-    for kind in ("generic", "repeated", "bernstein"):
+    for kind in (("line", "balanced") if ties else ("generic", "repeated", "bernstein")):
         c = outcome.get(kind, Counter())
         n = sum(c.values())
         print(f"{kind:<10} {n:>6} {c['decided']:>8} {c['undecided']:>10} {c['timeout']:>8} "
@@ -139,8 +218,9 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--cap", type=float, default=20.0)
     parser.add_argument("--no-check", action="store_true")
+    parser.add_argument("--family", choices=["default", "ties"], default="default")
     args = parser.parse_args()
-    run(args.count, args.seed, args.cap, not args.no_check)
+    run(args.count, args.seed, args.cap, not args.no_check, args.family == "ties")
 
 
 if __name__ == "__main__":

@@ -42,6 +42,7 @@ from math import ceil, comb, factorial, gcd
 
 from .budget import charge, disk_step_cost
 from .disks import ball, ball_abs_upper, ball_mul, pole_disks
+from .line_poles import disk_on_line, line_density, line_gcd, nonnegative_on_line, rational_root, single_pair
 from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
 from .rationals import require
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
@@ -94,18 +95,43 @@ def prove_completely_monotone(numerator, denominator):
             return how
     require(len(h) - 1 <= MAX_DEGREE, f"bernstein: deg h > {MAX_DEGREE}")
     f_star, mu = factor_of(factors, poles[0])
+    p_exact = rational_root(f_star, *poles[0])  # p* exactly when rational (poles on Re z = p* need it)
+    if p_exact is not None and len(factors) == 1 and mu == 1:
+        line = line_density(g, h, p_exact)  # every pole on Re z = p*: f = e^(-p* t) T(t/L), exact
+        if line is not None:
+            Q, where = line
+            require(nonnegative_on_line(Q), f"bernstein: {where}, and the trigonometric density "
+                                            "T(theta) = Q(tan(theta/2))/(1 + x^2)^N is negative somewhere")
+            return (f"{where}: f(t) = e^(-p* t) T(t/L) with T >= 0 on the circle (Q = {[str(c) for c in Q]} >= 0 on "
+                    "R, Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+        pair = single_pair(g, h, p_exact)  # p* and one pair p* +- iy, y irrational: min T = b_* - 2|b| exactly
+        if pair is not None:
+            b_star, b2 = pair
+            require(b_star >= 0 and b_star * b_star >= 4 * b2, f"bernstein: p* = {p_exact} and one pair on its line: "
+                    f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {b_star * b_star} < 4|b|^2 = {4 * b2}, "
+                    "negative somewhere")
+            return (f"p* = {p_exact} and one pair on its line: f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) >= 0, "
+                    f"b_* = {b_star} >= 2|b| (4|b|^2 = {4 * b2}), c >= 0 (Bernstein: r(-x) completely monotone)")
     disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, poles[0])
-    terms = []  # (z disk, M, b disks, is p*)
+    terms = []  # (z disk, M, b disks, is p*, on the line Re z = p*)
+    gcds = {}
     for f, M in factors:
         for k, z in enumerate(disks[id(f)]):
             star = f is f_star and k == hits[0]
+            on_line = False
             if star:
                 z = ((P_lo + P_hi) / 2, Fraction(0), (P_hi - P_lo) / 2)
-            else:
-                require(z[0] - z[2] > P_hi, "bernstein: a pole is not proved to have Re z > p* (then it is as "
-                                            "close to -kappa as p* for large kappa, or f is not proved dominated)")
-            terms.append((z, M, b_disks(g, h, M, z), star))
-    star_b = next(b for _, _, b, s in terms if s)
+            elif not z[0] - z[2] > P_hi:
+                if p_exact is not None and z[0] - z[2] <= p_exact <= z[0] + z[2]:
+                    if id(f) not in gcds:
+                        gcds[id(f)] = line_gcd(f, p_exact)
+                    on_line = disk_on_line(gcds[id(f)], z, p_exact)
+                require(on_line, "bernstein: a pole is not proved to have Re z > p* or Re z = p* (then it may "
+                                 "be as close to -kappa as p* for large kappa, or f is not proved dominated)")
+                require(M <= mu, "bernstein: a pole on Re z = p* has a higher multiplicity than p*, so p* does not "
+                                 "dominate f")
+            terms.append((z, M, b_disks(g, h, M, z), star, on_line))
+    star_b = next(t[2] for t in terms if t[3])
     require(star_b[mu - 1][0] - star_b[mu - 1][2] > 0, "bernstein: b_{*,mu} is not proved positive")
     steps = _positive(g, h, terms, mu, P_hi)
     return (f"c = {c} >= 0 and f > 0 on (0, oo): Taylor at 0, {steps} certified steps, dominance of p* beyond "
@@ -227,12 +253,12 @@ def _exp_of(z, t):
 
 # ----------------------------------------------------------------- f > 0 on (0, oo)
 def _positive(g, h, terms, mu, P_hi):
-    babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _ in terms]
-    zabs = [ball_abs_upper(z) for z, _, _, _ in terms]
+    babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _, _ in terms]
+    zabs = [ball_abs_upper(z) for z, _, _, _, _ in terms]
 
     def derivative_bound(n, e, t_hi):  # >= |f^(n)(t)| for t in [t_lo, t_hi]; e[k] >= |e^(-z_k t_lo)|
         total = Fraction(0)
-        for k, (_, M, _, _) in enumerate(terms):
+        for k, (_, M, _, _, _) in enumerate(terms):
             for m in range(1, M + 1):
                 part = sum(comb(n, i) * t_hi ** (m - 1 - i) * zabs[k] ** (n - i) / factorial(m - 1 - i)
                            for i in range(min(n, m - 1) + 1))
@@ -249,12 +275,14 @@ def _positive(g, h, terms, mu, P_hi):
 
     star = next(k for k, t in enumerate(terms) if t[3])
     b_mu = terms[star][2][mu - 1][0] - terms[star][2][mu - 1][2]
-    delta = [None if k == star else z[0] - z[2] - P_hi for k, (z, _, _, _) in enumerate(terms)]
+    # delta_k <= Re z_k - p*: 0 for a pole proved on the line (|e^(-(z_k - p*) t)| = 1 exactly)
+    delta = [None if k == star else Fraction(0) if line else z[0] - z[2] - P_hi
+             for k, (z, _, _, _, line) in enumerate(terms)]
 
     def dominated_beyond(T):
         total = sum(babs[star][m - 1] * Fraction(factorial(mu - 1), factorial(m - 1)) * T ** (m - mu)
                     for m in range(1, mu))
-        for k, (_, M, _, _) in enumerate(terms):
+        for k, (_, M, _, _, _) in enumerate(terms):
             if k == star:
                 continue
             x = delta[k] * T
@@ -267,15 +295,15 @@ def _positive(g, h, terms, mu, P_hi):
         return total < b_mu
 
     a, d = t_a, t_a
-    E = [_exp_of(z, a) for z, _, _, _ in terms]
+    E = [_exp_of(z, a) for z, _, _, _, _ in terms]
     steps_of, trials = {}, 0
-    size = sum(M for _, M, _, _ in terms)
+    size = sum(t[1] for t in terms)
     for step in range(MAX_STEPS):
         charge(disk_step_cost(size), "a step of the Bernstein positivity proof")  # the clock too: no charge, no limit
         if dominated_beyond(a):
             return step
         F0 = F1 = (Fraction(0), Fraction(0), Fraction(0))
-        for k, (z, M, bs, _) in enumerate(terms):
+        for k, (z, M, bs, _, _) in enumerate(terms):
             S0 = S1 = (Fraction(0), Fraction(0), Fraction(0))
             for m in range(1, M + 1):
                 S0 = _add(S0, _scale(bs[m - 1], a ** (m - 1) / factorial(m - 1)))
@@ -297,7 +325,7 @@ def _positive(g, h, terms, mu, P_hi):
             d /= 2
             require(d >= MIN_STEP, f"bernstein: f is not proved positive near t = {float(a):.6g} (it may touch 0)")
         if d not in steps_of:
-            steps_of[d] = [_exp_of(z, d) for z, _, _, _ in terms]
+            steps_of[d] = [_exp_of(z, d) for z, _, _, _, _ in terms]
         E = [ball_mul(x, y) for x, y in zip(E, steps_of[d])]
         a += d
         d = min(2 * d, Fraction(8))

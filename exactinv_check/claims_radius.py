@@ -32,12 +32,13 @@ from .reals import Real
 from .bernstein import prove_completely_monotone
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
+from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "tie", "bernstein", "balanced-tie"}
-ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
+           "dominance-at-0", "negative-at-0", "tie", "bernstein", "balanced-tie"}
+ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 
 def scan_cost(num, den, count):
@@ -201,13 +202,19 @@ def absolute_monotonicity_radius(problem, claim, context):
     elif reason == "balanced-tie":
         require(claim.get("tail_index") is None, "a balanced-tie claim has no tail index")
         g, h = reduced(num, den)
-        kappa = balanced_tie(g, h)
+        poles = claim.get("poles")
+        if poles is None:  # two simple real poles, proved in Q(sqrt D)
+            kappa = balanced_tie(g, h)
+        else:  # every pole listed exactly in Q(i), several tied poles (exactinv_check.balanced_tie)
+            require(isinstance(poles, list) and len(poles) <= MAX_POLES, f"'poles' lists at most {MAX_POLES} poles")
+            kappa = prove_balanced_tie(g, h, [vector(z, "poles", 2) for z in poles])
         require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {kappa}")
-        count = max(len(num), len(den), 1)  # c_j for j > deg g - 2 are >= 0 on [0, kappa*] by the identity
+        count = max(len(num), len(den), 1)  # c_j for j > deg g - deg h are >= 0 on [0, kappa*] by the identity
         first, first_attained, d = recompute(num, den, count, False, kappa)  # not `attained`: the claim's flag
         require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {kappa}")
         rho, rho_attained = value, first_attained if first.compare(value) == 0 else True
-        how = (f"two simple real poles p* > 0 > a with balanced residues |b_a| = b_*: c_j >= 0 on [0, {kappa}] "
+        how = (f"{'two simple real poles p* > 0 > a' if poles is None else f'{len(poles)} simple poles in Q(i)'} "
+               f"with balanced residues (sum of the tied |b_k| <= b_*): c_j >= 0 on [0, {kappa}] "
                f"for j > deg q by the closed form, c_0 .. c_{count - 1} recomputed")
     elif reason == "tie":
         rho, rho_attained, d, N, count = _tie(num, den, value, claim)

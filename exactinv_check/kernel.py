@@ -25,7 +25,7 @@ from .rationals import CheckFailure, integer_rows, matrix, require, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2, 3)  # 3: H and H~ sparse (exactinv_check/sparse.py); the engine writes 3
-V2_KEYS = {"discrete_invariance": {"dt"}}  # keys version 1 does not have (docs/certificate-format.md)
+V2_KEYS = {"discrete_invariance": {"dt"}, "absolute_monotonicity_radius": {"poles"}}  # keys version 1 does not have (docs/certificate-format.md)
 MAX_METHOD_DEGREE = 64
 _ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
            RecursionError, OverflowError, MemoryError)
@@ -37,7 +37,7 @@ CLAIMS = {
     "gamma_star": (claims_invariance.gamma_star, {"value"}, {"paths", "H", "binding_row", "dual", "witness", "rows"}),
     "polynomial_threshold": (claims_thresholds.polynomial_threshold, {"value"}, {"binding", "f"}),
     "absolute_monotonicity_radius": (claims_radius.absolute_monotonicity_radius, {"value", "reason", "attained"},
-                                     {"binding", "witness_j", "tail_index", "d", "pole"}),
+                                     {"binding", "witness_j", "tail_index", "d", "pole", "poles"}),
     "rational_threshold": (claims_thresholds.rational_threshold, {"value", "attained", "rho"},
                            {"pole", "alpha", "H", "gamma_H"}),
     "largest_threshold": (claims_sets.largest_threshold, {"value", "attained"},

@@ -283,11 +283,26 @@ def count_roots(p, a, b):
 
 
 def cauchy_bound(p):
-    """A power of two B with every real root of p in (-B, B) (Cauchy's bound, rounded
-    up to a power of two so that bisection points stay dyadic and short)."""
+    """A power of two B (of any sign of exponent) with every complex root of p in |z| < B:
+    Fujiwara's bound 2 max_i |p_(d-i)/p_d|^(1/i), each ratio bounded by bit lengths
+    (|n/m| < 2^(bits(n) - bits(m) + 1)).  Unlike Cauchy's 1 + max |p_i/p_d| (the name is
+    kept), it scales with the roots: roots near 10^60 or 10^-60 cost no more bisections than
+    roots near 1 (issue 22: Taylor-12 on 10^-60 A was rejected over the budget).
+    The zero polynomial and constants get 1."""
     p = trim(p)
-    bound = 1 + max(abs(Fraction(c) / p[-1]) for c in p[:-1]) if len(p) > 1 else Fraction(1)
-    return Fraction(2 ** max(int(bound).bit_length(), 1))
+    d = len(p) - 1
+    if d < 1:
+        return Fraction(1)
+    lead = Fraction(p[-1])
+    k = None
+    for i in range(1, d + 1):
+        c = Fraction(p[d - i])
+        if c:
+            x = abs(c / lead)
+            e = x.numerator.bit_length() - x.denominator.bit_length() + 1  # x < 2^e
+            bound = 1 - (-e // i)  # 1 + ceil(e / i): x^(1/i) < 2^ceil(e/i), Fujiwara's factor 2
+            k = bound if k is None else max(k, bound)
+    return Fraction(2) ** (0 if k is None else k)
 
 
 def positive_roots(p, upper=None):

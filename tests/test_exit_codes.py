@@ -20,9 +20,9 @@ from exactinv.interfaces.exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_
 ROOT = Path(__file__).parent.parent
 BOX = json.loads((ROOT / "examples" / "paper_box_taylor4.json").read_text())
 SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
-# r = 1/((1 - z)(1 - z + z^2/2)): poles 1 and 1 +- i, a complex pair with exactly p*'s real
-# part -- its radius of absolute monotonicity is undecided (docs/design.md, what stays undecided)
-UNDECIDED = {"rational": {"num": ["1"], "den": ["1", "-2", "3/2", "-1/2"]}}
+# r = 1/h, h = (u^2 - 2)(u^4 - 2u^2 + 9)/34, u = z - 2: p* = 2 - sqrt 2 and the pair p* +- i on its line --
+# the line proof needs p* rational, so the radius stays undecided (docs/design.md, what stays undecided)
+UNDECIDED = {"rational": {"num": ["1"], "den": ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"]}}
 
 
 def test_the_rule_reads_the_same_everywhere():

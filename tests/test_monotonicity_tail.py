@@ -30,5 +30,6 @@ def test_rational_with_tail_argument():
 
 
 def test_undecided_is_raised_not_guessed():
-    with pytest.raises(ei.Undecided):  # poles 1 +- i share p* = 1's real part (docs/design.md: what stays undecided)
-        absolute_monotonicity_radius(M.rational([1], [1, -2, "3/2", "-1/2"]))
+    # p* = 2 - sqrt 2 and the pair p* +- i on its line: the line proof needs p* rational (docs/design.md)
+    with pytest.raises(ei.Undecided, match="rational p\\* only"):
+        absolute_monotonicity_radius(M.rational([1], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"]))

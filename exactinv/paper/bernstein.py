@@ -35,6 +35,7 @@ from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
+from .line_poles import line_density, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 
 __all__ = ["Verdict", "completely_monotone", "density_at_zero", "coefficient_at"]
@@ -185,9 +186,10 @@ def _finite(g, h, witness, how) -> Verdict:
     return Verdict(False, how, witness[0], witness[1], finite=True)
 
 
-def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> Verdict:
+def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_star=None) -> Verdict:
     """Is rho = oo (module docstring)?  g, h coprime with h(0) = 1; s the pole structure (Arb) with p* = s.star,
-    every other pole's real part beyond p*'s (the caller's case: no pole ever gets as close as p*).
+    every other pole's real part beyond p*'s or proved equal to it (``s.on_line``; then ``p_star``, the exact
+    p*, decides the cases where every pole is on the line: the caller's case: no pole ever gets as close as p*).
 
     (1 - z)/(1 - 2z)^4: one pole 1/2, f(t) = e^(-t/2) (t^2/32 + t^3/192) >= 0, so rho = oo (issue 22);
     the trapezoid: r(-x) -> c = -1 < 0, and c_0(K) < 0 bounds rho.
@@ -214,7 +216,31 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256) -> 
     rational = _rational_exponents(g, h)
     if rational is not None:
         return rational
+    if s.on_line and isinstance(p_star, Fraction):
+        on_line = _line_verdict(g, h, p_star, s)
+        if on_line is not None:
+            return on_line
     return _general(g, h, s, bits)
+
+
+def _line_verdict(g, h, p_star: Fraction, s: PoleStructure) -> Verdict | None:
+    """Every pole on the line Re z = p* (p* rational): the exact trigonometric density (rational heights) or
+    the closed form of one pair (exactinv.paper.line_poles); None when neither applies."""
+    line = line_density(g, h, p_star)
+    if line is not None:
+        Q, L, _ = line
+        how = f"every pole on Re z = {p_star} at rational heights: f(t) = e^(-p* t) T(t/{L}), T a trigonometric polynomial"
+        if nonnegative(Q):
+            return Verdict(True, how + " >= 0 (Sturm on Q(tan(theta/2)))")
+        return _finite(g, h, _density_witness(g, h, trig_minimum_points(Q, L), s), how + " < 0 somewhere")
+    pair = single_pair(g, h, p_star)
+    if pair is not None:
+        b_star, b2, Y = pair
+        how = f"p* = {p_star} and one pair p* +- i sqrt({Y}): f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt)))"
+        if b_star >= 0 and b_star * b_star >= 4 * b2:
+            return Verdict(True, how + f", b_* >= 2|b| (b_*^2 = {b_star * b_star}, 4|b|^2 = {4 * b2})")
+        return _finite(g, h, _density_witness(g, h, pair_minimum_points(g, h, p_star, Y), s), how + ", b_* < 2|b|")
+    return None
 
 
 def _rational_exponents(g, h) -> Verdict | None:
@@ -269,7 +295,7 @@ def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
         star_z = s.balls[s.star][0]
         p = star_z.real
         for k, (z, _, _) in enumerate(s.balls):
-            if k != s.star and not z.real > p:
+            if k != s.star and k not in s.on_line and not z.real > p:
                 return Verdict(False, "a pole's real part is not separated from p*'s at working precision")
         _, fs = density_at_zero(g, h, len(h))
         n0 = next((n for n, v in enumerate(fs) if v != 0), None)

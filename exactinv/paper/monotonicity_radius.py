@@ -30,6 +30,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
     (rho = INF: all partial-fraction terms are absolutely monotonic on
     (-oo, 0], resp. r is a positive multiple of prod (1 - z/p_k)^(-m_k)).
     ``tail_index`` is the N beyond which the tail is certified positive;
+    ``poles`` every pole exactly (x, y) = x + iy for a balanced tie of several poles (``"balanced-tie"``);
     ``pole`` the smallest positive real pole p* (None for polynomials).
     ``attained``: is rho itself in the set (r absolutely monotonic at -rho).
     """
@@ -43,6 +44,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
     tail_index: int | None = None
     pole: Fraction | RealAlgebraic | None = None
     coefficients: tuple[tuple[Fraction, ...], ...] = field(default=(), repr=False)
+    poles: tuple[tuple[Fraction, Fraction], ...] = field(default=(), repr=False)  # a balanced tie's poles x + iy
 
 
     @property
@@ -83,4 +85,6 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
             claim["d"] = [[str(c) for c in d] for d in self.coefficients]
         if self.pole is not None:
             claim["pole"] = encode_real(self.pole)
+        if self.poles:
+            claim["poles"] = [[str(x), str(y)] for x, y in self.poles]
         return [claim]

@@ -35,14 +35,19 @@ the engine argues in four exact or certified steps:
    exact witness c_j(K) < 0 gives the bound K for step 4.
 7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
-   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``).
+   is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
+   :mod:`exactinv.paper.balanced_tie` (the poles go into the claim).
+8. Non-real poles with exactly p*'s real part (p* rational) are proved on the line
+   (:mod:`exactinv.paper.line_poles`) and never tie; Bernstein then decides.
 
 Undecided (documented, never a guess; docs/design.md): (a) an exact balance
 with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
 negative below kappa_A -- the positivity problem of linear recurrences with
 several dominant characteristic roots, open in general; (c) f touching 0 with
 exponents not all rational -- the continuous positivity problem, open in
-general; (d) a non-real pole with exactly p*'s real part (not implemented).
+general; (d) a non-real pole with exactly p*'s real part when p* is irrational (proved on the line for p*
+rational: :mod:`exactinv.paper.line_poles`); an exact balance of several poles that are not all Gaussian
+rationals (:mod:`exactinv.paper.balanced_tie` decides the rest).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
@@ -62,8 +67,10 @@ from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
+from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
-from .poles import dominance_tie, pole_structure, precision, tail_index
+from .line_poles import on_line_indices
+from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
@@ -167,11 +174,38 @@ def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
     if _sign_at_real(method.g, p_star) * _sign_at_real(h_mu, p_star) * (-1) ** mu <= 0:
         return _zero_radius(method, RadiusReason.PRINCIPAL_PART_SIGN, p_star)
     with precision(_BITS):
-        s = pole_structure(method.numerator, method.denominator, p_star)
+        s = _with_line_poles(method, p_star)
         tie = dominance_tie(s, h, exact=False)
         if tie is not None and tie.kappa < 0:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
         return _decide(method, s, tie, p_star)
+
+
+def _with_line_poles(method: Method, p_star) -> PoleStructure:
+    """The pole structure, with every non-real pole whose real part Arb cannot separate from p*'s proved to be
+    p* + iy exactly (exactinv.paper.line_poles); the precision is raised (to 4096 bits) for a pole that is not
+    on the line.  Undecided for p* irrational with such a pole (the exact proof needs p* rational)."""
+    bits = _BITS
+    while True:
+        with precision(bits):
+            s = pole_structure(method.numerator, method.denominator, p_star)
+            left = ambiguous_line_poles(s)
+            if not left:
+                return s
+            if isinstance(p_star, Fraction):
+                proved = on_line_indices(method.h, p_star, s.balls, left)
+                s = PoleStructure(s.balls, s.star, s.mu, proved)
+                if len(proved) == len(left):
+                    break
+        if bits >= 4096:
+            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part equals the "
+                            f"irrational p* = {p_star} to {bits} bits; the exact proof that Re z = p* is implemented "
+                            "for rational p* only (not an open problem: a gap of this implementation)"
+                            if not isinstance(p_star, Fraction) else
+                            f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
+                            f"equal to p* = {p_star} nor separated from it at {bits} bits")
+        bits *= 4
+    return s  # balls from a higher precision stay valid enclosures at _BITS
 
 
 def _tie_positive(s, tie) -> bool | None:
@@ -194,11 +228,13 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
     c_j(0) < 0 (Undecided without one)."""
     first = max(len(method.numerator) - len(method.denominator) + 1, 1)
     positive_tie = None if tie is None else _tie_positive(s, tie)
-    balanced = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else None
+    balanced, listed = _balanced_tie_kappa(method) if tie is not None and positive_tie is None else (None, ())
     if tie is not None and positive_tie is None and balanced is None:
         raise Undecided(f"absolute monotonicity of {method.name}: at kappa_A the tied poles' principal parts "
-                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision); the dominance bound needs a strict "
-                        "inequality, and an exact balance needs a finer argument than the tail bound")
+                        "balance p*'s (sum |b_k,mu| = b_*,mu to working precision) and the closed form does not apply "
+                        "(decided when every pole is simple and a Gaussian rational with the other poles real, positive "
+                        "and b_k > 0): the tied part of c_j(kappa_A) can vanish for infinitely many j, and the sign of "
+                        "the rest there is the positivity problem for linear recurrences (open in general)")
     bound = None if tie is None else _short_upper(dyadic_of(tie.kappa.upper()))  # rational K >= the bound
     exact_bound = None
     tied = ()
@@ -217,7 +253,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         infinite = _infinite_radius_certificate(method, s.balls, s.star)
         if infinite is not None:
             return AbsoluteMonotonicityRadius(INF, True, infinite, method, pole=p_star)
-        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS)
+        verdict = completely_monotone(method.numerator, method.denominator, s, _BITS, p_star)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
         if verdict.finite and verdict.bound is None:
@@ -225,9 +261,11 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
                             f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
                             "scan (the binding coefficient index lies beyond the searched j <= 8192)")
         if not verdict.finite:
-            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z > p*, so rho = oo "
+            line = ("; poles on Re z = p* balance p* exactly here, so e^(p* t) f(t) comes arbitrarily close to 0 and "
+                    "deciding its sign is the continuous positivity problem (open in general)") if s.on_line else ""
+            raise Undecided(f"absolute monotonicity of {method.name}: every other pole has Re z >= p*, so rho = oo "
                             f"iff r(-x) is completely monotone (Bernstein's theorem), and that is not decided: "
-                            f"{verdict.how}")
+                            f"{verdict.how}{line}")
         if verdict.bound is not None:  # rho < K = verdict.bound: the tail on [0, K] has an index
             bound = exact_bound = verdict.bound
             N = tail_index(s, bound, first)
@@ -256,7 +294,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             value, binding, exact_bound = end, j, end
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
-    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None)
+    return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None, listed)
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -282,32 +320,37 @@ def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
                     "linear recurrence with several dominant characteristic roots (open in general)")
 
 
-def _balanced_tie_kappa(method: Method) -> Fraction | None:
-    """kappa* = -(a + p*)/2 when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
-    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); else None.  With s = sqrt(D) the
-    poles are (-h1 +- s)/(2 h2), g there is G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
+def _balanced_tie_kappa(method: Method) -> tuple[Fraction | None, tuple]:
+    """(kappa*, ()) when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
+    exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); (kappa*, poles) for a balanced tie of
+    several Gaussian-rational simple poles (:mod:`exactinv.paper.balanced_tie`, the poles listed in the
+    certificate); else (None, ()).  With s = sqrt(D) the two poles are (-h1 +- s)/(2 h2), g there is
+    G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
     h, g = method.denominator, method.numerator
     if len(h) != 3:
-        return None
+        several = balanced_tie(g, h)
+        return (None, ()) if several is None else several
     h0, h1, h2 = h
     D = h1 * h1 - 4 * h0 * h2
     if D <= 0 or h0 / h2 >= 0 or -h1 / h2 >= 0:
-        return None
+        return None, ()
     x, y = Fraction(0), Fraction(0)
     zr, zs = -h1 / (2 * h2), 1 / (2 * h2)
     for c in reversed(g):
         x, y = x * zr + y * zs * D + c, x * zs + y * zr
-    return h1 / (2 * h2) if x == 0 or y == 0 else None
+    return (h1 / (2 * h2), ()) if x == 0 or y == 0 else (None, ())
 
 
-def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False) -> AbsoluteMonotonicityRadius:
+def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=False, listed=()) -> AbsoluteMonotonicityRadius:
     if value is None and tie is None:  # cannot happen: a witness c_j(K) < 0 has j < N
         raise Undecided(f"absolute monotonicity of {method.name}: no coefficient ends below the witness bound")
     if value is None and balanced:  # the closed form covers every c_j beyond the scanned ones
-        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star)
+        return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.BALANCED_TIE, method, pole=p_star, poles=listed)
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
+    if not attained:  # rho = 0 with some c_j(0) < 0: that witness is the whole certificate (no tail needed)
+        return _zero_radius(method, RadiusReason.NEGATIVE_AT_0, p_star)
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
     return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)

@@ -37,7 +37,7 @@ from ..core.roots import real_roots
 from ..core.scalars import dyadic_of, fmpq_of
 from ..errors import Undecided
 
-__all__ = ["PoleStructure", "pole_structure", "tie_polynomial", "Tie", "dominance_tie", "tail_index"]
+__all__ = ["PoleStructure", "pole_structure", "ambiguous_line_poles", "tie_polynomial", "Tie", "dominance_tie", "tail_index"]
 
 _MAX_INDEX = 1 << 20
 
@@ -68,6 +68,7 @@ class PoleStructure:
     balls: tuple
     star: int
     mu: int
+    on_line: frozenset = frozenset()  # poles proved to be p* + iy, y != 0 (exactinv.paper.line_poles)
 
 
 def _acb(q: Fraction) -> flint.acb:
@@ -116,6 +117,19 @@ def pole_structure(numerator, denominator, p_star) -> PoleStructure:
         if z.imag.is_zero() and dyadic_of(z.real.lower()) <= hi and lo <= dyadic_of(z.real.upper()):
             return PoleStructure(tuple(balls), k, M)
     raise Undecided("could not match the smallest positive pole to its Arb enclosure")
+
+
+def ambiguous_line_poles(s: PoleStructure) -> list[int]:
+    """The non-real poles (not yet proved on the line) whose real part Arb cannot separate from p*'s.
+
+    >>> from fractions import Fraction as F
+    >>> with precision(128):                                   # poles 1, 1 +- i
+    ...     len(ambiguous_line_poles(pole_structure([F(1)], [F(1), F(-2), F(3, 2), F(-1, 2)], F(1))))
+    2
+    """
+    p = s.balls[s.star][0].real
+    return [k for k, (z, _, _) in enumerate(s.balls)
+            if k != s.star and k not in s.on_line and not z.imag.is_zero() and not z.real > p and not z.real < p]
 
 
 # ------------------------------------------------------------------ ties
@@ -186,8 +200,8 @@ def _tie_balls(s: PoleStructure) -> list:
     out = []
     for k, (z, _, _) in enumerate(s.balls):
         a, b = z.real, z.imag
-        if k == s.star or (b.is_zero() and a > 0) or a > p:
-            continue  # p* is the smallest positive pole; Re z > p* never gets closer
+        if k == s.star or (b.is_zero() and a > 0) or a > p or k in s.on_line:
+            continue  # p* is the smallest positive pole; Re z >= p* (exactly, on the line) never gets closer
         if a < p:
             out.append((k, (a * a + b * b - p * p) / (2 * (p - a)), True))
         else:  # Re z = p* to working precision: kappa_k >= b^2 / (2 |p - a|) - p - |a| is huge
@@ -216,9 +230,8 @@ def dominance_tie(s: PoleStructure, h: flint.fmpq_poly, exact: bool = True) -> T
     lowest = min(values, key=lambda v: v[1].upper())
     cluster = [v for v in values if not v[1].lower() > lowest[1].upper()]
     if not all(exact for _, _, exact in cluster):
-        raise Undecided("a non-real pole has the same real part as p* to working precision: it never gets closer to "
-                        "-kappa than p*, but its distance ratio tends to 1 as kappa -> oo; deciding rho here needs an "
-                        "exact proof that Re z = p* (not implemented; docs/design.md, radius: what stays undecided)")
+        raise Undecided("a non-real pole's real part is not separated from p*'s, and it is not proved to equal it "
+                        "(exactinv.paper.line_poles)")
     lo = min(dyadic_of(v[1].lower()) for v in cluster)
     hi = max(dyadic_of(v[1].upper()) for v in cluster)
     if any(not v[1].lower() > flint.arb(fmpq_of(hi)) for v in values if v not in cluster):

@@ -1,0 +1,251 @@
+"""Poles on the vertical line Re z = p*, proved exactly (issue 22: complex poles with p*'s real part).
+
+A non-real pole z = p* + iy (y != 0) of r = g/h with exactly the real part of the smallest positive pole p*
+is never as close to -kappa as p* (|z + kappa|^2 = (p* + kappa)^2 + y^2), but its distance ratio tends to 1,
+so its real part must be *proved* equal to p*; an enclosure cannot tell Re z = p* from Re z < p*.
+
+The proof (p* rational).  Write f(p* + iy) = U(y) + i V(y) with U, V in Q[y] (the Taylor shift
+f(p* + w) = sum_k s_k w^k, then w^k = (iy)^k: U = sum_(k even) (-1)^(k/2) s_k y^k, V = sum_(k odd)
+(-1)^((k-1)/2) s_k y^k).  For real y, f(p* + iy) = 0 iff U(y) = V(y) = 0 iff G(y) = 0, G = gcd(U, V).  So a
+real root y != 0 of G is a pole p* + iy on the line, exactly.  :func:`disk_on_line` proves that the one root of
+f in an inclusion disk (exactinv_check.disks: pairwise disjoint, one root each) is such a pole: G has a real
+root y in the chord {y : p* + iy in the disk} (a Descartes count), so p* + iy is a root of f in the disk, hence
+the disk's root.
+
+Two uses (exactinv_check.bernstein):
+ * *dominance*: a pole proved on the line enters the dominance bound with delta = Re z - p* = 0, i.e.
+   |e^(-(z - p*) t)| = 1 (multiplicity <= mu required);
+ * *all poles on the line* (:func:`line_density`): h squarefree, every root p* + i y_k with y_k rational
+   (deg G = deg h and G has deg h distinct rational roots).  Then f(t) = e^(-p* t) T(t/L),
+   T(theta) = sum_k b_k e^(-i n_k theta) (L the lcm of the y_k's denominators, n_k = L y_k, b_k =
+   -g(z_k)/h'(z_k) exact in Q(i)), a real trigonometric polynomial; with x = tan(theta/2),
+   e^(-i n theta) = (1 - ix)^(2n)/(1 + x^2)^n, so Q(x) = (1 + x^2)^N T(theta(x)) (N = max |n_k|) is a real
+   polynomial and T >= 0 on the circle iff Q >= 0 on R (theta = pi is a limit): an exact Sturm count.  This
+   decides f touching 0, e.g. 1/((1 - z)(1 - z + z^2/2)): f(t) = 2 e^(-t) (1 - cos t).
+Standard library only; every step is priced (exactinv_check.budget) before it runs or as it runs.
+"""
+
+from fractions import Fraction
+from math import ceil, comb, gcd as igcd, isqrt
+
+from .budget import charge, fraction_products_cost, within_sturm_budget
+from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
+    sign_right_of, strip_zero_roots, trim
+from .rationals import require
+from .tail import squarefree_decomposition
+
+__all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "nonnegative_on_line", "single_pair",
+           "MAX_LINE_EXPONENT"]
+
+MAX_PIN = 4000  # bisections to pin a rational root
+MAX_LINE_EXPONENT = 64  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
+
+
+def _bits(p):
+    return max((abs(c.numerator).bit_length() + c.denominator.bit_length() for c in p), default=1)
+
+
+def rational_root(p, lo, hi):
+    """The rational root of p in the isolating data (lo, hi) (one root in the open interval, or lo = hi a
+    root), or None when that root is irrational.  A rational root k/q of the integer polynomial H has
+    q | lc(H): once hi - lo < 1/lc^2 the interval holds at most one such fraction, ceil(lo lc)/lc."""
+    H = integer_coefficients(p)
+    lc = abs(H[-1])
+    if lo == hi:
+        return lo if sign_at(H, lo) == 0 else None
+    for _ in range(MAX_PIN):
+        if (hi - lo) * lc * lc < 1:
+            break
+        mid = (lo + hi) / 2
+        s = sign_at(H, mid)
+        if s == 0:
+            return mid
+        lo, hi = (lo, mid) if sign_at(H, lo) * s < 0 else (mid, hi)
+    else:
+        return None
+    q = Fraction(ceil(lo * lc), lc)
+    return q if lo <= q <= hi and sign_at(H, q) == 0 else None
+
+
+def _shift(f, p):
+    """[w^k] f(p + w), exactly (priced)."""
+    n = len(f)
+    charge(fraction_products_cost(n * n, _bits(f) + n * _bits([p])), "the Taylor shift to the line Re z = p*")
+    return [sum(f[k] * comb(k, i) * p ** (k - i) for k in range(i, n)) for i in range(n)]
+
+
+def line_parts(f, p):
+    """(U, V) with f(p + iy) = U(y) + i V(y), U, V in Q[y]."""
+    s = _shift(f, p)
+    U = [Fraction(0)] * len(s)
+    V = [Fraction(0)] * len(s)
+    for k, c in enumerate(s):
+        if k % 2 == 0:
+            U[k] = c * (-1) ** (k // 2)
+        else:
+            V[k] = c * (-1) ** ((k - 1) // 2)
+    return trim(U), trim(V)
+
+
+def line_gcd(f, p):
+    """G = gcd(U, V), monic ([1] when coprime): its real roots y are exactly the roots p + iy of f on the line."""
+    U, V = line_parts(f, p)
+    G = trim(U or V) if not U or not V else trim(affordable_gcd(U, V))
+    return [c / G[-1] for c in G] if G else [Fraction(1)]
+
+
+def _sqrt_lower(x):
+    """A rational 0 <= s <= sqrt(x) (x >= 0)."""
+    if x <= 0:
+        return Fraction(0)
+    s = max(0, (x.denominator.bit_length() - x.numerator.bit_length()) // 2 + 64)  # about 64 significant bits
+    y = x * 4 ** s
+    return Fraction(isqrt(y.numerator // y.denominator), 2 ** s)
+
+
+def disk_on_line(G, disk, p):
+    """True when the root of f in the inclusion disk (re, im, rad) is proved to be p + iy with y != 0 real:
+    G (= :func:`line_gcd`) has a root in the chord [im - w, im + w] of the disk at Re z = p (w <= the half
+    chord), and the chord does not contain 0."""
+    re, im, rad = disk
+    if len(G) <= 1:
+        return False
+    if (p - re) ** 2 > rad * rad:
+        return False
+    w = _sqrt_lower(rad * rad - (p - re) ** 2)
+    if w == 0:  # the chord shrunk to the point p + i im (e.g. an exact disk of radius 0)
+        return im != 0 and evaluate(G, im) == 0
+    lo, hi = im - w, im + w
+    if lo <= 0 <= hi:
+        return False
+    return count_roots(G, lo, hi) + (1 if evaluate(G, lo) == 0 else 0) > 0  # roots in (lo, hi], and lo
+
+
+def _real_rational_roots(G):
+    """Every real root of G as an exact rational, or None if one is irrational."""
+    out = [Fraction(0)] if evaluate(G, Fraction(0)) == 0 else []
+    for sign in (1, -1):
+        P = strip_zero_roots([c * sign ** k for k, c in enumerate(G)])  # no root at the interval ends
+        for lo, hi in positive_roots(P):
+            q = rational_root(P, lo, hi)
+            if q is None:
+                return None
+            out.append(sign * q)
+    return out
+
+
+def _cmul(x, y):
+    return (x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0])
+
+
+def _cdiv(x, y):
+    n = y[0] * y[0] + y[1] * y[1]
+    return ((x[0] * y[0] + x[1] * y[1]) / n, (x[1] * y[0] - x[0] * y[1]) / n)
+
+
+def _ceval(p, z):
+    acc = (Fraction(0), Fraction(0))
+    for c in reversed(p):
+        acc = _cmul(acc, z)
+        acc = (acc[0] + c, acc[1])
+    return acc
+
+
+def _cpoly_mul(a, b):
+    out = [(Fraction(0), Fraction(0))] * (len(a) + len(b) - 1)
+    for i, x in enumerate(a):
+        for j, y in enumerate(b):
+            v = _cmul(x, y)
+            out[i + j] = (out[i + j][0] + v[0], out[i + j][1] + v[1])
+    return out
+
+
+def _cpoly_pow(a, n):
+    out = [(Fraction(1), Fraction(0))]
+    for _ in range(n):
+        out = _cpoly_mul(out, a)
+    return out
+
+
+def line_density(g, h, p):
+    """For h squarefree with every root on the line Re z = p (p > 0 rational) at rational heights: the
+    polynomial Q with Q >= 0 on R iff f >= 0 on (0, oo) (module docstring), and a description; None when h
+    is not of that kind (then no claim is made here)."""
+    G = line_gcd(h, p)
+    if len(G) != len(h):  # deg G = deg h: every root of h is p + iy with y a root of G
+        return None
+    ys = _real_rational_roots(G)
+    if ys is None or len(set(ys)) != len(h) - 1:
+        return None
+    L = 1
+    for y in ys:
+        L = L * y.denominator // igcd(L, y.denominator)
+    ns = [int(y * L) for y in ys]
+    N = max(abs(n) for n in ns)
+    if N > MAX_LINE_EXPONENT:
+        return None
+    charge(fraction_products_cost((len(h) + 4 * N) ** 2 * len(h), _bits(g) + _bits(h) + 4 * N),
+           "the trigonometric density polynomial of the line poles")
+    dh = [k * c for k, c in enumerate(h)][1:]
+    Q = [(Fraction(0), Fraction(0))] * (2 * N + 1)
+    one_plus = [(Fraction(1), Fraction(0)), (Fraction(0), Fraction(0)), (Fraction(1), Fraction(0))]  # 1 + x^2
+    for y, n in zip(ys, ns):
+        z = (p, y)
+        b = _cdiv(_ceval(g, z), _ceval(dh, z))
+        b = (-b[0], -b[1])
+        base = [(Fraction(1), Fraction(0)), (Fraction(0), Fraction(-1 if n >= 0 else 1))]  # 1 -+ ix
+        term = _cpoly_mul(_cpoly_pow(base, 2 * abs(n)), _cpoly_pow(one_plus, N - abs(n)))
+        for i, c in enumerate(term):
+            v = _cmul(b, c)
+            Q[i] = (Q[i][0] + v[0], Q[i][1] + v[1])
+    require(all(c[1] == 0 for c in Q), "bernstein: the line poles' density is not real (internal)")
+    return trim([c[0] for c in Q]), f"all poles on Re z = {p} at heights {[str(y) for y in ys]}"
+
+
+def _even_odd_at(P, Y):
+    """(A, B) with P(y) = A + y B for y^2 = Y (A, B rational): the even and odd parts of P at y = sqrt(Y)."""
+    A = sum((c * Y ** (k // 2) for k, c in enumerate(P) if k % 2 == 0), Fraction(0))
+    B = sum((c * Y ** (k // 2) for k, c in enumerate(P) if k % 2 == 1), Fraction(0))
+    return A, B
+
+
+def _norm_at_line(P, p, Y):
+    """|P(p + iy)|^2 for y^2 = Y, exactly: U(y) = A_U, V(y) = y B_V, so U^2 + V^2 = A_U^2 + Y B_V^2."""
+    U, V = line_parts(P, p) if len(P) > 1 else (list(P), [])
+    A, _ = _even_odd_at(U, Y)
+    _, B = _even_odd_at(V, Y)
+    return A * A + Y * B * B
+
+
+def single_pair(g, h, p):
+    """For h = c (z - p)((z - p)^2 + Y), Y > 0 (p* and one pair p* +- i sqrt(Y) on its line): (b_*, |b|^2),
+    exact rationals, where f(t) = e^(-p* t) (b_* + 2 Re(b e^(-i sqrt(Y) t))); so f >= 0 on (0, oo) iff
+    b_* >= 0 and b_*^2 >= 4 |b|^2.  (y^2 = Y is rational since (z - p)^2 + Y is a rational factor of h, and
+    U, V are even and odd in y, so |g|^2 and |h'|^2 at z are rational.)  None for any other h."""
+    if len(h) != 4:
+        return None
+    G = line_gcd(h, p)
+    if len(G) != 4 or G[0] != 0 or G[2] != 0 or G[3] != 1 or not -G[1] > 0:
+        return None
+    Y = -G[1]
+    dh = [k * c for k, c in enumerate(h)][1:]
+    b_star = -evaluate(g, p) / evaluate(dh, p)
+    return b_star, _norm_at_line(g, p, Y) / _norm_at_line(dh, p, Y)
+
+
+def nonnegative_on_line(Q):
+    """Q >= 0 on R: Q positive just right of 0 (or at 0) and no real root of odd multiplicity."""
+    if not Q or len(Q) == 1:
+        return bool(Q) and Q[0] > 0
+    ints = integer_coefficients(Q)
+    within_sturm_budget(len(ints) - 1, max(abs(c).bit_length() for c in ints), "the line density's Sturm count")
+    if sign_right_of(Q, Fraction(0)) <= 0:
+        return False
+    odd = [Fraction(1)]
+    for q, M in squarefree_decomposition(Q):
+        if M % 2:
+            odd = mul(odd, q)
+    if len(odd) == 1:
+        return True
+    B = max(abs(c / odd[-1]) for c in odd) + 1
+    return count_roots(odd, -B, B) == 0  # every real root lies in (-B, B) (Cauchy)
