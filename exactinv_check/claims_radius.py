@@ -178,6 +178,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
     require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie"},
             "binding belongs to the coefficient reasons only")
+    require(claim.get("poles") is None or reason == "balanced-tie", "poles belongs to the balanced-tie reason only")
     require(not method.is_polynomial or reason in ("coefficient", "all-coefficients"),
             f"{reason!r} is not a reason for a polynomial")
     value = Real.parse(claim["value"], "rho")  # after the cheap tests: parsing may isolate a root
