@@ -31,7 +31,7 @@ from math import ceil, comb, gcd as igcd, isqrt
 from .budget import charge, fraction_products_cost, within_sturm_budget
 from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
     sign_right_of, strip_zero_roots, trim
-from .rationals import require
+from .rationals import describe, require
 from .tail import squarefree_decomposition
 
 __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "nonnegative_on_line", "single_pair",
@@ -199,7 +199,7 @@ def line_density(g, h, p):
             v = _cmul(b, c)
             Q[i] = (Q[i][0] + v[0], Q[i][1] + v[1])
     require(all(c[1] == 0 for c in Q), "bernstein: the line poles' density is not real (internal)")
-    return trim([c[0] for c in Q]), f"all poles on Re z = {p} at heights {[str(y) for y in ys]}"
+    return trim([c[0] for c in Q]), f"all poles on Re z = {describe(p)} at heights {[describe(y) for y in ys]}"
 
 
 def _even_odd_at(P, Y):

@@ -297,3 +297,24 @@ def test_a_verified_several_pole_tie_matches_the_schema():
     validates every verified certificate against the schema: this failed before the schema was fixed)."""
     num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
     assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
+
+
+def test_large_numbers_in_messages_do_not_crash():
+    """Messages were built with str() of exact numbers, eagerly (an f-string is evaluated before require is
+    called): b_* = -g(p*)/h'(p*) for 2000-bit poles and deg g = 30 has over 4300 digits, and str() raised
+    ValueError (Python's int -> str limit) -- even on the path where the check passes.  Now the numbers go
+    through rationals.describe: a clear CheckFailure (the claim is false: the residues do not balance)."""
+    from exactinv_check.balanced_tie import prove_balanced_tie
+    from exactinv_check.tail import reduced
+    rng = random.Random(5)
+    p = 1 + F(1, rng.getrandbits(2000) | 1 << 1999)
+    a = -(3 + F(1, rng.getrandbits(2000) | 1 << 1999))
+    den = [p * a, -(p + a), F(1)]
+    den = [c / den[0] for c in den]
+    num = [F(1)] + [F(rng.getrandbits(8)) for _ in range(30)]
+    g, h = reduced(num, den)
+    with pytest.raises(CheckFailure, match="residues outweigh"):
+        prove_balanced_tie(g, h, [[p, F(0)], [a, F(0)]])
+    report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
+                                                               poles=[[str(p), "0"], [str(a), "0"]])))))
+    assert not report.ok and "ValueError" not in str(report)
