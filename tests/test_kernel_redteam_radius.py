@@ -318,3 +318,126 @@ def test_large_numbers_in_messages_do_not_crash():
     report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
                                                                poles=[[str(p), "0"], [str(a), "0"]])))))
     assert not report.ok and "ValueError" not in str(report)
+
+
+# ------------------------------------------------------------------ a seeded mutation fuzzer (kernel + reference)
+def _rand(rng, lo, hi, dens=(1, 2, 3, 4, 5, 8)):
+    d = rng.choice(dens)
+    return F(rng.randint(int(lo * d), int(hi * d)), d)
+
+
+def _tie_family(rng):
+    """p* and poles tied with it at kappa* (a negative real pole, pairs on the circle |z + kappa*| = p* + kappa*,
+    parametrised rationally), residues splitting a budget sum |b_T| in {1/2, 99/100, 1, 101/100} x b_*, and
+    sometimes a real pole beyond p*; degree <= 6."""
+    p, k = _rand(rng, F(1, 2), 2), _rand(rng, F(1, 4), 2)
+    poles, res, weights = [(p, F(0))], [(F(1), F(0))], []
+    if rng.random() < .7:
+        poles.append((-(p + 2 * k), F(0)))
+        weights.append(1)
+    for _ in range(rng.choice([0, 1, 1, 2])):
+        t, R0 = _rand(rng, -3, 3), p + k
+        x, y = -k + R0 * (1 - t * t) / (1 + t * t), R0 * 2 * t / (1 + t * t)
+        if y != 0 and x < p and (x, y) not in poles:
+            poles += [(x, y), (x, -y)]
+            weights.append(2)
+    if not weights:
+        return None
+    budget = rng.choice([F(1, 2), F(99, 100), F(1), F(1), F(101, 100)])
+    parts = [rng.randint(1, 9) for _ in weights]
+    for w, part in zip(weights, parts):
+        m = budget * F(part, sum(parts)) / w
+        if w == 1:
+            res.append((m * rng.choice([1, -1]), F(0)))
+        else:
+            u = rng.choice([(F(1), F(0)), (F(0), F(1)), (F(3, 5), F(4, 5)), (F(-4, 5), F(3, 5))])
+            res += [(m * u[0], m * u[1]), (m * u[0], -m * u[1])]
+    if rng.random() < .3:
+        poles.append((p + _rand(rng, F(1, 4), 2), F(0)))
+        res.append((_rand(rng, F(-1, 4), 1), F(0)))
+    return poles, res, k
+
+
+def _line_family(rng):
+    """p* and one or two pairs on Re z = p* at rational heights, random residues."""
+    p = _rand(rng, F(1, 2), 2)
+    poles, res = [(p, F(0))], [(F(1), F(0))]
+    for _ in range(rng.choice([1, 2])):
+        y = _rand(rng, F(1, 2), 3)
+        if (p, y) in poles:
+            continue
+        b = _rand(rng, 0, F(3, 4))
+        u = rng.choice([(F(1), F(0)), (F(0), F(1)), (F(3, 5), F(4, 5))])
+        poles += [(p, y), (p, -y)]
+        res += [(b * u[0], b * u[1]), (b * u[0], -b * u[1])]
+    return poles, res
+
+
+def _refuted(num, den, claim, tie=None):
+    """A sentence when the slow reference refutes a verified claim; None when it agrees as far as it sees."""
+    if claim["value"] == "oo":
+        for kappa in (F(1, 2), F(2), F(8), F(32)):
+            if not admissible(num, den, kappa, 150):
+                return f"rho = oo but some c_j({kappa}) < 0"
+        return None
+    kappa = F(claim["value"])
+    if tie is not None and kappa > tie:
+        return f"rho = {kappa} beyond the tie {tie} (Pringsheim)"
+    if claim["attained"] and not admissible(num, den, kappa, 300):
+        return f"attained, yet some c_j({kappa}) < 0"
+    if kappa > 0 and not admissible(num, den, kappa * F(999, 1000), 300):
+        return f"some c_j < 0 below rho = {kappa}"
+    return None
+
+
+def test_seeded_mutation_fuzzer():
+    """Genuine claims for the two new families (a balanced tie at kappa*, rho = oo with poles on the line), each
+    with mutants: residues nudged (the function changes, the claim stays), pole lists edited, value and attained
+    flipped.  Every verified claim is checked against the slow reference; a refuted one is a false accept.
+    (Run for minutes with a longer loop: 0 false accepts in the rt-radius campaign, see the report.)"""
+    rng = random.Random(2026)
+    stats = {"claims": 0, "verified": 0, "false": []}
+    for _ in range(16):
+        tie_case = rng.random() < .6
+        built = _tie_family(rng) if tie_case else _line_family(rng)
+        if built is None:
+            continue
+        poles, res = built[0], built[1]
+        kappa = built[2] if tie_case else None
+        variants = [(res, None)]
+        for _ in range(2):  # nudged residues
+            i = rng.randrange(len(res))
+            nudge = F(rng.choice([1, -1]), rng.choice([100, 10**6]))
+            new = list(res)
+            new[i] = (res[i][0] + nudge, res[i][1])
+            j = next((j for j, z in enumerate(poles) if z == (poles[i][0], -poles[i][1])), i)
+            new[j] = (new[i][0], -new[i][1]) if j != i else new[i]
+            variants.append((new, "nudged"))
+        for rs, how in variants:
+            try:
+                num, den = from_poles(poles, rs, constant=rng.random() < .5)
+            except (AssertionError, ZeroDivisionError):
+                continue
+            text = [[str(x), str(y)] for x, y in poles]
+            if tie_case:
+                claims = [dict(value=str(kappa), reason="balanced-tie", attained=True, poles=text),
+                          dict(value=str(kappa), reason="balanced-tie", attained=False, poles=text),
+                          dict(value=str(kappa), reason="balanced-tie", attained=True, poles=text[:-1]),
+                          dict(value=str(kappa), reason="balanced-tie", attained=True, poles=text + text[-1:]),
+                          dict(value=str(kappa + F(1, 10**9)), reason="balanced-tie", attained=True, poles=text),
+                          dict(value="oo", reason="bernstein", attained=True)]
+            else:
+                claims = [dict(value="oo", reason="bernstein", attained=True),
+                          dict(value="oo", reason="bernstein", attained=False),
+                          dict(value="oo", reason="balanced-tie", attained=True, poles=text)]
+            for claim in claims:
+                stats["claims"] += 1
+                if not verified(num, den, **claim):
+                    continue
+                stats["verified"] += 1
+                why = _refuted(num, den, claim, kappa)
+                if why:
+                    stats["false"].append((why, [str(c) for c in num], [str(c) for c in den], claim))
+    print(stats["claims"], "claims,", stats["verified"], "verified,", len(stats["false"]), "refuted")
+    assert stats["verified"] > 0
+    assert not stats["false"], stats["false"][:3]
