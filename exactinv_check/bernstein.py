@@ -43,7 +43,8 @@ from math import ceil, comb, factorial, gcd
 from .budget import charge, disk_step_cost
 from .disks import ball, ball_abs_upper, ball_mul, pole_disks
 from .line_poles import disk_on_line, line_density, line_gcd, nonnegative_on_line, rational_root, single_pair
-from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
+from .polys import MAX_DEGREE as MAX_DEGREE_OF_F, count_roots, evaluate, integer_coefficients, mul, positive_roots, \
+    sign_at, sign_right_of, trim
 from .rationals import describe, require
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
@@ -194,8 +195,8 @@ def _rational_exponents(g, h, ps):
     for p in ps:
         L = L * p.denominator // gcd(L, p.denominator)
     exponents = [int(p * L) for p in ps]
-    if max(exponents) > MAX_EXPONENT:
-        return None
+    if max(exponents) > MAX_EXPONENT or max(exponents) - min(exponents) > MAX_DEGREE_OF_F:
+        return None  # F (u^min stripped) would pass the kernel's polynomial bound: the general proof decides
     dh = [k * c for k, c in enumerate(h)][1:]
     F = [Fraction(0)] * (max(exponents) + 1)
     for p, n in zip(ps, exponents):

@@ -441,3 +441,15 @@ def test_seeded_mutation_fuzzer():
     print(stats["claims"], "claims,", stats["verified"], "verified,", len(stats["false"]), "refuted")
     assert stats["verified"] > 0
     assert not stats["false"], stats["false"][:3]
+
+
+@pytest.mark.parametrize("q", [F(1999, 1000), F(1501, 1000), F(2001, 1000)])
+def test_simple_rational_poles_with_a_long_exponent_polynomial(q):
+    """Poles 1 and q = n/1000, residues 1 and -1/2 (c = 0 after scaling): f(t) = e^(-t) - e^(-q t)/2 > 0, rho = oo;
+    the engine certifies 'bernstein'.  The kernel's shortcut F(u) = u^1000 - u^n/2 has degree n - 1000 > 200 for
+    q = 1999/1000 and 1501/1000, and its degree check raised instead of leaving the pair to the general proof
+    (q = 2001/1000 passed: its exponent was over MAX_EXPONENT, so the shortcut stepped aside): a genuine
+    certificate was rejected.  The reference agrees that rho = oo."""
+    num, den = from_poles([(F(1), F(0)), (q, F(0))], [(F(1), F(0)), (F(-1, 2), F(0))])
+    assert verified(num, den, value="oo", reason="bernstein", attained=True)
+    assert all(admissible(num, den, F(k), 100) for k in (0, 1, 10, 100))
