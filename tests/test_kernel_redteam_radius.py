@@ -453,3 +453,23 @@ def test_simple_rational_poles_with_a_long_exponent_polynomial(q):
     num, den = from_poles([(F(1), F(0)), (q, F(0))], [(F(1), F(0)), (F(-1, 2), F(0))])
     assert verified(num, den, value="oo", reason="bernstein", attained=True)
     assert all(admissible(num, den, F(k), 100) for k in (0, 1, 10, 100))
+
+
+@pytest.mark.parametrize("heights", [[F(60)], [F(64)], [F(63, 2)], [F(1), F(60)]])
+def test_line_poles_at_large_heights(heights):
+    """p* = 1 and pairs 1 +- iy, y up to 64, residues 1/8 each (c = 0): b_* = 1 > sum |b_k| = 1/4 per pair, so p*
+    dominates and rho = oo; the engine certifies 'bernstein'.  The kernel's trigonometric density had degree
+    2 max|n_k| = 120..128 with ~120-bit binomials and its Sturm count was over the certificate's budget: the
+    genuine certificate was rejected.  Now the one-pair closed form comes first and an unaffordable density leaves
+    the poles to the dominance proof.  Residues 1/2 + 10^-9 on one pair (b_*^2 < 4|b|^2) stay refused."""
+    poles, res = [(F(1), F(0))], [(F(1), F(0))]
+    for y in heights:
+        poles += [(F(1), y), (F(1), -y)]
+        res += [(F(1, 8), F(0)), (F(1, 8), F(0))]
+    num, den = from_poles(poles, res, constant=False)
+    assert verified(num, den, value="oo", reason="bernstein", attained=True)
+    assert all(admissible(num, den, F(k), 100) for k in (0, 1, 10))
+    if len(heights) == 1:
+        eps = F(1, 10**9)
+        num, den = from_poles(poles, [(F(1), F(0)), (F(1, 2) + eps, F(0)), (F(1, 2) + eps, F(0))], constant=False)
+        assert not verified(num, den, value="oo", reason="bernstein", attained=True)
