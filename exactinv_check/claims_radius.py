@@ -37,8 +37,8 @@ from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "tie", "bernstein", "balanced-tie"}
-ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0"}
+           "dominance-at-0", "negative-at-0", "tie", "bernstein", "balanced-tie"}
+ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 
 def scan_cost(num, den, count):

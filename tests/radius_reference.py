@@ -41,3 +41,47 @@ def tie_kappa(num, den, digits=40):
         values = [(abs(z) ** 2 - p ** 2) / (2 * (p - mpmath.re(z))) for z in roots
                   if abs(z - p) > mpmath.mpf(10) ** -digits and mpmath.re(z) < p]
         return min(values) if values else None
+
+
+def from_partial_fractions(terms, constant=None):
+    """(g, h) with h(0) = 1 for r = c + sum_k a_k/(z - z_k), a_k = -b_k, from [((x_k, y_k), (u_k, v_k))]: simple
+    poles z_k = x_k + i y_k with b_k = u_k + i v_k (conjugate pairs listed both), Fractions; c is chosen so that
+    r(0) = 1 unless given.  Exact arithmetic in Q(i), nothing from exactinv."""
+    def mul(a, b):
+        out = [(Fraction(0), Fraction(0))] * (len(a) + len(b) - 1)
+        for i, x in enumerate(a):
+            for j, y in enumerate(b):
+                out[i + j] = (out[i + j][0] + x[0] * y[0] - x[1] * y[1], out[i + j][1] + x[0] * y[1] + x[1] * y[0])
+        return out
+    zs = [z for z, _ in terms]
+    h = [(Fraction(1), Fraction(0))]
+    for z in zs:
+        h = mul(h, [(-z[0], -z[1]), (Fraction(1), Fraction(0))])
+    num = [(Fraction(0), Fraction(0))] * len(h)
+    for k, (z, b) in enumerate(terms):
+        q = [(Fraction(1), Fraction(0))]
+        for i, w in enumerate(zs):
+            if i != k:
+                q = mul(q, [(-w[0], -w[1]), (Fraction(1), Fraction(0))])
+        for i, c in enumerate(q):
+            num[i] = (num[i][0] - b[0] * c[0] + b[1] * c[1], num[i][1] - b[0] * c[1] - b[1] * c[0])
+    assert all(c[1] == 0 for c in h + num), "the poles and residues must come in conjugate pairs"
+    h, num = [c[0] for c in h], [c[0] for c in num]
+    c = 1 - num[0] / h[0] if constant is None else constant
+    g = [c * h[i] + (num[i] if i < len(num) else 0) for i in range(len(h))]
+    g, h = [x / h[0] for x in g], [x / h[0] for x in h]
+    while len(g) > 1 and g[-1] == 0:
+        g.pop()
+    return g, h
+
+
+def product(*factors):
+    """The product of polynomials (coefficient lists, low to high) as Fractions."""
+    out = [Fraction(1)]
+    for f in factors:
+        nxt = [Fraction(0)] * (len(out) + len(f) - 1)
+        for i, a in enumerate(out):
+            for j, b in enumerate(f):
+                nxt[i + j] += a * Fraction(b)
+        out = nxt
+    return out

@@ -61,6 +61,7 @@ class RadiusReason(Tag):
     NO_POSITIVE_POLE = "no-positive-pole"
     PRINCIPAL_PART_SIGN = "principal-part-sign"
     DOMINANCE_AT_0 = "dominance-at-0"
+    NEGATIVE_AT_0 = "negative-at-0"  # rho = 0: the scan found c_j(0) < 0 (a witness needs no tail)
     TIE = "tie"  # p* wins the equal-modulus tie at rho = kappa_A (exact root of the tie polynomial)
     PRODUCT = "product"  # rho = INF: r is a product of absolutely monotonic factors
     TERMWISE = "termwise"  # rho = INF: every partial-fraction term is absolutely monotonic

@@ -35,7 +35,8 @@ from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
-from .line_poles import line_density, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
+from .line_poles import line_density, line_minimum_points, nonnegative, pair_minimum_points, single_pair, \
+    trig_minimum_points
 from .poles import PoleStructure
 
 __all__ = ["Verdict", "completely_monotone", "density_at_zero", "coefficient_at"]
@@ -308,8 +309,9 @@ def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
         outcome = _march(s, fs, n0)
         if outcome is True:
             return Verdict(True, "c >= 0 and f > 0 on (0, oo) (Taylor at 0, certified Arb steps, dominance of p*)")
-        if isinstance(outcome, Fraction):
-            return _finite(g, h, _density_witness(g, h, [outcome], s), f"f({outcome}) < 0")
+        if isinstance(outcome, Fraction):  # near the line poles' dips too, where f is most negative
+            return _finite(g, h, _density_witness(g, h, [outcome] + line_minimum_points(s.balls, s.on_line), s),
+                           f"f({outcome}) < 0")
         return Verdict(False, outcome)
 
 

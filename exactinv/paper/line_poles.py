@@ -28,7 +28,7 @@ from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
 
 __all__ = ["line_gcd", "on_line_indices", "line_density", "nonnegative", "single_pair", "trig_minimum_points",
-           "pair_minimum_points"]
+           "pair_minimum_points", "line_minimum_points"]
 
 MAX_LINE_EXPONENT = 64  # as the kernel's (exactinv_check.line_poles)
 
@@ -232,6 +232,26 @@ def pair_minimum_points(g: list, h: list, p: Fraction, Y: Fraction) -> list[Frac
         return [Fraction(t + k * period).limit_denominator(1 << 24) for k in range(8) if t + k * period > 0]
     except (OverflowError, ValueError, ZeroDivisionError):
         return []
+
+
+def line_minimum_points(balls, on_line) -> list[Fraction]:
+    """Rational t > 0 near the minima of each line pole's oscillation 2 Re(b e^(-iyt)) (yt = arg b - pi mod 2 pi):
+    where f e^(p* t) dips when the line poles outweigh p* (float hints for the witness search only; never
+    raising, they may only fail to help)."""
+    from cmath import phase
+    out = []
+    for k in on_line:
+        z, M, b = balls[k]
+        try:
+            y = float(z.imag.mid())
+            if y <= 0:
+                continue
+            lead = complex(float(b[M - 1].real.mid()), float(b[M - 1].imag.mid()))
+            t = (phase(lead) - pi) / y
+            out += [Fraction(t + n * 2 * pi / y).limit_denominator(1 << 24) for n in range(16) if t + n * 2 * pi / y > 0]
+        except (OverflowError, ValueError, ZeroDivisionError):
+            continue
+    return out
 
 
 def single_pair(g: list, h: list, p: Fraction):

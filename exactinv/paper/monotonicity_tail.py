@@ -340,6 +340,8 @@ def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=F
     if value is None:  # no coefficient ends below kappa_A, and p* wins the tie there
         return AbsoluteMonotonicityRadius(kappa_A, True, RadiusReason.TIE, method, tail_index=N, pole=p_star)
     attained = value != 0 or all(p(0) >= 0 for p in ds)
+    if not attained:  # rho = 0 with some c_j(0) < 0: that witness is the whole certificate (no tail needed)
+        return _zero_radius(method, RadiusReason.NEGATIVE_AT_0, p_star)
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
     return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)
