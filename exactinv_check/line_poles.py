@@ -22,6 +22,9 @@ Two uses (exactinv_check.bernstein):
    e^(-i n theta) = (1 - ix)^(2n)/(1 + x^2)^n, so Q(x) = (1 + x^2)^N T(theta(x)) (N = max |n_k|) is a real
    polynomial and T >= 0 on the circle iff Q >= 0 on R (theta = pi is a limit): an exact Sturm count.  This
    decides f touching 0, e.g. 1/((1 - z)(1 - z + z^2/2)): f(t) = 2 e^(-t) (1 - cos t).
+Order in exactinv_check.bernstein: the closed form of one pair (:func:`single_pair`) first, then the density when its
+Sturm count fits the budgets; an unaffordable density (N near MAX_LINE_EXPONENT) leaves the poles to the dominance
+proof, which decides every f that p* dominates strictly.
 Standard library only; every step is priced (exactinv_check.budget) before it runs or as it runs.
 """
 
