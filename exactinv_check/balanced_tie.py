@@ -24,7 +24,7 @@ from fractions import Fraction
 from math import isqrt
 
 from .budget import charge, fraction_products_cost
-from .rationals import require
+from .rationals import describe, require
 
 __all__ = ["prove_balanced_tie", "MAX_POLES"]
 
@@ -110,5 +110,5 @@ def prove_balanced_tie(g, h, poles):
         require(z[1] == 0 and z[0] > p and b[z][0] > 0, "balanced tie: a pole that is not tied must be real and "
                 "positive with b_k > 0 (its terms then stay positive)")
     total = sum((_sqrt_upper(b[z][0] ** 2 + b[z][1] ** 2) for z in tied), Fraction(0))
-    require(total <= b_star, f"balanced tie: the tied poles' residues outweigh p*'s (sum |b_k| > b_* = {b_star})")
+    require(total <= b_star, f"balanced tie: the tied poles' residues outweigh p*'s (sum |b_k| > b_* = {describe(b_star)})")
     return kappa

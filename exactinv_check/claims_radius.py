@@ -27,7 +27,7 @@ from math import comb, gcd
 
 from . import polys
 from .claims_thresholds import smallest_positive_root
-from .rationals import FRACTION_WEIGHT, integer, require, vector, within_budget
+from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
 from .reals import Real
 from .bernstein import prove_completely_monotone
 from .tail import prove_tail, reduced
@@ -178,6 +178,7 @@ def absolute_monotonicity_radius(problem, claim, context):
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
     require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie"},
             "binding belongs to the coefficient reasons only")
+    require(claim.get("poles") is None or reason == "balanced-tie", "poles belongs to the balanced-tie reason only")
     require(not method.is_polynomial or reason in ("coefficient", "all-coefficients"),
             f"{reason!r} is not a reason for a polynomial")
     value = Real.parse(claim["value"], "rho")  # after the cheap tests: parsing may isolate a root
@@ -208,13 +209,13 @@ def absolute_monotonicity_radius(problem, claim, context):
         else:  # every pole listed exactly in Q(i), several tied poles (exactinv_check.balanced_tie)
             require(isinstance(poles, list) and len(poles) <= MAX_POLES, f"'poles' lists at most {MAX_POLES} poles")
             kappa = prove_balanced_tie(g, h, [vector(z, "poles", 2) for z in poles])
-        require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {kappa}")
+        require(not value.inf and value.compare(Real.rational(kappa)) == 0, f"the balanced tie is at {describe(kappa)}")
         count = max(len(num), len(den), 1)  # c_j for j > deg g - deg h are >= 0 on [0, kappa*] by the identity
         first, first_attained, d = recompute(num, den, count, False, kappa)  # not `attained`: the claim's flag
-        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {kappa}")
+        require(first.compare(value) >= 0, f"a coefficient c_j (j < {count}) or a pole ends before the tie {describe(kappa)}")
         rho, rho_attained = value, first_attained if first.compare(value) == 0 else True
         how = (f"{'two simple real poles p* > 0 > a' if poles is None else f'{len(poles)} simple poles in Q(i)'} "
-               f"with balanced residues (sum of the tied |b_k| <= b_*): c_j >= 0 on [0, {kappa}] "
+               f"with balanced residues (sum of the tied |b_k| <= b_*): c_j >= 0 on [0, {describe(kappa)}] "
                f"for j > deg q by the closed form, c_0 .. c_{count - 1} recomputed")
     elif reason == "tie":
         rho, rho_attained, d, N, count = _tie(num, den, value, claim)

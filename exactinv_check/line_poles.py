@@ -22,6 +22,9 @@ Two uses (exactinv_check.bernstein):
    e^(-i n theta) = (1 - ix)^(2n)/(1 + x^2)^n, so Q(x) = (1 + x^2)^N T(theta(x)) (N = max |n_k|) is a real
    polynomial and T >= 0 on the circle iff Q >= 0 on R (theta = pi is a limit): an exact Sturm count.  This
    decides f touching 0, e.g. 1/((1 - z)(1 - z + z^2/2)): f(t) = 2 e^(-t) (1 - cos t).
+Order in exactinv_check.bernstein: the closed form of one pair (:func:`single_pair`) first, then the density when its
+Sturm count fits the budgets; an unaffordable density (N near MAX_LINE_EXPONENT) leaves the poles to the dominance
+proof, which decides every f that p* dominates strictly.
 Standard library only; every step is priced (exactinv_check.budget) before it runs or as it runs.
 """
 
@@ -31,7 +34,7 @@ from math import ceil, comb, gcd as igcd, isqrt
 from .budget import charge, fraction_products_cost, within_sturm_budget
 from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
     sign_right_of, strip_zero_roots, trim
-from .rationals import require
+from .rationals import describe, require
 from .tail import squarefree_decomposition
 
 __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "nonnegative_on_line", "single_pair",
@@ -199,7 +202,7 @@ def line_density(g, h, p):
             v = _cmul(b, c)
             Q[i] = (Q[i][0] + v[0], Q[i][1] + v[1])
     require(all(c[1] == 0 for c in Q), "bernstein: the line poles' density is not real (internal)")
-    return trim([c[0] for c in Q]), f"all poles on Re z = {p} at heights {[str(y) for y in ys]}"
+    return trim([c[0] for c in Q]), f"all poles on Re z = {describe(p)} at heights {[describe(y) for y in ys]}"
 
 
 def _even_odd_at(P, Y):
