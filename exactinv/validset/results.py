@@ -179,17 +179,6 @@ def _generators(polyhedron: Polyhedron, box: BoxRoute | None, lp: LPRoute | None
     return generator_record(polyhedron)
 
 
-def _generators(polyhedron: Polyhedron, box: BoxRoute | None, lp: LPRoute | None = None) -> dict:
-    """The claim's record of P: the box (proved from G, b by the kernel), the LP route's
-    pieces (proved by the kernel: no vertex list) or the generator lists."""
-    if box is not None:
-        return {"box": box.box.record()}
-    if lp is not None:
-        return {"lp": lp.record()}
-    return generator_record(polyhedron)
-
-
-
 @dataclass(frozen=True, repr=False)
 class EllipsoidValidSteplengths(ValidSteplengths):
     """The exact set {h >= 0 : A_d(h) E subset of E} (a :class:`ValidSteplengths`;
