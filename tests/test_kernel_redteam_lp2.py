@@ -12,7 +12,7 @@ from math import factorial
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import lp_pieces
+from exactinv_check import lp_pieces, polys
 from exactinv_check.budget import account
 from exactinv_check.kernel import Problem
 from exactinv_check.rationals import CheckFailure
@@ -110,14 +110,15 @@ def _same(W, intervals):
 
 def _mutate(rng, cert, n, m):
     """One field of the certificate changed: an end, a basis row, pieces merged, split, swapped or cut,
-    the last end made oo, facets swapped, or b or A of the problem nudged (the record kept)."""
+    the last end made oo, facets swapped, an algebraic end moved to a conjugate or its enclosure nudged,
+    or b or A of the problem nudged (the record kept)."""
     c = copy.deepcopy(cert)
     facets = c["claims"][0]["lp"]["facets"]
     i = rng.randrange(len(facets))
     f = facets[i]
     K = len(f["ends"])
     k = rng.randrange(K)
-    kind = rng.randrange(11)
+    kind = rng.randrange(12)
     finite = [e for e in f["ends"] if e != "oo"]
     if kind == 0 and finite:
         e = rng.choice(finite)
@@ -155,6 +156,17 @@ def _mutate(rng, cert, n, m):
     elif kind == 10:
         r, s = rng.randrange(n), rng.randrange(n)
         c["problem"]["A"][r][s] = str(F(c["problem"]["A"][r][s]) + F(rng.choice([1, -1]), rng.choice([2, 10, 1000])))
+    elif kind == 11 and isinstance(f["ends"][k], dict):
+        # an algebraic end moved to another real root of its polynomial (a conjugate), or its
+        # enclosure nudged so that it may hold another root or none
+        e = f["ends"][k]
+        roots = [(lo, hi) for lo, hi in polys.positive_roots([F(x) for x in e["poly"]]) if lo != hi]
+        if len(roots) > 1 and rng.random() < 0.7:
+            lo, hi = rng.choice(roots)
+            e["interval"] = [str(lo), str(hi)]
+        else:
+            lo, hi = F(e["interval"][0]), F(e["interval"][1])
+            e["interval"][rng.randrange(2)] = str(rng.choice([lo, hi]) * (1 + F(rng.choice([1, -1]), 10 ** rng.randint(1, 4))))
     else:
         return None
     return c
