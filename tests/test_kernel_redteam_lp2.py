@@ -166,7 +166,8 @@ def _mutate(rng, cert, n, m):
             e["interval"] = [str(lo), str(hi)]
         else:
             lo, hi = F(e["interval"][0]), F(e["interval"][1])
-            e["interval"][rng.randrange(2)] = str(rng.choice([lo, hi]) * (1 + F(rng.choice([1, -1]), 10 ** rng.randint(1, 4))))
+            nudge = 1 + F(rng.choice([1, -1]), 10 ** rng.randint(1, 4))
+            e["interval"][rng.randrange(2)] = str(rng.choice([lo, hi]) * nudge)
     else:
         return None
     return c
