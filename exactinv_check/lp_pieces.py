@@ -231,10 +231,15 @@ def _batch_positive(Y, D_int, a, b):
     point of (a, b), by the Moebius map from (0, oo)), all zero means D y = 0."""
     L = len(Y[0]) if Y else 0
     W = L + len(D_int) - 1
+    # priced before it runs, like polys.descartes_variations: the transform's numbers grow to the
+    # coefficients' bits plus (W - 1) times the ends' bits, and its Horner products are by end-sized numbers
+    size = _bits(a) + (0 if b is None else _bits(b) + _bits(b - a))
+    dbits = max(abs(c).bit_length() for c in D_int)
+    charge(L * descartes_node_cost(W - 1, dbits + (W - 1) * size, size), "Descartes' rule on one piece (transforms)")
     T = [_transform([0] * k + list(D_int) + [0] * (W - k - len(D_int)), a, b) for k in range(L)]
     tbits = max(abs(v).bit_length() for row in T for v in row)
     ybits = max((abs(v).bit_length() for row in Y for v in row), default=1)
-    charge(descartes_node_cost(W - 1, tbits) * L + len(Y) * L * W * (PYTHON_OP + words(tbits) * words(ybits)),
+    charge(len(Y) * L * W * (PYTHON_OP + words(tbits) * words(ybits)),
            "Descartes' rule on one piece, all components at once")
     out = []
     cols = list(zip(*T))
@@ -242,6 +247,11 @@ def _batch_positive(Y, D_int, a, b):
         q = [sum(map(mul, y, col)) for col in cols]
         out.append(all(c >= 0 for c in q))  # >= 0 on (a, b), so on the closed piece inside [a, b]
     return out
+
+
+def _bits(q):
+    """The bits of a rational's numerator and denominator together."""
+    return q.numerator.bit_length() + q.denominator.bit_length()
 
 
 def _shift_signs(ints, a):
@@ -259,8 +269,9 @@ def _shift_signs(ints, a):
 def _positive_around(ints, a, b):
     """True proves p > 0 on the open (a, b) (b None: (a, oo)); False says nothing."""
     if b is None:
-        charge(descartes_node_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints),
-                                   a.numerator.bit_length() + a.denominator.bit_length()), "a Taylor shift")
+        D = len(ints) - 1
+        charge(descartes_node_cost(D, max(abs(c).bit_length() for c in ints) + D * _bits(a), _bits(a)),
+               "a Taylor shift")
         q = _shift_signs(ints, a)
         return all(c >= 0 for c in q) and any(c > 0 for c in q)
     return polys.descartes_variations(ints, a, b) == 0 and polys.sign_at(ints, (a + b) / 2) > 0
