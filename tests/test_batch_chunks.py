@@ -104,10 +104,12 @@ def _decay(c: int) -> Task:
 
 
 def test_limits_firing_mid_chunk_record_the_culprit_and_the_rest_completes():
-    chunk = [_decay(1), Task("slow", "certify", text=json.dumps(_slow())), _decay(2),
-             Task("hog", "certify", text=json.dumps(_hog())), _decay(3), _decay(4)]
-    records = run_chunk(chunk, Limits(timeout=4, memory_mb=200))
-    assert [r["id"] for r in records] == [t.id for t in chunk]
-    assert [r["status"] for r in records] == ["ok", "timeout", "ok", "memory", "ok", "ok"]
-    assert "4 s" in records[1]["error"] and records[1]["outcome"] == "error" and records[3]["outcome"] == "error"
+    # Two chunks, each with its own limits: the slow problem takes about 6 s of CPU (over 2 s on any
+    # machine), the hog about 1 s of CPU to pass 200 MB (within 120 s on any load).
+    slow = [_decay(1), Task("slow", "certify", text=json.dumps(_slow())), _decay(2)]
+    hog = [_decay(3), Task("hog", "certify", text=json.dumps(_hog())), _decay(4)]
+    records = run_chunk(slow, Limits(timeout=2, memory_mb=200)) + run_chunk(hog, Limits(timeout=120, memory_mb=200))
+    assert [r["id"] for r in records] == [t.id for t in slow + hog]
+    assert [r["status"] for r in records] == ["ok", "timeout", "ok", "ok", "memory", "ok"]
+    assert "2 s" in records[1]["error"] and records[1]["outcome"] == "error" and records[4]["outcome"] == "error"
     assert [r["values"]["largest_threshold"] for r in records if r["status"] == "ok"] == ["2", "1", "2/3", "1/2"]
