@@ -10,7 +10,7 @@ import exactinv as ei
 from exactinv.paper.balanced_tie import balanced_tie, gaussian_poles
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
-from radius_reference import coefficients_at, from_partial_fractions
+from radius_reference import admissible, coefficients_at, from_partial_fractions
 
 UNITS = [(F(3, 5), F(4, 5)), (F(-3, 5), F(4, 5)), (F(5, 13), F(12, 13)), (F(-8, 17), F(15, 17)), (F(0), F(1)),
          (F(-7, 25), F(24, 25)), (F(4, 5), F(3, 5))]  # points of the unit circle in Q(i), upper half plane
@@ -26,10 +26,6 @@ def _radius(g, h):
     assert verdict.ok, str(verdict)
     return r
 
-
-def _admissible(g, h, kappa, count):
-    c = coefficients_at(g, h, kappa, count)
-    return c is not None and all(x >= 0 for x in c)
 
 
 def _beyond_fails(g, h, zs, kappa, count):
@@ -58,7 +54,7 @@ def test_four_poles_on_one_circle_with_balanced_residues():
     assert balanced_tie(g, h)[0] == 1
     r = _radius(g, h)
     assert r.value == 1 and r.reason == "balanced-tie" and r.attained
-    assert _admissible(g, h, F(1), 400)
+    assert admissible(g, h, F(1), 400)
     assert _beyond_fails(g, h, [z for z, _ in terms], F(11, 10), 400)
 
 
@@ -116,5 +112,5 @@ def test_random_three_and_four_pole_balanced_ties(R, kappa, shape, units, phases
         assert r.value < kappa and r.binding is not None and r.binding < max(first, 1)
         return
     assert r.value == kappa and r.attained
-    assert _admissible(g, h, kappa, 300)
+    assert admissible(g, h, kappa, 300)
     assert _beyond_fails(g, h, zs, 2 * kappa + 1, 600)

@@ -14,7 +14,7 @@ from exactinv.core.scalars import INF
 from exactinv.paper.line_poles import line_density, line_gcd, single_pair
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
-from radius_reference import coefficients_at, from_partial_fractions, product
+from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 BOTH = [F(1), F(-2), F(3, 2), F(-1, 2)]  # (1 - z)(1 - z + z^2/2): poles 1, 1 +- i
 
@@ -25,10 +25,6 @@ def _radius(g, h):
     assert verdict.ok, str(verdict)
     return r
 
-
-def _nonnegative_at(g, h, kappa, count):
-    c = coefficients_at(g, h, kappa, count)
-    return c is not None and all(x >= 0 for x in c)
 
 
 def _upper(v) -> F:
@@ -54,7 +50,7 @@ def test_the_issue_example_is_oo_with_f_touching_zero():
     r = _radius([F(1)], BOTH)
     assert r.value == INF and r.reason == "bernstein"
     for kappa in (F(0), F(1, 2), F(3), F(40)):
-        assert _nonnegative_at([F(1)], BOTH, kappa, 300)
+        assert admissible([F(1)], BOTH, kappa, 300)
 
 
 def test_a_numerator_that_tips_the_balance_gives_rho_4():
@@ -63,7 +59,7 @@ def test_a_numerator_that_tips_the_balance_gives_rho_4():
     g = [F(1), F(1, 4)]
     r = _radius(g, BOTH)
     assert r.value == 4 and r.binding == 0
-    assert _nonnegative_at(g, BOTH, F(4), 400) and not _nonnegative_at(g, BOTH, F(4) + F(1, 10 ** 6), 1)
+    assert admissible(g, BOTH, F(4), 400) and not admissible(g, BOTH, F(4) + F(1, 10 ** 6), 1)
 
 
 def test_a_line_pair_with_an_irrational_height_decides_by_the_closed_form():
@@ -74,7 +70,7 @@ def test_a_line_pair_with_an_irrational_height_decides_by_the_closed_form():
     assert _radius([F(1)], h).value == INF
     r = _radius([F(1), F(1, 2)], h)
     assert r.value != INF
-    assert _nonnegative_at([F(1), F(1, 2)], h, _lower(r.value) * F(999, 1000), 300)
+    assert admissible([F(1), F(1, 2)], h, _lower(r.value) * F(999, 1000), 300)
 
 
 def test_line_poles_beside_a_farther_pole_are_decided_by_dominance():
@@ -84,7 +80,7 @@ def test_line_poles_beside_a_farther_pole_are_decided_by_dominance():
         r = _radius([F(1)], h)
         assert r.value == INF and r.reason == "bernstein"
         for kappa in (F(1, 3), F(5), F(60)):
-            assert _nonnegative_at([F(1)], h, kappa, 250)
+            assert admissible([F(1)], h, kappa, 250)
 
 
 def test_a_line_pole_with_a_tie_elsewhere_gives_the_tie():
@@ -92,7 +88,7 @@ def test_a_line_pole_with_a_tie_elsewhere_gives_the_tie():
     h = product(BOTH, [1, F(1, 2)])
     r = _radius([F(1)], h)
     assert r.value == F(1, 2) and r.reason == "tie"
-    assert _nonnegative_at([F(1)], h, F(1, 2), 300)
+    assert admissible([F(1)], h, F(1, 2), 300)
 
 
 def test_an_irrational_p_star_with_a_line_pair_is_undecided_and_says_why():
@@ -129,14 +125,14 @@ def test_random_complex_pair_ties_are_decided_checked_and_confirmed(p, y, b_star
         assert "j <= 8192" in str(e) or "> 4096 coefficients" in str(e), str(e)
         return
     if r.value == 0 and not r.attained:  # rho = 0, not attained: some c_j(0) < 0
-        assert not _nonnegative_at(g, h, F(0), r.witness_j + 1)
+        assert not admissible(g, h, F(0), r.witness_j + 1)
         return
     if r.value == INF:
         for kappa in (F(0), F(1), F(10)):
-            assert _nonnegative_at(g, h, kappa, 200)
+            assert admissible(g, h, kappa, 200)
         return
     below = _lower(r.value) * F(127, 128)
-    assert _nonnegative_at(g, h, below, 200)
+    assert admissible(g, h, below, 200)
     if r.binding is not None:
         above = _upper(r.value) + F(1, 10 ** 9)
         c = coefficients_at(g, h, above, r.binding + 1)
