@@ -111,18 +111,21 @@ def test_auto_takes_the_lp_route_only_when_the_vertex_bound_is_large():
     assert _ends(V) == _ends(ei.valid_steplengths(S, P, M.taylor(2), route="vertex"))
 
 
-def test_unbounded_and_non_pointed_polyhedra_are_declined():
-    """The LP route declines P with lines (no basis) and unbounded P (an unbounded LP or an edge that
-    is a ray); route="lp" says so, route="auto" falls back to the vertex route."""
+def test_non_pointed_polyhedra_are_declined_and_unbounded_ones_are_not():
+    """The LP route declines P with lines (no basis): route="lp" says so, route="auto" falls back to
+    the vertex route.  An unbounded pointed P is the LP route's own (ray pieces): the orthant cut by
+    x - y <= 1 under x' = diag(1, -1) x, where x grows along the ray (1, 1) -- for every h > 0 the
+    facet x - y <= 1 sees (1 + h) - (1 - h) > 0 on it, so V = {0}."""
     S = ei.LinearSystem([[-1, 0], [0, -1]])
     strip = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])  # a line along y
     with pytest.raises(InvalidInput, match="lines"):
         ei.valid_steplengths(S, strip, M.taylor(1), route="lp")
-    orthant = ei.Polyhedron([[-1, 0], [0, -1], [1, -1]], [0, 0, 1])  # unbounded, pointed
-    with pytest.raises(InvalidInput, match="unbounded"):
-        ei.valid_steplengths(ei.LinearSystem([[1, 0], [0, -1]]), orthant, M.taylor(1), route="lp")
     with pytest.raises(LPRouteDeclined):
         lp_route(ConditionSet(S, strip, M.taylor(1)))
+    orthant = ei.Polyhedron([[-1, 0], [0, -1], [1, -1]], [0, 0, 1])  # unbounded, pointed
+    V = ei.valid_steplengths(ei.LinearSystem([[1, 0], [0, -1]]), orthant, M.taylor(1), route="lp")
+    assert V.route == "lp" and _ends(V) == [(0, 0, True, True)]
+    assert V.lp.rays >= 1 and exactinv_check.check(V.certificate).ok
 
 
 def test_a_shared_condition_set_builds_the_lp_route_once():
