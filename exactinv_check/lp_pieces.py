@@ -401,7 +401,8 @@ def lp_conditions(problem, record):
     A ray piece (start, end) of facet i with ray d: d != 0 with G d <= 0 (a ray of P), and
     r(h) = (g_i N(h) d) D(h) > 0 on the open piece (:func:`_require_positive_open`); its condition is the
     ray-facet condition -(g_i N d) D = -r >= 0, which every h of the open piece violates.  Every finite end
-    t > 0 of a piece must be covered: by a basis piece (closed), or by a ray piece with t rational and
+    t > 0 of a piece must be covered: by a basis piece (closed; a point piece [t, t], equal ends, is a basis
+    piece with z_B(t) >= 0 at t alone), or by a ray piece with t rational and
     r(t) > 0; so two ray pieces meet only at a rational end, and a facet's last piece is a basis piece,
     ends at oo, or is a ray piece positive at its rational end.  With ray pieces the record's ``point``,
     proved in P, makes P nonempty, so every ray condition is necessary."""
@@ -428,7 +429,9 @@ def lp_conditions(problem, record):
         left_open = False  # the current start is a ray piece's end that the ray piece does not cover
         for k, (data, basis) in enumerate(zip(ends, rows)):
             end = Real.parse(data, f"lp facet {i} end {k}")
-            require(start.compare(end) < 0, f"lp facet {i}: the ends are not increasing after piece {k}")
+            order_of_ends = start.compare(end)
+            point_piece = order_of_ends == 0 and not isinstance(basis, list)  # a basis piece [t, t]
+            require(order_of_ends < 0 or point_piece, f"lp facet {i}: the ends are not increasing after piece {k}")
             require(not end.inf or k == len(ends) - 1, f"lp facet {i}: only the last piece may end at oo")
             if isinstance(basis, list):  # a ray piece: facet i is violated on the open piece
                 d = basis
@@ -452,6 +455,16 @@ def lp_conditions(problem, record):
                 previous = order, det, adj = bases.adjugate(basis, previous)
                 x = bases.vertex(basis, order, det, adj)
                 Y = _components(order, det, adj, C_int)
+                if point_piece:  # z_B(t) >= 0 at t alone: the exact sign at the (rational or algebraic) end
+                    for l, y in enumerate(Y):
+                        require(start.sign_of(polys.mul_integers(y, D_int)) >= 0,
+                                f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
+                    left_open = False
+                    points.append(x)
+                    rays.append(zero)
+                    is_ray.append(False)
+                    facet_of.append(i)
+                    continue
                 a = start.bounds()[0]
                 b = None if end.inf else end.bounds()[1]
                 batch = len(C_int[0]) < len(Y)  # L transforms and a product beat n transforms only when L < n

@@ -338,6 +338,35 @@ def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
     return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
 
 
+def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmpq_mat:
+    """z_B = D B^-T c_i as a matrix: row l holds the coefficients of component l."""
+    Y = basis.inv_t * C
+    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
+        Dm = P.D.coeffs()
+        W = Y.ncols() + len(Dm) - 1
+        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
+                                             for k in range(Y.ncols()) for m in range(W)])
+    return Y
+
+
+def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> _Step | None:
+    """The point piece [t, t] at a rational t: a basis read off the exact LP at t, accepted when every
+    component of z_B(t) is >= 0 (weak duality at t alone).  None when t is not rational or no basis
+    qualifies (the LP at t unbounded, or its optimum not read as a basis)."""
+    if isinstance(t, RealAlgebraic):
+        return None
+    candidate = _exact_rows(P, _cost(C, P.D, Fraction(t)))
+    if candidate is None or isinstance(candidate, _Ray):
+        return None
+    basis = P.basis(candidate)
+    if basis is None:
+        return None
+    Y = _dual_components(P, basis, C)
+    if any(sign_at(_row(Y, l), Fraction(t)) < 0 for l in range(P.n)):
+        return None
+    return _Step(Piece(t, t, candidate), basis, -1, None, True)
+
+
 def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
             cap: Fraction | None) -> tuple[_Basis, Real, int] | None:
     """(basis, end, leaving): the piece from t on which the basis is optimal, or None if it is not
@@ -356,12 +385,7 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
         return None
     if cap is not None and not exact_lt(t, cap):
         cap = None  # a first piece when the horizon is 0: no cap, pieces have positive length
-    Y = basis.inv_t * C
-    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
-        Dm = P.D.coeffs()
-        W = Y.ncols() + len(Dm) - 1
-        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
-                                             for k in range(Y.ncols()) for m in range(W)])
+    Y = _dual_components(P, basis, C)
     lo = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
     end: Real = INF if cap is None else cap
     leaving = -1
@@ -571,14 +595,23 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
         found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
         before = last[i]
         if found.basis is None and before is not None and not before.covered:
-            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t
-            s = _rational_cover(found.r, before.piece.start, t)  # type: ignore[arg-type]
-            if s != t:
-                old = walks[i][-1]
-                walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
-                again = _accept_ray(P, objectives[i], found.piece.ray, s, _cap(T))  # type: ignore[arg-type]
-                assert again is not None  # r > 0 on [s, t] and just right of t
-                found = again
+            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t, or a
+            # point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change places)
+            point_piece = _point_piece(P, objectives[i], t)
+            if point_piece is not None:
+                add(i, point_piece)
+            else:
+                s = _rational_cover(found.r, before.piece.start, t)  # type: ignore[arg-type]
+                if s != t:
+                    old = walks[i][-1]
+                    walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
+                    again = _accept_ray(P, objectives[i], found.piece.ray, s, _cap(T))  # type: ignore[arg-type]
+                    assert again is not None  # r > 0 on [s, t] and just right of t
+                    found = again
+        add(i, found)
+
+    def add(i: int, found: _Step) -> None:
+        nonlocal T
         last[i] = found
         if found.basis is not None:
             x = found.basis.x
