@@ -115,8 +115,12 @@ def test_a_singular_or_infeasible_basis_is_rejected():
 def test_ends_out_of_order_or_infinite_too_early_are_rejected():
     cert = _certificate()
     i, f = _facet_with_pieces(cert)
-    f["ends"][1] = f["ends"][0]  # a second piece of length 0
+    f["ends"][1] = "0"  # the second piece ends before it starts
     _rejected(cert, "not increasing")
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    f["ends"][1] = f["ends"][0]  # a second piece of length 0: a point piece, whose neighbour then skips a breakpoint
+    assert not exactinv_check.check(cert).ok
     cert = _certificate()
     i, f = _facet_with_pieces(cert)
     f["ends"][0] = "oo"
