@@ -403,8 +403,9 @@ def lp_conditions(problem, record):
     ray-facet condition -(g_i N d) D = -r >= 0, which every h of the open piece violates.  Every finite end
     t > 0 of a piece must be covered: by a basis piece (closed; a point piece [t, t], equal ends, is a basis
     piece with z_B(t) >= 0 at t alone), or by a ray piece with t rational and
-    r(t) > 0; so two ray pieces meet only at a rational end, and a facet's last piece is a basis piece,
-    ends at oo, or is a ray piece positive at its rational end.  With ray pieces the record's ``point``,
+    r(t) > 0, or by being a pole (D(t) = 0: no steplength there); so two ray pieces meet only at a
+    rational end or a pole, and a facet's last piece is a basis piece, ends at oo or at a pole, or is a ray
+    piece positive at its rational end.  With ray pieces the record's ``point``,
     proved in P, makes P nonempty, so every ray condition is necessary."""
     n, m = problem.n, problem.m
     facets, point = parse(record, m, n)
@@ -444,10 +445,10 @@ def lp_conditions(problem, record):
                 e = polys.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
                 r = polys.trim(polys.mul_integers(e, D_int)) if e else []
                 ints = _require_positive_open(r, start, end, f"{what}'s (g_i N(h) d) D(h)")
-                require(not left_open or _positive_at(ints, start),
+                require(not left_open or _positive_at(ints, start),  # (a pole t, D(t) = 0, is never open)
                         f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
                         f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
-                left_open = not end.inf and not _positive_at(ints, end)
+                left_open = not end.inf and not _positive_at(ints, end) and end.sign_of(D_int) != 0
                 points.append(point)
                 rays.append(d)
                 is_ray.append(True)

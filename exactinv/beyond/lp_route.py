@@ -435,7 +435,8 @@ def _cap(T: Real) -> Fraction | None:
 class _Step:
     """A piece found from t: a basis piece (``basis``, the ``leaving`` component that ends it, -1 if none)
     or a ray piece (``r`` = c_i^T d D > 0 on the open piece); ``covered``: the piece itself shows its finite
-    end decided (a basis piece is closed; a ray piece only when r > 0 at that end, a rational cap)."""
+    end decided (a basis piece is closed; a ray piece only when r > 0 at that end, a rational cap, or when
+    the end is a pole, D = 0)."""
 
     piece: Piece
     basis: _Basis | None
@@ -464,10 +465,19 @@ def _accept_ray(P: _Problem, C: flint.fmpq_mat, d: tuple[Fraction, ...], t: Fini
     if cap is not None and not exact_lt(t, cap):
         cap = None
     end: Real = _next_root(r, t)
-    covered = isinstance(end, Infinity)
+    covered = isinstance(end, Infinity) or _is_pole(P.D, end)
     if cap is not None and exact_lt(cap, end):
         end, covered = cap, True
     return _Step(Piece(t, end, None, tuple(d)), None, -1, r, covered)
+
+
+def _is_pole(D: flint.fmpq_poly, t: FiniteReal) -> bool:
+    """D(t) = 0 exactly (r(tA) does not exist: t is no steplength, and needs no piece to decide it)."""
+    if D.degree() < 1:
+        return False
+    if isinstance(t, RealAlgebraic):
+        return (D % flint.fmpq_poly(t.poly)).is_zero()
+    return D(fmpq_of(Fraction(t))) == 0
 
 
 def _next_root(r: flint.fmpq_poly, t: FiniteReal) -> Real:
