@@ -15,7 +15,7 @@ import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
 from exactinv.validset.lp import LP_ABOVE
-from exactinv.beyond.lp_route import LPRouteDeclined, lp_route, vertex_bound
+from exactinv.beyond.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity
 from exactinv.errors import InvalidInput
@@ -126,6 +126,21 @@ def test_non_pointed_polyhedra_are_declined_and_unbounded_ones_are_not():
     V = ei.valid_steplengths(ei.LinearSystem([[1, 0], [0, -1]]), orthant, M.taylor(1), route="lp")
     assert V.route == "lp" and _ends(V) == [(0, 0, True, True)]
     assert V.lp.rays >= 1 and exactinv_check.check(V.certificate).ok
+
+
+def test_the_lp_route_is_cached_on_the_condition_set_typed():
+    """The pieces (or the decline) live in the typed cache cs.cache(LPRouteCache), not under a string key."""
+    S = ei.LinearSystem([[-1, 0], [0, -1]])
+    cs = ConditionSet(S, ei.Polyhedron([[1, 0], [-1, 0]], [1, 1]), M.taylor(1))
+    assert cs.cache(LPRouteCache) == LPRouteCache(None, None)
+    with pytest.raises(LPRouteDeclined) as first:
+        lp_route(cs)
+    with pytest.raises(LPRouteDeclined) as second:
+        lp_route(cs)
+    assert first.value is second.value is cs.cache(LPRouteCache).declined and "lp" not in cs.derived
+    cs = ConditionSet(S, ei.Polyhedron.box([-1, -1], [1, 1]), M.taylor(1))
+    found = lp_route(cs)
+    assert lp_route(cs) is found is cs.cache(LPRouteCache).found and not cs.derived
 
 
 def test_a_shared_condition_set_builds_the_lp_route_once():

@@ -35,10 +35,22 @@ facet itself, a degenerate LP; "sign just right of 0" is the lexicographic
 order of the powers of h, so the accepted basis is the lexicographically
 optimal one, with no epsilon.
 
-The route declines (:class:`LPRouteDeclined`) an unbounded P (an unbounded LP
-at some h) or a P with lines (rank G < n): the vertex route handles those.
-The cost is (facets) x (pieces) LPs and basis solves, independent of the
-number of vertices.
+Unbounded (pointed) P: where the LP of facet i is unbounded, a *ray piece*
+carries a ray d of P (G d <= 0) with r(h) = c_i(h)^T d D(h) > 0 on the open
+piece, found by the dual simplex step whose ratio test meets no row (then
+r = -z_leaving) or by the exact LP chain's verified ray; its condition is the
+ray-facet condition -r >= 0, necessary because P is nonempty (the route keeps
+a point of P) and violated on the whole piece.  A ray piece ends at every
+root of r (so r > 0 on all of it); an end it leaves undecided (r = 0 there,
+not a pole) is decided by the next piece: a basis piece, a point piece [t, t]
+(a basis optimal at a rational t alone), or a ray piece positive at t (t
+moved to a rational just left when irrational).  docs/design.md, "Unbounded
+P: rays and lines", has the proofs and the degenerate cases.
+
+The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n) and
+the rare irrational point where all of a facet's ray conditions vanish: the
+vertex route handles those.  The cost is (facets) x (pieces) LPs and basis
+solves, independent of the number of vertices.
 """
 
 from __future__ import annotations
@@ -63,7 +75,7 @@ from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
 from .conditions import Condition, ConditionSet, Kind, never_binds
 
-__all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "lp_route", "vertex_bound"]
+__all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 
 _ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
 _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
@@ -74,7 +86,8 @@ _TOUCH = ("an unbounded facet's ray conditions all vanish at h = {} (two rays of
 
 
 class LPRouteDeclined(ExactinvException):
-    """The LP route does not handle this problem (P unbounded or with lines; a basis not found)."""
+    """The LP route does not handle this problem (P with lines; a basis or ray not found; an irrational
+    point where all ray conditions of a facet vanish)."""
 
 
 @dataclass(frozen=True)
@@ -141,6 +154,15 @@ class LPRoute:
         """How many pieces are ray pieces (facet i violated on the open piece)."""
         return sum(p.basis is None for f in self.facets for p in f.pieces)
 
+
+
+@dataclass
+class LPRouteCache:
+    """The LP route's work on one :class:`ConditionSet`, kept by ``ConditionSet.cache(LPRouteCache)``:
+    ``found`` (the conditions and the pieces) or ``declined`` (why the route does not handle it)."""
+
+    found: tuple[list[Condition], LPRoute] | None = None
+    declined: LPRouteDeclined | None = None
 
 
 class _Basis:
@@ -577,16 +599,16 @@ def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     >>> [(c.generator, c.facet, c.poly) for c in conditions]
     [(1, 0, (Fraction(2, 1), Fraction(-1, 1))), (3, 1, (Fraction(2, 1), Fraction(-1, 1)))]
     """
-    cached = cs.derived.get("lp")
-    if isinstance(cached, LPRouteDeclined):
-        raise cached
-    if cached is None:
+    cache = cs.cache(LPRouteCache)
+    if cache.found is None and cache.declined is None:
         try:
-            cs.derived["lp"] = _build(cs)
+            cache.found = _build(cs)
         except LPRouteDeclined as exc:
-            cs.derived["lp"] = exc
-            raise
-    return cs.derived["lp"]  # type: ignore[return-value]
+            cache.declined = exc
+    if cache.declined is not None:
+        raise cache.declined
+    assert cache.found is not None
+    return cache.found
 
 
 def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
