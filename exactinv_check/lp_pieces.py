@@ -22,6 +22,16 @@ When E < oo the kernel also requires that the set of these conditions lies in
 [0, E] -- then it is the valid set exactly.  The conditions are built by
 :func:`exactinv_check.conditions.condition_polynomials` on the points x_B.
 
+Unbounded (pointed) P: a piece may instead be a *ray piece* {"ray": d}, the open (start, end) on which
+d is a ray of P (d != 0, G d <= 0) with r(h) = (g_i N(h) d) D(h) > 0; its condition is the ray-facet
+condition -r >= 0, necessary (the record's ``point``, proved in P, makes P nonempty: x + t d in P, and
+g_i A_d(h) (x + t d) grows without bound where r > 0) and violated on the whole piece.  Two equal ends make
+a *point piece* [t, t] (a basis piece: z_B(t) >= 0 at t alone).  Every finite end t > 0 must be decided:
+an end of a basis piece, a rational end where an adjacent ray piece has r(t) > 0, or a pole (D(t) = 0).
+Then for h in the conditions' set (D(h) != 0) and h <= E, each facet's piece holding h is a basis piece
+(weak duality, as above) -- a ray piece would violate its condition at h (docs/design.md, "Unbounded P:
+rays and lines", Theorem').
+
 No vertex enumeration and no edge walk: the work is priced first, per piece one
 fraction-free n x n solve and n components of degree deg N + deg D.  What runs
 is cheaper where it can be, each step proved: adj B and det B exchanged one row
