@@ -475,3 +475,17 @@ def test_lp_route_on_unbounded_polyhedra_agrees_with_ppl_at_every_end(seed):
             assert (t in V) == _ppl_valid_unbounded(S, P, method, t), (method, t)
             checked += 1
     assert checked
+
+
+def test_a_point_piece_at_an_irrational_end_where_c_vanishes():
+    """A cone in R^4 (b = 0), backward Euler: for one facet c_i(h) = N(h)^T g_i has the factor
+    49h^2 - 90h + 24, so at its root t = 1.513.. every ray condition of that facet vanishes and the two
+    ray pieces around t decide nothing there; the LP at t is bounded (objective 0): a point piece [t, t]
+    at the algebraic t, its z_B(t) = 0 >= 0 proved by exact signs (found by the fuzzer; it was declined)."""
+    A = [[F(1, 2), 0, F(1, 2), F(-2, 3)], [-6, -3, F(7, 2), -3], [-5, F(-3, 2), F(-5, 3), -9], [2, 0, F(-5, 2), -1]]
+    G = [[-1, 0, 0, 0], [0, -1, 0, 0], [0, 0, -1, 0], [0, 0, 0, -1], [-2, -1, 2, -2], [-3, -1, 1, -3], [2, 0, -2, -3]]
+    S, P = ei.LinearSystem(A), ei.Polyhedron(G, [0] * 7)
+    V = _three_routes_agree(S, P, M.backward_euler())
+    assert _ends(V) == [(0, 0, True, True)]
+    points = [p for f in V.lp.facets for p in f.pieces if p.start == p.end]
+    assert points and any(isinstance(p.start, RealAlgebraic) for p in points)

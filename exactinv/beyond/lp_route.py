@@ -66,7 +66,8 @@ import numpy as np
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real, vec
 from ..core.polys import no_root_between, shift, sign_at, sign_variations
-from ..core.real_signs import interval_signs, narrowed, next_sign_change, positive_after, rational_right_of, sign_right_of_real
+from ..core.real_signs import (interval_signs, narrowed, next_sign_change, positive_after, rational_right_of,
+                               sign_at_real, sign_right_of_real)
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from ..errors import ExactinvException
@@ -372,21 +373,29 @@ def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmp
 
 
 def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> _Step | None:
-    """The point piece [t, t] at a rational t: a basis read off the exact LP at t, accepted when every
-    component of z_B(t) is >= 0 (weak duality at t alone).  None when t is not rational or no basis
-    qualifies (the LP at t unbounded, or its optimum not read as a basis)."""
+    """The point piece [t, t]: a basis with every component of z_B(t) >= 0 (weak duality at t alone;
+    exact signs at a rational or algebraic t).  Candidates: the exact LP's basis at t (t rational), or at
+    the rationals just around t (t algebraic), then the bases met so far (where c_i(t) = 0 every feasible
+    basis qualifies).  None when none does (the LP at t unbounded, or no basis read)."""
     if isinstance(t, RealAlgebraic):
-        return None
-    candidate = _exact_rows(P, _cost(C, P.D, Fraction(t)))
-    if candidate is None or isinstance(candidate, _Ray):
-        return None
-    basis = P.basis(candidate)
-    if basis is None:
-        return None
-    Y = _dual_components(P, basis, C)
-    if any(sign_at(_row(Y, l), Fraction(t)) < 0 for l in range(P.n)):
-        return None
-    return _Step(Piece(t, t, candidate), basis, -1, None, True)
+        t = _tight(t)
+        points = [t.lower, t.upper]
+    else:
+        points = [Fraction(t)]
+    candidates: list = []
+    for s in points:
+        found = _exact_rows(P, _cost(C, P.D, s))
+        if found is not None and not isinstance(found, _Ray):
+            candidates.append(found)
+    candidates += [rows for rows, basis in list(P._bases.items())[:64] if basis is not None]
+    for rows in candidates:
+        basis = P.basis(rows)
+        if basis is None:
+            continue
+        Y = _dual_components(P, basis, C)
+        if all(sign_at_real(_row(Y, l), t) >= 0 for l in range(P.n)):
+            return _Step(Piece(t, t, rows), basis, -1, None, True)
+    return None
 
 
 def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
