@@ -489,3 +489,14 @@ def test_a_point_piece_at_an_irrational_end_where_c_vanishes():
     assert _ends(V) == [(0, 0, True, True)]
     points = [p for f in V.lp.facets for p in f.pieces if p.start == p.end]
     assert points and any(isinstance(p.start, RealAlgebraic) for p in points)
+
+
+def test_two_rays_vanishing_at_a_rational_end_and_a_third_one_positive_there():
+    """The orthant of R^3, backward Euler: facet x2 >= 0's ray pieces meet at h = 1/2, where both rays'
+    (g N d) D vanish and the LP is unbounded along a third ray, e1, positive at 1/2: its piece starts there
+    and decides it (found by the fuzzer; it was declined)."""
+    S = ei.LinearSystem([[2, 0, 3], [4, F(-7, 3), 6], [F(1, 3), F(-9, 2), -1]])
+    P = ei.Polyhedron([[-1, 0, 0], [0, -1, 0], [0, 0, -1]], [0, 0, 0])
+    V = _three_routes_agree(S, P, M.backward_euler())
+    assert _ends(V) == [(0, 0, True, True)]
+    assert (F(1, 2), (1, 0, 0)) in [(p.start, p.ray) for f in V.lp.facets for p in f.pieces]

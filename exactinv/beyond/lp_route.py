@@ -372,20 +372,24 @@ def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmp
     return Y
 
 
-def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> _Step | None:
-    """The point piece [t, t]: a basis with every component of z_B(t) >= 0 (weak duality at t alone;
-    exact signs at a rational or algebraic t).  Candidates: the exact LP's basis at t (t rational), or at
-    the rationals just around t (t algebraic), then the bases met so far (where c_i(t) = 0 every feasible
-    basis qualifies).  None when none does (the LP at t unbounded, or no basis read)."""
+def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> tuple[_Step | None, list[_Ray]]:
+    """(the point piece [t, t] or None, the rays met): a basis with every component of z_B(t) >= 0
+    (weak duality at t alone; exact signs at a rational or algebraic t).  Candidates: the exact LP's
+    basis at t (t rational), or at the rationals just around t (t algebraic), then the bases met so far
+    (where c_i(t) = 0 every feasible basis qualifies).  When those LPs are unbounded, their verified rays
+    are returned instead: one of them may be positive at t itself."""
     if isinstance(t, RealAlgebraic):
         t = _tight(t)
         points = [t.lower, t.upper]
     else:
         points = [Fraction(t)]
     candidates: list = []
+    rays: list[_Ray] = []
     for s in points:
         found = _exact_rows(P, _cost(C, P.D, s))
-        if found is not None and not isinstance(found, _Ray):
+        if isinstance(found, _Ray):
+            rays.append(found)
+        elif found is not None:
             candidates.append(found)
     candidates += [rows for rows, basis in list(P._bases.items())[:64] if basis is not None]
     for rows in candidates:
@@ -394,8 +398,8 @@ def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> _Step | None:
             continue
         Y = _dual_components(P, basis, C)
         if all(sign_at_real(_row(Y, l), t) >= 0 for l in range(P.n)):
-            return _Step(Piece(t, t, rows), basis, -1, None, True)
-    return None
+            return _Step(Piece(t, t, rows), basis, -1, None, True), rays
+    return None, rays
 
 
 def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
@@ -555,15 +559,12 @@ def _next_piece(P: _Problem, i: int, C: flint.fmpq_mat, t: FiniteReal, cap: Frac
     raise LPRouteDeclined(f"facet {i}: no basis or ray found optimal just right of h = {t}")
 
 
-def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction:
+def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction | None:
     """Two ray pieces meet at t, where the first one's r vanishes: a rational s in (start, t] with the
     second one's r > 0 on [s, t] (so the second piece, moved to start at s, decides s and t itself).
-    Raises :class:`LPRouteDeclined` when r(t) = 0 too: two rays change places at one breakpoint, or the
-    same ray's r touches 0 at t (a tangency; t may be valid, a point piece the record cannot state)."""
+    None when r(t) = 0 too (or not proved > 0 near t)."""
     if not isinstance(t, RealAlgebraic):
-        if sign_at(r, Fraction(t)) > 0:
-            return Fraction(t)
-        raise LPRouteDeclined(_TOUCH.format(t))
+        return Fraction(t) if sign_at(r, Fraction(t)) > 0 else None
     bits = 16
     for _ in range(12):
         s = t.lower
@@ -571,7 +572,7 @@ def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction:
             return s
         t.refine(bits)
         bits *= 2
-    raise LPRouteDeclined(_TOUCH.format(t))
+    return None
 
 
 def _bound(p: flint.fmpq_poly, T: Real) -> Real:
@@ -638,17 +639,22 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
         if found.basis is None and before is not None and not before.covered:
             # two ray pieces meet at t, where the first one's r vanishes: the second must decide t, or a
             # point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change places)
-            point_piece = _point_piece(P, objectives[i], t)
+            point_piece, rays = _point_piece(P, objectives[i], t)
             if point_piece is not None:
                 add(i, point_piece)
-            else:
-                s = _rational_cover(found.r, before.piece.start, t)  # type: ignore[arg-type]
-                if s != t:
-                    old = walks[i][-1]
-                    walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
-                    again = _accept_ray(P, objectives[i], found.piece.ray, s, _cap(T))  # type: ignore[arg-type]
-                    assert again is not None  # r > 0 on [s, t] and just right of t
-                    found = again
+            else:  # a ray positive at t itself: the found piece's, or one of an unbounded LP at (or around) t
+                for d in [found.piece.ray] + rays:
+                    r = _ray_poly(P, objectives[i], d)  # type: ignore[arg-type]
+                    s = _rational_cover(r, before.piece.start, t)  # type: ignore[arg-type]
+                    again = None if s is None else _accept_ray(P, objectives[i], d, s, _cap(T))  # type: ignore[arg-type]
+                    if again is not None:
+                        if s != t:
+                            old = walks[i][-1]
+                            walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
+                        found = again
+                        break
+                else:
+                    raise LPRouteDeclined(_TOUCH.format(t))
         add(i, found)
 
     def add(i: int, found: _Step) -> None:
