@@ -565,6 +565,8 @@ def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction 
     None when r(t) = 0 too (or not proved > 0 near t)."""
     if not isinstance(t, RealAlgebraic):
         return Fraction(t) if sign_at(r, Fraction(t)) > 0 else None
+    if sign_at_real(r, t) <= 0:  # exact: r(t) = 0 (t's polynomial divides r) or r(t) < 0
+        return None
     bits = 16
     for _ in range(12):
         s = t.lower
@@ -637,25 +639,33 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
         found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
         before = last[i]
         if found.basis is None and before is not None and not before.covered:
-            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t, or a
-            # point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change places)
-            point_piece, rays = _point_piece(P, objectives[i], t)
-            if point_piece is not None:
-                add(i, point_piece)
-            else:  # a ray positive at t itself: the found piece's, or one of an unbounded LP at (or around) t
-                for d in [found.piece.ray] + rays:
-                    r = _ray_poly(P, objectives[i], d)  # type: ignore[arg-type]
-                    s = _rational_cover(r, before.piece.start, t)  # type: ignore[arg-type]
-                    again = None if s is None else _accept_ray(P, objectives[i], d, s, _cap(T))  # type: ignore[arg-type]
-                    if again is not None:
-                        if s != t:
-                            old = walks[i][-1]
-                            walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
-                        found = again
+            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t (r > 0 at t),
+            # or a point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change
+            # places), or a third ray, of the LP unbounded at (or around) t, positive at t
+            covering = cover(i, found.piece.ray, before, t)  # type: ignore[arg-type]
+            if covering is None:
+                point_piece, rays = _point_piece(P, objectives[i], t)
+                if point_piece is not None:
+                    add(i, point_piece)
+                    covering = found
+                for d in rays if covering is None else ():
+                    covering = cover(i, d, before, t)
+                    if covering is not None:
                         break
-                else:
+                if covering is None:
                     raise LPRouteDeclined(_TOUCH.format(t))
+            found = covering
         add(i, found)
+
+    def cover(i: int, d: tuple[Fraction, ...], before: _Step, t: FiniteReal) -> _Step | None:
+        """The ray piece of d from a rational s <= t at which its r > 0 (moving the previous piece's end
+        from t to s), or None."""
+        s = _rational_cover(_ray_poly(P, objectives[i], d), before.piece.start, t)
+        again = None if s is None else _accept_ray(P, objectives[i], d, s, _cap(T))
+        if again is not None and s != t:
+            old = walks[i][-1]
+            walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
+        return again
 
     def add(i: int, found: _Step) -> None:
         nonlocal T
