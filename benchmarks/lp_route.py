@@ -23,7 +23,7 @@ threshold (relative difference; absolute when that is 0).  Times are CPU seconds
 (``time.process_time``, HiGHS' threads included): the project machine is
 shared, and wall-clock times there move with the other jobs' load.
 
-Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200]
+Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200] [--unbounded]
       (methods: taylor1 ... taylor8, pade11, pade22, backward_euler)
 """
 
@@ -52,11 +52,19 @@ METHODS = {**{f"taylor{k}": ei.methods.taylor(k) for k in range(1, 9)},
            "backward_euler": ei.methods.backward_euler()}
 
 
-def family(n: int, m: int, seed: int = 1) -> tuple[ei.LinearSystem, ei.Polyhedron]:
+def family(n: int, m: int, seed: int = 1, unbounded: bool = False) -> tuple[ei.LinearSystem, ei.Polyhedron]:
+    """The random family; ``unbounded``: every row g has g . (1, .., 1) < 0 (a row with g . 1 > 0 is
+    negated, one with g . 1 = 0 redrawn), so (1, .., 1) is a ray of P -- P is unbounded (and pointed:
+    rank G = n) -- and the LP route's facets may have ray pieces."""
     rng = random.Random(seed * 1000 + n * 7 + m)
     G = []
     while len(G) < m:
         row = [rng.randint(-5, 5) for _ in range(n)]
+        if unbounded:
+            s = sum(row)
+            if s == 0:
+                continue
+            row = row if s < 0 else [-v for v in row]
         if any(row):
             G.append(row)
     D = 10 * n
@@ -135,8 +143,8 @@ def float_bisection(S: ei.LinearSystem, P: ei.Polyhedron, method: ei.Method) -> 
 # ------------------------------------------------------------------ the run
 
 
-def row(n: int, m: int, name: str, method: ei.Method) -> dict:
-    S, P = family(n, m)
+def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False) -> dict:
+    S, P = family(n, m, unbounded=unbounded)
     t0 = time.process_time()
     cs = ConditionSet(S, P, method)
     L = ei.largest_threshold(S, P, method, conditions=cs, route="lp")
@@ -154,7 +162,7 @@ def row(n: int, m: int, name: str, method: ei.Method) -> dict:
         agree = 0.0 if tau == math.inf else 1.0
     else:  # relative difference; absolute when the exact threshold is 0 (P not invariant)
         agree = abs(tau - exact) / (abs(exact) if exact else 1.0)
-    return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "lps": V.lp.float_lps + V.lp.exact_lps,
+    return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "rays": V.lp.rays, "lps": V.lp.float_lps + V.lp.exact_lps,
             "engine": engine, "kernel": kernel, "float": flt, "float_lps": lps, "ok": report.ok,
             "tau": L.value, "set": V.intervals, "agree": agree}
 
@@ -164,6 +172,7 @@ def main(argv=None) -> int:
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--methods", default="taylor4")
     parser.add_argument("--sizes", default=None, help="e.g. 10x40,20x200")
+    parser.add_argument("--unbounded", action="store_true", help="the unbounded variant of the family (ray pieces)")
     args = parser.parse_args(argv)
     sizes = QUICK if args.quick else SIZES
     if args.sizes:
@@ -173,8 +182,9 @@ def main(argv=None) -> int:
     print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|")
     for name in args.methods.split(","):
         for n, m in sizes:
-            r = row(n, m, name, METHODS[name])
-            print(f"| {r['n']} | {r['m']} | {r['method']} | {r['pieces']} | {r['lps']} | {r['engine']:.2f} | "
+            r = row(n, m, name, METHODS[name], args.unbounded)
+            pieces = f"{r['pieces']} ({r['rays']} rays)" if args.unbounded else r["pieces"]
+            print(f"| {r['n']} | {r['m']} | {r['method']} | {pieces} | {r['lps']} | {r['engine']:.2f} | "
                   f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
                   f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
                   f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "

@@ -22,6 +22,16 @@ When E < oo the kernel also requires that the set of these conditions lies in
 [0, E] -- then it is the valid set exactly.  The conditions are built by
 :func:`exactinv_check.conditions.condition_polynomials` on the points x_B.
 
+Unbounded (pointed) P: a piece may instead be a *ray piece* {"ray": d}, the open (start, end) on which
+d is a ray of P (d != 0, G d <= 0) with r(h) = (g_i N(h) d) D(h) > 0; its condition is the ray-facet
+condition -r >= 0, necessary (the record's ``point``, proved in P, makes P nonempty: x + t d in P, and
+g_i A_d(h) (x + t d) grows without bound where r > 0) and violated on the whole piece.  Two equal ends make
+a *point piece* [t, t] (a basis piece: z_B(t) >= 0 at t alone).  Every finite end t > 0 must be decided:
+an end of a basis piece, a rational end where an adjacent ray piece has r(t) > 0, or a pole (D(t) = 0).
+Then for h in the conditions' set (D(h) != 0) and h <= E, each facet's piece holding h is a basis piece
+(weak duality, as above) -- a ray piece would violate its condition at h (docs/design.md, "Unbounded P:
+rays and lines", Theorem').
+
 No vertex enumeration and no edge walk: the work is priced first, per piece one
 fraction-free n x n solve and n components of degree deg N + deg D.  What runs
 is cheaper where it can be, each step proved: adj B and det B exchanged one row
@@ -33,6 +43,7 @@ falls back to the direct computation when it proves nothing.
 """
 
 from fractions import Fraction
+from math import gcd
 from operator import mul
 from types import SimpleNamespace
 
@@ -40,7 +51,7 @@ from . import polys
 from .budget import PYTHON_OP, charge, descartes_node_cost, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .linalg import integer_solve
-from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, within_budget
+from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
 from .reals import Real, separate
 from .validset import valid_set
 
@@ -49,12 +60,16 @@ LP_WORK_BUDGET = 50 * WORK_BUDGET  # all pieces of one record together (measured
 
 
 def parse(record, m, n):
-    """[(ends, bases)] per facet, shape-checked: ends are proved reals, strictly increasing and > 0."""
-    require(isinstance(record, dict) and set(record) == {"facets"}, "lp has the key facets")
+    """([(ends, pieces)] per facet, point), shape-checked: a piece is a basis (a tuple of n distinct rows)
+    or a ray piece (a list of n rationals, the ray d); ``point`` (a list of n rationals) is present
+    exactly when some piece is a ray piece."""
+    require(isinstance(record, dict) and set(record) in ({"facets"}, {"facets", "point"}),
+            "lp has the key facets (and point, with ray pieces)")
     facets = record["facets"]
     require(isinstance(facets, list) and len(facets) == m, f"lp: one entry per facet ({m})")
     total = 0
     out = []
+    rays = False
     for i, f in enumerate(facets):
         require(isinstance(f, dict) and set(f) == {"ends", "bases"}, f"lp facet {i}: the keys ends, bases")
         ends, bases = f["ends"], f["bases"]
@@ -64,12 +79,19 @@ def parse(record, m, n):
         require(total <= MAX_PIECES, f"lp: more than {MAX_PIECES} pieces")
         rows = []
         for basis in bases:
+            if isinstance(basis, dict):
+                require(set(basis) == {"ray"}, f"lp facet {i}: a ray piece is {{\"ray\": d}}")
+                rows.append(vector(basis["ray"], f"lp facet {i} ray", n))
+                rays = True
+                continue
             require(isinstance(basis, list) and len(basis) == n, f"lp facet {i}: a basis is a list of {n} rows")
             r = tuple(integer(x, f"lp facet {i} basis row", 0, m) for x in basis)
             require(len(set(r)) == n, f"lp facet {i}: a basis repeats a row")
             rows.append(r)
         out.append((ends, rows))
-    return out
+    require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
+    point = vector(record["point"], "lp point", n) if rays else None
+    return out, point
 
 
 def _price(problem, pieces):
@@ -341,19 +363,73 @@ def _require_nonnegative(p, start, end, what, tried=False):
         require(polys.sign_at(ints, q) > 0, f"{what} is negative inside its piece (at {q})")
 
 
+def _require_positive_open(p, start, end, what):
+    """p > 0 on the open piece (start, end) (end may be oo), or CheckFailure: Descartes' rule on the
+    enclosing (lower end of start, upper end of end), else no root of p strictly inside the piece
+    (every positive root isolated and compared exactly) and p > 0 at one rational inside it."""
+    ints = polys.integer_coefficients(p) if p else []
+    require(ints, f"{what} is identically zero")
+    a = start.bounds()[0]
+    b = None if end.inf else end.bounds()[1]
+    if _positive_around(ints, a, b):
+        return ints
+    for lo, hi in polys.positive_roots(p):
+        r = Real.root_in(p, lo, hi)
+        require(not (start.compare(r) < 0 and (end.inf or r.compare(end) < 0)), f"{what} vanishes inside its piece")
+    if end.inf:
+        q = start.bounds()[1] + 1
+    else:
+        a1, b0 = separate(start, end)
+        q = (a1 + b0) / 2
+    require(polys.sign_at(ints, q) > 0, f"{what} is not positive inside its piece (at {q})")
+    return ints
+
+
+def _positive_at(ints, t):
+    """True if t is rational and the integer polynomial is > 0 at t (a ray piece then covers its end t)."""
+    return not t.inf and t.poly is None and polys.sign_at(ints, t.q) > 0
+
+
+def _require_in(rows, x, what, cone=False):
+    """G x <= b (cone: G x <= 0 and x != 0) for the integer rows (g, beta) of G x <= b, exactly."""
+    dx = 1
+    for v in x:
+        dx = dx * v.denominator // gcd(dx, v.denominator)
+    xi = [int(v * dx) for v in x]
+    charge(len(rows) * len(x) * (PYTHON_OP + words(max(abs(v).bit_length() for v in xi) + 64) ** 2), what)
+    if cone:
+        require(any(xi), f"{what} is the zero vector")
+    for k, (g, beta) in enumerate(rows):
+        require(sum(map(mul, g, xi)) <= (0 if cone else beta * dx), f"{what} violates row {k} of G x <= b"
+                + (" (G d <= 0: d is not a ray of P)" if cone else ""))
+
+
 def lp_conditions(problem, record):
     """(generators, D, inequalities, horizon): the pieces proved (module docstring), the conditions of their
-    points x_B (keyed (kind, flat piece index, facet)) and E, the least last end over the facets."""
+    points x_B and rays d (keyed (kind, flat piece index, facet)) and E, the least last end over the facets.
+
+    A ray piece (start, end) of facet i with ray d: d != 0 with G d <= 0 (a ray of P), and
+    r(h) = (g_i N(h) d) D(h) > 0 on the open piece (:func:`_require_positive_open`); its condition is the
+    ray-facet condition -(g_i N d) D = -r >= 0, which every h of the open piece violates.  Every finite end
+    t > 0 of a piece must be covered: by a basis piece (closed; a point piece [t, t], equal ends, is a basis
+    piece with z_B(t) >= 0 at t alone), or by a ray piece with t rational and
+    r(t) > 0, or by being a pole (D(t) = 0: no steplength there); so two ray pieces meet only at a
+    rational end or a pole, and a facet's last piece is a basis piece, ends at oo or at a pole, or is a ray
+    piece positive at its rational end.  With ray pieces the record's ``point``,
+    proved in P, makes P nonempty, so every ray condition is necessary."""
     n, m = problem.n, problem.m
-    facets = parse(record, m, n)
+    facets, point = parse(record, m, n)
     _price(problem, sum(len(ends) for ends, _ in facets))
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = polys.integer_coefficients(D)
     bases = _Bases(problem.G, problem.b)
+    if point is not None:
+        _require_in(bases.rows, point, "lp point")
     dN, N_int = integer_matrix([row for Nk in N for row in Nk])  # N_k = N_int[k n .. k n + n - 1] / dN
-    points, facet_of = [], []
+    points, rays, facet_of, is_ray = [], [], [], []
     horizon = None
+    zero = [Fraction(0)] * n
     for i, (ends, rows) in enumerate(facets):
         # C_i: column k = (g_i N_k)^T, times one positive integer (the same for all of it)
         g = bases.rows[i][0]
@@ -361,29 +437,68 @@ def lp_conditions(problem, record):
                  for l in range(n)]
         start = Real.rational(0)
         previous = None
+        left_open = False  # the current start is a ray piece's end that the ray piece does not cover
         for k, (data, basis) in enumerate(zip(ends, rows)):
             end = Real.parse(data, f"lp facet {i} end {k}")
-            require(start.compare(end) < 0, f"lp facet {i}: the ends are not increasing after piece {k}")
+            order_of_ends = start.compare(end)
+            point_piece = order_of_ends == 0 and not isinstance(basis, list)  # a basis piece [t, t]
+            require(order_of_ends < 0 or point_piece, f"lp facet {i}: the ends are not increasing after piece {k}")
             require(not end.inf or k == len(ends) - 1, f"lp facet {i}: only the last piece may end at oo")
-            previous = order, d, adj = bases.adjugate(basis, previous)
-            x = bases.vertex(basis, order, d, adj)
-            Y = _components(order, d, adj, C_int)
-            a = start.bounds()[0]
-            b = None if end.inf else end.bounds()[1]
-            batch = len(C_int[0]) < len(Y)  # L transforms and a product beat n transforms only when L < n
-            flags = _batch_positive(Y, D_int, a, b) if batch else [False] * len(Y)
-            for l, ok in enumerate(flags):
-                if not ok:
-                    p = polys.trim(polys.mul_integers(Y[l], D_int))
-                    _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B", tried=batch)
-            points.append(x)
+            if isinstance(basis, list):  # a ray piece: facet i is violated on the open piece
+                d = basis
+                what = f"lp facet {i} piece {k}: the ray"
+                _require_in(bases.rows, d, what, cone=True)
+                dd = 1
+                for v in d:
+                    dd = dd * v.denominator // gcd(dd, v.denominator)
+                di = [int(v * dd) for v in d]
+                e = polys.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
+                r = polys.trim(polys.mul_integers(e, D_int)) if e else []
+                ints = _require_positive_open(r, start, end, f"{what}'s (g_i N(h) d) D(h)")
+                require(not left_open or _positive_at(ints, start),  # (a pole t, D(t) = 0, is never open)
+                        f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
+                        f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
+                left_open = not end.inf and not _positive_at(ints, end) and end.sign_of(D_int) != 0
+                points.append(point)
+                rays.append(d)
+                is_ray.append(True)
+            else:
+                previous = order, det, adj = bases.adjugate(basis, previous)
+                x = bases.vertex(basis, order, det, adj)
+                Y = _components(order, det, adj, C_int)
+                if point_piece:  # z_B(t) >= 0 at t alone: the exact sign at the (rational or algebraic) end
+                    for l, y in enumerate(Y):
+                        require(start.sign_of(polys.mul_integers(y, D_int)) >= 0,
+                                f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
+                    left_open = False
+                    points.append(x)
+                    rays.append(zero)
+                    is_ray.append(False)
+                    facet_of.append(i)
+                    continue
+                a = start.bounds()[0]
+                b = None if end.inf else end.bounds()[1]
+                batch = len(C_int[0]) < len(Y)  # L transforms and a product beat n transforms only when L < n
+                flags = _batch_positive(Y, D_int, a, b) if batch else [False] * len(Y)
+                for l, ok in enumerate(flags):
+                    if not ok:
+                        p = polys.trim(polys.mul_integers(Y[l], D_int))
+                        _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B",
+                                             tried=batch)
+                left_open = False
+                points.append(x)
+                rays.append(zero)
+                is_ray.append(False)
             facet_of.append(i)
             start = end
+        require(not left_open, f"lp facet {i}: its last end {start} is a ray piece's end that nothing covers")
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
-    generators = SimpleNamespace(vertices=points, rays=[], lines=[], counts=(len(points), 0, 0))
-    D2, inequalities, _ = condition_polynomials(problem.A, problem.G, problem.b, method.numerator,
-                                                method.denominator, generators, lambda kind, k: [facet_of[k]])
+    count = len(points)
+    generators = SimpleNamespace(vertices=points, rays=rays, lines=[], counts=(count, count, 0))
+    D2, inequalities, _ = condition_polynomials(
+        problem.A, problem.G, problem.b, method.numerator, method.denominator, generators,
+        lambda kind, k: [facet_of[k]] if kind != "line" and (kind == "ray") == is_ray[k] else [])
     return generators, D2, inequalities, horizon
 
 

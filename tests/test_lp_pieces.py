@@ -115,8 +115,12 @@ def test_a_singular_or_infeasible_basis_is_rejected():
 def test_ends_out_of_order_or_infinite_too_early_are_rejected():
     cert = _certificate()
     i, f = _facet_with_pieces(cert)
-    f["ends"][1] = f["ends"][0]  # a second piece of length 0
+    f["ends"][1] = "0"  # the second piece ends before it starts
     _rejected(cert, "not increasing")
+    cert = _certificate()
+    i, f = _facet_with_pieces(cert)
+    f["ends"][1] = f["ends"][0]  # a second piece of length 0: a point piece, whose neighbour then skips a breakpoint
+    assert not exactinv_check.check(cert).ok
     cert = _certificate()
     i, f = _facet_with_pieces(cert)
     f["ends"][0] = "oo"
@@ -271,3 +275,138 @@ def test_a_sliver_of_the_end_polynomial_times_a_power_of_h():
     assert lp_pieces._sliver(p, p, r, r.lo)
     q = [0, -2, 0, 1]                                     # h (h^2 - 2): < 0 there
     assert not lp_pieces._sliver(q, q, r, r.lo)
+
+
+# ------------------------------------------------------------------ ray pieces (unbounded P)
+
+
+def _ray_certificate(method=None, claim="valid"):
+    """The orthant of R^2 with M = [[-4, -1], [10, 0]] (tests/test_lp_route.py works it by hand):
+    Taylor(2) gives facet 0 two ray pieces (0, 1/2) with e2, (1/2, 1) with e1, then a basis; Taylor(3) a ray
+    piece (0, 1), a point piece [1, 1] and a ray piece (1, oo)."""
+    S = ei.LinearSystem([[-4, -1], [10, 0]])
+    P = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
+    result = (ei.valid_steplengths if claim == "valid" else ei.largest_threshold)(S, P, method or M.taylor(2), route="lp")
+    cert = result.certificate
+    assert exactinv_check.check(cert).ok
+    return cert
+
+
+def _half_strip_certificate():
+    """P = {x1 >= 0, |x2| <= 1}, x' = -x, forward Euler: facet 0 is a basis on [0, 1], a ray piece (1, oo)."""
+    S = ei.LinearSystem([[-1, 0], [0, -1]])
+    P = ei.Polyhedron([[-1, 0], [0, 1], [0, -1]], [0, 1, 1])
+    cert = ei.valid_steplengths(S, P, M.forward_euler(), route="lp").certificate
+    assert exactinv_check.check(cert).ok
+    f = _lp(cert)[0]
+    assert f["ends"] == ["1", "oo"] and f["bases"][1] == {"ray": ["1", "0"]}
+    return cert
+
+
+def test_a_ray_outside_the_recession_cone_is_rejected():
+    cert = _half_strip_certificate()
+    _lp(cert)[0]["bases"][1] = {"ray": ["1", "1"]}  # G d = (-1, 1, -1): leaves x2 <= 1
+    _rejected(cert, "not a ray of P")
+    cert = _half_strip_certificate()
+    _lp(cert)[0]["bases"][1] = {"ray": ["0", "0"]}
+    _rejected(cert, "zero vector")
+
+
+def test_a_ray_not_positive_on_its_whole_piece_is_rejected():
+    """(g_0 N(h) d) D = h - 1 for d = (1, 0): the ray piece moved to start at 1/2 covers (1/2, 1), where the
+    LP is bounded; a ray piece from 0 likewise.  Both rejected (the basis piece before it is cut short)."""
+    cert = _half_strip_certificate()
+    _lp(cert)[0]["ends"][0] = "1/2"
+    _rejected(cert, "inside its piece")
+    cert = _half_strip_certificate()
+    f = _lp(cert)[0]
+    f["ends"], f["bases"] = ["oo"], [{"ray": ["1", "0"]}]
+    _rejected(cert, "inside its piece")
+
+
+def test_a_ray_piece_claiming_validity_is_rejected():
+    """The valid set claimed past the ray piece's start: the ray condition -(h - 1) >= 0 is recomputed and
+    the claim [0, 2] differs from [0, 1]; and a basis piece in place of the ray piece (the LP called bounded
+    where it is not): z_B dips negative."""
+    cert = _half_strip_certificate()
+    cert["claims"][0]["intervals"][0]["hi"] = "2"
+    assert not exactinv_check.check(cert).ok
+    for basis in ([0, 2], [0, 1]):  # another vertex, or the vertex kept past its breakpoint
+        cert = _half_strip_certificate()
+        _lp(cert)[0]["bases"][1] = basis
+        del cert["claims"][0]["lp"]["point"]  # no ray piece is left
+        _rejected(cert, "negative inside its piece")
+
+
+def test_a_piece_skipping_a_breakpoint_is_rejected_with_rays():
+    """Taylor(2): the ray e2 kept past 1/2 (to 1), e1's piece dropped; or e1's piece run to oo."""
+    cert = _ray_certificate()
+    f = _lp(cert)[0]
+    assert f["bases"][:2] == [{"ray": ["0", "1"]}, {"ray": ["1", "0"]}] and f["ends"][:2] == ["1/2", "1"]
+    del f["ends"][0], f["bases"][1]
+    _rejected(cert, "inside its piece")
+    cert = _ray_certificate()
+    f = _lp(cert)[0]
+    f["ends"][1:], f["bases"][2:] = ["oo"], []
+    _rejected(cert, "inside its piece")
+
+
+def test_ray_pieces_meeting_where_neither_decides_are_rejected():
+    """Taylor(3): the point piece [1, 1] deleted -- the two ray pieces of e2 meet at 1, where its
+    (g N d) D touches 0 and h = 1 is valid: rejected.  The pieces cut after the first ray piece: its end 1
+    is left undecided.  Two ray pieces meeting at an irrational end: rejected (a rational end is required)."""
+    cert = _ray_certificate(M.taylor(3))
+    f = _lp(cert)[0]
+    assert f["ends"] == ["1", "1", "oo"] and isinstance(f["bases"][1], list)
+    del f["ends"][1], f["bases"][1]
+    _rejected(cert, "covered by neither")
+    cert = _ray_certificate(M.taylor(3))
+    f = _lp(cert)[0]
+    del f["ends"][1:], f["bases"][1:]
+    _rejected(cert, "nothing covers")
+    cert = _ray_certificate()
+    f = _lp(cert)[0]
+    f["ends"][0] = {"poly": ["-1", "0", "5"], "interval": ["2/5", "1/2"]}  # 1/sqrt 5, in (1/3, 1/2)
+    _rejected(cert, "covered by neither")
+
+
+def test_a_point_piece_with_a_negative_dual_is_rejected():
+    """Taylor(3)'s point piece [1, 1] with another basis, or moved to 1/2 (inside the ray piece)."""
+    cert = _ray_certificate(M.taylor(3))
+    f = _lp(cert)[0]
+    f["ends"][0:2] = ["1/2", "1/2"]
+    assert not exactinv_check.check(cert).ok
+    cert = _ray_certificate(M.taylor(3))
+    f = _lp(cert)[0]
+    f["ends"].insert(0, "1/2")
+    f["bases"].insert(0, f["bases"][1])  # a point piece [1/2, 1/2] with the basis of h = 1
+    f["ends"][1] = "1/2"
+    assert not exactinv_check.check(cert).ok
+
+
+def test_the_point_of_p_is_required_with_ray_pieces_and_checked():
+    cert = _half_strip_certificate()
+    lp = cert["claims"][0]["lp"]
+    lp["point"] = ["-1", "0"]
+    _rejected(cert, "lp point violates row 0")
+    del lp["point"]
+    _rejected(cert, "a point of P is given exactly when")
+    cert = _certificate()
+    cert["claims"][0]["lp"]["point"] = ["0", "0", "0"]
+    _rejected(cert, "a point of P is given exactly when")
+    cert = _half_strip_certificate()
+    _lp(cert)[0]["bases"][1] = {"ray": ["1", "0"], "basis": [0, 1]}
+    _rejected(cert, "a ray piece is")
+
+
+def test_a_binding_ray_condition_is_checked():
+    """The largest threshold of the half-strip under forward Euler is 1, bound by the ray piece's ray
+    condition (kind "ray", the piece's flat index); naming the basis piece's index as a ray is rejected."""
+    S = ei.LinearSystem([[-1, 0], [0, -1]])
+    P = ei.Polyhedron([[-1, 0], [0, 1], [0, -1]], [0, 1, 1])
+    cert = ei.largest_threshold(S, P, M.forward_euler(), route="lp").certificate
+    claim = cert["claims"][0]
+    assert exactinv_check.check(cert).ok and claim["value"] == "1"
+    assert claim["binding"]["kind"] == "ray" and claim["binding"]["generator"] == 1
+    claim["binding"]["generator"] = 0
+    assert not exactinv_check.check(cert).ok

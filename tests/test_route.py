@@ -209,7 +209,7 @@ def test_auto_reports_the_route_it_chose():
     assert [r.name for r in choose_route(big)][0] == "lp"
 
 
-def test_a_forced_route_that_does_not_accept_is_refused_by_name():
+def test_a_forced_route_that_does_not_accept_is_refused_by_name(monkeypatch):
     S2 = ei.LinearSystem([[-1, 0], [0, -1]])
     triangle = ei.Polyhedron([[-1, 0], [0, -1], [1, 1]], [0, 0, 1])
     disc = ei.Ellipsoid([[1, 0], [0, 1]])
@@ -223,9 +223,21 @@ def test_a_forced_route_that_does_not_accept_is_refused_by_name():
         ei.valid_steplengths(S2, triangle, M.taylor(2), route="ellipsoid")
     with pytest.raises(InvalidInput, match=r"route: 'lp' does not accept this problem: P has lines"):
         ei.valid_steplengths(S2, strip, M.taylor(2), route="lp")
+    # an unbounded P is the LP route's own now (ray pieces); a route that declines while solving (the LP
+    # route at a point no piece decides) is refused by name when forced, and route="auto" takes the next
     orthant = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
-    with pytest.raises(InvalidInput, match=r"route: the lp route declines this problem"):
-        ei.valid_steplengths(ei.LinearSystem([[1, 0], [0, -1]]), orthant, M.taylor(1), route="lp")
+    S = ei.LinearSystem([[1, 0], [0, -1]])
+    assert ei.valid_steplengths(S, orthant, M.taylor(1), route="lp").intervals == \
+        ei.valid_steplengths(S, orthant, M.taylor(1), route="vertex").intervals
+    import exactinv.validset.lp as lp_module
+    from exactinv.beyond.lp_route import LPRouteDeclined
+
+    def declines(cs):
+        raise LPRouteDeclined("a point no piece decides")
+
+    monkeypatch.setattr(lp_module, "lp_route", declines)
+    with pytest.raises(InvalidInput, match=r"route: the lp route declines this problem: a point no piece decides"):
+        ei.valid_steplengths(S, orthant, M.taylor(1), route="lp")
     with pytest.raises(InvalidInput, match=r"route: expected one of 'auto', 'vertex', 'box', 'lp', 'ellipsoid'"):
         ei.valid_steplengths(S2, triangle, M.taylor(2), route="simplex")
     with pytest.raises(InvalidInput, match="conditions: a ConditionSet is of a polyhedron"):

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from fractions import Fraction
 from functools import cached_property
-from typing import Iterable
+from typing import Iterable, TypeVar
 
 import flint
 
@@ -37,6 +37,8 @@ from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 from ..model.validate import check_problem
+
+_Cache = TypeVar("_Cache")
 
 __all__ = ["Kind", "Condition", "ConditionSet", "method_matrices", "never_binds", "conditions_of", "distinct_conditions"]
 
@@ -149,13 +151,27 @@ class ConditionSet:
         self.Dcoeffs = [fraction_of(c) for c in self.D.coeffs()]
         self.G = polyhedron.G_flint
         self.b = [fmpq_of(x) for x in polyhedron.b]
-        # what a route derives once per problem, keyed by the function that derives it
-        # (the box route); the LP route (lp_route.py) still keys its pieces by "lp"
+        # what a route derives once per problem, keyed by the function that derives it (the box route)
         self.derived: dict[object, object] = {}
+        self._caches: dict[type, object] = {}
         self._generator_rows: dict[Kind, list[list]] = {}
         self._built: dict[tuple, Condition | None] = {}
         self._facet_matrices: dict[int, tuple[flint.fmpz_mat, list[int]]] = {}
         self._all: tuple[list[Condition], list[Condition]] | None = None
+
+    def cache(self, kind: type[_Cache]) -> _Cache:
+        """The one instance of ``kind`` kept for this problem, created (``kind()``) on first use: a route's
+        typed cache, keyed by its class (the LP route's :class:`~exactinv.beyond.lp_route.LPRouteCache`).
+
+        >>> from exactinv.model import methods
+        >>> cs = ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())
+        >>> cs.cache(list) is cs.cache(list), cs.cache(list)
+        (True, [])
+        """
+        found = self._caches.get(kind)
+        if found is None:
+            found = self._caches[kind] = kind()
+        return found  # type: ignore[return-value]
 
     @cached_property
     def W(self) -> dict[Kind, flint.fmpq_mat | None]:

@@ -35,51 +35,72 @@ facet itself, a degenerate LP; "sign just right of 0" is the lexicographic
 order of the powers of h, so the accepted basis is the lexicographically
 optimal one, with no epsilon.
 
-The route declines (:class:`LPRouteDeclined`) an unbounded P (an unbounded LP
-at some h) or a P with lines (rank G < n): the vertex route handles those.
-The cost is (facets) x (pieces) LPs and basis solves, independent of the
-number of vertices.
+Unbounded (pointed) P: where the LP of facet i is unbounded, a *ray piece*
+carries a ray d of P (G d <= 0) with r(h) = c_i(h)^T d D(h) > 0 on the open
+piece, found by the dual simplex step whose ratio test meets no row (then
+r = -z_leaving) or by the exact LP chain's verified ray; its condition is the
+ray-facet condition -r >= 0, necessary because P is nonempty (the route keeps
+a point of P) and violated on the whole piece.  A ray piece ends at every
+root of r (so r > 0 on all of it); an end it leaves undecided (r = 0 there,
+not a pole) is decided by the next piece: a basis piece, a point piece [t, t]
+(a basis optimal at a rational t alone), or a ray piece positive at t (t
+moved to a rational just left when irrational).  docs/design.md, "Unbounded
+P: rays and lines", has the proofs and the degenerate cases.
+
+The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n) and
+the rare irrational point where all of a facet's ray conditions vanish: the
+vertex route handles those.  The cost is (facets) x (pieces) LPs and basis
+solves, independent of the number of vertices.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 import flint
 import numpy as np
 
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
-from ..core.encode import encode_real
-from ..core.polys import no_root_between, shift, sign_variations
-from ..core.real_signs import interval_signs, narrowed, next_sign_change, positive_after, rational_right_of, sign_right_of_real
+from ..core.encode import encode_real, vec
+from ..core.polys import no_root_between, shift, sign_at, sign_variations
+from ..core.real_signs import (interval_signs, narrowed, next_sign_change, positive_after, rational_right_of,
+                               sign_at_real, sign_right_of_real)
 from ..core.roots import real_roots
-from ..core.scalars import INF, Infinity, fmpq_of
+from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
-from ..lp.solver import OPTIMAL, ExactLPSolver
+from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
 from .conditions import Condition, ConditionSet, Kind, never_binds
 
-__all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "lp_route", "vertex_bound"]
+__all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 
 _ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
 _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
 
 
+_TOUCH = ("an unbounded facet's ray conditions all vanish at h = {} (two rays of P change places there, or one "
+          "touches 0): the LP route does not handle it, the vertex route does")
+
+
 class LPRouteDeclined(ExactinvException):
-    """The LP route does not handle this problem (P unbounded or with lines; a basis not found)."""
+    """The LP route does not handle this problem (P with lines; a basis or ray not found; an irrational
+    point where all ray conditions of a facet vanish)."""
 
 
 @dataclass(frozen=True)
 class Piece:
-    """[start, end] (end may be INF) on which ``basis`` (rows of G, sorted) is optimal."""
+    """[start, end] (end may be INF) on which ``basis`` (rows of G, sorted) is optimal; or, for a ray
+    piece (``basis`` None), the open (start, end) on which the ray ``ray`` of P has
+    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated."""
 
     start: Real
     end: Real
-    basis: tuple[int, ...]
+    basis: tuple[int, ...] | None
+    ray: tuple[Fraction, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -94,14 +115,17 @@ class FacetPieces:
 @dataclass(frozen=True)
 class LPRoute:
     """The LP route's result: the pieces of every facet, the vertex x_B of each piece
-    (flattened, facet by facet: the ``generator`` of its condition), the number of LPs
-    (float hints and exact solves) and seconds per stage."""
+    (flattened, facet by facet: the ``generator`` of its condition; a ray piece's entry is ``point``),
+    the number of LPs (float hints and exact solves), seconds per stage, and ``point``: a point of P,
+    set when some piece is a ray piece (P is then unbounded; the point makes P nonempty, so every ray
+    condition is necessary)."""
 
     facets: tuple[FacetPieces, ...]
     vertices: tuple[tuple[Fraction, ...], ...] = field(repr=False)
     float_lps: int = 0
     exact_lps: int = 0
     seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
+    point: tuple[Fraction, ...] | None = field(default=None, repr=False)
 
     @property
     def pieces(self) -> int:
@@ -119,8 +143,27 @@ class LPRoute:
         (Facet 0's last piece, walked first, ends at oo; its condition 2 - h >= 0 sets the horizon
         T = 2, where facet 1's walk stops.)
         """
-        return {"facets": [{"ends": [encode_real(p.end) for p in f.pieces],
-                            "bases": [list(p.basis) for p in f.pieces]} for f in self.facets]}
+        out: dict = {"facets": [{"ends": [encode_real(p.end) for p in f.pieces],
+                                 "bases": [list(p.basis) if p.basis is not None else {"ray": vec(p.ray)}
+                                           for p in f.pieces]} for f in self.facets]}
+        if self.point is not None:
+            out["point"] = vec(self.point)
+        return out
+
+    @property
+    def rays(self) -> int:
+        """How many pieces are ray pieces (facet i violated on the open piece)."""
+        return sum(p.basis is None for f in self.facets for p in f.pieces)
+
+
+
+@dataclass
+class LPRouteCache:
+    """The LP route's work on one :class:`ConditionSet`, kept by ``ConditionSet.cache(LPRouteCache)``:
+    ``found`` (the conditions and the pieces) or ``declined`` (why the route does not handle it)."""
+
+    found: tuple[list[Condition], LPRoute] | None = None
+    declined: LPRouteDeclined | None = None
 
 
 class _Basis:
@@ -153,6 +196,7 @@ class _Problem:
         self.b_float = _floats(cs.b)
         self.G_rows = self.G.tolist()
         self.float_lps = self.exact_lps = self.pivots = 0
+        self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
     @property
     def exact(self) -> ExactLPSolver:
@@ -217,14 +261,19 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
     return tuple(sorted(basis[1]))
 
 
-def _exact_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
+def _exact_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | tuple[Fraction, ...] | None:
     """A basis read off the exact LP chain's verified optimum at this cost: the rows of the dual's
     support, completed by rows tight at x to n independent ones (then z_B(s) is that dual and x_B = x).
-    Raises :class:`LPRouteDeclined` when the LP is unbounded (P is unbounded)."""
+    When the LP is unbounded (P is unbounded): the verified ray d instead (G d <= 0, cost . d > 0), as a
+    :class:`_Ray`; its feasible point is kept as P's point."""
     P.exact_lps += 1
     res = P.exact.solve(cost, P.b, (False,) * P.n)
+    if res.status == UNBOUNDED and res.ray_q is not None:
+        if P.point is None and res.x_q is not None:
+            P.point = tuple(fraction_of(v) for v in res.x_q.entries())
+        return _Ray(_primitive(res.ray_q.entries()))
     if res.status != OPTIMAL:
-        raise LPRouteDeclined("an LP over P is unbounded: P is unbounded, which the LP route does not handle yet")
+        return None
     y, x = res.y_q.entries(), res.x_q
     slack = (P.b - P.G * x).entries()
     rows = [r for r in range(P.m) if y[r] != 0]
@@ -241,12 +290,26 @@ def _exact_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
     return None
 
 
+class _Ray(tuple):
+    """A candidate ray d of P (a tuple of Fractions), told apart from a basis (a tuple of row indices)."""
+
+
+def _primitive(entries) -> tuple[Fraction, ...]:
+    """The positive multiple of a rational vector with coprime integer entries."""
+    q = [fraction_of(v) for v in entries]
+    den = math.lcm(*(v.denominator for v in q)) if q else 1
+    ints = [int(v * den) for v in q]
+    g = math.gcd(*ints) or 1
+    return tuple(Fraction(v // g) for v in ints)
+
+
 def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     """The dual simplex step at a breakpoint: component ``leaving`` of z_B turns negative, so its row
     is released -- x moves along d with B d = -e_leaving (d = minus row ``leaving`` of B^-T) -- and
     the first rows of G that d meets (the ratio test, ties all kept) are candidates to enter.
-    Only candidates: each is verified like any hint.  Raises :class:`LPRouteDeclined` when no row
-    stops d (P is unbounded)."""
+    Only candidates: each is verified like any hint.  When no row stops d, d is a ray of P (G d <= 0)
+    with c_i^T d D = -z_leaving > 0 just past the breakpoint: the one candidate is that ray (a
+    :class:`_Ray`), the certificate of a ray piece."""
     P.pivots += 1
     d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
     numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
@@ -260,7 +323,9 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
             elif s[r] * Gd[best] == s[best] * Gd[r]:
                 enter.append(r)
     if best is None:
-        raise LPRouteDeclined("an edge of P is a ray: P is unbounded, which the LP route does not handle yet")
+        if P.point is None:
+            P.point = tuple(fraction_of(v) for v in basis.x.entries())
+        return [_Ray(_primitive(d.entries()))]
     out = basis.rows[:leaving] + basis.rows[leaving + 1:]
     return [tuple(sorted(out + (r,))) for r in enter]
 
@@ -296,6 +361,47 @@ def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
     return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
 
 
+def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmpq_mat:
+    """z_B = D B^-T c_i as a matrix: row l holds the coefficients of component l."""
+    Y = basis.inv_t * C
+    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
+        Dm = P.D.coeffs()
+        W = Y.ncols() + len(Dm) - 1
+        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
+                                             for k in range(Y.ncols()) for m in range(W)])
+    return Y
+
+
+def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> tuple[_Step | None, list[_Ray]]:
+    """(the point piece [t, t] or None, the rays met): a basis with every component of z_B(t) >= 0
+    (weak duality at t alone; exact signs at a rational or algebraic t).  Candidates: the exact LP's
+    basis at t (t rational), or at the rationals just around t (t algebraic), then the bases met so far
+    (where c_i(t) = 0 every feasible basis qualifies).  When those LPs are unbounded, their verified rays
+    are returned instead: one of them may be positive at t itself."""
+    if isinstance(t, RealAlgebraic):
+        t = _tight(t)
+        points = [t.lower, t.upper]
+    else:
+        points = [Fraction(t)]
+    candidates: list = []
+    rays: list[_Ray] = []
+    for s in points:
+        found = _exact_rows(P, _cost(C, P.D, s))
+        if isinstance(found, _Ray):
+            rays.append(found)
+        elif found is not None:
+            candidates.append(found)
+    candidates += [rows for rows, basis in list(P._bases.items())[:64] if basis is not None]
+    for rows in candidates:
+        basis = P.basis(rows)
+        if basis is None:
+            continue
+        Y = _dual_components(P, basis, C)
+        if all(sign_at_real(_row(Y, l), t) >= 0 for l in range(P.n)):
+            return _Step(Piece(t, t, rows), basis, -1, None, True), rays
+    return None, rays
+
+
 def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
             cap: Fraction | None) -> tuple[_Basis, Real, int] | None:
     """(basis, end, leaving): the piece from t on which the basis is optimal, or None if it is not
@@ -314,12 +420,7 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
         return None
     if cap is not None and not exact_lt(t, cap):
         cap = None  # a first piece when the horizon is 0: no cap, pieces have positive length
-    Y = basis.inv_t * C
-    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
-        Dm = P.D.coeffs()
-        W = Y.ncols() + len(Dm) - 1
-        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
-                                             for k in range(Y.ncols()) for m in range(W)])
+    Y = _dual_components(P, basis, C)
     lo = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
     end: Real = INF if cap is None else cap
     leaving = -1
@@ -365,30 +466,115 @@ def _cap(T: Real) -> Fraction | None:
     return T.upper if isinstance(T, RealAlgebraic) else Fraction(T)
 
 
+@dataclass(frozen=True)
+class _Step:
+    """A piece found from t: a basis piece (``basis``, the ``leaving`` component that ends it, -1 if none)
+    or a ray piece (``r`` = c_i^T d D > 0 on the open piece); ``covered``: the piece itself shows its finite
+    end decided (a basis piece is closed; a ray piece only when r > 0 at that end, a rational cap, or when
+    the end is a pole, D = 0)."""
+
+    piece: Piece
+    basis: _Basis | None
+    leaving: int
+    r: flint.fmpq_poly | None
+    covered: bool
+
+
+def _ray_poly(P: _Problem, C: flint.fmpq_mat, d: tuple[Fraction, ...]) -> flint.fmpq_poly:
+    """r(h) = c_i(h)^T d D(h) = (g_i N(h) d) D(h): where r > 0 and d is a ray of P, g_i A_d(h) d > 0."""
+    row = flint.fmpq_mat(1, P.n, [fmpq_of(v) for v in d]) * C
+    return flint.fmpq_poly(row.entries()) * P.D
+
+
+def _accept_ray(P: _Problem, C: flint.fmpq_mat, d: tuple[Fraction, ...], t: FiniteReal,
+                cap: Fraction | None) -> _Step | None:
+    """The ray piece from t: d must be a ray of P (G d <= 0, d != 0) with r = c_i^T d D > 0 just right of
+    t (exact signs; at h = 0 the lexicographic order of the powers of h); it ends at r's next sign change
+    (or at ``cap``, where r > 0 still), or at a root where r only touches 0.  None if d does not qualify."""
+    Gd = (P.G * flint.fmpq_mat(P.n, 1, [fmpq_of(v) for v in d])).entries()
+    if not any(d) or any(v > 0 for v in Gd):
+        return None
+    r = _ray_poly(P, C, d)
+    if r.is_zero() or sign_right_of_real(r, t) <= 0:
+        return None
+    if cap is not None and not exact_lt(t, cap):
+        cap = None
+    end: Real = _next_root(r, t)
+    covered = isinstance(end, Infinity) or _is_pole(P.D, end)
+    if cap is not None and exact_lt(cap, end):
+        end, covered = cap, True
+    return _Step(Piece(t, end, None, tuple(d)), None, -1, r, covered)
+
+
+def _is_pole(D: flint.fmpq_poly, t: FiniteReal) -> bool:
+    """D(t) = 0 exactly (r(tA) does not exist: t is no steplength, and needs no piece to decide it)."""
+    if D.degree() < 1:
+        return False
+    if isinstance(t, RealAlgebraic):
+        return (D % flint.fmpq_poly(t.poly)).is_zero()
+    return D(fmpq_of(Fraction(t))) == 0
+
+
+def _next_root(r: flint.fmpq_poly, t: FiniteReal) -> Real:
+    """The least real root of r greater than t, of any multiplicity (INF if none): a ray piece must have
+    r > 0 on its whole open piece, so it also ends where r only touches 0."""
+    for root, _ in real_roots(r):
+        if exact_lt(t, root):
+            return _tight(root)
+    return INF
+
+
+def _try(P: _Problem, C: flint.fmpq_mat, candidate, t: FiniteReal, cap: Fraction | None) -> _Step | None:
+    """A candidate (rows of a basis, a :class:`_Ray` or None) verified as the piece from t, or None."""
+    if isinstance(candidate, _Ray):
+        return _accept_ray(P, C, candidate, t, cap)
+    found = _accept(P, C, candidate, t, cap)
+    if found is None:
+        return None
+    return _Step(Piece(t, found[1], candidate), found[0], found[2], None, True)
+
+
 def _next_piece(P: _Problem, i: int, C: flint.fmpq_mat, t: FiniteReal, cap: Fraction | None,
-                previous: tuple[_Basis, int] | None) -> tuple[Piece, _Basis, int]:
+                previous: _Step | None) -> _Step:
     """The piece of facet i from t: a basis optimal just right of t, ending where it stops being optimal
-    (or at cap); with the basis and the leaving component.  Candidates: the dual simplex step from the
-    previous piece's basis, then float LP hints at rationals s ever closer to t, and every other time
-    the exact LP chain's optimum at s.  A candidate that fails only costs time."""
-    if previous is not None and previous[1] >= 0:
-        for rows in _pivots(P, *previous):
-            found = _accept(P, C, rows, t, cap)
+    (or at cap), or a ray of P showing the LP unbounded just right of t.  Candidates: the dual simplex
+    step from the previous piece's basis (its ray when no row stops it), then float LP hints at
+    rationals s ever closer to t, and every other time the exact LP chain's answer at s (an optimum's
+    basis, or an unbounded LP's verified ray).  A candidate that fails only costs time."""
+    if previous is not None and previous.basis is not None and previous.leaving >= 0:
+        for candidate in _pivots(P, previous.basis, previous.leaving):
+            found = _try(P, C, candidate, t, cap)
             if found is not None:
-                return Piece(t, found[1], rows), found[0], found[2]
+                return found
     width = _first_width(t)
     for attempt in range(_TRIES):
         s = rational_right_of(t, width)
         cost = _cost(C, P.D, s)
-        rows = _hint_rows(P, cost)
-        found = _accept(P, C, rows, t, cap)
+        found = _try(P, C, _hint_rows(P, cost), t, cap)
         if found is None and attempt % 2 == 1:
-            rows = _exact_rows(P, cost)
-            found = _accept(P, C, rows, t, cap)
+            found = _try(P, C, _exact_rows(P, cost), t, cap)
         if found is not None:
-            return Piece(t, found[1], rows), found[0], found[2]  # type: ignore[arg-type]
+            return found
         width /= 8
-    raise LPRouteDeclined(f"facet {i}: no basis found optimal just right of h = {t}")
+    raise LPRouteDeclined(f"facet {i}: no basis or ray found optimal just right of h = {t}")
+
+
+def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction | None:
+    """Two ray pieces meet at t, where the first one's r vanishes: a rational s in (start, t] with the
+    second one's r > 0 on [s, t] (so the second piece, moved to start at s, decides s and t itself).
+    None when r(t) = 0 too (or not proved > 0 near t)."""
+    if not isinstance(t, RealAlgebraic):
+        return Fraction(t) if sign_at(r, Fraction(t)) > 0 else None
+    if sign_at_real(r, t) <= 0:  # exact: r(t) = 0 (t's polynomial divides r) or r(t) < 0
+        return None
+    bits = 16
+    for _ in range(12):
+        s = t.lower
+        if exact_lt(start, s) and sign_at(r, s) > 0 and no_root_between(r, s, t.upper) and sign_at(r, t.upper) > 0:
+            return s
+        t.refine(bits)
+        bits *= 2
+    return None
 
 
 def _bound(p: flint.fmpq_poly, T: Real) -> Real:
@@ -425,16 +611,16 @@ def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     >>> [(c.generator, c.facet, c.poly) for c in conditions]
     [(1, 0, (Fraction(2, 1), Fraction(-1, 1))), (3, 1, (Fraction(2, 1), Fraction(-1, 1)))]
     """
-    cached = cs.derived.get("lp")
-    if isinstance(cached, LPRouteDeclined):
-        raise cached
-    if cached is None:
+    cache = cs.cache(LPRouteCache)
+    if cache.found is None and cache.declined is None:
         try:
-            cs.derived["lp"] = _build(cs)
+            cache.found = _build(cs)
         except LPRouteDeclined as exc:
-            cs.derived["lp"] = exc
-            raise
-    return cs.derived["lp"]  # type: ignore[return-value]
+            cache.declined = exc
+    if cache.declined is not None:
+        raise cache.declined
+    assert cache.found is not None
+    return cache.found
 
 
 def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
@@ -446,36 +632,75 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     objectives = [P.objective(i) for i in range(P.m)]
     walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
 
-    last: list[tuple[_Basis, int] | None] = [None] * P.m
+    last: list[_Step | None] = [None] * P.m
 
     def step(i: int, t: FiniteReal) -> None:
         nonlocal T
-        piece, basis, leaving = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
-        last[i] = (basis, leaving)
-        x = basis.x
-        gNx = x.transpose() * objectives[i]  # 1 x L: g_i N_k x_B
-        c = (P.D * P.cs.b[i] - flint.fmpq_poly(gNx.entries())) * P.D
+        found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
+        before = last[i]
+        if found.basis is None and before is not None and not before.covered:
+            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t (r > 0 at t),
+            # or a point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change
+            # places), or a third ray, of the LP unbounded at (or around) t, positive at t
+            covering = cover(i, found.piece.ray, before, t)  # type: ignore[arg-type]
+            if covering is None:
+                point_piece, rays = _point_piece(P, objectives[i], t)
+                if point_piece is not None:
+                    add(i, point_piece)
+                    covering = found
+                for d in rays if covering is None else ():
+                    covering = cover(i, d, before, t)
+                    if covering is not None:
+                        break
+                if covering is None:
+                    raise LPRouteDeclined(_TOUCH.format(t))
+            found = covering
+        add(i, found)
+
+    def cover(i: int, d: tuple[Fraction, ...], before: _Step, t: FiniteReal) -> _Step | None:
+        """The ray piece of d from a rational s <= t at which its r > 0 (moving the previous piece's end
+        from t to s), or None."""
+        s = _rational_cover(_ray_poly(P, objectives[i], d), before.piece.start, t)
+        again = None if s is None else _accept_ray(P, objectives[i], d, s, _cap(T))
+        if again is not None and s != t:
+            old = walks[i][-1]
+            walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
+        return again
+
+    def add(i: int, found: _Step) -> None:
+        nonlocal T
+        last[i] = found
+        if found.basis is not None:
+            x = found.basis.x
+            gNx = x.transpose() * objectives[i]  # 1 x L: g_i N_k x_B
+            c = (P.D * P.cs.b[i] - flint.fmpq_poly(gNx.entries())) * P.D
+            point: tuple[Fraction, ...] | None = tuple(Fraction(int(v.p), int(v.q)) for v in x.entries())
+        else:
+            c = -found.r  # the ray-facet condition -(g_i N d) D >= 0: negative on the open piece
+            point = None
         bound = _bound(c, T)
         if exact_lt(bound, T):
             T = bound
-        walks[i].append((piece, c, tuple(Fraction(int(v.p), int(v.q)) for v in x.entries())))
+        walks[i].append((found.piece, c, point))
 
     for i in range(P.m):  # the first piece of every facet: an early horizon
         step(i, Fraction(0))
-    for i in range(P.m):
-        while exact_lt(walks[i][-1][0].end, T):
+    for i in range(P.m):  # on to the horizon, and past a ray piece's end that it leaves undecided
+        while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
+    rays = any(piece.basis is None for walk in walks for piece, _, _ in walk)
     conditions, vertices, facets = [], [], []
     for i, walk in enumerate(walks):
         facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
         for piece, c, x in walk:
-            vertices.append(x)
+            vertices.append(x if x is not None else P.point)
             if not never_binds(c.coeffs()):
-                conditions.append(Condition(Kind.VERTEX, len(vertices) - 1, i, c))
+                kind = Kind.VERTEX if piece.basis is not None else Kind.RAY
+                conditions.append(Condition(kind, len(vertices) - 1, i, c))
     t2 = time.perf_counter()
     route = LPRoute(tuple(facets), tuple(vertices), P.float_lps, P.exact_lps,
-                    (("pieces", t1 - t0), ("conditions", t2 - t1)))
+                    (("pieces", t1 - t0), ("conditions", t2 - t1)), P.point if rays else None)
     return conditions, route
 
 

@@ -166,6 +166,21 @@ def _split(p: flint.fmpq_poly, alpha: RealAlgebraic) -> tuple[flint.fmpz_poly, f
         r, k = quotient, k + 1
 
 
+def sign_at_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
+    """The exact sign of p at t, rational or algebraic (0 when t's minimal polynomial divides p).
+
+    >>> sqrt2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> [sign_at_real(flint.fmpq_poly(c), sqrt2) for c in ([-2, 0, 1], [-3, 2], [2, -1, 0, 0, 1])]
+    [0, -1, 1]
+    """
+    if p.is_zero():
+        return 0
+    if not isinstance(t, RealAlgebraic):
+        return sign_at(p, Fraction(t))
+    _, r, k = _split(p, t)
+    return 0 if k else _sign_at_algebraic(r, t)
+
+
 def sign_right_of_real(p: flint.fmpq_poly, t: FiniteReal) -> int:
     """The sign of p on (t, t + eps) for small eps > 0 (0 only for p = 0); exact.
 

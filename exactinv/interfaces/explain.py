@@ -89,9 +89,12 @@ def _count(n: int, word: str) -> str:
 def _generators(c: dict) -> str:
     if "lp" in c:
         pieces = sum(len(f["bases"]) for f in c["lp"]["facets"])
+        rays = sum(isinstance(b, dict) for f in c["lp"]["facets"] for b in f["bases"])
+        unbounded = (f"; on {_count(rays, 'ray piece')} the LP is unbounded along a ray of P, whose ray-facet "
+                     f"condition fails there" if rays else "")
         return (f"never listed: the LP route takes, per facet, the pieces of [0, oo) on which one basis of "
                 f"max g_i A_d(dt) x over P is optimal ({pieces} pieces in all, each proved by weak duality), and the "
-                f"vertex of each piece, which together decide every vertex")
+                f"vertex of each piece, which together decide every vertex{unbounded}")
     if "box" in c:
         lo, hi = c["box"]["lo"], c["box"]["hi"]
         count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"

@@ -2,10 +2,11 @@
 max g_i A_d(h) x over P is optimal (docs/design.md, "The LP route" and "The route protocol").
 
 Wraps :func:`exactinv.beyond.lp_route.lp_route` (weak duality proves each
-piece's vertex a maximizer; the vertex-facet conditions of the pieces give
-the valid set exactly, with no vertex list).  It accepts P with rank G = n
-(no lines; a cheap rank of G); an unbounded P is found while solving and
-declined (:class:`~exactinv.validset.route.RouteDeclined`).
+piece's vertex a maximizer, a ray of P each ray piece's unboundedness; the
+vertex-facet and ray-facet conditions of the pieces give the valid set
+exactly, with no vertex list).  It accepts P with rank G = n (no lines; a
+cheap rank of G), bounded or not; the rare degenerate point it cannot decide
+is found while solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ class ParametricLPRoute(PolyhedralRoute):
 
     def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
         """The conditions of the pieces (:func:`~exactinv.beyond.lp_route.lp_route`; RouteDeclined
-        when P turns out unbounded).
+        at an irrational point where all ray conditions of a facet vanish).
 
         >>> import exactinv as ei
         >>> from exactinv.validset.problem import ValidSetProblem
