@@ -48,6 +48,7 @@ def _generators(problem, claim):
         require(set(claim) >= {"vertices", "rays", "lines"}, "missing keys: vertices, rays and lines go together")
         return None, tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
     require("pruning" not in claim, "a box claim needs no pruning record")
+    require(isinstance(claim["box"], dict), "box has the keys lo, hi")
     return claim["box"], None
 
 

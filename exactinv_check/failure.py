@@ -16,6 +16,17 @@ class OverBudget(CheckFailure):
     """A claim would cost more than the kernel's work or time budget: rejected, never run to the end."""
 
 
+class Record(dict):
+    """A record of a certificate (a claim) as a check reads it: a key the check needs and the record lacks
+    (one required only in some cases, e.g. gamma*'s H with a finite value) rejects the claim -- a
+    :class:`CheckFailure`, not a KeyError (which would be a kernel fault)."""
+
+    __slots__ = ()
+
+    def __missing__(self, key):
+        raise CheckFailure(f"the claim has no {key!r}, which it needs here")
+
+
 def require(condition, message):
     """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
     if not condition:

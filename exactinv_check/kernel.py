@@ -21,7 +21,7 @@ from fractions import Fraction
 
 from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
 from .cones import integer_rank
-from .failure import OverBudget
+from .failure import OverBudget, Record
 from .format import (BOOLEAN_KEYS, ENVELOPE_KEYS, FORMAT, MAX_METHOD_DEGREE, METHOD_KEYS, PROBLEM_KEYS, VERSIONS,
                      ClaimType, Verdict, keys_since)
 from .format import CLAIMS as SPECS
@@ -283,6 +283,7 @@ def _check_claims(cert, progress):
     claims = cert["claims"]
     for k, claim in enumerate(claims):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
+        kind = kind if isinstance(kind, str) else repr(kind)[:40]
         if progress is not None:
             progress(k, len(claims), kind)
         try:
@@ -294,7 +295,7 @@ def _check_claims(cert, progress):
                 require(problem.hull is not None, "a robust_threshold claim needs hull, G and b in the problem")
             elif kind != ClaimType.ABSOLUTE_MONOTONICITY_RADIUS:
                 require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
-            verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
+            verdicts.append((kind, True, CLAIMS[kind][0](problem, Record(claim), context)))
         except Exception as exc:  # noqa: BLE001 -- as above
             outcome, message = _outcome(exc)
             verdicts.append((kind, False, message))

@@ -32,11 +32,10 @@ from math import comb, gcd
 from . import polys, pruning
 from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
 from .failure import require_budget
+from .format import MAX_RATIONAL_PIECES as MAX_PIECES, PRUNING_VARIABLE as VARIABLE
 from .rationals import integer, rational, require, within_budget
 
-VARIABLE = "h/(s+h)"
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
-MAX_PIECES = 512
 _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the box grid is 2^-40)
 
 
