@@ -13,6 +13,7 @@ from fractions import Fraction
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
+from .format import INFINITY, NEG_INFINITY
 from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
 from .sparse import diagonal, read_square, row_dot
@@ -106,7 +107,7 @@ def gamma_star(problem, claim, context):
     require(isinstance(claim["value"], (str, int)) and not isinstance(claim["value"], bool),
             "gamma* is rational or infinite: its value is a number string, oo or -oo")
     value = Real.parse(claim["value"], "gamma* value")
-    allowed = {"oo": {"witness"}, "-oo": {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
+    allowed = {INFINITY: {"witness"}, NEG_INFINITY: {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
     extra = set(claim) - allowed - {"type", "value", "paths"}
     require(not extra, f"keys {sorted(extra)} do not belong to gamma* = {claim['value']}")
     require(isinstance(claim.get("paths", {}), dict), "paths is an object")

@@ -30,6 +30,7 @@ The tags are ``StrEnum`` members: a member *is* its string
 import json
 from enum import StrEnum
 from types import MappingProxyType
+from typing import Any
 
 __all__ = [
     "FORMAT", "VERSIONS", "VERSION", "SPARSE_VERSION", "ENVELOPE_KEYS", "PROBLEM_KEYS", "METHOD_KEYS",
@@ -140,7 +141,7 @@ class Key:
 
     __slots__ = ("required", "since", "schema")
 
-    def __init__(self, schema, required=False, since=1):
+    def __init__(self, schema: dict[str, Any], required: bool = False, since: int = 1) -> None:
         object.__setattr__(self, "schema", schema)
         object.__setattr__(self, "required", required)
         object.__setattr__(self, "since", since)
@@ -158,7 +159,8 @@ class ClaimSpec:
 
     __slots__ = ("keys", "required", "optional", "description", "constraints")
 
-    def __init__(self, keys, description=None, constraints=None):
+    def __init__(self, keys: dict[str, Key], description: str | None = None,
+                 constraints: dict[str, Any] | None = None) -> None:
         object.__setattr__(self, "keys", MappingProxyType(dict(keys)))
         object.__setattr__(self, "required", frozenset(k for k, v in keys.items() if v.required))
         object.__setattr__(self, "optional", frozenset(k for k, v in keys.items() if not v.required))
@@ -366,7 +368,7 @@ CLAIMS = MappingProxyType({
 })
 
 
-def keys_since(version):
+def keys_since(version: int) -> dict[str, set[str]]:
     """{claim type: the keys that appeared after ``version``}: keys a certificate of ``version`` may not use.
 
     >>> keys_since(1)
@@ -497,7 +499,7 @@ def _claim_schema(kind, spec):
     return {**_object(properties, required, spec.description), **spec.constraints}
 
 
-def json_schema():
+def json_schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of a certificate, built from this module's tables: the
     envelope, the problem, the value types and one definition per claim type.
 
@@ -526,7 +528,7 @@ def _dump(value, indent, width):
     return "[\n" + ",\n".join(pad + _dump(v, indent + 2, width) for v in value) + "\n" + " " * indent + "]"
 
 
-def schema_text(width=120):
+def schema_text(width: int = 120) -> str:
     """docs/certificate.schema.json's text: :func:`json_schema` as indented JSON, every node that fits on one
     line of ``width`` characters written on one line."""
     return _dump(json_schema(), 0, width) + "\n"

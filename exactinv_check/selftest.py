@@ -19,6 +19,7 @@ import json
 import sys
 import time
 from pathlib import Path
+from typing import TextIO
 
 from . import kernel
 from .format import ClaimType, Verdict
@@ -26,7 +27,7 @@ from .format import ClaimType, Verdict
 DATA = Path(__file__).resolve().parent / "selftest_certificates"
 
 
-def genuine():
+def genuine() -> dict[str, dict]:
     """{name: certificate} of the built-in genuine certificates."""
     return {p.stem: json.loads(p.read_text(encoding="utf-8")) for p in sorted(DATA.glob("*.json"))}
 
@@ -134,7 +135,7 @@ def _fault_is_never_accepted(certificate):
         kernel.CLAIMS[kind] = (handler, required, optional)
 
 
-def run(out=sys.stdout):
+def run(out: TextIO = sys.stdout) -> int:
     """Run every case, print one line each and a summary; the number of cases that misbehaved."""
     certificates = genuine()
     failures, start = 0, time.process_time()
@@ -167,7 +168,7 @@ def run(out=sys.stdout):
     return failures
 
 
-def main():
+def main() -> int:
     return 1 if run() else 0
 
 
