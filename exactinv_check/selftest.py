@@ -58,7 +58,7 @@ def _drop_vertex(claim):
     return mutate
 
 
-_HUGE_ROOT = {"poly": ["9" * 3000] * 200 + ["1"], "interval": ["0", "1"]}
+HUGE_ROOT = {"poly": ["9" * 3000] * 200 + ["1"], "interval": ["0", "1"]}
 
 # (name, genuine certificate, what is forged, mutation, expected verdict kind)
 FORGERIES = [
@@ -115,12 +115,12 @@ FORGERIES = [
     ("version-4", "box-taylor4", "version 4", _set("version", 4), Verdict.REJECTED),
     ("float-number", "box-taylor4", "a JSON float for a number", _set("claims", 0, "value", 1.0), Verdict.REJECTED),
     ("huge-root", "box-taylor4", "a threshold of degree 200 with 3000-digit coefficients",
-     _set("claims", 2, "value", _HUGE_ROOT), Verdict.OVER_BUDGET),
+     _set("claims", 2, "value", HUGE_ROOT), Verdict.OVER_BUDGET),
     ("wrong-format", "box-taylor4", "not the exactinv format", _set("format", "exactinv"), Verdict.BAD_INPUT),
 ]
 
 
-def _fault_is_never_accepted(certificate):
+def fault_is_never_accepted(certificate):
     """A claim check that raises TypeError (a stand-in for a kernel bug) is a kernel-fault, not accepted."""
     kind = ClaimType.GAMMA_STAR
     handler, required, optional = kernel.CLAIMS[kind]
@@ -160,7 +160,7 @@ def run(out: TextIO = sys.stdout) -> int:
         report = kernel.check(cert)
         line(not report.ok and report.kind == expected, f"forged {name} ({what}): {report.kind}"
              + ("" if report.kind == expected else f", expected {expected}"))
-    report = _fault_is_never_accepted(certificates["box-taylor4"])
+    report = fault_is_never_accepted(certificates["box-taylor4"])
     line(not report.ok and report.kind == Verdict.KERNEL_FAULT, f"a fault inside the kernel: {report.kind}, not accepted")
     total = len(certificates) + len(FORGERIES) + 1
     print(f"{total - failures} of {total} cases behaved, {failures} failed "

@@ -82,7 +82,7 @@ def test_the_selftest_fails_when_a_genuine_certificate_is_rejected(monkeypatch, 
 
 
 def test_a_kernel_fault_is_reported_and_never_accepted():
-    report = selftest._fault_is_never_accepted(selftest.genuine()["box-taylor4"])
+    report = selftest.fault_is_never_accepted(selftest.genuine()["box-taylor4"])
     assert not report.ok and report.kind == "kernel-fault"
     assert "kernel fault" in report.verdicts[0][2] and "TypeError" in report.verdicts[0][2]
     assert "a fault inside the kernel" in str(report)
@@ -100,6 +100,6 @@ def test_a_report_that_is_not_ok_is_never_of_kind_accepted(kind):
 # ---------------------------------------------------------------------------- resources
 def test_an_over_budget_forgery_is_over_budget_not_rejected_nor_a_fault():
     cert = copy.deepcopy(selftest.genuine()["box-taylor4"])
-    cert["claims"][2]["value"] = selftest._HUGE_ROOT
+    cert["claims"][2]["value"] = selftest.HUGE_ROOT
     report = kernel.check(cert)
     assert report.kind == "over-budget" and "over the kernel's budget" in str(report)
