@@ -11,7 +11,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from .core.encode import FORMAT, VERSION, dumps, encode_real, envelope
+from exactinv_check.format import FORMAT, VERSION
+
+from .core.encode import dumps, encode_real, envelope
 from .model.record import certificate, method_record, problem_record
 
 __all__ = ["FORMAT", "VERSION", "encode_real", "problem_record", "method_record", "certificate", "claims_of",

@@ -15,13 +15,16 @@ root isolation), reals (rationals, infinities, algebraic numbers), linalg
 conditions (the polynomial conditions of A_d(h)P in P), validset (the exact
 valid set), tail (positivity of a Taylor-coefficient tail), and one module per
 family of claims: claims_invariance, claims_thresholds, claims_radius,
-claims_sets; kernel is the driver.
+claims_sets; kernel is the driver.  format defines the certificate vocabulary once (claim
+types, keys, versions, bounds; the JSON schema is generated from it) and selftest is the
+built-in suite of genuine and forged certificates (``python3 -S -m exactinv_check.selftest``).
 """
 
+from .format import Verdict
 from .kernel import FORMAT, VERSIONS, CheckReport, check
 from .rationals import CheckFailure
 
-__all__ = ["check", "CheckReport", "CheckFailure", "FORMAT", "VERSIONS", "main"]
+__all__ = ["check", "CheckReport", "CheckFailure", "Verdict", "FORMAT", "VERSIONS", "main"]
 
 
 def main(argv=None):

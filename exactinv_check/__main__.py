@@ -1,7 +1,8 @@
 """python3 -S -m exactinv_check CERT.json [CERT.json ...]
 
-Exit status: 0 every certificate verified; 1 a claim was rejected;
-2 bad input (a file that cannot be read or is not an exactinv certificate)."""
+Exit status: 0 every certificate verified; 1 a claim was rejected (the last line says why: over the
+kernel's budget, or a fault inside the kernel -- a bug, never an accept); 2 bad input (a file that
+cannot be read or is not an exactinv certificate).  The kernel's own test: python3 -S -m exactinv_check.selftest."""
 
 import argparse
 import sys

@@ -24,11 +24,11 @@ from fractions import Fraction
 from math import isqrt
 
 from .budget import charge, fraction_products_cost
+from .format import MAX_POLES
 from .rationals import describe, require
 
 __all__ = ["prove_balanced_tie", "MAX_POLES"]
 
-MAX_POLES = 16
 MAX_BITS = 4096  # bits of a pole's coordinates
 
 

@@ -49,6 +49,7 @@ from math import gcd
 from . import polys
 from .conditions import method_matrices, rebuild_size
 from .budget import affordable, descartes_node_cost
+from .failure import require_budget
 from .rationals import require, vector, within_budget
 from .reals import Real, separate
 from .validset import breakpoints
@@ -103,7 +104,7 @@ def _price_roots(polynomials, what):
         ints = polys.integer_coefficients(list(p))
         if len({c > 0 for c in ints if c}) > 1:  # no sign variation: no positive root, no isolation (Descartes)
             least += descartes_node_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints))
-    require(affordable(least), f"over the certificate's work budget: root isolation of {what} "
+    require_budget(affordable(least), f"over the certificate's work budget: root isolation of {what} "
             f"(at least {least:.1e} word operations, more than the certificate has left)")
 
 

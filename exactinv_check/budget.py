@@ -45,7 +45,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from time import process_time
 
-from .failure import require
+from .failure import require_budget
 
 WORK_BUDGET = 10**8  # word operations of one priced computation: one to three seconds of work
 FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers
@@ -101,11 +101,11 @@ def charge(cost, what):
     if acc is not None:
         acc.spent += cost
         if acc.spent > acc.limit:
-            require(False, f"over the certificate's work budget: {what} brings the certificate's estimated work "
+            require_budget(False, f"over the certificate's work budget: {what} brings the certificate's estimated work "
                     f"to {acc.spent:.2e} word operations > {acc.limit:.0e}")
         acc.charges += 1
         if acc.deadline is not None and (not acc.charges & 63 or cost >= BIG_CHARGE) and process_time() > acc.deadline:
-            require(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
+            require_budget(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
 
 
 def memo(key, compute):
@@ -129,7 +129,7 @@ def within_budget(cost, what, limit=WORK_BUDGET):
     """Reject (never run) a computation whose estimated cost exceeds ``limit`` or what is left of
     the certificate's account; otherwise charge it: a certificate must not make the kernel work
     for minutes before its verdict."""
-    require(cost <= limit, f"over the kernel's work budget: {what} (estimated {cost:.2e} word "
+    require_budget(cost <= limit, f"over the kernel's work budget: {what} (estimated {cost:.2e} word "
             f"operations > {limit:.0e})")
     charge(cost, what)
 
@@ -150,9 +150,9 @@ def within_sturm_budget(degree, bits, what):
     """Reject, before it starts, a pseudo-remainder sequence over STURM_BUDGET or over what is left
     of the certificate's account (its steps charge their actual cost as they run)."""
     cost = sturm_cost(degree, bits)
-    require(cost <= STURM_BUDGET, f"over the kernel's work budget: {what} of a polynomial of degree {degree} "
+    require_budget(cost <= STURM_BUDGET, f"over the kernel's work budget: {what} of a polynomial of degree {degree} "
             f"with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
-    require(affordable(cost // STURM_WORDS), f"over the certificate's work budget: {what} of a polynomial of "
+    require_budget(affordable(cost // STURM_WORDS), f"over the certificate's work budget: {what} of a polynomial of "
             f"degree {degree} with {bits}-bit coefficients (estimated {cost // STURM_WORDS:.2e} word operations "
             "more than the certificate has left)")
 

@@ -21,6 +21,7 @@
 from . import claims_invariance
 from .budget import WORK_BUDGET, charge, fraction_products_cost
 from .claims_thresholds import INF, ZERO, smallest_positive_root
+from .failure import Record
 from .rationals import describe, dot, matrix, matvec, rational, require, vector, within_budget
 
 GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
@@ -167,7 +168,7 @@ def robust_threshold(problem, claim, context):
         allowed = {"value", "H", "binding_row", "dual", "rows"}
         require(set(record) <= allowed and "value" in record, f"vertex {i}: keys {sorted(allowed)}")
         ctx = {}
-        claims_invariance.gamma_star(_Vertex(problem, A), dict(record, type="gamma_star"), ctx)
+        claims_invariance.gamma_star(_Vertex(problem, A), Record(record, type="gamma_star"), ctx)
         require(ctx["gamma"].inf != 1, f"vertex {i}: P is not invariant, no robust threshold exists")
         gammas.append(ctx["gamma"])
         Hs.append(ctx.get("H"))

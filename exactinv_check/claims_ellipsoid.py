@@ -26,7 +26,7 @@ from .validset import first_end, require_intervals, valid_set
 
 def _witness(problem, claim, form, what):
     """form(v) = v^T X v for the claim's rational v, compared with the recorded value, > 0."""
-    w = claim["witness"]
+    w = claim.get("witness")
     require(isinstance(w, dict) and set(w) <= {"v", "value"} and "v" in w, "a witness has the keys v (and value)")
     v = vector(w["v"], "witness v", problem.n)
     value = form(v)

@@ -13,6 +13,7 @@ from fractions import Fraction
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
+from .format import INFINITY, NEG_INFINITY
 from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
 from .reals import Real
 from .sparse import diagonal, read_square, row_dot
@@ -60,7 +61,7 @@ def continuous_invariance(problem, claim, context):
     if claim["holds"]:
         check_H(problem, read_H(problem, claim, "H", "H"))
         return "P is invariant for x' = Ax (H: off-diagonal >= 0, HG = GA, Hb <= 0)"
-    j, value = facet_witness(problem, problem.A, claim["witness"], on_facet=True)
+    j, value = facet_witness(problem, problem.A, claim.get("witness"), on_facet=True)
     require(value > 0, f"the witness does not leave P through facet {j}")
     return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {describe(value)} > 0"
 
@@ -94,7 +95,7 @@ def discrete_invariance(problem, claim, context):
         require([[sum(x * G[k][c] for k, x in row) for c in range(n)] for row in rows] == matmul(G, Ad), "H~G != GA_d")
         require(all(row_dot(row, b) <= beta for row, beta in zip(rows, b)), "H~b <= b fails")
         return f"A_d P is a subset of P for {what} (H~ >= 0, H~G = GA_d, H~b <= b)"
-    j, value = facet_witness(problem, Ad, claim["witness"], on_facet=False)
+    j, value = facet_witness(problem, Ad, claim.get("witness"), on_facet=False)
     require(value > b[j], f"the witness's image does not leave P through facet {j}")
     return f"A_d P is NOT a subset of P for {what}: a point of P is mapped beyond facet {j}"
 
@@ -106,12 +107,12 @@ def gamma_star(problem, claim, context):
     require(isinstance(claim["value"], (str, int)) and not isinstance(claim["value"], bool),
             "gamma* is rational or infinite: its value is a number string, oo or -oo")
     value = Real.parse(claim["value"], "gamma* value")
-    allowed = {"oo": {"witness"}, "-oo": {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
+    allowed = {INFINITY: {"witness"}, NEG_INFINITY: {"rows", "H"}}.get(claim["value"], {"H", "binding_row", "dual"})
     extra = set(claim) - allowed - {"type", "value", "paths"}
     require(not extra, f"keys {sorted(extra)} do not belong to gamma* = {claim['value']}")
     require(isinstance(claim.get("paths", {}), dict), "paths is an object")
     if value.inf == 1:
-        j, rate = facet_witness(problem, A, claim["witness"], on_facet=True)
+        j, rate = facet_witness(problem, A, claim.get("witness"), on_facet=True)
         require(rate > 0, f"the witness does not leave P through facet {j}")
         context["gamma"] = value
         return "gamma* = oo: P is not invariant (a facet point leaves P)"

@@ -30,14 +30,13 @@ from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
 from .reals import Real
 from .bernstein import prove_completely_monotone
+from .format import MAX_COEFFICIENTS, RadiusReason
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
 from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .validset import first_end
 
-MAX_COEFFICIENTS = 4096
-REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "negative-at-0", "tie", "bernstein", "balanced-tie"}
+REASONS = frozenset(RadiusReason)  # the format's radius reasons (exactinv_check.format)
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 

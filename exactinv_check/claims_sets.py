@@ -20,6 +20,7 @@ from types import SimpleNamespace
 
 from . import boxes, lp_pieces, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
+from .format import GeneratorKind
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, require, vector
 from .reals import Real
@@ -48,6 +49,7 @@ def _generators(problem, claim):
         require(set(claim) >= {"vertices", "rays", "lines"}, "missing keys: vertices, rays and lines go together")
         return None, tuple(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines"))
     require("pruning" not in claim, "a box claim needs no pruning record")
+    require(isinstance(claim["box"], dict), "box has the keys lo, hi")
     return claim["box"], None
 
 
@@ -181,7 +183,7 @@ def largest_threshold(problem, claim, context):
         require(isinstance(binding, dict) and set(binding) == {"kind", "generator", "facet", "poly"},
                 "binding has the keys kind, generator, facet, poly")
         kind = binding["kind"]
-        require(kind in ("vertex", "ray", "line"), "binding kind is vertex, ray or line")
+        require(isinstance(kind, str) and kind in tuple(GeneratorKind), "binding kind is vertex, ray or line")
         field = {"vertex": "vertices", "ray": "rays", "line": "lines"}[kind]
         vectors = getattr(gens, field)
         i = integer(binding["generator"], "binding generator", 0, gens.counts[("vertex", "ray", "line").index(kind)])

@@ -21,41 +21,38 @@ from fractions import Fraction
 
 from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
 from .cones import integer_rank
+from .failure import OverBudget, Record
+from .format import (BOOLEAN_KEYS, ENVELOPE_KEYS, FORMAT, MAX_METHOD_DEGREE, METHOD_KEYS, PROBLEM_KEYS, VERSIONS,
+                     ClaimType, Verdict, keys_since)
+from .format import CLAIMS as SPECS
 from .rationals import CheckFailure, integer_rows, matrix, require, vector
 
-FORMAT = "exactinv-certificate"
-VERSIONS = (1, 2, 3)  # 3: H and H~ sparse (exactinv_check/sparse.py); the engine writes 3
-V2_KEYS = {"discrete_invariance": {"dt"}, "absolute_monotonicity_radius": {"poles"}}  # keys version 1 does not have (docs/certificate-format.md)
-MAX_METHOD_DEGREE = 64
-_ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
-           RecursionError, OverflowError, MemoryError)
+V2_KEYS = keys_since(1)  # keys version 1 does not have (docs/certificate-format.md)
+# the exceptions a claim's check may end in: CheckFailure (and its OverBudget) rejects by design; the resource errors
+# are over budget; any other exception is a fault of the kernel (never an accept)
+_RESOURCE_ERRORS = (RecursionError, MemoryError)
 
-# claim type -> (handler, required keys, optional keys)
-CLAIMS = {
-    "continuous_invariance": (claims_invariance.continuous_invariance, {"holds"}, {"H", "witness"}),
-    "discrete_invariance": (claims_invariance.discrete_invariance, {"holds"}, {"Ad", "dt", "H", "witness"}),
-    "gamma_star": (claims_invariance.gamma_star, {"value"}, {"paths", "H", "binding_row", "dual", "witness", "rows"}),
-    "polynomial_threshold": (claims_thresholds.polynomial_threshold, {"value"}, {"binding", "f"}),
-    "absolute_monotonicity_radius": (claims_radius.absolute_monotonicity_radius, {"value", "reason", "attained"},
-                                     {"binding", "witness_j", "tail_index", "d", "pole", "poles"}),
-    "rational_threshold": (claims_thresholds.rational_threshold, {"value", "attained", "rho"},
-                           {"pole", "alpha", "H", "gamma_H"}),
-    "largest_threshold": (claims_sets.largest_threshold, {"value", "attained"},
-                          {"vertices", "rays", "lines", "box", "lp", "determinant", "binding", "pruning"}),
-    "valid_steplengths": (claims_sets.valid_steplengths, {"intervals"},
-                          {"vertices", "rays", "lines", "box", "lp", "determinant", "pruning"}),
-    "forward_euler_threshold": (claims_thresholds.forward_euler_threshold, {"value", "vertices", "rays", "lines"},
-                                {"attained"}),
-    "ellipsoid_continuous_invariance": (claims_ellipsoid.continuous_invariance, {"holds"}, {"witness"}),
-    "ellipsoid_discrete_invariance": (claims_ellipsoid.discrete_invariance, {"holds"}, {"Ad", "dt", "witness"}),
-    "ellipsoid_valid_steplengths": (claims_ellipsoid.valid_steplengths, {"intervals"}, {"determinant"}),
-    "ellipsoid_largest_threshold": (claims_ellipsoid.largest_threshold, {"value", "attained"}, {"determinant", "binding"}),
-    "ellipsoid_forward_euler_threshold": (claims_ellipsoid.forward_euler_threshold, {"value"}, set()),
-    "optimal_gain": (claims_control.optimal_gain, {"holds", "value"}, {"F", "H", "Lambda", "dual", "farkas", "x"}),
-    "robust_threshold": (claims_control.robust_threshold, {"value", "attained", "gamma", "rho", "forward_euler",
-                                                           "vertices", "x"}, {"beta", "v"}),
+# claim type -> its check (problem, claim, context) -> message; the keys are format.CLAIMS's
+HANDLERS = {
+    ClaimType.CONTINUOUS_INVARIANCE: claims_invariance.continuous_invariance,
+    ClaimType.DISCRETE_INVARIANCE: claims_invariance.discrete_invariance,
+    ClaimType.GAMMA_STAR: claims_invariance.gamma_star,
+    ClaimType.POLYNOMIAL_THRESHOLD: claims_thresholds.polynomial_threshold,
+    ClaimType.ABSOLUTE_MONOTONICITY_RADIUS: claims_radius.absolute_monotonicity_radius,
+    ClaimType.RATIONAL_THRESHOLD: claims_thresholds.rational_threshold,
+    ClaimType.LARGEST_THRESHOLD: claims_sets.largest_threshold,
+    ClaimType.VALID_STEPLENGTHS: claims_sets.valid_steplengths,
+    ClaimType.FORWARD_EULER_THRESHOLD: claims_thresholds.forward_euler_threshold,
+    ClaimType.ELLIPSOID_CONTINUOUS_INVARIANCE: claims_ellipsoid.continuous_invariance,
+    ClaimType.ELLIPSOID_DISCRETE_INVARIANCE: claims_ellipsoid.discrete_invariance,
+    ClaimType.ELLIPSOID_VALID_STEPLENGTHS: claims_ellipsoid.valid_steplengths,
+    ClaimType.ELLIPSOID_LARGEST_THRESHOLD: claims_ellipsoid.largest_threshold,
+    ClaimType.ELLIPSOID_FORWARD_EULER_THRESHOLD: claims_ellipsoid.forward_euler_threshold,
+    ClaimType.OPTIMAL_GAIN: claims_control.optimal_gain,
+    ClaimType.ROBUST_THRESHOLD: claims_control.robust_threshold,
 }
-_BOOLEAN_KEYS = {"holds", "attained"}
+# claim type -> (handler, required keys, optional keys)
+CLAIMS = {kind: (HANDLERS[kind], set(spec.required), set(spec.optional)) for kind, spec in SPECS.items()}
 
 
 class BadInput(Exception):
@@ -66,8 +63,8 @@ class Method:
     """r = g/h from the problem, normalised to h(0) > 0 (and h = 1 for polynomials)."""
 
     def __init__(self, record):
-        require(isinstance(record, dict) and set(record) <= {"name", "numerator", "denominator"}
-                and {"numerator", "denominator"} <= set(record), "method has the keys name, numerator, denominator")
+        require(isinstance(record, dict) and set(record) <= set(METHOD_KEYS)
+                and set(METHOD_KEYS[1:]) <= set(record), "method has the keys name, numerator, denominator")
         num = polys.trim(vector(record["numerator"], "method numerator"))
         den = polys.trim(vector(record["denominator"], "method denominator"))
         require(den and den[0] != 0, "the method's denominator vanishes at 0")
@@ -94,7 +91,7 @@ class Problem:
 
     def __init__(self, record, version=VERSIONS[-1]):
         self.version = version  # the encoding of H and H~ in the claims (version 3: sparse, exactinv_check/sparse.py)
-        require(isinstance(record, dict) and set(record) <= {"A", "B", "inputs", "hull", "G", "b", "Q", "method"},
+        require(isinstance(record, dict) and set(record) <= set(PROBLEM_KEYS),
                 "problem has the keys A, G, b (or Q), method; B and inputs (a gain); hull, G, b, method (robust)")
         self.method = Method(record["method"]) if record.get("method") is not None else None
         self.Q = self.B = self.hull = None
@@ -157,12 +154,25 @@ class Problem:
 
 
 class CheckReport:
-    """The verdict per claim; ``ok`` is True only if there is a claim and every claim verified."""
+    """The verdict per claim, and on the whole certificate.
 
-    def __init__(self, verdicts, bad_input=False, work=0):
+    ``ok`` is True only if there is a claim and every claim verified.  ``kind`` (a
+    :class:`exactinv_check.format.Verdict`, a string) says which outcome: ``"accepted"`` (ok),
+    ``"rejected"`` (a claim is wrong or the kernel could not prove it), ``"over-budget"`` (a claim
+    would cost more than the kernel's work or time budget), ``"kernel-fault"`` (an unexpected
+    exception inside the kernel: a kernel bug, reported and never accepted) or ``"bad-input"``
+    (not a certificate at all)."""
+
+    def __init__(self, verdicts, bad_input=False, work=0, kind=None):
         self.verdicts = verdicts  # list of (claim type, ok, message)
         self.bad_input = bad_input
         self.work = work  # the certificate's charged work, in word operations (exactinv_check.budget)
+        if kind is None:
+            kind = Verdict.BAD_INPUT if bad_input else Verdict.ACCEPTED if self.ok else Verdict.REJECTED
+        kind = Verdict(kind)
+        if (kind == Verdict.ACCEPTED) != self.ok:  # a fault, an overdraft or a bad input is never accepted
+            raise ValueError(f"a report of kind {kind!r} with ok = {self.ok}")
+        self.kind = kind
 
     @property
     def ok(self):
@@ -173,7 +183,11 @@ class CheckReport:
 
     def __str__(self):
         lines = [f"[{'ok' if ok else 'REJECTED'}] {kind}: {msg}" for kind, ok, msg in self.verdicts]
-        lines.append("certificate VERIFIED" if self.ok else "certificate REJECTED")
+        last = {Verdict.ACCEPTED: "certificate VERIFIED",
+                Verdict.OVER_BUDGET: "certificate REJECTED (over the kernel's budget)",
+                Verdict.KERNEL_FAULT: "certificate REJECTED (a fault inside the kernel, not a verdict on the "
+                                      "certificate: please report it)"}
+        lines.append(last.get(self.kind, "certificate REJECTED"))
         return "\n".join(lines)
 
     __repr__ = __str__
@@ -219,7 +233,7 @@ def _check_keys(claim, kind, version):
     require(keys <= required | optional, f"unknown keys {sorted(keys - required - optional)}")
     newer = keys & V2_KEYS.get(kind, set())
     require(version >= 2 or not newer, f"the keys {sorted(newer)} belong to certificate version 2, not {version}")
-    for key in _BOOLEAN_KEYS & keys:
+    for key in BOOLEAN_KEYS & keys:
         require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
 
 
@@ -237,25 +251,39 @@ def check(certificate, progress=None, time_limit=budget.TIME_LIMIT):
     if cert.get("format") != FORMAT:
         return CheckReport([("input", False, "not an exactinv certificate (format is missing or wrong)")], bad_input=True)
     with budget.account(time_limit=time_limit) as account:
-        verdicts = _check_claims(cert, progress)
-    return CheckReport(verdicts, work=account.spent)
+        verdicts, kind = _check_claims(cert, progress)
+    return CheckReport(verdicts, work=account.spent, kind=kind)
+
+
+def _outcome(exc):
+    """(verdict kind, message) of the exception that ended a claim's check."""
+    if isinstance(exc, OverBudget):
+        return Verdict.OVER_BUDGET, str(exc)
+    if isinstance(exc, CheckFailure):
+        return Verdict.REJECTED, str(exc)
+    if isinstance(exc, _RESOURCE_ERRORS):
+        return Verdict.OVER_BUDGET, f"{type(exc).__name__}: {exc}"
+    return Verdict.KERNEL_FAULT, f"kernel fault (a bug in the kernel, please report it): {type(exc).__name__}: {exc}"
 
 
 def _check_claims(cert, progress):
-    """The verdicts: the problem, then the claims in order, stopping at the first rejected one."""
+    """The verdicts and the certificate's verdict kind: the problem, then the claims in order, stopping at
+    the first rejected one."""
     try:
-        require(set(cert) == {"format", "version", "problem", "claims"}, "a certificate has exactly the keys "
+        require(set(cert) == set(ENVELOPE_KEYS), "a certificate has exactly the keys "
                 "format, version, problem, claims")
         require(type(cert["version"]) is int and cert["version"] in VERSIONS,
                 f"unsupported certificate version {cert['version']!r}")
         problem = Problem(cert["problem"], cert["version"])
         require(isinstance(cert["claims"], list) and cert["claims"], "the certificate makes no claim")
-    except _ERRORS as exc:
-        return [("problem", False, f"{type(exc).__name__}: {exc}")]
+    except Exception as exc:  # noqa: BLE001 -- every exception is a verdict: rejected, over budget or a kernel fault
+        kind, message = _outcome(exc)
+        return [("problem", False, message if kind == Verdict.KERNEL_FAULT else f"{type(exc).__name__}: {exc}")], kind
     context, verdicts = {}, []
     claims = cert["claims"]
     for k, claim in enumerate(claims):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
+        kind = kind if isinstance(kind, str) else repr(kind)[:40]
         if progress is not None:
             progress(k, len(claims), kind)
         try:
@@ -263,15 +291,16 @@ def _check_claims(cert, progress):
             _check_keys(claim, kind, cert["version"])
             if kind.startswith("ellipsoid_"):
                 require(problem.Q is not None, f"a {kind} claim needs A and Q in the problem")
-            elif kind == "robust_threshold":
+            elif kind == ClaimType.ROBUST_THRESHOLD:
                 require(problem.hull is not None, "a robust_threshold claim needs hull, G and b in the problem")
-            elif kind != "absolute_monotonicity_radius":
+            elif kind != ClaimType.ABSOLUTE_MONOTONICITY_RADIUS:
                 require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
-            verdicts.append((kind, True, CLAIMS[kind][0](problem, claim, context)))
-        except _ERRORS as exc:
-            verdicts.append((kind, False, f"{exc}" if isinstance(exc, CheckFailure) else f"{type(exc).__name__}: {exc}"))
+            verdicts.append((kind, True, CLAIMS[kind][0](problem, Record(claim), context)))
+        except Exception as exc:  # noqa: BLE001 -- as above
+            outcome, message = _outcome(exc)
+            verdicts.append((kind, False, message))
             for later in claims[k + 1:]:  # stop: the certificate is rejected, and later claims may use this one
                 verdicts.append((later.get("type", "?") if isinstance(later, dict) else "?", False,
                                  f"not checked: claim {k} ({kind}) was rejected"))
-            break
-    return verdicts
+            return verdicts, outcome
+    return verdicts, Verdict.ACCEPTED

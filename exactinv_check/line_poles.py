@@ -32,6 +32,7 @@ from fractions import Fraction
 from math import ceil, comb, gcd as igcd, isqrt
 
 from .budget import charge, fraction_products_cost, within_sturm_budget
+from .format import MAX_LINE_EXPONENT  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
 from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
     sign_right_of, strip_zero_roots, trim
 from .rationals import describe, require
@@ -41,7 +42,6 @@ __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_dens
            "MAX_LINE_EXPONENT"]
 
 MAX_PIN = 4000  # bisections to pin a rational root
-MAX_LINE_EXPONENT = 64  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
 
 
 def _bits(p):

@@ -50,6 +50,7 @@ from types import SimpleNamespace
 from . import polys
 from .budget import PYTHON_OP, charge, descartes_node_cost, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
+from .failure import require_budget
 from .linalg import integer_solve
 from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
 from .reals import Real, separate
@@ -107,7 +108,7 @@ def _price(problem, pieces):
     gw = 1 + max(abs(x).bit_length() for row in Gi for x in row) * n // 64
     one = n ** 3 * gw * gw + n * (n + d) * (2 * d + 2) ** 2 * (w + gw)
     within_budget(one, f"one piece of the LP route ({n} x {n}, degree {d})")
-    require(pieces * one <= LP_WORK_BUDGET, f"over the kernel's work budget: the LP route's {pieces} pieces "
+    require_budget(pieces * one <= LP_WORK_BUDGET, f"over the kernel's work budget: the LP route's {pieces} pieces "
             f"(estimated {pieces * one:.2e} word operations > {LP_WORK_BUDGET:.0e})")
 
 

@@ -8,9 +8,9 @@ from fractions import Fraction
 from math import gcd as _igcd
 
 from .budget import active, charge, fraction_products_cost, remainder_step_cost
+from .format import MAX_DEGREE  # bound on every polynomial the kernel builds from a certificate
 from .rationals import require
 
-MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 
 
 def trim(p):

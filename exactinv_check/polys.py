@@ -50,6 +50,7 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
 from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
 from .budget import active, within_sturm_budget
 from .budget import memo as _memo
+from .failure import require_budget
 from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
@@ -140,7 +141,7 @@ def affordable_gcd(p, q):
         den = 1
         for c in r:
             den = den * c.denominator // _igcd(den, c.denominator)
-            require(den.bit_length() <= limit, f"over the kernel's work budget: a polynomial of degree "
+            require_budget(den.bit_length() <= limit, f"over the kernel's work budget: a polynomial of degree "
                     f"{len(r) - 1} whose coefficients' common denominator passes {limit} bits")
         _affordable(integer_coefficients(r))
     return gcd(p, q)
@@ -210,7 +211,7 @@ def isolate(q, a, b):
     if len(q) < 2:
         return []
     bits = max(abs(c).bit_length() for c in q)
-    require(sturm_cost(len(q) - 1, bits) <= STURM_BUDGET, f"over the kernel's work budget: root isolation of a "
+    require_budget(sturm_cost(len(q) - 1, bits) <= STURM_BUDGET, f"over the kernel's work budget: root isolation of a "
             f"polynomial of degree {len(q) - 1} with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
     out, stack, nodes = [], [(Fraction(a), Fraction(b))], 0
     while stack:

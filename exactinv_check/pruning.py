@@ -42,6 +42,8 @@ from math import gcd, isqrt
 
 from . import conditions
 from .budget import charge
+from .failure import require_budget
+from .format import HORIZON_BITS  # the horizon's numerator and denominator: the pieces' powers t^i stay short
 from .rationals import FRACTION_WEIGHT, integer, integer_rows, rational, require, within_budget
 
 K_BITS = 40
@@ -49,7 +51,6 @@ K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row tabl
 MATRIX_BITS = 48  # X and Z rounded down, M up, to the grid 2^-48
 VERTEX_BITS = 48  # vertex coordinates rounded outwards to the grid 2^-48
 SHIFT = MATRIX_BITS + VERTEX_BITS + 1 - K_BITS  # from the scale 2^(s + w + 1) of (1) in _Ends to the grid 1/K
-HORIZON_BITS = 64  # the horizon's numerator and denominator: the pieces' powers t^i stay short (work budget)
 MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
 MAX_SLOT_TESTS = 4 * 10**8  # vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
 
@@ -60,7 +61,7 @@ def parse(record, vertex_count):
             "pruning has the keys horizon, vertex, order")
     T = rational(record["horizon"], "pruning horizon")
     require(T >= 0, "the pruning horizon is negative")
-    require(max(T.numerator.bit_length(), T.denominator.bit_length()) <= HORIZON_BITS,
+    require_budget(max(T.numerator.bit_length(), T.denominator.bit_length()) <= HORIZON_BITS,
             f"over the kernel's work budget: the pruning horizon needs a numerator and denominator of at most "
             f"{HORIZON_BITS} bits (a short upper bound of the set's end)")
     k = integer(record["vertex"], "pruning vertex", 0, vertex_count)
@@ -354,7 +355,7 @@ def survivors_of_pieces(G, b, vertices, pieces):
                   f"the boxes of {len(vertices)} vertices at {ends.count} chord ends (n = {n})")
     packed_rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], K * beta) for g, beta in rows]
     width = _slot_bytes(packed_rows, (ends.coordinate_max >> SHIFT) + 1)
-    require(width * len(rows) * (2 * ends.n + 1) <= MAX_PACKED_BYTES,
+    require_budget(width * len(rows) * (2 * ends.n + 1) <= MAX_PACKED_BYTES,
             f"over the kernel's work budget: {len(rows)} rows packed in slots of {width} bytes")
     table = _Packed.table(packed_rows, width)
     everything = _Packed(table, list(range(len(rows))))
@@ -370,7 +371,7 @@ def survivors_of_pieces(G, b, vertices, pieces):
         tests = len(block) * sum(len(rows_e.J) for _, rows_e in hits)
         slot_tests += tests
         charge(2 * tests, "the vertex-facet tests at the chord ends")  # measured: 1.3e8 tests in 5 s
-        require(slot_tests <= MAX_SLOT_TESTS, f"over the kernel's work budget: more than {MAX_SLOT_TESTS:.0e} "
+        require_budget(slot_tests <= MAX_SLOT_TESTS, f"over the kernel's work budget: more than {MAX_SLOT_TESTS:.0e} "
                 f"vertex-facet tests at the chord ends, past the blocks")
         for i in block:
             mine = ends.boxes(boxes[i])

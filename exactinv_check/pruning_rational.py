@@ -31,11 +31,11 @@ from math import comb, gcd
 
 from . import polys, pruning
 from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
+from .failure import require_budget
+from .format import MAX_RATIONAL_PIECES as MAX_PIECES, PRUNING_VARIABLE as VARIABLE
 from .rationals import integer, rational, require, within_budget
 
-VARIABLE = "h/(s+h)"
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
-MAX_PIECES = 512
 _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the box grid is 2^-40)
 
 
@@ -170,7 +170,7 @@ def survivors(G, b, vertices, D, N, s, U, count):
     """{vertex index: [facets]} of the pairs the lifted test on [0, U] cannot prune."""
     ends = nodes(U, count)
     cost = pieces_cost(D, N, s, ends)
-    require(cost <= PIECES_BUDGET, f"over the kernel's work budget: the Bernstein pieces of the pruning test in u "
+    require_budget(cost <= PIECES_BUDGET, f"over the kernel's work budget: the Bernstein pieces of the pruning test in u "
             f"(estimated {cost:.2e} > {PIECES_BUDGET:.0e})")
     charge(cost // PIECES_PER_WORD, "the Bernstein pieces of the pruning test in u")
     P = lifted(D, N, s)

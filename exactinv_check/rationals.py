@@ -12,9 +12,8 @@ from math import gcd
 
 from .budget import FRACTION_WEIGHT, WORK_BUDGET, within_budget  # noqa: F401 (re-exported: their old home)
 from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
+from .format import MAX_DIGITS, MAX_DIMENSION  # noqa: F401 (the format's bounds)
 
-MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
-MAX_DIMENSION = 2000  # bound on every vector and matrix dimension
 SHOWN_DIGITS = 60  # longer numbers are described by their size in messages
 _ZERO = Fraction(0)
 

@@ -15,6 +15,7 @@ only root of ``poly`` in the open (lo, hi), and poly(lo), poly(hi) are nonzero
 from fractions import Fraction
 
 from . import polys, text
+from .format import INFINITY, NEG_INFINITY
 from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
 
@@ -36,9 +37,9 @@ class Real:
     # -------------------------------------------------------- construction
     @classmethod
     def parse(cls, data, what="number", infinite=True):
-        if isinstance(data, str) and data in ("oo", "-oo"):
+        if isinstance(data, str) and data in (INFINITY, NEG_INFINITY):
             require(infinite, f"{what}: infinity is not allowed here")
-            return cls(inf=1 if data == "oo" else -1)
+            return cls(inf=1 if data == INFINITY else -1)
         if isinstance(data, dict):
             require(set(data) == {"poly", "interval"}, f"{what}: an algebraic number has exactly the keys poly, interval")
             require(isinstance(data["poly"], list) and len(data["poly"]) <= polys.MAX_DEGREE + 1,
@@ -213,7 +214,7 @@ class Real:
 
     def __str__(self):
         if self.inf:
-            return "oo" if self.inf > 0 else "-oo"
+            return INFINITY if self.inf > 0 else NEG_INFINITY
         if self.poly is None:
             return text.rational_text(self.q)
         return text.algebraic_text(self._ints, self.lo, self.hi)  # the engine's format (exactinv.core.digits)

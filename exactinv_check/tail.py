@@ -43,12 +43,12 @@ from fractions import Fraction
 from math import ceil, comb
 
 from .disks import _absup, _ball, _bmul, _binv, _disks, _sqrt_bounds, _taylor_balls, _up
+from .format import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
 from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
     sign, squarefree, sub, trim
 from .rationals import CheckFailure, require
 from .tie import kappa_enclosure, tie_interval
 
-MAX_INDEX = 1 << 20  # the largest tail index the kernel will certify
 MAX_REFINE = 2000  # bisections when separating a real pole from other roots
 
 

@@ -3,7 +3,9 @@
 * every certificate of the shared corpus (made by the engine) and every ```json
   example of docs/certificate-format.md is valid against the schema;
 * every complete certificate shown in the doc is VERIFIED by the kernel;
-* the schema's required/optional keys per claim type are exactly
+* docs/certificate.schema.json is exactly the text generated from
+  ``exactinv_check.format`` (``python -m exactinv_check.format``), and the
+  schema's required/optional keys per claim type are exactly
   ``exactinv_check.kernel.CLAIMS`` (and its format, versions, boolean keys and
   radius reasons are the kernel's), so neither document can drift from the kernel;
 * the schema is not vacuous: typical malformed certificates are invalid.
@@ -21,6 +23,7 @@ from pathlib import Path
 import pytest
 
 from certificate_corpus import corpus
+from exactinv_check import format as fmt
 from exactinv_check import kernel
 from exactinv_check.claims_radius import REASONS
 from exactinv_check.kernel import CLAIMS
@@ -174,6 +177,40 @@ def _kind(example):
 
 
 # ---------------------------------------------------------------------------- tests
+def test_the_schema_in_docs_is_the_one_generated_from_the_format():
+    """The file can never drift: regenerate it with ``python -m exactinv_check.format > docs/certificate.schema.json``."""
+    assert (DOCS / "certificate.schema.json").read_text() == fmt.schema_text()
+    assert SCHEMA == fmt.json_schema()
+
+
+def test_the_generator_runs_with_the_standard_library_only(tmp_path):
+    import shutil
+    import subprocess
+    import sys
+
+    import exactinv_check
+
+    shutil.copytree(Path(exactinv_check.__file__).parent, tmp_path / "exactinv_check")
+    done = subprocess.run([sys.executable, "-S", "-m", "exactinv_check.format"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == (DOCS / "certificate.schema.json").read_text()
+
+
+def test_the_format_tables_are_consistent():
+    """Every key table of the kernel is the format's: claim types, keys, version-2 keys, boolean keys."""
+    assert set(fmt.CLAIMS) == set(fmt.ClaimType) == set(CLAIMS)
+    for kind, spec in fmt.CLAIMS.items():
+        assert spec.required.isdisjoint(spec.optional) and "type" not in spec.keys, kind
+        assert CLAIMS[kind][1:] == (set(spec.required), set(spec.optional)), kind
+        for name, key in spec.keys.items():
+            assert key.since in fmt.VERSIONS, (kind, name)
+            assert (key.schema.get("type") == "boolean") == (name in fmt.BOOLEAN_KEYS), (kind, name)
+    assert kernel.V2_KEYS == {"discrete_invariance": {"dt"}, "absolute_monotonicity_radius": {"poles"}}
+    assert REASONS == set(fmt.RadiusReason)
+    assert fmt.VERSION == max(fmt.VERSIONS) and kernel.FORMAT == fmt.FORMAT
+
+
 def test_the_schema_is_a_valid_draft_2020_12_schema():
     assert SCHEMA["$schema"] == "https://json-schema.org/draft/2020-12/schema"
     if jsonschema is not None:
@@ -230,7 +267,7 @@ def test_the_schema_key_sets_are_the_kernels():
         assert s["additionalProperties"] is False, kind
         assert set(s["required"]) == {"type"} | required, f"{kind}: required keys differ from the kernel's"
         assert set(s["properties"]) - set(s["required"]) == optional, f"{kind}: optional keys differ from the kernel's"
-        for key in kernel._BOOLEAN_KEYS & (required | optional):
+        for key in fmt.BOOLEAN_KEYS & (required | optional):
             assert s["properties"][key]["type"] == "boolean", f"{kind}.{key} must be a JSON boolean"
 
 

@@ -136,6 +136,9 @@ def test_wheel_from_the_sdist_is_typed_and_licensed(unpacked, tmp_path):
         names = zf.namelist()
         metadata = zf.read(next(n for n in names if n.endswith(".dist-info/METADATA"))).decode()
     assert "exactinv/py.typed" in names and "exactinv_check/py.typed" in names
+    shipped = {n for n in names if n.startswith("exactinv_check/selftest_certificates/")}  # the kernel's selftest
+    assert shipped == {f"exactinv_check/selftest_certificates/{p.name}"
+                       for p in (ROOT / "exactinv_check" / "selftest_certificates").glob("*.json")} != set()
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert "License-Expression: MIT" in metadata
     assert not any(n.startswith(("tests/", "docs/", "notebooks/")) for n in names)

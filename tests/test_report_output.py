@@ -53,7 +53,7 @@ def test_json_equals_the_certificate(example, tmp_path, capsys):
     assert report["format"] == "exactinv-report" and report["certificate"] == str(cert_path)
     assert report["problem"] == json.loads(example.read_text()).get("name", example.stem) and _no_floats(report)
     claims = {c["type"]: c for c in cert["claims"]}
-    assert report["check"]["verified"] is True and report["check"]["claims"] == len(cert["claims"])
+    assert report["check"]["verified"] is True and report["check"]["kind"] == "accepted" and report["check"]["claims"] == len(cert["claims"])
     assert [v["claim"] for v in report["check"]["verdicts"]] == [c["type"] for c in cert["claims"]]
     values = report["values"]
     assert values, "no values"
@@ -80,7 +80,7 @@ def test_json_of_a_refuted_problem_carries_the_witness(tmp_path, capsys):
 
 def test_json_without_the_check(capsys):
     code, report = _json_of([str(ROOT / "examples" / "paper_box_taylor4.json"), "--no-check"], capsys)
-    assert code == 0 and report["check"] == {"verified": None, "claims": 5, "verdicts": []}
+    assert code == 0 and report["check"] == {"verified": None, "kind": None, "claims": 5, "verdicts": []}
     assert report["values"]["gamma_star"] == "1" and report["certificate"] is None
 
 

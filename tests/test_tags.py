@@ -3,8 +3,12 @@
 import json
 from fractions import Fraction
 
+import pytest
+
 import exactinv as ei
-from exactinv.core.tags import BisectionStep, ClaimType, CounterexampleKind, RadiusReason
+from exactinv.core import tags
+from exactinv.core.tags import BisectionStep, CounterexampleKind
+from exactinv_check.format import ClaimType, RadiusReason
 from exactinv.lp.hint import LPStatus
 from exactinv.lp.solver import LPPath
 from exactinv.model.record import certificate
@@ -30,3 +34,13 @@ def test_bisection_reports_its_step():
     # f(t) = 1 - t: one sign change at t = 1 (the paper's Step 3 or a bisection step)
     res = paper_bisection([1, -1], epsilon=Fraction(1, 2**10))
     assert res.terminated_by in set(BisectionStep) and isinstance(res.terminated_by, str)
+
+
+def test_the_moved_tags_are_deprecated_aliases_of_the_formats():
+    """ClaimType and RadiusReason live in exactinv_check.format; the old names still work, with a warning."""
+    with pytest.warns(DeprecationWarning, match="exactinv_check.format"):
+        assert tags.ClaimType is ClaimType
+    with pytest.warns(DeprecationWarning, match="exactinv_check.format"):
+        assert tags.RadiusReason is RadiusReason
+    with pytest.raises(AttributeError):
+        tags.NoSuchTag

@@ -31,6 +31,7 @@ from functools import cached_property
 from typing import Iterable, TypeVar
 
 import flint
+from exactinv_check.format import GeneratorKind
 
 from ..core.polys import integer_part
 from ..core.scalars import fmpq_of, fraction_of
@@ -47,9 +48,9 @@ class Kind(StrEnum):
     """Which generator of P a condition is about (equal to the old strings); on an ellipsoid,
     ``COEFFICIENT``: the condition is h q_k(h) >= 0 of the k-th coefficient polynomial."""
 
-    VERTEX = "vertex"
-    RAY = "ray"
-    LINE = "line"
+    VERTEX = GeneratorKind.VERTEX.value  # the certificate's kinds (exactinv_check.format.GeneratorKind)
+    RAY = GeneratorKind.RAY.value
+    LINE = GeneratorKind.LINE.value
     COEFFICIENT = "coefficient"  # an ellipsoid's q_k (generator k): exactinv.validset.ellipsoid
 
 

@@ -23,11 +23,12 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+from exactinv_check.format import ClaimType
+
 from ..core.encode import mat, vec
 from ..core.latex import LatexMixin, latex_column
 from ..core.psd import LDLT, psd_decision, quadratic_form
 from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, vector_text
-from ..core.tags import ClaimType
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem
 from ..model.ellipsoid import lyapunov_matrix

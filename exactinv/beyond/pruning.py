@@ -48,6 +48,7 @@ from fractions import Fraction
 
 import flint
 import numpy as np
+from exactinv_check.format import HORIZON_BITS  # the kernel's bound on the horizon's numerator and denominator
 
 from ..core.algebraic import upper_bound
 from ..core.float_hint import float_hints
@@ -55,8 +56,6 @@ from ..core.intervals import IntervalUnion
 from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
 from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
-
-HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
 
 __all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
 

@@ -42,6 +42,7 @@ from fractions import Fraction
 from math import comb
 
 import flint
+from exactinv_check.format import PRUNING_VARIABLE
 
 from ..core.float_hint import log2_hint
 from ..core.intervals import IntervalUnion
@@ -51,7 +52,7 @@ from .conditions import Kind
 from .pruning import Pruning, bounding_horizon, build_survivors, coarse_above, pieces_test, vertex_order
 
 _BITS = 28  # piece ends are rounded to multiples of 2^-_BITS (after normalisation to size ~1)
-VARIABLE = "h/(s+h)"  # the record's name of the substitution u = h/(s + h)
+VARIABLE = PRUNING_VARIABLE  # the record's name of the substitution u = h/(s + h) (the format's)
 
 __all__ = ["VARIABLE", "scale_of", "lifted", "rational_nodes", "bernstein_piece", "rational_survivors",
            "rational_horizon", "prune_rational"]

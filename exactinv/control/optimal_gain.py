@@ -15,12 +15,12 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+from exactinv_check.format import ClaimType
 
 from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 from ..validset.results import LargestThreshold, ValidSteplengths
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.scalars import INF, Infinity, Matrix, to_matrix
-from ..core.tags import ClaimType
 from ..errors import ExactinvError, InvalidInput, NotInvariant, VerificationFailed
 from ..lp import OPTIMAL, INFEASIBLE, solve_lp
 from ..model import LinearSystem, Method, Polyhedron

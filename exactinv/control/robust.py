@@ -26,6 +26,8 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any, Sequence
 
+from exactinv_check.format import ClaimType
+
 from ..validset.engine import valid_steplengths
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
@@ -34,7 +36,6 @@ from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..core.scalars import INF, Infinity, Matrix, fraction_of
 from ..core.sparse import SparseRows
-from ..core.tags import ClaimType
 from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import method_record

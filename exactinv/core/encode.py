@@ -13,15 +13,15 @@ from fractions import Fraction
 from typing import Any, Iterable
 
 import flint
+from exactinv_check.format import FORMAT, INFINITY, NEG_INFINITY, VERSION
 
 from .algebraic import Real, RealAlgebraic
 from .flintq import exact_text
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
-__all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "sparse_mat", "sparse_of_dense", "envelope", "dumps"]
+__all__ = ["encode_real", "vec", "mat", "sparse_mat", "sparse_of_dense", "envelope", "dumps"]
 
-FORMAT = "exactinv-certificate"
-VERSION = 3  # v2 = v1 + optional data (dt on discrete claims); v3 = v2 with H and H~ sparse; the kernel checks all three
+# FORMAT and VERSION (the version the engine writes: 3, H and H~ sparse) are the kernel's (exactinv_check.format)
 
 def encode_real(v: Real) -> str | dict:
     """Fraction -> "p/q" (any size); INF -> "oo"; RealAlgebraic -> {"poly", "interval"}.
@@ -32,7 +32,7 @@ def encode_real(v: Real) -> str | dict:
     {'poly': ['-2', '0', '1'], 'interval': ['1414213562373/1000000000000', '707106781187/500000000000']}
     """
     if isinstance(v, Infinity):
-        return "oo" if v.sign > 0 else "-oo"
+        return INFINITY if v.sign > 0 else NEG_INFINITY
     if isinstance(v, RealAlgebraic):
         v.tidy()
         return {"poly": [exact_text(c) for c in v.poly.coeffs()], "interval": [exact_text(v.lower), exact_text(v.upper)]}

@@ -1,72 +1,37 @@
-"""The tags that results and certificates carry, as ``StrEnum``s.
+"""The engine's own tags, as ``StrEnum``s: the steps of the paper's bisection and the kinds of
+an oracle counterexample.
 
-A ``StrEnum`` member is its string (``ClaimType.GAMMA_STAR == "gamma_star"``,
-``json.dumps`` writes ``"gamma_star"``), so certificates and tests read the
-same as with plain strings, while the code names each tag once.  (The LP
-engine's own tags are :class:`exactinv.lp.hint.LPStatus` and
-:class:`exactinv.lp.solver.LPPath`; the oracle's verdicts are
-:class:`exactinv.interfaces.oracle.Status`; the generator kinds of the valid
-sets are :class:`exactinv.beyond.conditions.Kind`.)
+The tags a certificate carries -- claim types, radius reasons, generator kinds -- belong to
+the certificate format and are defined once, in :mod:`exactinv_check.format` (``ClaimType``,
+``RadiusReason``, ``GeneratorKind``); the engine imports them from there.  A ``StrEnum``
+member is its string, and a :class:`Tag` also prints as its string.  (The LP engine's own
+tags are :class:`exactinv.lp.hint.LPStatus` and :class:`exactinv.lp.solver.LPPath`; the
+oracle's verdicts are :class:`exactinv.interfaces.oracle.Status`; the generator kinds of the
+valid sets are :class:`exactinv.beyond.conditions.Kind`.)
 
->>> import json
->>> ClaimType.GAMMA_STAR == "gamma_star", json.dumps({"type": ClaimType.GAMMA_STAR})
-(True, '{"type": "gamma_star"}')
+>>> BisectionStep.STEP_2 == "step 2", repr(CounterexampleKind.INFEASIBLE)
+(True, "'infeasible'")
 """
 
 from __future__ import annotations
 
-from enum import StrEnum
+import warnings
 
-__all__ = ["Tag", "ClaimType", "RadiusReason", "BisectionStep", "CounterexampleKind"]
+from exactinv_check import format as _format
+from exactinv_check.format import Tag
 
+__all__ = ["Tag", "BisectionStep", "CounterexampleKind"]
 
-class Tag(StrEnum):
-    """A tag that also *prints* as its string, so that claims and result reprs
-    read as the certificate does.
-
-    >>> repr(ClaimType.GAMMA_STAR), {"type": ClaimType.GAMMA_STAR}
-    ("'gamma_star'", {'type': 'gamma_star'})
-    """
-
-    def __repr__(self) -> str:
-        return repr(self.value)
+_MOVED = ("ClaimType", "RadiusReason")
 
 
-class ClaimType(Tag):
-    """The ``"type"`` of a claim in a certificate (docs/certificate-format.md)."""
-
-    GAMMA_STAR = "gamma_star"
-    CONTINUOUS_INVARIANCE = "continuous_invariance"
-    DISCRETE_INVARIANCE = "discrete_invariance"
-    POLYNOMIAL_THRESHOLD = "polynomial_threshold"
-    RATIONAL_THRESHOLD = "rational_threshold"
-    FORWARD_EULER_THRESHOLD = "forward_euler_threshold"
-    ABSOLUTE_MONOTONICITY_RADIUS = "absolute_monotonicity_radius"
-    VALID_STEPLENGTHS = "valid_steplengths"
-    LARGEST_THRESHOLD = "largest_threshold"
-    ELLIPSOID_CONTINUOUS_INVARIANCE = "ellipsoid_continuous_invariance"
-    ELLIPSOID_DISCRETE_INVARIANCE = "ellipsoid_discrete_invariance"
-    ELLIPSOID_VALID_STEPLENGTHS = "ellipsoid_valid_steplengths"
-    ELLIPSOID_LARGEST_THRESHOLD = "ellipsoid_largest_threshold"
-    ELLIPSOID_FORWARD_EULER_THRESHOLD = "ellipsoid_forward_euler_threshold"
-    OPTIMAL_GAIN = "optimal_gain"
-    ROBUST_THRESHOLD = "robust_threshold"
-
-
-class RadiusReason(Tag):
-    """Why the absolute monotonicity radius rho (Def. 3.11) has its value."""
-
-    COEFFICIENT = "coefficient"  # c_binding changes sign at rho
-    ALL_COEFFICIENTS = "all-coefficients"  # every coefficient stays >= 0: rho = INF
-    NO_POSITIVE_POLE = "no-positive-pole"
-    PRINCIPAL_PART_SIGN = "principal-part-sign"
-    DOMINANCE_AT_0 = "dominance-at-0"
-    NEGATIVE_AT_0 = "negative-at-0"  # rho = 0: the scan found c_j(0) < 0 (a witness needs no tail)
-    TIE = "tie"  # p* wins the equal-modulus tie at rho = kappa_A (exact root of the tie polynomial)
-    PRODUCT = "product"  # rho = INF: r is a product of absolutely monotonic factors
-    TERMWISE = "termwise"  # rho = INF: every partial-fraction term is absolutely monotonic
-    BALANCED_TIE = "balanced-tie"  # two simple real poles whose residues balance exactly: rho = kappa* (closed form)
-    BERNSTEIN = "bernstein"  # rho = INF: r(-x) = c + Laplace transform of f >= 0 (Bernstein's theorem)
+def __getattr__(name: str):
+    """``ClaimType`` and ``RadiusReason`` moved to :mod:`exactinv_check.format` (deprecated here)."""
+    if name in _MOVED:
+        warnings.warn(f"exactinv.core.tags.{name} is deprecated: import it from exactinv_check.format",
+                      DeprecationWarning, stacklevel=2)
+        return getattr(_format, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class BisectionStep(Tag):

@@ -26,6 +26,7 @@ import sys
 from typing import Sequence
 
 import exactinv_check
+import exactinv_check.format
 from exactinv_check.kernel import BadInput, load as _load_certificate
 
 from ..core.encode import dumps
@@ -127,7 +128,7 @@ def _load_cert(path: str) -> dict:
         cert = _load_certificate(path)
     except BadInput as exc:
         raise InvalidInput(f"{path}: {str(exc).replace(repr(path), 'the file')}") from None
-    if cert.get("format") != exactinv_check.kernel.FORMAT:
+    if cert.get("format") != exactinv_check.format.FORMAT:
         if {"system", "polyhedron", "ellipsoid"} & set(cert):
             raise InvalidInput(f"{path}: this is a problem file, not a certificate (run `exactinv certify {path} -o CERT.json`)")
         raise InvalidInput(f"{path}: not an exactinv certificate (the \"format\" key is missing or wrong)")

@@ -9,9 +9,10 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from exactinv_check.format import INFINITY, NEG_INFINITY, ClaimType
+
 from ..core.digits import decimal_text, rational_text, root_text, significant_digits
 from ..core.polys import poly_text
-from ..core.tags import ClaimType
 
 __all__ = ["explain"]
 
@@ -57,8 +58,8 @@ def _real(v: Any) -> str:
         if digits is None:
             return f"the root of {poly} in [{decimal_text(lo)}, {decimal_text(hi)}]"
         return root_text(digits, poly, lo, hi)
-    if v in ("oo", "-oo"):
-        return {"oo": "infinity", "-oo": "minus infinity"}[v]
+    if v in (INFINITY, NEG_INFINITY):
+        return {INFINITY: "infinity", NEG_INFINITY: "minus infinity"}[v]
     return rational_text(_q(v))
 
 
@@ -117,11 +118,11 @@ def _interval(iv: dict) -> str:
 
 
 def _gamma_star(c: dict) -> str:
-    if c["value"] == "oo":
+    if c["value"] == INFINITY:
         w = c["witness"]
         return (f"P is not invariant: x = {_vec(w['x'])} lies in P on facet {w['facet']} (g.x = b) and "
                 f"g_{w['facet']}.A x = {w['value']} > 0, so the flow leaves P there; gamma* = infinity.")
-    if c["value"] == "-oo":
+    if c["value"] == NEG_INFINITY:
         return ("gamma* = minus infinity: every row LP is unbounded; each row comes with a feasible h and a ray "
                 "that increases h_jj without bound.")
     j = c["binding_row"]
@@ -135,23 +136,23 @@ def _gamma_star(c: dict) -> str:
 
 
 def _invariance(c: dict, kind: str) -> str:
-    flow = "the flow x' = A x" if kind == "continuous_invariance" else (
+    flow = "the flow x' = A x" if kind == ClaimType.CONTINUOUS_INVARIANCE else (
         f"the map x -> A_d x with A_d = {_matrix(c['Ad'])}" + (f" (dt = {c['dt']})" if c.get("dt") else ""))
     if c["holds"]:
-        cond = ("HG = GA, Hb <= 0 and H has nonnegative off-diagonal entries" if kind == "continuous_invariance"
+        cond = ("HG = GA, Hb <= 0 and H has nonnegative off-diagonal entries" if kind == ClaimType.CONTINUOUS_INVARIANCE
                 else "H >= 0, H G = G A_d and H b <= b")
         return (f"P is invariant under {flow}: the matrix H = {_matrix(c['H'])} satisfies {cond} "
                 f"(Farkas' lemma; the paper's Theorems 2.1 and 2.2).")
     w = c["witness"]
     return (f"P is not invariant under {flow}: x = {_vec(w['x'])} lies in P and "
             + (f"on facet {w['facet']} the flow points out of P (g.A x = {w['value']} > 0)."
-               if kind == "continuous_invariance" else
+               if kind == ClaimType.CONTINUOUS_INVARIANCE else
                f"its image violates facet {w['facet']} (g.A_d x = {w['value']} exceeds b)."))
 
 
 def _ellipsoid_claim(kind: str, c: dict) -> str:
-    if kind in ("ellipsoid_continuous_invariance", "ellipsoid_discrete_invariance"):
-        continuous = kind == "ellipsoid_continuous_invariance"
+    if kind in (ClaimType.ELLIPSOID_CONTINUOUS_INVARIANCE, ClaimType.ELLIPSOID_DISCRETE_INVARIANCE):
+        continuous = kind == ClaimType.ELLIPSOID_CONTINUOUS_INVARIANCE
         M = "-(A^T Q + Q A)" if continuous else "Q - A_d^T Q A_d"
         flow = "the flow x' = A x" if continuous else (
             "the map x -> A_d x" + (f" with A_d = {_matrix(c['Ad'])}" if c.get("Ad") else "")
@@ -162,12 +163,12 @@ def _ellipsoid_claim(kind: str, c: dict) -> str:
         w = c["witness"]
         return (f"E is not invariant under {flow}: the direction v = {_vec(w['v'])} has v^T ({M}) v < 0, so the "
                 f"boundary point v/||v||_Q " + ("leaves E at once." if continuous else "is mapped outside E."))
-    if kind == "ellipsoid_forward_euler_threshold":
+    if kind == ClaimType.ELLIPSOID_FORWARD_EULER_THRESHOLD:
         return (f"The largest forward-Euler step on E is {_real(c['value'])}: the largest h with "
                 f"-(A^T Q + Q A) - h A^T Q A >= 0, a generalised eigenvalue.")
     how = ("M(h) = H^T Q H - G^T Q G (G = g(hA), H = h(hA), congruent to Q - A_d^T Q A_d) is positive "
            "semidefinite iff every sum of its k x k principal minors is >= 0: n polynomial conditions in h")
-    if kind == "ellipsoid_largest_threshold":
+    if kind == ClaimType.ELLIPSOID_LARGEST_THRESHOLD:
         return (f"The exact largest threshold on E is {_real(c['value'])} "
                 f"({'attained' if c['attained'] else 'not attained'}).  {how}, all of which hold on [0, tau]"
                 + (f"; condition {c['binding']} changes sign at tau." if c.get("binding") else "."))

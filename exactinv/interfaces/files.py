@@ -20,6 +20,8 @@ import os
 import secrets
 from typing import Callable, Iterable
 
+from exactinv_check.format import FORMAT
+
 from ..errors import InvalidInput
 
 __all__ = ["check_writable", "same_file", "refuse_inputs", "refuse_foreign", "atomic_write", "is_certificate",
@@ -110,13 +112,13 @@ def is_certificate(path: str) -> bool:
     try:
         with open(path, encoding="utf-8") as fh:
             head = fh.read(4096)
-            if '"exactinv-certificate"' not in head:
+            if json.dumps(FORMAT) not in head:
                 return False
             fh.seek(0)
             data = json.load(fh)
     except (OSError, ValueError, RecursionError):
         return False
-    return isinstance(data, dict) and data.get("format") == "exactinv-certificate"
+    return isinstance(data, dict) and data.get("format") == FORMAT
 
 
 def _record(line: str) -> bool:

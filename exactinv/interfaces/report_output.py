@@ -67,6 +67,7 @@ def report_json(report: Report, certificate: str | None = None) -> dict[str, Any
 def _check_json(report: Report) -> dict[str, Any]:
     check = report.check
     return {"verified": None if check is None else bool(check.ok),
+            "kind": None if check is None else str(check.kind),  # accepted, rejected, over-budget, kernel-fault
             "claims": len(report.certificate.get("claims", ())),
             "verdicts": [] if check is None else
             [{"claim": kind, "ok": bool(ok), "message": str(message)} for kind, ok, message in check.verdicts]}

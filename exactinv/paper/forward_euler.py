@@ -7,11 +7,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from exactinv_check.format import ClaimType
+
 from ..core.algebraic import Real
 from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.tags import ClaimType
 from ..model.record import certificate as make_certificate, generator_record
 from .gamma_star import OptimalGamma
 

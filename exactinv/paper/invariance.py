@@ -19,11 +19,11 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+from exactinv_check.format import ClaimType
 
 from ..core.encode import mat, sparse_of_dense
 from ..core.latex import LatexMixin, latex_column, latex_matrix
 from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
-from ..core.tags import ClaimType
 from ..errors import EmptyPolyhedron, VerificationFailed
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver
 from ..model import LinearSystem, Polyhedron

@@ -23,6 +23,7 @@ from cmath import phase
 from math import atan, gcd, pi
 
 import flint
+from exactinv_check.format import MAX_LINE_EXPONENT  # the kernel's bound (exactinv_check.line_poles)
 
 from ..core.float_hint import float_hint
 from ..core.polys import integer_part, sign_right_of
@@ -32,7 +33,6 @@ from ..core.scalars import fmpq_of, fraction_of
 __all__ = ["line_gcd", "on_line_indices", "line_density", "nonnegative", "single_pair", "trig_minimum_points",
            "pair_minimum_points"]
 
-MAX_LINE_EXPONENT = 64  # as the kernel's (exactinv_check.line_poles)
 
 
 def _parts(f: flint.fmpq_poly, p: Fraction) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:

@@ -8,11 +8,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from exactinv_check.format import ClaimType, RadiusReason
+
 from ..core.algebraic import Real, RealAlgebraic
 from ..core.encode import encode_real, envelope
 from ..core.latex import latex_real, latex_text
 from ..core.results import ExactValueMixin
-from ..core.tags import ClaimType, RadiusReason
 from ..model.methods import Method
 from ..model.record import method_record
 

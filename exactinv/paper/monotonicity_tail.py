@@ -58,12 +58,12 @@ from fractions import Fraction
 from math import comb
 
 import flint
+from exactinv_check.format import MAX_COEFFICIENTS, RadiusReason
 
 from ..core.algebraic import ExactKey, Real, RealAlgebraic
 from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
 from ..core.roots import real_roots
 from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
-from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
@@ -76,7 +76,7 @@ _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
-_MAX_INDEX = 4096  # the kernel's MAX_COEFFICIENTS: a longer scan could not be certified
+_MAX_INDEX = MAX_COEFFICIENTS  # the kernel's bound: a longer scan could not be certified
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:

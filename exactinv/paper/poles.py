@@ -30,6 +30,7 @@ from fractions import Fraction
 from math import comb
 
 import flint
+from exactinv_check.format import MAX_TAIL_INDEX
 
 from ..core.algebraic import RealAlgebraic
 from ..core.polys import integer_part, interpolate
@@ -39,7 +40,7 @@ from ..errors import Undecided
 
 __all__ = ["PoleStructure", "pole_structure", "ambiguous_line_poles", "tie_polynomial", "Tie", "dominance_tie", "tail_index"]
 
-_MAX_INDEX = 1 << 20
+_MAX_INDEX = MAX_TAIL_INDEX  # the kernel's bound on a tail index
 
 
 class precision:

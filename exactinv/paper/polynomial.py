@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from math import comb
 
+from exactinv_check.format import ClaimType
+
 from ..core.algebraic import ExactKey, Real
 from ..core.encode import encode_real
 from ..core.latex import dt_poly_latex, latex_real, latex_text
@@ -29,7 +31,6 @@ from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
 from ..core.sparse import SparseRows
-from ..core.tags import ClaimType
 from ..model import Method
 from ..model.record import certificate as make_certificate
 from .gamma_star import OptimalGamma

@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+from exactinv_check.format import ClaimType
+
 from ..beyond.box_conditions import BoxRoute
 from ..beyond.conditions import Condition
 from ..beyond.lp_route import LPRoute
@@ -22,7 +24,6 @@ from ..core.encode import encode_real, vec
 from ..core.intervals import IntervalUnion
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.tags import ClaimType
 from ..model import Ellipsoid, LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate, generator_record
 

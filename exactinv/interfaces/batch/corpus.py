@@ -39,6 +39,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable, Sequence
 
+from exactinv_check.format import FORMAT
+
 from ...errors import InvalidInput
 from ..files import is_results_file, same_file
 
@@ -222,7 +224,7 @@ def _not_a_problem(text: str) -> str | None:
             data = json.loads(text)
         except (ValueError, RecursionError):
             data = None
-        if isinstance(data, dict) and data.get("format") == "exactinv-certificate":
+        if isinstance(data, dict) and data.get("format") == FORMAT:
             return "an exactinv certificate, not a problem"
     first = text.lstrip().split("\n", 1)[0]
     if "\n" in text.strip() and _is_record(first):
