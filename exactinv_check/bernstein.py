@@ -30,11 +30,31 @@ The proof of f >= 0:
      |e^(-(z_k - p*) t)| <= n!/(delta_k t)^n for any n >= 0, delta_k <= Re z_k - p*.  With n >= M_k - mu every
      term's bound is nonincreasing in t, so the bound at T holds on [T, oo): b_{*,mu} > (sum at T) proves
      f > 0 there.
+   - far, *balanced line* (the poles proved on Re z = p*, of multiplicity mu, have sum |b_(k,mu)| >= b_(*,mu),
+     so p*'s bound above never holds; e.g. e^(p* t) f = 1 + cos(9t/4) + e^(-2t), issue 22): split
+     e^(p* t) f(t) = B(t) + R(t), B the terms of p* and of the poles on the line, R those of the poles off it.
+     (i) B >= 0 on R exactly (line_poles.line_part; p* and every line pole simple, so B = b_* + sum_k b_k
+     e^(-i y_k t): one pair, min B = b_* - 2|b| with b_*^2 >= 4|b|^2 rational; or rational heights, B(t) = T(t/L)
+     with Q >= 0 on R).  (ii) R's slowest-decaying pole is a real pole q (the second distinct positive pole, its disk
+     matched to its exact isolating interval [Q_lo, Q_hi] as p*'s), multiplicity M, b_(q,M) > 0, and every other
+     pole off the line has Re z_k - Q_hi >= delta_k > 0 (disks).  Then for t >= T
+         R(t) e^((q - p*) t) (M-1)!/t^(M-1) = b_(q,M) + sum_{m<M} b_(q,m) (M-1)!/(m-1)! t^(m-M)
+             + sum_{k} sum_m b_(k,m) (M-1)!/(m-1)! t^(m-M) e^(-(z_k - q) t),
+     with |e^(-(z_k - q) t)| <= e^(-delta_k t) <= n!/(delta_k t)^n (n >= M_k - M, so each bound is nonincreasing in
+     t): the sum of the bounds at T below the lower end of b_(q,M) proves R > 0 on [T, oo), hence
+     f = e^(-p* t)(B + R) > 0 there.  The compact piece before T is the certified march below, as before.  No pole
+     off the line (all on it): f = e^(-p* t) B >= 0 at once.  Rejected: a multiple p* or line pole, B not proved
+     >= 0, the slowest pole off the line not a single real pole (a non-real pair: R oscillates at B's zeros, open in
+     general), or b_(q,M) not proved positive (if negative, f < 0 near B's zeros for large t).
    - between: from a = t_a step by dyadic d, with disks E_k = e^(-z_k a) (exp of a disk: scaling and
      squaring of an exact Taylor sum with its remainder; e^(-z_k (a + d)) = E_k e^(-z_k d)):
      f(a + s) >= f(a) + min(0, f'(a) d) - d^2/2 max|f''| on [0, d], with
      |f^(n)(t)| <= sum_k |E_k| sum_m |b_{k,m}| sum_i C(n,i) t^(m-1-i) |z_k|^(n-i)/(m-1-i)! (Re z_k > 0).
 Every number is an exact rational; disks round outward; what is not proved within MAX_STEPS steps is rejected.
+
+:func:`prove_density_nonnegative` proves f >= 0 (every pole with Re z > 0) whatever the sign of c: f depends only
+on the principal parts, not on c.  With c < 0 (claims_radius, reason bernstein-root) every c_j, j >= 1, is still
+>= 0 for every kappa >= 0, and c_0(kappa) = c + int e^(-kappa t) f(t) dt decreases strictly from r(0) = 1 to c.
 """
 
 from fractions import Fraction
@@ -163,12 +183,13 @@ def _density_nonnegative(g, h):
 
 
 def _line_outweighs(terms, mu):
-    """Is sum over the line poles of |b| (upper bounds) >= b_* (lower bound)?  Only then is the far piece the
-    balanced line's (p*'s own dominance bound, with |e^(-(z - p*) t)| = 1 on the line, can never hold)."""
+    """Is the sum over the line poles of multiplicity mu of |b_(k,mu)| (upper bounds) >= b_(*,mu) (lower bound)?
+    Only then is the far piece the balanced line's (p*'s own dominance bound, with |e^(-(z - p*) t)| = 1 on the
+    line, can never hold; line poles of lower multiplicity decay against t^(mu-1))."""
     if not any(t[4] for t in terms):
         return False
     star_b = next(t[2] for t in terms if t[3])[mu - 1]
-    return sum(ball_abs_upper(t[2][t[1] - 1]) for t in terms if t[4]) >= star_b[0] - star_b[2]
+    return sum(ball_abs_upper(t[2][mu - 1]) for t in terms if t[4] and t[1] == mu) >= star_b[0] - star_b[2]
 
 
 def _balanced_line(g, h, factors, poles, disks, terms, p_exact):

@@ -22,6 +22,10 @@ Two uses (exactinv_check.bernstein):
    e^(-i n theta) = (1 - ix)^(2n)/(1 + x^2)^n, so Q(x) = (1 + x^2)^N T(theta(x)) (N = max |n_k|) is a real
    polynomial and T >= 0 on the circle iff Q >= 0 on R (theta = pi is a limit): an exact Sturm count.  This
    decides f touching 0, e.g. 1/((1 - z)(1 - z + z^2/2)): f(t) = 2 e^(-t) (1 - cos t).
+ * *the line part beside other poles* (:func:`line_part`, the balanced line): with G = gcd(U, V) of h itself, whose
+   real roots carry the multiplicities of h's roots on the line, B(t) = b_* + sum b_k e^(-i y_k t) (p* and every line
+   pole simple) is proved >= 0 for one pair (b_*^2 >= 4|b|^2, |g|^2 and |h'|^2 at p* + i sqrt(Y) rational) or for
+   rational heights (the same Q, from the line poles only, b_k = -g(z_k)/h'(z_k) with h' of the whole h).
 Order in exactinv_check.bernstein: the closed form of one pair (:func:`single_pair`) first, then the density when its
 Sturm count fits the budgets; an unaffordable density (N near MAX_LINE_EXPONENT) leaves the poles to the dominance
 proof, which decides every f that p* dominates strictly.

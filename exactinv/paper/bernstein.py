@@ -25,6 +25,7 @@ positivity problem for linear differential equations, open in general.
 
 from __future__ import annotations
 
+from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
 from math import comb, factorial, gcd
@@ -42,6 +43,7 @@ __all__ = ["Verdict", "completely_monotone", "density_nonnegative", "density_at_
 
 _MAX_STEPS = 4000
 _MAX_WITNESS_J = 1 << 13
+_SEARCH = ContextVar("exactinv_bernstein_witness_search", default=True)  # False: f's verdict only, no witness search
 
 
 @dataclass(frozen=True)
@@ -130,9 +132,11 @@ def _at_infinity_witness(g, h) -> tuple[Fraction, int] | None:
 
 
 def _density_witness(g, h, ts: list, s: PoleStructure) -> tuple[Fraction, int] | None:
-    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large.  The least j (on a geometric scale) for which
+    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large (not searched, None, when the caller discards it).  The least j (on a geometric scale) for which
     some t0 works, screened in Arb and confirmed exactly; then kappa is lowered by bisection while c_j stays
     negative (a smaller K gives a shorter certified tail)."""
+    if not _SEARCH.get():
+        return None
     j = 1
     while j <= _MAX_WITNESS_J:
         found = [(Fraction(j) / t0, j) for t0 in ts if _arb_coefficient(s, Fraction(j) / t0, j) < 0]
@@ -218,7 +222,11 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
     if len(g) > len(h):
         return _finite(g, h, _at_infinity_witness(g, h), "deg g > deg h: r(-x) is unbounded")
     c, _ = density_at_zero(g, h, 0)
-    density = density_nonnegative(g, h, s, bits, p_star)
+    token = _SEARCH.set(c >= 0)  # c < 0: only f >= 0 matters (a witness for f < 0 would be discarded)
+    try:
+        density = density_nonnegative(g, h, s, bits, p_star)
+    finally:
+        _SEARCH.reset(token)
     if c < 0:
         if density.infinite and g[0] > 0:  # r(0) > 0 > c: c_0 = r(-kappa) has its one zero on (0, oo)
             return Verdict(False, f"r(-x) tends to c = {c} < 0 while {density.how}", finite=True, root=True)
