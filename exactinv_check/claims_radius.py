@@ -33,7 +33,7 @@ from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
 from .reals import Real
 from .bernstein import prove_completely_monotone, prove_density_nonnegative
-from .budget import within_sturm_budget
+from .budget import SCAN_BUDGET, within_sturm_budget
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
 from .balanced_tie import MAX_POLES, prove_balanced_tie
@@ -58,7 +58,7 @@ def d_polynomials(num, den, count):
     """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa;
     priced first (a certificate's tail_index or d list must not make the kernel work for minutes)."""
     require(count <= MAX_COEFFICIENTS, f"more than {MAX_COEFFICIENTS} coefficients requested")
-    within_budget(scan_cost(num, den, count), f"the coefficient polynomials d_0 .. d_{count - 1}")
+    within_budget(scan_cost(num, den, count), f"the coefficient polynomials d_0 .. d_{count - 1}", SCAN_BUDGET)
 
     G = [_shift(num, i) for i in range(max(len(num), count))]
     H = [_shift(den, i) for i in range(len(den))]
