@@ -172,6 +172,20 @@ def _tie(num, den, value, claim):
     return value, attained if first.compare(value) == 0 else True, d, N, count
 
 
+def short_above(q, bits=16):
+    """A rational >= q >= 0 with about ``bits`` significant bits (q itself when it is that short).  The coefficient
+    route proves the tail and the d_j's signs on [0, K] for this K instead of the claimed rho's isolating bound: a
+    larger K only asks more (sound), and Descartes tests on [0, K] cost with the bits of K (a genuine certificate,
+    rho of degree 33 with a 150-bit bound, was rejected over the certificate's budget by those tests alone)."""
+    if q <= 0:
+        return Fraction(0)
+    e = bits - (q.numerator.bit_length() - q.denominator.bit_length())
+    short = Fraction(-(-q.numerator * 2 ** e // q.denominator), 2 ** e) if e >= 0 else \
+        Fraction(-(-q.numerator // (q.denominator * 2 ** -e)) * 2 ** -e)
+    return q if short.numerator.bit_length() + short.denominator.bit_length() >= \
+        q.numerator.bit_length() + q.denominator.bit_length() else short
+
+
 def _bernstein_root(num, den):
     """(rho, sentence) for reason bernstein-root: c = lim r < 0, f >= 0 proved (prove_density_nonnegative; every
     pole then has Re z > 0), so c_j(kappa) = int t^j e^(-kappa t) f(t) dt/j! >= 0 for j >= 1 and every kappa >= 0,
@@ -254,8 +268,8 @@ def absolute_monotonicity_radius(problem, claim, context):
                f"the tail j >= {N} is proved positive on [0, kappa*] with the tied poles at ratio 1, "
                f"c_0 .. c_{count - 1} recomputed")
     else:
-        K = None if value.inf == 1 else value.bounds()[1]
         require(value.inf != -1, "rho >= 0")
+        K = None if value.inf == 1 else short_above(value.bounds()[1])
         hint = claim.get("tail_index")
         hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
         N = prove_tail(num, den, K, hint)
