@@ -237,7 +237,17 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
 def density_nonnegative(g: list, h: list, s: PoleStructure, bits: int = 256, p_star=None) -> Verdict:
     """Is f >= 0 on (0, oo) (whatever the sign of c; f does not depend on c)?  ``infinite`` says it is proved,
     ``finite`` that f < 0 somewhere (with a witness c_j(K) < 0 when found), neither: not decided.
-    deg g <= deg h; s as for :func:`completely_monotone`."""
+    deg g <= deg h; s as for :func:`completely_monotone`.
+
+    The trapezoid -1 + 4/(2 - z): f(t) = 4 e^(-2t) >= 0 (its c = -1 < 0 does not matter here).
+
+    >>> from fractions import Fraction as F
+    >>> from exactinv.paper.poles import pole_structure, precision
+    >>> g, h = [F(1), F(1, 2)], [F(1), F(-1, 2)]
+    >>> with precision(256):
+    ...     density_nonnegative(g, h, pole_structure(g, h, F(2))).infinite
+    True
+    """
     if len(s.balls) == 1:
         return _single_pole(g, h, s)
     rational = _rational_exponents(g, h)

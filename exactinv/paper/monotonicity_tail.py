@@ -301,7 +301,12 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
 
 
 def g_minus(method: Method) -> flint.fmpq_poly:
-    """g(-kappa) = d_0(kappa): its one positive root is rho for reason ``bernstein-root``."""
+    """g(-kappa) = d_0(kappa): its one positive root is rho for reason ``bernstein-root``.
+
+    >>> from exactinv.model import methods
+    >>> g_minus(methods.trapezoid())          # 1 + z/2 at z = -kappa
+    (-1/2)*x + 1
+    """
     return flint.fmpq_poly([fmpq_of(c * (-1) ** k) for k, c in enumerate(method.numerator)])
 
 
