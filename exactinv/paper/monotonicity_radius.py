@@ -60,7 +60,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         >>> from exactinv.model import methods
         >>> from exactinv.paper.monotonicity import absolute_monotonicity_radius
         >>> print(absolute_monotonicity_radius(methods.trapezoid()).to_latex())
-        \\rho = 2\\ (\\text{coefficient})
+        \\rho = 2\\ (\\text{bernstein-root})
         """
         return rf"\rho = {latex_real(self.value)}\ ({latex_text(self.reason)})"
 
