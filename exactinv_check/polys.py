@@ -204,7 +204,7 @@ def isolate(q, a, b):
     """The real roots of the squarefree integer polynomial q in the open (a, b), a < b, in
     increasing order: (lo, hi) with exactly one root in the open (lo, hi) and none at lo or hi,
     or (r, r) for a rational root r -- by Descartes' rule with bisection (see the module
-    docstring).  Gated first by degree^4 bits^2 <= DESCARTES_BUDGET (budget.py: 40 times the Sturm gate, as
+    docstring).  Gated first by degree^4 bits^2 <= DESCARTES_BUDGET (budget.py: 16 times the Sturm gate, as
     Descartes costs about 10^-5 of a Sturm sequence in word operations), then each node is charged to the
     certificate's account as it runs; the number of nodes is bounded."""
     if len(q) < 2:
