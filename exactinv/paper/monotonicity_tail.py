@@ -80,6 +80,7 @@ _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* 
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
 _MAX_INDEX = 4096  # the kernel's MAX_COEFFICIENTS: a longer scan could not be certified
+_MAX_VALUE_DEGREE = 200  # the kernel's polynomial bound (exactinv_check.poly_arithmetic.MAX_DEGREE) on a certificate's value
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:
@@ -366,6 +367,11 @@ def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=F
     attained = value != 0 or all(p(0) >= 0 for p in ds)
     if not attained:  # rho = 0 with some c_j(0) < 0: that witness is the whole certificate (no tail needed)
         return _zero_radius(method, RadiusReason.NEGATIVE_AT_0, p_star)
+    if isinstance(value, RealAlgebraic) and value.poly.degree() > _MAX_VALUE_DEGREE:
+        raise Undecided(f"absolute monotonicity of {method.name}: rho is the first end of c_{binding}, a root of an "
+                        f"irreducible polynomial of degree {value.poly.degree()} > {_MAX_VALUE_DEGREE}, beyond the "
+                        "kernel's polynomial bound, so no certificate of it could be verified (a resource limit, "
+                        "not an open problem)")
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
     return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)
