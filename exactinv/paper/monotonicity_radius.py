@@ -29,7 +29,9 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
     (rho = 0 with ``witness_j``: c_j(0) < 0), ``"all-coefficients"`` (a
     polynomial whose c_j are >= 0 for all kappa), ``"termwise"`` / ``"product"``
     (rho = INF: all partial-fraction terms are absolutely monotonic on
-    (-oo, 0], resp. r is a positive multiple of prod (1 - z/p_k)^(-m_k)).
+    (-oo, 0], resp. r is a positive multiple of prod (1 - z/p_k)^(-m_k)),
+    ``"bernstein"`` (rho = INF: r(-x) is completely monotone), ``"bernstein-root"``
+    (c = lim r < 0 while f >= 0: rho is the one positive root of g(-kappa), attained).
     ``tail_index`` is the N beyond which the tail is certified positive;
     ``poles`` every pole exactly (x, y) = x + iy for a balanced tie of several poles (``"balanced-tie"``);
     ``pole`` the smallest positive real pole p* (None for polynomials).
@@ -59,7 +61,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         >>> from exactinv.model import methods
         >>> from exactinv.paper.monotonicity import absolute_monotonicity_radius
         >>> print(absolute_monotonicity_radius(methods.trapezoid()).to_latex())
-        \\rho = 2\\ (\\text{coefficient})
+        \\rho = 2\\ (\\text{bernstein-root})
         """
         return rf"\rho = {latex_real(self.value)}\ ({latex_text(self.reason)})"
 

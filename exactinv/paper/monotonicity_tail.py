@@ -31,8 +31,11 @@ the engine argues in four exact or certified steps:
 
 6. No tie (every other pole has Re z > p*, so no tail index is uniform in
    kappa): rho = oo iff r(-x) is completely monotone (Bernstein's theorem,
-   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); otherwise an
-   exact witness c_j(K) < 0 gives the bound K for step 4.
+   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); when f >= 0 but
+   c = lim r < 0, every c_j with j >= 1 is >= 0 for every kappa and c_0 =
+   r(-kappa) decreases, so rho is the one positive root of g(-kappa) (reason
+   ``"bernstein-root"``, no tail: the trapezoid); otherwise an exact witness
+   c_j(K) < 0 gives the bound K for step 4.
 7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
    is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
@@ -58,11 +61,11 @@ from fractions import Fraction
 from math import comb
 
 import flint
-from exactinv_check.format import MAX_COEFFICIENTS, RadiusReason
+from exactinv_check.format import MAX_COEFFICIENTS, MAX_DEGREE, RadiusReason
 
 from ..core.algebraic import ExactKey, Real, RealAlgebraic
 from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
-from ..core.roots import real_roots
+from ..core.roots import nonnegative_until, real_roots
 from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
 from ..errors import Undecided
 from ..model.methods import Method
@@ -77,6 +80,7 @@ _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* 
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
 _MAX_INDEX = MAX_COEFFICIENTS  # the kernel's bound: a longer scan could not be certified
+_MAX_VALUE_DEGREE = MAX_DEGREE  # the kernel's polynomial bound on a certificate's value
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:
@@ -153,13 +157,12 @@ def _nonnegative_on(d: flint.fmpq_poly, K: Fraction | None) -> bool:
 
 def _first_end(d: flint.fmpq_poly) -> Real:
     """sup{T : d >= 0 on [0, T]} (d >= 0 just right of 0 or not): 0, INF or the least positive root of
-    odd multiplicity -- FLINT's squarefree factorisation and certified (Arb) root isolation."""
-    if sign_right_of(d, Fraction(0)) < 0:
-        return Fraction(0)
-    _, parts = integer_part(d).factor_squarefree()
-    odd = [p for p, m in parts if m % 2]
-    roots = [r for p in odd for r, _ in real_roots(flint.fmpq_poly(p)) if r > 0]
-    return min(roots, key=ExactKey) if roots else INF
+    odd multiplicity -- Descartes' rule, then Vincent-Collins-Akritas bisection on the odd part
+    (:func:`exactinv.core.roots.nonnegative_until`).  (Isolating every complex root of d_j in Arb, as before,
+    took over ten minutes for a d_j of degree ~300 from tests/test_line_poles.py's random tie family.)  An algebraic
+    end is refined to 64 relative bits: the bound K = its 48-bit upper end sets the tail index."""
+    end = nonnegative_until(d, 0)
+    return end.refine_relative(64) if isinstance(end, RealAlgebraic) else end
 
 
 def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
@@ -256,6 +259,9 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         verdict = completely_monotone(method.numerator, method.denominator, s, _BITS, p_star)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if verdict.root:  # c < 0, f >= 0: c_j >= 0 for j >= 1 and every kappa, c_0 = r(-kappa) decreases
+            return AbsoluteMonotonicityRadius(_first_end(g_minus(method)), True, RadiusReason.BERNSTEIN_ROOT, method,
+                                              pole=p_star)
         if verdict.finite and verdict.bound is None:
             raise Undecided(f"absolute monotonicity of {method.name}: rho < oo is proved (r(-x) is not completely "
                             f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
@@ -295,6 +301,16 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
     return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None, listed)
+
+
+def g_minus(method: Method) -> flint.fmpq_poly:
+    """g(-kappa) = d_0(kappa): its one positive root is rho for reason ``bernstein-root``.
+
+    >>> from exactinv.model import methods
+    >>> g_minus(methods.trapezoid())          # 1 + z/2 at z = -kappa
+    (-1/2)*x + 1
+    """
+    return flint.fmpq_poly([fmpq_of(c * (-1) ** k) for k, c in enumerate(method.numerator)])
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
@@ -351,6 +367,11 @@ def _finish(method, kappa_A, p_star, value, binding, ds, N, tie=None, balanced=F
     attained = value != 0 or all(p(0) >= 0 for p in ds)
     if not attained:  # rho = 0 with some c_j(0) < 0: that witness is the whole certificate (no tail needed)
         return _zero_radius(method, RadiusReason.NEGATIVE_AT_0, p_star)
+    if isinstance(value, RealAlgebraic) and value.poly.degree() > _MAX_VALUE_DEGREE:
+        raise Undecided(f"absolute monotonicity of {method.name}: rho is the first end of c_{binding}, a root of an "
+                        f"irreducible polynomial of degree {value.poly.degree()} > {_MAX_VALUE_DEGREE}, beyond the "
+                        "kernel's polynomial bound, so no certificate of it could be verified (a resource limit, "
+                        "not an open problem)")
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in ds[: binding + 1])
     return AbsoluteMonotonicityRadius(value, attained, RadiusReason.COEFFICIENT, method, binding, tail_index=N, pole=p_star,
                                       coefficients=coeffs)
