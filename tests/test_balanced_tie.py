@@ -70,7 +70,7 @@ def test_outweighing_residues_are_not_a_balanced_tie():
     assert r.value < 1 and r.reason == "coefficient"
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(R=st.integers(2, 9), kappa=st.fractions(min_value=F(1, 4), max_value=F(3, 2), max_denominator=4),
        shape=st.sampled_from(["pair", "negative+pair", "two pairs"]),
        units=st.lists(st.integers(0, len(UNITS) - 1), min_size=2, max_size=2, unique=True),

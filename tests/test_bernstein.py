@@ -120,7 +120,7 @@ def repeated_pole(draw):
     return num, den
 
 
-@settings(deadline=None, max_examples=25, suppress_health_check=[HealthCheck.too_slow])
+@settings(deadline=None, max_examples=25, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(repeated_pole())
 def test_repeated_real_pole_is_decided_and_agrees_with_the_reference(case):
     num, den = case
@@ -158,7 +158,7 @@ def completely_monotone(draw):
     return [x / r0 for x in num], den
 
 
-@settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow])
+@settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(completely_monotone())
 def test_completely_monotone_by_construction_has_infinite_radius(case):
     num, den = case
@@ -186,7 +186,7 @@ def not_completely_monotone(draw):
     return [x / num[0] for x in num], den
 
 
-@settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow])
+@settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(not_completely_monotone())
 def test_not_completely_monotone_has_finite_radius(case):
     num, den = case

@@ -35,7 +35,7 @@ def _short(value, side):
     return Fraction(int(lo * grid) - 50, grid) if side < 0 else Fraction(int(hi * grid) + 51, grid)
 
 
-@settings(deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(methods())
 def test_radius_agrees_with_the_slow_reference(m):
     try:
