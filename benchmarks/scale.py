@@ -46,8 +46,9 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-import exactinv as ei  # noqa: E402
 from largest import cube_system, polygon  # noqa: E402
+
+import exactinv as ei  # noqa: E402
 
 BEFORE = "17e9024"
 ROT = [[-1, "1/2"], ["-1/2", -1]]

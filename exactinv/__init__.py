@@ -22,10 +22,11 @@ Fraction(1, 1)
 Fraction(1, 1)
 """
 
-from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
-from .beyond.conditions import ConditionSet
-from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
+
+from .beyond.conditions import ConditionSet
+from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
+from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from .core import scalars as numbers
 from .core.algebraic import RealAlgebraic
 from .core.roots import first_sign_change, nonnegative_until, real_roots

@@ -12,13 +12,13 @@ from math import comb
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from radius_reference import admissible, coefficients_at
 
 import exactinv as ei
 from exactinv import methods as M
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv_check.bernstein import prove_completely_monotone
 from exactinv_check.rationals import CheckFailure
-from radius_reference import admissible, coefficients_at
 
 ISSUE_EXAMPLES = {
     "(1 - z)/(1 - 2z)^4": ([1, -1], [1, -8, 24, -32, 16]),

@@ -19,8 +19,8 @@ import re
 from pathlib import Path
 
 import pytest
-
 from certificate_corpus import corpus
+
 from exactinv_check import kernel
 from exactinv_check.claims_radius import REASONS
 from exactinv_check.kernel import CLAIMS

@@ -17,10 +17,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv_check import check
 from exactinv.lp import ExactLPSolver, hint
 from exactinv.lp import solver as lp
 from exactinv.lp.exact import ppl_maximize
+from exactinv_check import check
 
 needs_cvxpy = pytest.mark.skipif(importlib.util.find_spec("cvxpy") is None, reason="cvxpy (optional) is not installed")
 

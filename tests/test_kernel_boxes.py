@@ -7,7 +7,8 @@ from fractions import Fraction
 from math import factorial
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.certificates import certificate

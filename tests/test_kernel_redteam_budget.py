@@ -150,6 +150,7 @@ def test_tie_polynomial_priced_by_the_square_of_its_numbers():
     method) it priced the interpolation of T at 3.2e7 word operations (under the 1e8 limit) and it ran 47 s of
     CPU.  The resultants' Fraction gcds are quadratic in the words: now rejected before it runs."""
     import random
+
     from exactinv_check import tie
     rng = random.Random(2)
     bits = 100000
@@ -168,6 +169,7 @@ def test_quotient_polynomial_resultants_and_interpolation_are_charged():
     charge (of the final products) overdrew the account.  Now every resultant step and interpolation level is
     charged: an account of 2e8 stops it within seconds."""
     import random
+
     from exactinv_check import polys
     rng = random.Random(3)
     p = [F(rng.randint(1, 2**300) * rng.choice((-1, 1))) for _ in range(41)]

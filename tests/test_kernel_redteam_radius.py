@@ -13,12 +13,11 @@ import random
 from fractions import Fraction as F
 
 import pytest
+from radius_reference import coefficients_at
 
 from exactinv_check import check
 from exactinv_check.bernstein import prove_completely_monotone
 from exactinv_check.rationals import CheckFailure
-
-from radius_reference import coefficients_at
 
 
 # ------------------------------------------------------------------ helpers (independent of the kernel)

@@ -13,12 +13,10 @@ import random
 from math import factorial
 
 import pytest
+from kernel_deadline import check_within
 
 import exactinv as ei
 from exactinv_check import check
-
-from kernel_deadline import check_within
-
 
 SQUARE = [["1", "1"], ["1", "-1"], ["-1", "1"], ["-1", "-1"]]
 SQUARE_G = [["1", "0"], ["-1", "0"], ["0", "1"], ["0", "-1"]]

@@ -15,9 +15,9 @@ from math import factorial
 
 import pytest
 import sympy as sp
+from test_kernel_redteam import _cert, _check_in_subprocess
 
 from exactinv_check import check
-from test_kernel_redteam import _cert, _check_in_subprocess
 
 z = sp.symbols("z")
 
@@ -341,8 +341,9 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
     import math
     import random
     from types import SimpleNamespace
-    from exactinv_check.conditions import condition_polynomials, method_matrices
+
     from exactinv_check import pruning
+    from exactinv_check.conditions import condition_polynomials, method_matrices
     from exactinv_check.validset import first_end, valid_set
 
     def same(x, y):

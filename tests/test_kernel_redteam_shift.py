@@ -63,6 +63,9 @@ from fractions import Fraction as F
 from math import comb
 
 import pytest
+from kernel_deadline import TooSlow
+from pruning_helpers import count_slot_tests, polygon_rows
+from test_kernel_redteam_secant import _circle_polygon
 
 import exactinv as ei
 from exactinv_check import check, pruning
@@ -70,10 +73,6 @@ from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
 from exactinv_check.kernel import Method
 from exactinv_check.rationals import WORK_BUDGET, CheckFailure
-
-from kernel_deadline import TooSlow
-from pruning_helpers import count_slot_tests, polygon_rows
-from test_kernel_redteam_secant import _circle_polygon
 
 
 class _Deadline:

@@ -43,9 +43,9 @@ from versions import as_version
 
 import exactinv as ei
 from exactinv import forward_euler_threshold
-from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv.paper.gamma_star import optimal_gamma
 from exactinv.paper.threshold import _steplength_threshold, steplength_threshold
+from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.rationals import CheckFailure, rational

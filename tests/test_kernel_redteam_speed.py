@@ -15,11 +15,11 @@ instance.
 from fractions import Fraction as F
 
 import pytest
+from pruning_helpers import polygon_rows
 
 from exactinv_check import check, conditions, polygon, pruning
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.rationals import CheckFailure
-from pruning_helpers import polygon_rows
 
 
 def _parabola_polygon(m):

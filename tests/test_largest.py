@@ -4,11 +4,11 @@ import pytest
 import sympy
 from hypothesis import assume, given
 from hypothesis import strategies as st
+from strategies import metzler_cones as cones
 
 import exactinv as ei
-from exactinv import methods as M
 from exactinv import compare_thresholds, forward_euler_threshold, largest_threshold, valid_steplengths
-from strategies import metzler_cones as cones
+from exactinv import methods as M
 
 BOX_S = ei.LinearSystem([[-1, 1], [-1, -1]])
 BOX = ei.Polyhedron.box([-1, -1], [1, 1])

@@ -6,7 +6,9 @@ from fractions import Fraction as F
 
 import flint
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 import exactinv as ei
 from exactinv.core.algebraic import RealAlgebraic
@@ -14,7 +16,6 @@ from exactinv.core.scalars import INF
 from exactinv.paper.line_poles import line_density, line_gcd, single_pair
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
-from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 BOTH = [F(1), F(-2), F(3, 2), F(-1, 2)]  # (1 - z)(1 - z + z^2/2): poles 1, 1 +- i
 

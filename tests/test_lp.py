@@ -1,15 +1,14 @@
 from fractions import Fraction
 
 import flint
+import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
-
-import numpy as np
 
 from exactinv.core.scalars import INF
 from exactinv.lp import solve_lp
 from exactinv.lp.exact import ppl_maximize
-from exactinv.lp.hint import UNKNOWN_HINT, Hint, HighsHint, HintBackend, HintModel, LPStatus
+from exactinv.lp.hint import UNKNOWN_HINT, HighsHint, Hint, HintBackend, HintModel, LPStatus
 from exactinv.lp.reconstruct import basis_solution, exact_pivots
 from exactinv.lp.verify import LPData, verify_optimal
 

@@ -9,16 +9,17 @@ from fractions import Fraction
 
 import ppl
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
-from exactinv.validset.lp import LP_ABOVE
 from exactinv.beyond.lp_route import LPRouteDeclined, lp_route, vertex_bound
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import Infinity
 from exactinv.errors import InvalidInput
+from exactinv.validset.lp import LP_ABOVE
 
 M = ei.methods
 F = Fraction

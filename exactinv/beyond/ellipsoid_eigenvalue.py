@@ -11,9 +11,9 @@ set of the one engine (:mod:`exactinv.validset.engine`), and they must agree.
 
 from __future__ import annotations
 
-import flint
-
 from fractions import Fraction
+
+import flint
 
 from ..core.algebraic import Real
 from ..core.psd import psd_decision

@@ -42,9 +42,9 @@ from __future__ import annotations
 
 import math
 import time
-from math import comb
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
+from math import comb
 
 import flint
 import numpy as np
@@ -52,7 +52,8 @@ import numpy as np
 from ..core.algebraic import upper_bound
 from ..core.float_hint import float_hints
 from ..core.intervals import IntervalUnion
-from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
+from ..core.nonnegative import earliest_first, nonnegative_set
+from ..core.nonnegative import first_end as earliest_end
 from ..core.scalars import Infinity, fmpq_of, fraction_of
 from .conditions import Kind
 

@@ -26,7 +26,6 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any, Sequence
 
-from ..validset.engine import valid_steplengths
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.intervals import IntervalUnion
@@ -42,6 +41,7 @@ from ..model.validate import check_method, check_pair
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
 from ..paper.rational import smallest_positive_pole
+from ..validset.engine import valid_steplengths
 
 __all__ = ["RobustThreshold", "robust_threshold", "abscissa_bound"]
 

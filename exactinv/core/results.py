@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from .algebraic import RealAlgebraic, Real
+from .algebraic import Real, RealAlgebraic
 from .doubles import DOUBLE_MAX, double_above, double_below
 from .latex import LatexMixin
 from .scalars import INF, Infinity

@@ -37,8 +37,9 @@ from typing import Any, Iterable, Sequence
 import flint
 
 from ..errors import InvalidInput
-from .flintq import Matrix, Vector
 from .flintq import (  # noqa: F401 (the Fraction <-> FLINT conversions, re-exported: their old home)
+    Matrix,
+    Vector,
     dyadic_of,
     fmpq_column,
     fmpq_matrix,

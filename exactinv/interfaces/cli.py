@@ -26,11 +26,12 @@ import sys
 from typing import Sequence
 
 import exactinv_check
-from exactinv_check.kernel import BadInput, load as _load_certificate
+from exactinv_check.kernel import BadInput
+from exactinv_check.kernel import load as _load_certificate
 
 from ..core.encode import dumps
-from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
+from ..model.methods import PRESETS
 from .batch import BatchInterrupted, run_batch
 from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 from .explain import explain

@@ -15,8 +15,6 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
-from ..validset.engine import largest_threshold, valid_steplengths
-from ..validset.families import ELLIPSOIDS, family_of
 from ..core.algebraic import RealAlgebraic
 from ..core.digits import significant_digits
 from ..core.float_hint import float_hint
@@ -26,6 +24,8 @@ from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import Ellipsoid
 from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
 from ..paper.threshold import steplength_threshold
+from ..validset.engine import largest_threshold, valid_steplengths
+from ..validset.families import ELLIPSOIDS, family_of
 
 __all__ = [
     "latex_real",

@@ -20,7 +20,9 @@ from typing import Any, Callable
 import exactinv_check
 
 from ..beyond.conditions import ConditionSet
+from ..control.optimal_gain import OptimalGain, optimal_gain
 from ..core.encode import encode_real, mat
+from ..core.scalars import matrix_text
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
 from ..model import Method
@@ -29,10 +31,8 @@ from ..paper.forward_euler import ForwardEulerThreshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import _steplength_threshold
-from ..control.optimal_gain import OptimalGain, optimal_gain
 from ..validset.engine import forward_euler_with_gamma, largest_threshold, valid_steplengths
 from ..validset.results import EllipsoidForwardEulerThreshold, LargestThreshold, ValidSteplengths
-from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 

@@ -29,8 +29,15 @@ from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
 from ..validset.families import ELLIPSOIDS, family_of
 from .method_format import METHOD_KINDS, method_from_text, parse_method  # re-exported: their old home
-from .strict_json import _At, _kind, _object, _parse, _require, check_keys
-from .strict_json import did_you_mean  # noqa: F401 (re-exported: its old home)
+from .strict_json import (
+    _At,
+    _kind,
+    _object,
+    _parse,
+    _require,
+    check_keys,
+    did_you_mean,  # noqa: F401 (re-exported: its old home)
+)
 
 __all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
 

@@ -41,8 +41,15 @@ from ..errors import VerificationFailed
 from .exact import ppl_dual, ppl_maximize
 from .floatlp import FloatLP, floats_of
 from .hint import Hint, HintBackend, LPStatus, resolve_hint_backend
-from .reconstruct import (COMMON_DENOMINATOR, basis_solution, exact_pivots, guess_basis, snap_tolerance, snapped,
-                          snapped_numerators)
+from .reconstruct import (
+    COMMON_DENOMINATOR,
+    basis_solution,
+    exact_pivots,
+    guess_basis,
+    snap_tolerance,
+    snapped,
+    snapped_numerators,
+)
 from .verify import LPData, dot, optimal_values, verify_farkas, verify_optimal, verify_ray
 from .verify_int import optimal_values_int
 

@@ -12,7 +12,8 @@ from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..core.tags import ClaimType
-from ..model.record import certificate as make_certificate, generator_record
+from ..model.record import certificate as make_certificate
+from ..model.record import generator_record
 from .gamma_star import OptimalGamma
 
 __all__ = ["ForwardEulerThreshold"]

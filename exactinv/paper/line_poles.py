@@ -18,8 +18,8 @@ The kernel re-proves each (exactinv_check.line_poles, exactinv_check.bernstein).
 
 from __future__ import annotations
 
-from fractions import Fraction
 from cmath import phase
+from fractions import Fraction
 from math import atan, gcd, pi
 
 import flint

@@ -66,10 +66,10 @@ from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
 from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
-from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
 from .line_poles import on_line_indices
+from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)

@@ -24,7 +24,8 @@ from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..core.tags import ClaimType
 from ..model import Ellipsoid, LinearSystem, Method, Polyhedron
-from ..model.record import certificate as make_certificate, generator_record
+from ..model.record import certificate as make_certificate
+from ..model.record import generator_record
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "EllipsoidValidSteplengths", "EllipsoidLargestThreshold",
            "EllipsoidForwardEulerThreshold"]
