@@ -1,4 +1,5 @@
 import os
+import sys
 
 from hypothesis import HealthCheck, settings
 
@@ -9,8 +10,6 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
 )
 settings.load_profile("ci")
-
-import sys
 
 sys.path.insert(0, os.path.dirname(__file__))  # tests/strategies.py, under --import-mode=importlib
 

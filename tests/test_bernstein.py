@@ -246,7 +246,7 @@ def test_density_touching_zero_with_rational_exponents_is_decided():
 
 def test_density_slightly_negative_with_rational_exponents_is_finite():
     """f(t) = e^-t (1 - 2 e^-t)^2 - e^-2t/2 dips below 0 around t = ln 2: rho < oo."""
-    num3, den = pmul([F(1, 2)], pmul([F(2), F(-1)], [F(3), F(-1)])), pmul(pmul([F(1), F(-1)], [F(2), F(-1)]), [F(3), F(-1)])
+    _num3, den = pmul([F(1, 2)], pmul([F(2), F(-1)], [F(3), F(-1)])), pmul(pmul([F(1), F(-1)], [F(2), F(-1)]), [F(3), F(-1)])
     # 1/(x+1) - (4 + 1/2)/(x+2) + 4/(x+3) at z = -x, over the common denominator (1-z)(2-z)(3-z)
     num = padd(padd(pmul([F(1)], pmul([F(2), F(-1)], [F(3), F(-1)])),
                     pmul([F(-9, 2)], pmul([F(1), F(-1)], [F(3), F(-1)]))),

@@ -47,7 +47,8 @@ def _problems():
         row = [rng.randint(-5, 5) for _ in range(n)]
         if any(row):
             G.append(row)
-    A = [[Fraction(rng.randint(-50, 50), 50 * 18 * n * n) - (Fraction(1, 2) if i == j else 0) for j in range(n)] for i in range(n)]
+    A = [[Fraction(rng.randint(-50, 50), 50 * 18 * n * n) - (Fraction(1, 2) if i == j else 0) for j in range(n)]
+         for i in range(n)]
     out.append(("polytope", ei.LinearSystem(A), ei.Polyhedron(G, [1] * len(G))))
     return out
 

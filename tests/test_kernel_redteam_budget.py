@@ -154,7 +154,8 @@ def test_tie_polynomial_priced_by_the_square_of_its_numbers():
     from exactinv_check import tie
     rng = random.Random(2)
     bits = 100000
-    h = [F(rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))) for _ in range(2)] + [F(rng.randint(2**bits, 2**(bits + 1)))]
+    h = ([F(rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))) for _ in range(2)]
+         + [F(rng.randint(2**bits, 2**(bits + 1)))])
     start = time.process_time()
     with budget.account(time_limit=None):
         with pytest.raises(CheckFailure, match="work budget"):

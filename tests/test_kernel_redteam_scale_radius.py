@@ -5,7 +5,8 @@ The HOLE sections documented holes (first as ``xfail(strict=True)``); they are f
 fixes: a tie radius must be positive (a tie at kappa* <= 0 is refused, rho = 0 has its own reasons), the tie
 polynomial and the d_j scan are priced against the kernel's work budget, the pruning horizon has at most 64-bit
 numerator and denominator, and the engine certifies rho = 0 by a witness for both tie functions.  The other
-tests are attacks the kernel resists, kept as regression guards.  Slow exact references (sympy Taylor coefficients) decide the truth.
+tests are attacks the kernel resists, kept as regression guards.  Slow exact references (sympy Taylor
+coefficients) decide the truth.
 """
 
 import copy
@@ -370,14 +371,15 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
         truth, tau = valid_set(D, list(ineq), list(eq)), first_end(D, ineq, eq)
         N = method_matrices(A, num, [Fraction(1)])[1]
         for vk in range(k):
-            _, own, _ = condition_polynomials(A, G, b, num, [Fraction(1)], SimpleNamespace(vertices=[verts[vk]], rays=[], lines=[]))
+            _, own, _ = condition_polynomials(A, G, b, num, [Fraction(1)],
+                                              SimpleNamespace(vertices=[verts[vk]], rays=[], lines=[]))
             own_set = valid_set(D, list(own), [])
             for end, mode in ((own_set[-1].hi if own_set else None, "set"), (first_end(D, own, {})[0], "first")):
                 if end is None or end.inf:
                     continue
                 near = pruning.survivors(G, b, verts, N, end.bounds()[1])
                 D2, i2, e2 = condition_polynomials(A, G, b, num, [Fraction(1)], gens,
-                                                   lambda kind, i: range(len(G)) if i == vk else near[i])
+                                                   lambda kind, i, G=G, vk=vk, near=near: range(len(G)) if i == vk else near[i])
                 if mode == "set":
                     assert same(valid_set(D2, list(i2), list(e2)), truth)
                 else:

@@ -255,7 +255,8 @@ def _mutant(rng, cert):
     rational = "variable" in record
     for op in rng.sample(range(10), rng.randint(1, 3)):
         if op == 0:
-            record["horizon"] = rng.choice(["0", "1", "1/2", str(F(record["horizon"]) * F(rng.randint(1, 20), rng.randint(1, 20)))])
+            scaled = str(F(record["horizon"]) * F(rng.randint(1, 20), rng.randint(1, 20)))
+            record["horizon"] = rng.choice(["0", "1", "1/2", scaled])
             if rational and F(record["horizon"]) > 1:
                 record["horizon"] = "1"
         elif op == 1:

@@ -338,7 +338,8 @@ def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
     A = [[q() for _ in range(n)] for _ in range(n)]
     G = [[q() for _ in range(n)] for _ in range(rng.randint(1, 6))]
     b = [q() for _ in G]
-    gens = SimpleNamespace(**{k: [[q() for _ in range(n)] for _ in range(rng.randint(0, 4))] for k in ("vertices", "rays", "lines")})
+    gens = SimpleNamespace(**{k: [[q() for _ in range(n)] for _ in range(rng.randint(0, 4))]
+                              for k in ("vertices", "rays", "lines")})
     problem = SimpleNamespace(A=A, G=G, b=b)
     assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
 

@@ -133,7 +133,8 @@ def test_forward_euler_two_derivations_agree(problem):
     assert L.value == fe.value
 
 
-@given(st.one_of(random_polytopes(), cones()), st.sampled_from([M.taylor(2), M.heun(), M.rk4(), M.trapezoid(), M.backward_euler(), M.theta("1/4")]))
+@given(st.one_of(random_polytopes(), cones()),
+       st.sampled_from([M.taylor(2), M.heun(), M.rk4(), M.trapezoid(), M.backward_euler(), M.theta("1/4")]))
 def test_paper_threshold_never_exceeds_the_largest(problem, method):
     S, P = problem
     assume(ei.continuous_invariance(S, P).holds)

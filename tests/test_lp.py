@@ -127,7 +127,7 @@ def test_exact_fallback_when_float_solver_gives_up():
 def test_lying_hints_cannot_change_the_answer():
     """A backend that calls every LP infeasible (or unbounded) still yields the verified answer."""
     for lie in (LPStatus.INFEASIBLE, LPStatus.UNBOUNDED):
-        res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True], hint=_Scripted(lambda h: Hint(lie)))
+        res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True], hint=_Scripted(lambda h, lie=lie: Hint(lie)))
         assert res.status == "optimal" and res.value == Fraction(1, 2)
 
 

@@ -37,7 +37,7 @@ def dense_abscissa(H):
 
 
 @st.composite
-def metzler(draw, size=st.integers(1, 7)):
+def metzler(draw, size=st.integers(1, 7)):  # noqa: B008 (a hypothesis strategy: immutable)
     """A Metzler matrix, often reducible (sparse off-diagonal pattern)."""
     m = draw(size)
     entries = []

@@ -53,7 +53,7 @@ import numpy as np
 
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real
-from ..core.polys import no_root_between, shift, sign_variations
+from ..core.polys import shift, sign_variations
 from ..core.real_signs import (
     interval_signs,
     narrowed,
@@ -475,8 +475,8 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     t1 = time.perf_counter()
     conditions, vertices, facets = [], [], []
     for i, walk in enumerate(walks):
-        facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
-        for piece, c, x in walk:
+        facets.append(FacetPieces(i, tuple(p for p, _, _ in walk)))
+        for _piece, c, x in walk:
             vertices.append(x)
             if not never_binds(c.coeffs()):
                 conditions.append(Condition(Kind.VERTEX, len(vertices) - 1, i, c))

@@ -59,7 +59,8 @@ from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator
 
-__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order",
+           "bounding_horizon", "prune", "build_survivors"]
 
 _BITS = 24  # the grid: K = 2^24
 _BLOCK = 64  # vertices per block of the box test

@@ -16,7 +16,8 @@ from .polys import sign_at  # noqa: F401 (re-exported, as before)
 from .real_algebraic import RealAlgebraic
 from .scalars import Infinity
 
-__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "significant_digits", "exact_cmp", "upper_bound", "sign_at"]
+__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "significant_digits",
+           "exact_cmp", "upper_bound", "sign_at"]
 
 
 FiniteReal = Fraction | RealAlgebraic

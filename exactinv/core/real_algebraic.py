@@ -287,7 +287,8 @@ class RealAlgebraic:
         return sympy.CRootOf(expr, index)
 
     def _repr_latex_(self) -> str:
-        return f"$\\text{{root of }} {poly_latex(self.poly)} \\text{{ in }} ({frac_latex(self._lower)}, {frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$"
+        return (f"$\\text{{root of }} {poly_latex(self.poly)} \\text{{ in }} ({frac_latex(self._lower)}, "
+                f"{frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$")
 
     def __reduce__(self):
         return (_rebuild, ([int(c) for c in self.poly.coeffs()], self._lower, self._upper))

@@ -227,7 +227,8 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     ax.set_ylim(-0.6, 0.7)
     ax.set_yticks([])
     ax.set_xlabel(r"$\Delta t$")
-    ax.set_title(f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ "), fontsize=9)
+    title = f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ ")
+    ax.set_title(title, fontsize=9)
     fig.tight_layout()
     return fig
 

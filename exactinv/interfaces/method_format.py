@@ -100,6 +100,7 @@ def method_from_text(text: str, where: str = "--method") -> Method:
         try:
             spec = json.loads(text, parse_float=_refuse_float(where), parse_constant=_refuse_constant(where))
         except json.JSONDecodeError as exc:
-            raise InvalidInput(f"{where}: not valid JSON ({exc}); give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
+            raise InvalidInput(f"{where}: not valid JSON ({exc}); "
+                               f"give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
         return parse_method(spec, where)
     return _preset(text, where)

@@ -54,7 +54,7 @@ def judge_batch(path: str, tolerance: Any = "1e-9") -> list[BatchRow]:
     >>> _ = (d / 'rows.csv').write_text('problem,quantity,method,claimed\\np.json,gamma,,0.5\\np.json,threshold,forward_euler,2\\nnope.json,gamma,,1\\n')
     >>> [row.status for row in judge_batch(d / 'rows.csv')]   # x' = -x on [-1, 1]: gamma* = 1/2, forward Euler (1 - dt) x: dt <= 2; no file nope.json
     [<Status.TIGHT: 'tight'>, <Status.TIGHT: 'tight'>, 'error']
-    """
+    """  # noqa: E501 (doctest output)
     tol = to_rational(tolerance, "--tolerance")
     if tol < 0:
         raise InvalidInput(f"--tolerance: must be >= 0, got {tolerance}")

@@ -89,7 +89,8 @@ def _within(claimed, exact, tolerance: Fraction) -> bool:
     return abs(exact - claimed) <= tolerance * abs(exact)
 
 
-def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any,
+                    tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed steplength threshold: is every dt in [0, claimed] valid?
     Compared with the exact largest threshold (attained or not).
 
@@ -104,7 +105,8 @@ def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method
     c = _exact_claim(claimed)
     L = largest_threshold(system, polyhedron, method)
     tau = L.value
-    too_big = (not isinstance(c, Infinity) and not isinstance(tau, Infinity) and (tau < c if isinstance(tau, RealAlgebraic) else c > tau)) \
+    too_big = (not isinstance(c, Infinity) and not isinstance(tau, Infinity)
+               and (tau < c if isinstance(tau, RealAlgebraic) else c > tau)) \
         or (isinstance(c, Infinity) and not isinstance(tau, Infinity)) \
         or (not L.attained and c == tau)
     if c < 0 if not isinstance(c, Infinity) else c.sign < 0:
@@ -248,7 +250,8 @@ def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdi
     return Verdict(status, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed}; exact rho = {rho}")
 
 
-def assert_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
+def assert_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any,
+                     tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
     """pytest helper: fail (AssertionError with the counterexample) unless the claim is valid
     (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold).
 

@@ -139,7 +139,8 @@ def _design(data: dict, name: str, base: str | None = None) -> Problem:
         B = to_matrix(sys_data["B"], "B", shape=(system.n, None))
     polyhedron = _polyhedron(data, base)
     if system.n != polyhedron.n:
-        raise InvalidInput(f"polyhedron: the system has dimension {system.n} but the polyhedron lives in dimension {polyhedron.n}")
+        raise InvalidInput(f"polyhedron: the system has dimension {system.n} "
+                           f"but the polyhedron lives in dimension {polyhedron.n}")
     inputs = _polyhedron(data, base, "inputs") if "inputs" in data else None
     if inputs is not None and inputs.n != len(B[0]):
         raise InvalidInput(f"inputs: B has {len(B[0])} columns (inputs) but the input polyhedron lives in dimension {inputs.n}")
@@ -175,7 +176,7 @@ def problem_from_dict(data: Any, name: str = "problem", base: str | None = None)
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: methd: unknown key; did you mean "method"? (allowed: ...)
-    """
+    """  # noqa: E501 (doctest output)
     if not isinstance(data, dict):
         raise InvalidInput(f"expected a JSON object with \"system\" and \"polyhedron\", got {_kind(data)}")
     if {"format", "claims"} & set(data):

@@ -129,7 +129,8 @@ def pade(k: int, l: int) -> Method:
             raise InvalidInput(f"{name}: must be an int >= 0, got {v!r}")
     n = k + l
     num = [Fraction(factorial(n - j) * factorial(k), factorial(n) * factorial(j) * factorial(k - j)) for j in range(k + 1)]
-    den = [Fraction((-1) ** j * factorial(n - j) * factorial(l), factorial(n) * factorial(j) * factorial(l - j)) for j in range(l + 1)]
+    den = [Fraction((-1) ** j * factorial(n - j) * factorial(l), factorial(n) * factorial(j) * factorial(l - j))
+           for j in range(l + 1)]
     return _make(f"pade({k},{l})", num, den)
 
 

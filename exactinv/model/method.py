@@ -163,7 +163,8 @@ def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=N
     scale = h(0)
     g, h = g / scale, h / scale
     if g(0) != 1:
-        raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), got r(0) = {fraction_of(g(0))}")
+        raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), "
+                           f"got r(0) = {fraction_of(g(0))}")
     numerator = _trim([fraction_of(c) for c in g.coeffs()])
     denominator = _trim([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
     return Method(name, tuple(numerator), tuple(denominator), butcher)

@@ -38,7 +38,7 @@ class Polyhedron(LatexMixin):
     >>> P = Polyhedron.box([-1, -1], [1, 1])
     >>> P.vertices
     ((Fraction(-1, 1), Fraction(-1, 1)), (Fraction(-1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)), (Fraction(1, 1), Fraction(1, 1)))
-    """
+    """  # noqa: E501 (doctest output)
 
     G: Matrix
     b: Vector

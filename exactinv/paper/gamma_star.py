@@ -26,7 +26,6 @@ from ..core.sparse import SparseRows
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed
 from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
-from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
@@ -176,7 +175,7 @@ class OptimalGamma(LatexMixin):
         >>> P = Polyhedron([[1], [-1]], [1, 1])
         >>> print(optimal_gamma(LinearSystem([[-1]]), P).to_latex())
         \\gamma^* = \\frac{1}{2}, \\quad H = \\begin{pmatrix} -\\frac{1}{2} & \\frac{1}{2} \\\\ \\frac{1}{2} & -\\frac{1}{2} \\end{pmatrix}
-        """
+        """  # noqa: E501 (doctest output)
         if self.witness is not None:
             w = self.witness
             return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_column(w.x)}"
