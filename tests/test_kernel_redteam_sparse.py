@@ -44,7 +44,7 @@ from versions import as_version
 import exactinv as ei
 from exactinv import forward_euler_threshold
 from exactinv.paper.gamma_star import optimal_gamma
-from exactinv.paper.threshold import _steplength_threshold, steplength_threshold
+from exactinv.paper.threshold import steplength_threshold, steplength_threshold_from_gamma
 from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H
@@ -241,7 +241,7 @@ def test_a_tampered_gamma_is_caught_by_the_kernel():
     fake = dataclasses.replace(optimal_gamma(S, P), value=F(1, 2))
     with pytest.raises(ei.VerificationFailed):
         forward_euler_with_gamma(S, P, fake)  # cross-checked by the valid set
-    assert not check(_steplength_threshold(ei.methods.taylor(2), fake).certificate)
+    assert not check(steplength_threshold_from_gamma(ei.methods.taylor(2), fake).certificate)
 
 
 # ---------------------------------------------------------------- resources: the integer ratio tests

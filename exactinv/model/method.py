@@ -1,7 +1,7 @@
 """The Method type: an exact stability function r = g/h (paper, Section 3).
 
 A one-step method applied to x' = Ax gives x+ = r(dt A) x; ``Method`` holds g
-and h as Fractions, coprime, with h(0) = 1 and r(0) = 1 (:func:`_make`
+and h as Fractions, coprime, with h(0) = 1 and r(0) = 1 (:func:`make_method`
 normalises them).  The constructors are in :mod:`exactinv.model.families` and
 :mod:`exactinv.model.presets`; :mod:`exactinv.model.methods` gathers them all.
 """
@@ -143,13 +143,16 @@ def matrix_polynomial(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fm
     return out
 
 
-def _trim(c: list[Fraction]) -> list[Fraction]:
+def trim_zeros(c: list[Fraction]) -> list[Fraction]:
+    """The coefficient list c without its trailing zeros (at least one entry kept); c itself is shortened."""
     while len(c) > 1 and c[-1] == 0:
         c.pop()
     return c
 
 
-def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
+def make_method(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
+    """The Method r = num/den (coefficients from z^0 up), exact: g and h made coprime with h(0) = 1;
+    InvalidInput naming ``name`` when den is zero or vanishes at 0, or r(0) != 1."""
     g = flint.fmpq_poly([fmpq_of(c) for c in num])
     h = flint.fmpq_poly([fmpq_of(c) for c in den])
     if h.is_zero():
@@ -165,8 +168,8 @@ def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=N
     if g(0) != 1:
         raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), "
                            f"got r(0) = {fraction_of(g(0))}")
-    numerator = _trim([fraction_of(c) for c in g.coeffs()])
-    denominator = _trim([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
+    numerator = trim_zeros([fraction_of(c) for c in g.coeffs()])
+    denominator = trim_zeros([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
     return Method(name, tuple(numerator), tuple(denominator), butcher)
 
 

@@ -114,7 +114,7 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
     return sign_at(q, alpha.lower) * (1 if p.numer().leading_coefficient() * q.leading_coefficient() > 0 else -1)
 
 
-def _coefficient_polynomials(method: Method):
+def coefficient_polynomials(method: Method):
     """d_0, d_1, ... incrementally (:func:`exactinv.paper.monotonicity.taylor_coefficient_polynomials`
     lists the first ones): with G, H the coefficients of g(w - kappa), h(w - kappa) in w
     (polynomials in kappa), d_j = G_j H_0^j - sum_{i=1}^{min(j, deg h)} H_i d_{j-i} H_0^(i-1):
@@ -162,7 +162,9 @@ def _first_end(d: flint.fmpq_poly) -> Real:
     return min(roots, key=ExactKey) if roots else INF
 
 
-def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
+def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
+    """The exact radius of absolute monotonicity of a rational r = g/h with poles (see the module
+    docstring): 0, a positive algebraic number or oo with the reason that decides it, or Undecided."""
     h = method.h
     positive = [(z, m) for z, m in real_roots(h) if z > 0]
     if not positive:
@@ -273,7 +275,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
                 raise Undecided(f"absolute monotonicity of {method.name}: rho < {verdict.bound} (c_{verdict.j} < 0 "
                                 f"there), but the certified tail starts at j = {N} > {_MAX_INDEX} coefficients")
     value, binding, ds = None, None, []
-    for j, d in enumerate(_coefficient_polynomials(method)):
+    for j, d in enumerate(coefficient_polynomials(method)):
         if N is not None and j >= max(N, first):
             break
         if N is None and j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):
