@@ -16,7 +16,7 @@ symmetric positive definite when the problem is read).
 from fractions import Fraction
 
 from . import polys
-from .claims_invariance import _discrete_matrix
+from .claims_invariance import discrete_matrix
 from .ellipsoids import condition_polynomials, psd
 from .rationals import (FRACTION_WEIGHT, boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational,
                         require, transpose, vector, within_budget)
@@ -72,7 +72,7 @@ def discrete_invariance(problem, claim, context):
     """Q - A_d^T Q A_d >= 0, decided on beta delta^2 (Q - A_d^T Q A_d) = delta^2 Q_i - N^T Q_i N
     (A_d = N/delta, Q = Q_i/beta integral); or v with (A_d v)^T Q (A_d v) - v^T Q v > 0."""
     _price_step(problem, claim)
-    Ad, what = _discrete_matrix(problem, claim)
+    Ad, what = discrete_matrix(problem, claim)
     Q = problem.Q
     if boolean(claim["holds"], "holds"):
         require("witness" not in claim, "a claim that holds carries no witness")

@@ -65,7 +65,7 @@ def continuous_invariance(problem, claim, context):
     return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {describe(value)} > 0"
 
 
-def _discrete_matrix(problem, claim):
+def discrete_matrix(problem, claim):
     """A_d: r(dt A) recomputed when the claim names dt, else the matrix the claim states."""
     if "dt" in claim:
         require(problem.method is not None, "a claim with dt needs the problem's method")
@@ -80,7 +80,7 @@ def _discrete_matrix(problem, claim):
 
 
 def discrete_invariance(problem, claim, context):
-    Ad, what = _discrete_matrix(problem, claim)
+    Ad, what = discrete_matrix(problem, claim)
     G, b = problem.G, problem.b
     if claim["holds"]:
         rows = read_H(problem, claim, "H", "H~")

@@ -12,7 +12,7 @@ from fractions import Fraction
 from math import gcd
 from operator import mul
 
-from .cones import _basis_rays, _cone_rays, _primitive, _reduce, _scaled
+from .cones import basis_rays, cone_rays, primitive, reduce_rows, scaled_integers
 from .budget import PYTHON_OP, charge
 from .rationals import CheckFailure, require
 
@@ -21,20 +21,20 @@ def _text(v):
     return "(" + ", ".join(str(x) for x in v) + ")"
 
 
-class _IntegerPolyhedron:
+class IntegerPolyhedron:
     """(G | b) with each row scaled once to coprime integers (a positive factor),
     its rank r and a row basis B; G_B x determines x modulo L = {x : Gx = 0}."""
 
     def __init__(self, G, b, n):
         self.rows, self.rhs = [], []
         for g, beta in zip(G, b):
-            ints, _ = _scaled(list(g) + [beta])
-            ints = _primitive(ints) or ints
+            ints, _ = scaled_integers(list(g) + [beta])
+            ints = primitive(ints) or ints
             self.rows.append(ints[:n])
             self.rhs.append(ints[n])
         self.n, self.m = n, len(self.rows)
         self.columns = [[row[i] for row in self.rows] for i in range(n)]
-        self.rank, _, self.row_basis, _, _ = _reduce(self.rows, n)
+        self.rank, _, self.row_basis, _, _ = reduce_rows(self.rows, n)
 
     def times(self, x):
         """G x for an integer vector x (column by column, skipping zeros)."""
@@ -61,12 +61,12 @@ class _IntegerPolyhedron:
         return (*[x // g for x in num], den // g)
 
 
-class _EdgeWalk:
+class EdgeWalk:
     """The walk over the vertex-edge graph of P/L from the first listed vertex."""
 
     def __init__(self, P, G, b, vertices, ray_index):
         self.P, self.G, self.b, self.vertices, self.ray_index = P, G, b, vertices, ray_index
-        self.points = [_scaled(v) for v in vertices]
+        self.points = [scaled_integers(v) for v in vertices]
         self.keys = [P.point_key([sum(map(mul, P.rows[j], p)) for j in P.row_basis], q) for p, q in self.points]
         self.point_index = {}
         for i, key in enumerate(self.keys):  # points indexed by their minimal face modulo L
@@ -96,15 +96,15 @@ class _EdgeWalk:
         if len(active) < P.rank:
             return None
         if len(active) == P.rank:  # the active rows are a basis, or v is no vertex
-            found = _basis_rays(A, P.n)
+            found = basis_rays(A, P.n)
             if found is None:
                 return None
             cols, ys = found
         else:  # degenerate: more than r active rows
-            rank, cols, basis, _, _ = _reduce(A, P.n)
+            rank, cols, basis, _, _ = reduce_rows(A, P.n)
             if rank != P.rank:
                 return None
-            ys = _cone_rays([[row[c] for c in cols] for row in A], basis, P.rank)
+            ys = cone_rays([[row[c] for c in cols] for row in A], basis, P.rank)
         directions = []
         for y in ys:
             d = [0] * P.n
@@ -154,7 +154,7 @@ class _EdgeWalk:
                     best_s, best_g = sj, gj
             gd_basis = [gd[j] for j in P.row_basis]
             if best_g is None:
-                key = tuple(_primitive(gd_basis))
+                key = tuple(primitive(gd_basis))
                 require(key in self.ray_index,
                         f"incomplete generators: P has an unbounded edge from vertex {i} = "
                         f"{_text(self.vertices[i])} in direction {_text(d)}, and no listed ray is that "

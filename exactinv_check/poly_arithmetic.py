@@ -47,7 +47,7 @@ def integer_coefficients(p):
     for c in p:
         if not isinstance(c, int):
             den = den * c.denominator // _igcd(den, c.denominator)
-    return _content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
+    return content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
 
 
 def add(p, q):
@@ -130,7 +130,7 @@ def monic(p):
 
 
 # --------------------------------------------- integer core (Python ints, no Fractions)
-def _content_free(a):
+def content_free(a):
     """a divided by the positive gcd of its coefficients (signs kept)."""
     g = 0
     for c in a:
@@ -138,7 +138,7 @@ def _content_free(a):
     return [c // g for c in a] if g > 1 else a
 
 
-def _pseudo_remainder(a, b):
+def pseudo_remainder(a, b):
     """r with s^k a = q b + r for s = |lc(b)| > 0: the remainder up to a POSITIVE factor,
     so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
     s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
@@ -152,19 +152,19 @@ def _pseudo_remainder(a, b):
             r[k + shift] -= c * bk
         while r and r[-1] == 0:
             r.pop()
-        r = _content_free(r)
+        r = content_free(r)
     return r
 
 
-def _integer_gcd(a, b):
+def integer_gcd(a, b):
     """gcd of two integer polynomials: primitive, positive leading coefficient."""
     while b:
-        a, b = b, _pseudo_remainder(a, b)
-    a = _content_free(a)
+        a, b = b, pseudo_remainder(a, b)
+    a = content_free(a)
     return [-c for c in a] if a and a[-1] < 0 else a
 
 
-def _exact_quotient(a, b):
+def exact_quotient(a, b):
     """a / b for integer polynomials where b divides a over Z (checked)."""
     a, q = list(a), [0] * (len(a) - len(b) + 1)
     for shift in range(len(a) - len(b), -1, -1):
@@ -177,17 +177,19 @@ def _exact_quotient(a, b):
     return q
 
 
-def _integer_derivative(a):
+def integer_derivative(a):
+    """The derivative of an integer polynomial (coefficients from x^0 up)."""
     return [k * a[k] for k in range(1, len(a))]
 
 
 def gcd(p, q):
     """The monic gcd over Q."""
-    g = _integer_gcd(integer_coefficients(_bounded(p)), integer_coefficients(_bounded(q)))
+    g = integer_gcd(integer_coefficients(bounded(p)), integer_coefficients(bounded(q)))
     return [Fraction(c, g[-1]) for c in g] if g else []
 
 
-def _bounded(p):
+def bounded(p):
+    """p itself, after checking its degree is at most MAX_DEGREE (else the claim is rejected)."""
     require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
     return p
 

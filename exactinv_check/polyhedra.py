@@ -38,8 +38,8 @@ direction an integer vector.
 from fractions import Fraction
 from typing import NamedTuple
 
-from .cones import MAX_CONE_PAIRS, MAX_CONE_RAYS, _primitive, _rank, _scaled  # the bounds re-exported: their old home
-from .edge_walk import _EdgeWalk, _IntegerPolyhedron
+from .cones import MAX_CONE_PAIRS, MAX_CONE_RAYS, integer_rank, primitive, scaled_integers  # the bounds re-exported: their old home
+from .edge_walk import EdgeWalk, IntegerPolyhedron
 from .polygon import prove_polygon
 from .rationals import MAX_DIMENSION, require
 
@@ -111,10 +111,10 @@ def prove_generators(G, b, vertices, rays, lines):
 
 def _general_proof(G, b, vertices, rays, lines, n):
     """The edge walk of the module docstring, for any dimension."""
-    P = _IntegerPolyhedron(G, b, n)
+    P = IntegerPolyhedron(G, b, n)
     _prove_lines(P, lines)
     ray_index = _index_rays(P, rays)
-    walk = _EdgeWalk(P, G, b, vertices, ray_index)
+    walk = EdgeWalk(P, G, b, vertices, ray_index)
     seen, rays_hit = walk.run()
     for i in range(len(vertices)):  # every other listed point is in P too
         if i not in walk.in_P:
@@ -156,12 +156,12 @@ def _prove_lines(P, lines):
     """Every line is nonzero and in L, and together they span L."""
     line_ints = []
     for i, l in enumerate(lines):
-        li, _ = _scaled(l)
+        li, _ = scaled_integers(l)
         require(any(li), f"line {i} is the zero vector")
         j = next((j for j, x in enumerate(P.times(li)) if x), None)
         require(j is None, f"line {i} is not in the lineality space: row {j} of G l is nonzero")
         line_ints.append(li)
-    rank = _rank(line_ints, P.n)
+    rank = integer_rank(line_ints, P.n)
     require(rank == P.n - P.rank, f"the lines span a space of dimension {rank}, but the lineality space "
             f"{{x : Gx = 0}} has dimension {P.n - P.rank}")
 
@@ -170,12 +170,12 @@ def _index_rays(P, rays):
     """Every ray is nonzero and in rec(P); indexed modulo L up to a positive factor."""
     ray_index = {}
     for i, d in enumerate(rays):
-        di, _ = _scaled(d)
+        di, _ = scaled_integers(d)
         require(any(di), f"ray {i} is the zero vector")
         gd = P.times(di)
         j = next((j for j, x in enumerate(gd) if x > 0), None)
         require(j is None, f"ray {i} is not in the recession cone: row {j} of G r is positive")
-        key = _primitive([gd[j] for j in P.row_basis])
+        key = primitive([gd[j] for j in P.row_basis])
         if key is not None:  # a ray inside L is harmless and represents nothing
             ray_index.setdefault(tuple(key), i)
     return ray_index

@@ -23,12 +23,12 @@ from math import gcd as _igcd, isqrt
 
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
     MAX_DEGREE,
-    _bounded,
-    _content_free,
-    _exact_quotient,
-    _integer_derivative,
-    _integer_gcd,
-    _pseudo_remainder,
+    bounded,
+    content_free,
+    exact_quotient,
+    integer_derivative,
+    integer_gcd,
+    pseudo_remainder,
     add,
     degree,
     derivative,
@@ -153,7 +153,7 @@ def squarefree(p):
     deg f >= 1 and the prime does not divide lc(p), f mod the prime has f's degree and
     divides both p and p' there, so their gcd there is not constant); else the priced
     pseudo-remainder sequence.  Within a certificate each polynomial's part is computed once."""
-    a = integer_coefficients(_bounded(trim(p)))
+    a = integer_coefficients(bounded(trim(p)))
     if len(a) <= 2:
         return a
     return list(_memo(("squarefree", tuple(a)), lambda: _squarefree_integers(a)))
@@ -162,8 +162,8 @@ def squarefree(p):
 def _squarefree_integers(a):
     if is_squarefree_mod_prime(a):
         return a
-    g = _integer_gcd(_affordable(a), _integer_derivative(a))
-    return _exact_quotient(a, g) if len(g) > 1 else a
+    g = integer_gcd(_affordable(a), integer_derivative(a))
+    return exact_quotient(a, g) if len(g) > 1 else a
 
 
 def is_squarefree_mod_prime(a):
@@ -242,7 +242,7 @@ def sign_right_of(p, x):
         s = sign_at(q, Fraction(x))
         if s:
             return s
-        q = _integer_derivative(q)
+        q = integer_derivative(q)
     return 0
 
 
@@ -250,11 +250,11 @@ class Sturm:
     """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
 
     def __init__(self, p):
-        a = _affordable(integer_coefficients(_bounded(p)))
+        a = _affordable(integer_coefficients(bounded(p)))
         self.p = a
-        seq = [a, _content_free(_integer_derivative(a))] if len(a) > 1 else [a]
+        seq = [a, content_free(integer_derivative(a))] if len(a) > 1 else [a]
         while len(seq) > 1 and seq[-1]:
-            seq.append([-c for c in _pseudo_remainder(seq[-2], seq[-1])])
+            seq.append([-c for c in pseudo_remainder(seq[-2], seq[-1])])
         self.ints = [s for s in seq if s]
 
     def _variations_at(self, x):

@@ -42,7 +42,7 @@ isotone, outward rounding of every centre and radius): each enclosure holds the 
 from fractions import Fraction
 from math import ceil, comb
 
-from .disks import _absup, _ball, _bmul, _binv, _disks, _sqrt_bounds, _taylor_balls, _up
+from .disks import ball_abs_upper, ball, ball_mul, ball_inv, pole_disks, sqrt_bounds, taylor_balls, round_up
 from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
     sign, squarefree, sub, trim
 from .rationals import CheckFailure, require
@@ -191,16 +191,16 @@ def _b_signs(g, h, f, M, iv):
 # ----------------------------------------------------------------- disk enclosures of b_{k,m} (module disks)
 def _b_balls(g, h, M, z):
     """Enclosures of b_1..b_M at the pole in the disk z (multiplicity M), by the recursion of _b_signs."""
-    tg, th = _taylor_balls(g, z, 0, M), _taylor_balls(h, z, M, M)
-    inverse = _binv(th[0])
+    tg, th = taylor_balls(g, z, 0, M), taylor_balls(h, z, M, M)
+    inverse = ball_inv(th[0])
     phi = []
     for i in range(M):
         acc = tg[i]
         for t in range(1, i + 1):
-            p = _bmul(th[t], phi[i - t])
-            acc = _ball(acc[0] - p[0], acc[1] - p[1], acc[2] + p[2])
-        phi.append(_bmul(acc, inverse))
-    return [_ball((-1) ** m * phi[M - m][0], (-1) ** m * phi[M - m][1], phi[M - m][2]) for m in range(1, M + 1)]
+            p = ball_mul(th[t], phi[i - t])
+            acc = ball(acc[0] - p[0], acc[1] - p[1], acc[2] + p[2])
+        phi.append(ball_mul(acc, inverse))
+    return [ball((-1) ** m * phi[M - m][0], (-1) ** m * phi[M - m][1], phi[M - m][2]) for m in range(1, M + 1)]
 
 
 
@@ -217,7 +217,7 @@ def _ratio_bound(z, P, K):
     require(hint < 1, f"tail: p* does not dominate the pole near {complex(float(a), float(b)):.6g} on [0, {K}] "
                       f"(it is as close to -kappa as p*, ratio {hint:.6g})")
     for slack in (2.0 ** -24, 2.0 ** -8, 0.5):
-        Q = _up(Fraction(hint + (1 - hint) * slack))
+        Q = round_up(Fraction(hint + (1 - hint) * slack))
         P1 = P + Q * rho
         if Q < 1 and all(Q * Q * ((a + k) ** 2 + b * b) - (P1 + k) ** 2 >= 0 for k in (0, K)):
             return Q
@@ -228,7 +228,7 @@ def _tie_located(h, value, disks, P_lo, P_hi):
     """(lo, hi) isolating kappa* = value among the roots of the tie polynomial (tie.tie_interval), after a
     cheap necessary test: kappa* = kappa_z for some pole z, so value meets some pole's kappa_z enclosure."""
     v_lo, v_hi = value.bounds()
-    near = [kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) for zs in disks.values() for z in zs]
+    near = [kappa_enclosure(z, P_lo, P_hi, sqrt_bounds) for zs in disks.values() for z in zs]
     require(any(e and e[0] <= v_hi and v_lo <= e[1] for e in near),
             "tie: the claimed kappa* meets no pole's enclosure of kappa_z (no pole ties with p* there)")
     return tie_interval(h, value)
@@ -239,8 +239,8 @@ def _pow_up(Q, n):
     result, base = Fraction(1), Q
     while n:
         if n & 1:
-            result = _up(result * base)
-        base, n = _up(base * base), n >> 1
+            result = round_up(result * base)
+        base, n = round_up(base * base), n >> 1
     return result
 
 
@@ -263,20 +263,20 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
         for k, z in enumerate(disks[id(f)]):
             if f is f_star and k == hits[0]:
                 continue
-            enclosure = kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) if tie else None
+            enclosure = kappa_enclosure(z, P_lo, P_hi, sqrt_bounds) if tie else None
             if enclosure and tie[0] < enclosure[0] and enclosure[1] < tie[1]:
                 require(M <= mu, "tie: a tied pole has a higher multiplicity than p*; p* does not dominate")
                 Q, tied = Fraction(1), tied + 1
             else:
                 Q = _ratio_bound(z, P_hi, K)
-            others.append((Q, M, [_absup(b) for b in _b_balls(g, h, M, z)]))
+            others.append((Q, M, [ball_abs_upper(b) for b in _b_balls(g, h, M, z)]))
     return _least_index(others, star, mu, b_mu, D_hi, P_lo, first, tie is None or tied > 0)
 
 
 def star_enclosure(factors, f_star, iv):
     """(disks, hits, P_lo, P_hi): the inclusion disks of every squarefree factor (by id), the index
     hits[0] of p*'s disk among f_star's, and rationals 0 < P_lo <= p* <= P_hi."""
-    disks = {id(f): _disks(f) for f, _ in factors}
+    disks = {id(f): pole_disks(f) for f, _ in factors}
     lo, hi = iv
     for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
         hits = [i for i, (a, b, rho) in enumerate(disks[id(f_star)])
@@ -307,7 +307,7 @@ def _least_index(others, star, mu, b_mu, D_hi, P_lo, first, some_tied):
     def bound(j):
         def R(m):
             return Fraction(comb(j + m - 1, m - 1), comb(j + mu - 1, mu - 1))
-        total = sum(_absup(star[m - 1]) * R(m) * D_hi ** (mu - m) for m in range(1, mu))
+        total = sum(ball_abs_upper(star[m - 1]) * R(m) * D_hi ** (mu - m) for m in range(1, mu))
         for Q, M, babs in others:
             for m in range(1, M + 1):
                 D_m = D_hi ** (mu - m) if m <= mu else P_lo ** (mu - m)
