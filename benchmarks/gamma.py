@@ -56,9 +56,9 @@ import highspy
 import numpy as np
 
 import exactinv as ei
+from exactinv.lp.backends import HighsHint
 from exactinv.lp.exact import ppl_maximize
 from exactinv.lp.floatlp import FloatLP
-from exactinv.lp.hint import HighsHint
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 

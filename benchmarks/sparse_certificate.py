@@ -76,8 +76,8 @@ def time_float_rows(S, P):
     import flint
     import numpy as np
 
+    from exactinv.lp.backends import HighsHint
     from exactinv.lp.floatlp import FloatLP
-    from exactinv.lp.hint import HighsHint
 
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())

@@ -28,7 +28,7 @@ from .beyond.conditions import ConditionSet
 from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
 from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from .core import scalars as numbers  # noqa: F401 (ei.numbers: the exact input conversions)
-from .core.algebraic import RealAlgebraic
+from .core.real_algebraic import RealAlgebraic
 from .core.roots import first_sign_change, nonnegative_until, real_roots
 from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed

@@ -18,8 +18,8 @@ family of claims: claims_invariance, claims_thresholds, claims_radius,
 claims_sets; kernel is the driver.
 """
 
+from .failure import CheckFailure
 from .kernel import FORMAT, VERSIONS, CheckReport, check
-from .rationals import CheckFailure
 
 __all__ = ["check", "CheckReport", "CheckFailure", "FORMAT", "VERSIONS", "main"]
 

@@ -24,7 +24,8 @@ from fractions import Fraction
 from math import isqrt
 
 from .budget import charge, fraction_products_cost
-from .rationals import describe, require
+from .failure import require
+from .rationals import describe
 
 __all__ = ["prove_balanced_tie", "MAX_POLES"]
 

@@ -41,11 +41,13 @@ from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
-from .disks import ball, ball_abs_upper, ball_mul, pole_disks
+from .disks import ball, ball_abs_upper, ball_mul
+from .failure import require
 from .line_poles import disk_on_line, line_density, line_gcd, nonnegative_on_line, rational_root, single_pair
-from .polys import MAX_DEGREE as MAX_DEGREE_OF_F, count_roots, evaluate, integer_coefficients, mul, positive_roots, \
-    sign_at, sign_right_of, trim
-from .rationals import describe, require
+from .poly_arithmetic import MAX_DEGREE as MAX_DEGREE_OF_F
+from .poly_arithmetic import evaluate, integer_coefficients, mul, trim
+from .polys import count_roots, positive_roots, sign_at, sign_right_of
+from .rationals import describe
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
 MAX_STEPS = 8000  # steps of the compact piece (the engine gives up after 4000)

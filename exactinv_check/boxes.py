@@ -47,9 +47,10 @@ every condition holds at h, and V_S = V: the recomputed set is exact.
 from math import gcd
 
 from . import polys
+from .budget import affordable, descartes_node_cost, within_budget
 from .conditions import method_matrices, rebuild_size
-from .budget import affordable, descartes_node_cost
-from .rationals import require, vector, within_budget
+from .failure import require
+from .rationals import vector
 from .reals import Real, separate
 from .validset import breakpoints
 

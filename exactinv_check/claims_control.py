@@ -19,9 +19,10 @@
 """
 
 from . import claims_invariance
-from .budget import WORK_BUDGET, charge, fraction_products_cost
+from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
-from .rationals import describe, dot, matrix, matvec, rational, require, vector, within_budget
+from .failure import require
+from .rationals import describe, dot, matrix, matvec, rational, vector
 
 GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 

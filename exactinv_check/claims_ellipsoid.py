@@ -16,10 +16,11 @@ symmetric positive definite when the problem is read).
 from fractions import Fraction
 
 from . import polys
+from .budget import FRACTION_WEIGHT, within_budget
 from .claims_invariance import discrete_matrix
 from .ellipsoids import condition_polynomials, psd
-from .rationals import (FRACTION_WEIGHT, boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational,
-                        require, transpose, vector, within_budget)
+from .failure import require
+from .rationals import boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational, transpose, vector
 from .reals import Real
 from .validset import first_end, require_intervals, valid_set
 

@@ -13,7 +13,8 @@ from fractions import Fraction
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
-from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
+from .failure import require
+from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, transpose, vector
 from .reals import Real
 from .sparse import diagonal, read_square, row_dot
 

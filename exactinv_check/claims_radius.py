@@ -26,13 +26,15 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys
-from .claims_thresholds import smallest_positive_root
-from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
-from .reals import Real
+from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .bernstein import prove_completely_monotone
+from .budget import FRACTION_WEIGHT, within_budget
+from .claims_thresholds import smallest_positive_root
+from .failure import require
+from .rationals import describe, integer, vector
+from .reals import Real
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
-from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .validset import first_end
 
 MAX_COEFFICIENTS = 4096

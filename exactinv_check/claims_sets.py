@@ -20,8 +20,9 @@ from types import SimpleNamespace
 
 from . import boxes, lp_pieces, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
+from .failure import require
 from .polyhedra import prove_generators
-from .rationals import boolean, integer, matrix, require, vector
+from .rationals import boolean, integer, matrix, vector
 from .reals import Real
 from .validset import first_end, require_intervals, valid_set
 

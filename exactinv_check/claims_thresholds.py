@@ -15,12 +15,13 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys
+from .budget import fraction_products_cost, within_budget
 from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
+from .failure import require
 from .linalg import characteristic_polynomial, largest_real_root
 from .polyhedra import prove_generators
-from .budget import fraction_products_cost
-from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
+from .rationals import integer, integer_matrix, integer_rows, matrix, rational, vector
 from .reals import Real, quotient
 from .sparse import dense, diagonal, row_dot
 from .validset import first_end

@@ -18,9 +18,10 @@ from fractions import Fraction
 from math import gcd
 
 from . import polys
+from .budget import charge, condition_cost, within_budget
+from .failure import require
 from .linalg import integer_solve
-from .budget import charge, condition_cost
-from .rationals import integer_matrix, require, within_budget
+from .rationals import integer_matrix
 
 MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
 

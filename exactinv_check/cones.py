@@ -12,7 +12,7 @@ primitive (divided by the gcd of its entries, a positive factor).
 from math import gcd, lcm
 
 from .budget import PYTHON_OP, charge, words
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
 
 MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
 MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once

@@ -13,8 +13,8 @@ import cmath
 from fractions import Fraction
 from math import ceil, comb, isqrt
 
-from .polys import primitive
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
+from .poly_arithmetic import primitive
 
 PREC = 128  # bits kept in the centres of the disk arithmetic
 MAX_WEIERSTRASS = 40  # refinement steps of the root approximations

@@ -12,9 +12,9 @@ from fractions import Fraction
 from math import gcd
 from operator import mul
 
-from .cones import basis_rays, cone_rays, primitive, reduce_rows, scaled_integers
 from .budget import PYTHON_OP, charge
-from .rationals import CheckFailure, require
+from .cones import basis_rays, cone_rays, primitive, reduce_rows, scaled_integers
+from .failure import CheckFailure, require
 
 
 def _text(v):

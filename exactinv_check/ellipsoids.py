@@ -14,7 +14,7 @@ coefficient polynomials of "A_d(h) E is a subset of E".
   Each c_k is rebuilt, up to a positive constant factor, by evaluating
   L M'(t) (L clears denominators) at integer t, characteristic polynomials over
   Z (Berkowitz, division-free) and interpolation of each coefficient.
-* Work budgets (rationals.within_budget): each elimination and each rebuild
+* Work budgets (budget.within_budget): each elimination and each rebuild
   of the conditions is priced before it runs; over the budget the claim is
   rejected with "over the kernel's work budget", never left to run for minutes.
 """
@@ -22,8 +22,10 @@ coefficient polynomials of "A_d(h) E is a subset of E".
 from fractions import Fraction
 
 from . import polys
+from .budget import within_budget
+from .failure import require
 from .linalg import integer_characteristic_polynomial, integer_determinant
-from .rationals import integer_matrix, matmul, require, transpose, within_budget
+from .rationals import integer_matrix, matmul, transpose
 
 
 def quadratic_form(M, v):

@@ -19,9 +19,20 @@ import json
 import os
 from fractions import Fraction
 
-from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
+from . import (
+    budget,
+    claims_control,
+    claims_ellipsoid,
+    claims_invariance,
+    claims_radius,
+    claims_sets,
+    claims_thresholds,
+    ellipsoids,
+    polys,
+)
 from .cones import integer_rank
-from .rationals import CheckFailure, integer_rows, matrix, require, vector
+from .failure import CheckFailure, require
+from .rationals import integer_rows, matrix, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2, 3)  # 3: H and H~ sparse (exactinv_check/sparse.py); the engine writes 3

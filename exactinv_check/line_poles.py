@@ -29,12 +29,14 @@ Standard library only; every step is priced (exactinv_check.budget) before it ru
 """
 
 from fractions import Fraction
-from math import ceil, comb, gcd as igcd, isqrt
+from math import ceil, comb, isqrt
+from math import gcd as igcd
 
 from .budget import charge, fraction_products_cost, within_sturm_budget
-from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
-    sign_right_of, strip_zero_roots, trim
-from .rationals import describe, require
+from .failure import require
+from .poly_arithmetic import evaluate, integer_coefficients, mul, trim
+from .polys import affordable_gcd, count_roots, positive_roots, sign_at, sign_right_of, strip_zero_roots
+from .rationals import describe
 from .tail import squarefree_decomposition
 
 __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "nonnegative_on_line", "single_pair",

@@ -37,10 +37,11 @@ from operator import mul
 from types import SimpleNamespace
 
 from . import polys
-from .budget import PYTHON_OP, charge, descartes_node_cost, words
+from .budget import PYTHON_OP, WORK_BUDGET, charge, descartes_node_cost, within_budget, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
+from .failure import require
 from .linalg import integer_solve
-from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, within_budget
+from .rationals import integer, integer_matrix, integer_rows
 from .reals import Real, separate
 from .validset import valid_set
 

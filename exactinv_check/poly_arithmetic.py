@@ -8,7 +8,7 @@ from fractions import Fraction
 from math import gcd as _igcd
 
 from .budget import active, charge, fraction_products_cost, remainder_step_cost
-from .rationals import require
+from .failure import require
 
 MAX_DEGREE = 200  # bound on every polynomial the kernel builds from a certificate
 

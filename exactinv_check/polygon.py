@@ -40,7 +40,8 @@ from fractions import Fraction
 from functools import cmp_to_key
 from math import gcd
 
-from .rationals import CheckFailure, within_budget
+from .budget import within_budget
+from .failure import CheckFailure
 
 __all__ = ["prove_polygon"]
 

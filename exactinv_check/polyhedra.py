@@ -38,12 +38,13 @@ direction an integer vector.
 from fractions import Fraction
 from typing import NamedTuple
 
-from .cones import MAX_CONE_PAIRS, MAX_CONE_RAYS, integer_rank, primitive, scaled_integers  # the bounds re-exported: their old home
+from .cones import integer_rank, primitive, scaled_integers
 from .edge_walk import EdgeWalk, IntegerPolyhedron
+from .failure import require
 from .polygon import prove_polygon
-from .rationals import MAX_DIMENSION, require
+from .rationals import MAX_DIMENSION
 
-__all__ = ["Generators", "prove_generators", "MAX_CONE_PAIRS", "MAX_CONE_RAYS"]
+__all__ = ["Generators", "prove_generators"]
 
 
 class Generators(NamedTuple):

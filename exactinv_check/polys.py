@@ -19,38 +19,47 @@ every polynomial function as ``polys.<name>``.
 """
 
 from fractions import Fraction
-from math import gcd as _igcd, isqrt
+from math import gcd as _igcd
+from math import isqrt
 
+from .budget import (  # noqa: F401
+    STURM_BUDGET,
+    active,
+    charge,
+    descartes_node_cost,
+    evaluation_cost,
+    modular_squarefree_cost,
+    sturm_cost,
+    within_sturm_budget,
+)
+from .budget import memo as _memo
+from .failure import require
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
     MAX_DEGREE,
+    add,
     bounded,
     content_free,
-    exact_quotient,
-    integer_derivative,
-    integer_gcd,
-    pseudo_remainder,
-    add,
     degree,
     derivative,
     divmod_,
     evaluate,
+    exact_quotient,
     gcd,
     integer_coefficients,
+    integer_derivative,
+    integer_gcd,
     monic,
     mul,
     mul_integers,
     power,
     primitive,
+    pseudo_remainder,
     scale,
     sign,
     strip_zero_roots,
     sub,
     trim,
 )
-from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
-from .budget import active, within_sturm_budget
-from .budget import memo as _memo
-from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
 MAX_BISECTIONS = 4000

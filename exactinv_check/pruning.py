@@ -41,8 +41,9 @@ from fractions import Fraction
 from math import gcd, isqrt
 
 from . import conditions
-from .budget import charge
-from .rationals import FRACTION_WEIGHT, integer, integer_rows, rational, require, within_budget
+from .budget import FRACTION_WEIGHT, charge, within_budget
+from .failure import require
+from .rationals import integer, integer_rows, rational
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)

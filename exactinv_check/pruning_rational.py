@@ -30,8 +30,9 @@ from fractions import Fraction
 from math import comb, gcd
 
 from . import polys, pruning
-from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
-from .rationals import integer, rational, require, within_budget
+from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge, within_budget
+from .failure import require
+from .rationals import integer, rational
 
 VARIABLE = "h/(s+h)"
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}

@@ -10,8 +10,7 @@ import re
 from fractions import Fraction
 from math import gcd
 
-from .budget import FRACTION_WEIGHT, WORK_BUDGET, within_budget  # noqa: F401 (re-exported: their old home)
-from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
+from .failure import CheckFailure, require
 
 MAX_DIGITS = 4000  # bound on every number string: parsing is never the bottleneck
 MAX_DIMENSION = 2000  # bound on every vector and matrix dimension

@@ -15,8 +15,9 @@ only root of ``poly`` in the open (lo, hi), and poly(lo), poly(hi) are nonzero
 from fractions import Fraction
 
 from . import polys, text
-from .polys import evaluate, sign
-from .rationals import CheckFailure, rational, require
+from .failure import CheckFailure, require
+from .poly_arithmetic import evaluate, sign
+from .rationals import rational
 
 MAX_REFINEMENTS = 20000
 

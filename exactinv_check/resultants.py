@@ -5,9 +5,9 @@ whose roots are the quotients of two algebraic numbers.  Re-exported by
 
 from fractions import Fraction
 
-from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
 from .budget import active, charge, fraction_products_cost
-from .rationals import require
+from .failure import require
+from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
 
 
 def _bits(p):

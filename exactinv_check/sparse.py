@@ -22,7 +22,8 @@ number of nonzero entries, never m^2.
 from fractions import Fraction
 
 from .budget import CERTIFICATE_BUDGET, sparse_read_cost, within_budget
-from .rationals import MAX_DIMENSION, matrix, rational, require
+from .failure import require
+from .rationals import MAX_DIMENSION, matrix, rational
 
 SPARSE_VERSION = 3  # the first certificate version that writes H and H~ sparse
 

@@ -42,10 +42,10 @@ isotone, outward rounding of every centre and radius): each enclosure holds the 
 from fractions import Fraction
 from math import ceil, comb
 
-from .disks import ball_abs_upper, ball, ball_mul, ball_inv, pole_disks, sqrt_bounds, taylor_balls, round_up
-from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
-    sign, squarefree, sub, trim
-from .rationals import CheckFailure, require
+from .disks import ball, ball_abs_upper, ball_inv, ball_mul, pole_disks, round_up, sqrt_bounds, taylor_balls
+from .failure import CheckFailure, require
+from .poly_arithmetic import derivative, divmod_, evaluate, monic, mul, sign, sub, trim
+from .polys import Sturm, count_roots, gcd, positive_roots, power, squarefree
 from .tie import kappa_enclosure, tie_interval
 
 MAX_INDEX = 1 << 20  # the largest tail index the kernel will certify

@@ -21,7 +21,8 @@ root of T.  A pole whose rational enclosure of kappa_z lies in (lo, hi) then has
 from fractions import Fraction
 
 from . import polys
-from .rationals import FRACTION_WEIGHT, require, within_budget
+from .budget import FRACTION_WEIGHT, within_budget
+from .failure import require
 from .reals import Real
 
 MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate

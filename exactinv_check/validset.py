@@ -17,7 +17,8 @@ from fractions import Fraction
 from functools import cmp_to_key
 
 from . import polys
-from .rationals import boolean, require
+from .failure import require
+from .rationals import boolean
 from .reals import Real, separate
 
 

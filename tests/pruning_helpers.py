@@ -7,7 +7,7 @@ from fractions import Fraction
 from kernel_deadline import TooSlow
 
 from exactinv_check import pruning
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 
 def fractions_of(S, P):

@@ -16,9 +16,9 @@ from radius_reference import admissible, coefficients_at
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv_check.bernstein import prove_completely_monotone
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 ISSUE_EXAMPLES = {
     "(1 - z)/(1 - 2z)^4": ([1, -1], [1, -8, 24, -32, 16]),

@@ -15,8 +15,9 @@ from exactinv.certificates import certificate
 from exactinv_check import check
 from exactinv_check.boxes import prove_box, vertex_of
 from exactinv_check.conditions import method_matrices, method_matrix_at
+from exactinv_check.failure import CheckFailure
 from exactinv_check.linalg import integer_solve
-from exactinv_check.rationals import CheckFailure, determinant, solve
+from exactinv_check.rationals import determinant, solve
 
 M = ei.methods
 F = Fraction

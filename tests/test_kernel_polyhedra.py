@@ -12,8 +12,8 @@ import pytest
 from pruning_helpers import polygon_rows
 
 from exactinv_check import polyhedra
+from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import Generators, prove_generators
-from exactinv_check.rationals import CheckFailure
 
 
 def vec(*xs):

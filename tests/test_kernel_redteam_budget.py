@@ -16,7 +16,7 @@ import pytest
 
 from exactinv_check import budget, check
 from exactinv_check.bernstein import prove_completely_monotone
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -17,7 +17,7 @@ from radius_reference import coefficients_at
 
 from exactinv_check import check
 from exactinv_check.bernstein import prove_completely_monotone
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 
 # ------------------------------------------------------------------ helpers (independent of the kernel)

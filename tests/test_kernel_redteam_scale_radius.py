@@ -411,7 +411,7 @@ def test_the_dos_inputs_are_rejected_by_the_work_budget():
     # the claimed value "1" meets no pole's kappa_z enclosure: rejected before the tie polynomial is built;
     # and T itself is priced (before the price, the Sturm budget on T rejected only AFTER interpolating it:
     # d = 6 with a 60-digit q took 49 s), whatever value is claimed
-    from exactinv_check.rationals import CheckFailure
+    from exactinv_check.failure import CheckFailure
     from exactinv_check.tie import tie_polynomial
     assert "meets no pole's enclosure of kappa_z" in _reason(_tie_dos_cert())
     for digits, d in ((3, 6), (60, 6), (2, 7)):

@@ -70,9 +70,10 @@ from test_kernel_redteam_secant import _circle_polygon
 import exactinv as ei
 from exactinv_check import check, pruning
 from exactinv_check import pruning_rational as kernel_rational
+from exactinv_check.budget import WORK_BUDGET
 from exactinv_check.conditions import method_matrices
+from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Method
-from exactinv_check.rationals import WORK_BUDGET, CheckFailure
 
 
 class _Deadline:

@@ -48,7 +48,8 @@ from exactinv.paper.threshold import steplength_threshold, steplength_threshold_
 from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H
-from exactinv_check.rationals import CheckFailure, rational
+from exactinv_check.failure import CheckFailure
+from exactinv_check.rationals import rational
 
 ZERO_SPELLINGS = ["0", "-0", "+0", "0/5", "0.0", "-0/7", 0]
 NOT_NUMBERS = ["0/0", "0e0", " 0", "0 ", "0.", ".0", "", "-", "0x0", "\u0660", "0_0", False, 0.0, None, ["0"],

@@ -18,8 +18,8 @@ import pytest
 from pruning_helpers import polygon_rows
 
 from exactinv_check import check, conditions, polygon, pruning
+from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import prove_generators
-from exactinv_check.rationals import CheckFailure
 
 
 def _parabola_polygon(m):

@@ -27,7 +27,7 @@ from exactinv import methods as M
 from exactinv.certificates import certificate
 from exactinv.core.encode import sparse_of_dense
 from exactinv_check import check
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 from exactinv_check.sparse import read_square, sparse_matrix
 
 ROT = ei.LinearSystem([[-1, 1], [-1, -1]])

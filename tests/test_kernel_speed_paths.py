@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from exactinv_check import check, claims_thresholds, polys, pruning, validset
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure, integer_rows
+from exactinv_check.failure import CheckFailure
+from exactinv_check.rationals import integer_rows
 
 big = st.integers(-(2**130), 2**130)
 small = st.integers(-9, 9)

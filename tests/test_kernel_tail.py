@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from radius_reference import coefficients_at
 
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 from exactinv_check.tail import prove_tail
 
 

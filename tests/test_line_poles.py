@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 import exactinv as ei
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.core.scalars import INF
 from exactinv.paper.line_poles import line_density, line_gcd, single_pair
 from exactinv.paper.monotonicity import absolute_monotonicity_radius

@@ -7,8 +7,9 @@ from hypothesis import strategies as st
 
 from exactinv.core.scalars import INF
 from exactinv.lp import solve_lp
+from exactinv.lp.backends import HighsHint
 from exactinv.lp.exact import ppl_maximize
-from exactinv.lp.hint import UNKNOWN_HINT, HighsHint, Hint, HintBackend, HintModel, LPStatus
+from exactinv.lp.hint_types import UNKNOWN_HINT, Hint, HintBackend, HintModel, LPStatus
 from exactinv.lp.reconstruct import basis_solution, exact_pivots
 from exactinv.lp.verify import LPData, verify_optimal
 

@@ -179,8 +179,8 @@ def test_the_pieces_together_are_priced_first(monkeypatch):
 from hypothesis import given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
+from exactinv_check.failure import CheckFailure  # noqa: E402
 from exactinv_check.linalg import integer_determinant, integer_solve  # noqa: E402
-from exactinv_check.rationals import CheckFailure  # noqa: E402
 
 _small = st.integers(-6, 6)
 

@@ -16,7 +16,7 @@ import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
 from exactinv.beyond.lp_route import LPRouteDeclined, lp_route, vertex_bound
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.core.scalars import Infinity
 from exactinv.errors import InvalidInput
 from exactinv.validset.lp import LP_ABOVE

@@ -18,7 +18,7 @@ from exactinv.beyond.conditions import ConditionSet
 from exactinv_check import check
 from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])

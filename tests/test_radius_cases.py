@@ -12,7 +12,7 @@ from radius_reference import admissible, coefficients_at, tie_kappa
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 
 CASES = {f"pade({k},{l})": (lambda k=k, l=l: M.pade(k, l)) for k in range(7) for l in range(7)}
 CASES.update({name: (lambda name=name: M.preset(name)) for name in

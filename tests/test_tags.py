@@ -5,7 +5,7 @@ from fractions import Fraction
 
 import exactinv as ei
 from exactinv.core.tags import BisectionStep, ClaimType, CounterexampleKind, RadiusReason
-from exactinv.lp.hint import LPStatus
+from exactinv.lp.hint_types import LPStatus
 from exactinv.lp.solver import LPPath
 from exactinv.model.record import certificate
 from exactinv.paper.bisection import paper_bisection

@@ -8,7 +8,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.core.scalars import fmpq_matrix
+from exactinv.core.flintq import fmpq_matrix
 from exactinv_check import check
 
 

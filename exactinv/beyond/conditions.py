@@ -32,8 +32,8 @@ from typing import Iterable
 
 import flint
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.polys import integer_part
-from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 from ..model.validate import check_problem

@@ -16,9 +16,10 @@ from fractions import Fraction
 import flint
 
 from ..core.algebraic import Real
+from ..core.flintq import matrix_of
 from ..core.psd import psd_decision
 from ..core.roots import real_roots
-from ..core.scalars import INF, matrix_of
+from ..core.scalars import INF
 
 __all__ = ["generalised_eigenvalue_step", "pivot_columns"]
 

@@ -51,9 +51,11 @@ from fractions import Fraction
 import flint
 import numpy as np
 
-from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
+from ..core.algebraic import FiniteReal, Real, exact_lt
 from ..core.encode import encode_real
+from ..core.flintq import fmpq_of
 from ..core.polys import shift, sign_variations
+from ..core.real_algebraic import RealAlgebraic
 from ..core.real_signs import (
     interval_signs,
     narrowed,
@@ -63,7 +65,7 @@ from ..core.real_signs import (
     sign_right_of_real,
 )
 from ..core.roots import real_roots
-from ..core.scalars import INF, Infinity, fmpq_of
+from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend

@@ -50,11 +50,12 @@ import flint
 import numpy as np
 
 from ..core.algebraic import upper_bound
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hints
 from ..core.intervals import IntervalUnion
 from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.nonnegative import first_end as earliest_end
-from ..core.scalars import Infinity, fmpq_of, fraction_of
+from ..core.scalars import Infinity
 from .conditions import Kind
 
 HORIZON_BITS = 64  # the kernel's bound on the horizon's numerator and denominator

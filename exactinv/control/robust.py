@@ -28,10 +28,11 @@ from typing import Any, Sequence
 
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
+from ..core.flintq import fraction_of
 from ..core.intervals import IntervalUnion
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.scalars import INF, Infinity, Matrix, fraction_of
+from ..core.scalars import INF, Infinity, Matrix
 from ..core.sparse import SparseRows
 from ..core.tags import ClaimType
 from ..errors import InvalidInput, NotInvariant, Undecided

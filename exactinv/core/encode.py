@@ -14,8 +14,9 @@ from typing import Any, Iterable
 
 import flint
 
-from .algebraic import Real, RealAlgebraic
+from .algebraic import Real
 from .flintq import exact_text
+from .real_algebraic import RealAlgebraic
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
 __all__ = ["FORMAT", "VERSION", "encode_real", "vec", "mat", "sparse_mat", "sparse_of_dense", "envelope", "dumps"]

@@ -24,7 +24,8 @@ from typing import Any, Sequence
 import flint
 
 from ..errors import InvalidInput
-from .scalars import Matrix, Vector, fraction_of, to_matrix, vector_text
+from .flintq import fraction_of
+from .scalars import Matrix, Vector, to_matrix, vector_text
 
 __all__ = ["LDLT", "PSDDecision", "psd_decision", "quadratic_form", "symmetric_matrix"]
 

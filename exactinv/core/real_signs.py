@@ -25,10 +25,11 @@ from fractions import Fraction
 
 import flint
 
-from .algebraic import FiniteReal, Real, RealAlgebraic
+from .algebraic import FiniteReal, Real
 from .flintq import dyadic_of
 from .float_hint import float_hint
 from .polys import integer_part, no_root_between, sign_at, sign_right_of
+from .real_algebraic import RealAlgebraic
 from .roots import first_sign_change
 from .scalars import INF
 

@@ -37,17 +37,12 @@ from typing import Any, Iterable, Sequence
 import flint
 
 from ..errors import InvalidInput
-from .flintq import (  # noqa: F401 (the Fraction <-> FLINT conversions, re-exported: their old home)
-    Matrix,
-    Vector,
-    dyadic_of,
-    fmpq_column,
-    fmpq_matrix,
-    fmpq_of,
-    fraction_of,
-    matrix_of,
-    vector_of,
-)
+from .flintq import Matrix, Vector
+from .moved import moved_names
+
+# The Fraction <-> FLINT conversions live in exactinv.core.flintq; their old spelling here warns.
+__getattr__ = moved_names(__name__, dict.fromkeys(
+    ["dyadic_of", "fmpq_column", "fmpq_matrix", "fmpq_of", "fraction_of", "matrix_of", "vector_of"], "exactinv.core.flintq"))
 
 __all__ = [
     "INF",

@@ -3,7 +3,7 @@
 A ``StrEnum`` member is its string (``ClaimType.GAMMA_STAR == "gamma_star"``,
 ``json.dumps`` writes ``"gamma_star"``), so certificates and tests read the
 same as with plain strings, while the code names each tag once.  (The LP
-engine's own tags are :class:`exactinv.lp.hint.LPStatus` and
+engine's own tags are :class:`exactinv.lp.hint_types.LPStatus` and
 :class:`exactinv.lp.solver.LPPath`; the oracle's verdicts are
 :class:`exactinv.interfaces.oracle.Status`; the generator kinds of the valid
 sets are :class:`exactinv.beyond.conditions.Kind`.)

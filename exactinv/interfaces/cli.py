@@ -36,9 +36,10 @@ from .batch import BatchInterrupted, run_batch
 from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 from .explain import explain
 from .files import atomic_write, check_writable, is_certificate, refuse_foreign, refuse_inputs
+from .method_format import method_from_text
 from .oracle import judge_batch
 from .pipeline import certify, stages
-from .problem import load_problem, method_from_text
+from .problem import load_problem
 from .report_output import report_json, report_latex
 
 __all__ = ["main"]

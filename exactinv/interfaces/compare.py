@@ -10,7 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
+from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity
 from ..model import LinearSystem, Polyhedron
 from ..paper.threshold import steplength_threshold

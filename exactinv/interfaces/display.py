@@ -15,10 +15,10 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
-from ..core.algebraic import RealAlgebraic
 from ..core.digits import significant_digits
 from ..core.float_hint import float_hint
 from ..core.latex import latex_matrix, latex_real
+from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import Ellipsoid

@@ -15,8 +15,10 @@ from typing import Any
 
 from ..core.scalars import to_rational
 from ..errors import ExactinvException, InvalidInput
+from .method_format import method_from_text, parse_method
 from .oracle_judges import Verdict, judge_gamma, judge_radius, judge_threshold
-from .problem import did_you_mean, load_problem, method_from_text, parse_method
+from .problem import load_problem
+from .strict_json import did_you_mean
 
 __all__ = ["BatchRow", "judge_batch", "judge_row"]
 

@@ -13,8 +13,9 @@ from enum import StrEnum
 from fractions import Fraction
 from typing import Any
 
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
 from ..core.float_hint import float_hint
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput

@@ -23,23 +23,28 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..core.moved import moved_names
 from ..core.scalars import Matrix, to_matrix
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
 from ..validset.families import ELLIPSOIDS, family_of
-from .method_format import METHOD_KINDS, method_from_text, parse_method  # re-exported: their old home
+from .method_format import parse_method
 from .strict_json import (
     JsonPath,
     check_keys,
-    did_you_mean,  # noqa: F401 (re-exported: its old home)
     expect_object,
     json_kind,
     parse_strict_json,
     require_keys,
 )
 
-__all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
+__all__ = ["Problem", "load_problem", "TOP_KEYS"]
+
+# the method parsers live in exactinv.interfaces.method_format, did_you_mean in strict_json; the old spelling warns
+__getattr__ = moved_names(__name__, {"METHOD_KINDS": "exactinv.interfaces.method_format",
+                                     "method_from_text": "exactinv.interfaces.method_format",
+                                     "did_you_mean": "exactinv.interfaces.strict_json"})
 
 TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description", "design", "inputs")
 DESIGNS = ("optimal_gain",)

@@ -14,7 +14,7 @@ from typing import Sequence
 import flint
 import ppl
 
-from .hint import LPStatus
+from .hint_types import LPStatus
 
 __all__ = ["ppl_maximize", "ppl_dual"]
 

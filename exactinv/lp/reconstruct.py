@@ -20,7 +20,7 @@ from typing import Sequence
 import flint
 import numpy as np
 
-from .hint import Basis
+from .hint_types import Basis
 from .verify import LPData
 
 __all__ = ["Basis", "COMMON_DENOMINATOR", "snap", "snapped", "snapped_numerators", "snap_tolerance", "guess_basis",

@@ -13,8 +13,9 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.flintq import fmpq_matrix, fmpq_of, fraction_of
 from ..core.polys import interpolate
-from ..core.scalars import fmpq_matrix, fmpq_of, fraction_of, to_matrix, to_rational, to_vector
+from ..core.scalars import to_matrix, to_rational, to_vector
 from ..errors import InvalidInput
 from .method import Method, make_method, trim_zeros
 

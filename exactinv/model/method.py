@@ -14,17 +14,9 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.flintq import fmpq_matrix, fmpq_of, fraction_of, matrix_of
 from ..core.latex import latex_text
-from ..core.scalars import (
-    Matrix,
-    Vector,
-    fmpq_matrix,
-    fmpq_of,
-    fraction_of,
-    matrix_of,
-    to_matrix,
-    to_rational,
-)
+from ..core.scalars import Matrix, Vector, to_matrix, to_rational
 from ..errors import InvalidInput
 from .system import LinearSystem
 

@@ -31,10 +31,10 @@ from math import comb, factorial, gcd
 
 import flint
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of, fraction_of
 from .line_poles import line_density, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 

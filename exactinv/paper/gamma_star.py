@@ -20,8 +20,9 @@ import numpy as np
 
 from ..core.algebraic import ExactKey
 from ..core.encode import encode_real, vec
+from ..core.flintq import fmpq_of, fraction_of, matrix_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
-from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
+from ..core.scalars import INF, Infinity, Matrix, Vector
 from ..core.sparse import SparseRows
 from ..core.tags import ClaimType
 from ..errors import VerificationFailed

@@ -21,8 +21,9 @@ from typing import Any
 import flint
 
 from ..core.encode import mat, sparse_of_dense
+from ..core.flintq import fmpq_matrix, fraction_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix
-from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
+from ..core.scalars import Matrix, matrix_text
 from ..core.tags import ClaimType
 from ..errors import EmptyPolyhedron, VerificationFailed
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver

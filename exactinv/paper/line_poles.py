@@ -24,10 +24,10 @@ from math import atan, gcd, pi
 
 import flint
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import integer_part, sign_right_of
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of, fraction_of
 
 __all__ = ["line_gcd", "on_line_indices", "line_density", "nonnegative", "single_pair", "trig_minimum_points",
            "pair_minimum_points"]

@@ -27,8 +27,9 @@ from itertools import islice
 import flint
 
 from ..core.algebraic import ExactKey
+from ..core.flintq import fraction_of
 from ..core.roots import nonnegative_until
-from ..core.scalars import INF, fraction_of
+from ..core.scalars import INF
 from ..core.tags import RadiusReason
 from ..model.methods import Method
 from ..model.validate import check_method

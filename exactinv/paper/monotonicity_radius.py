@@ -8,9 +8,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
 from ..core.encode import encode_real, envelope
 from ..core.latex import latex_real, latex_text
+from ..core.real_algebraic import RealAlgebraic
 from ..core.results import ExactValueMixin
 from ..core.tags import ClaimType, RadiusReason
 from ..model.methods import Method

@@ -59,10 +59,12 @@ from math import comb
 
 import flint
 
-from ..core.algebraic import ExactKey, Real, RealAlgebraic
+from ..core.algebraic import ExactKey, Real
+from ..core.flintq import dyadic_of, fmpq_of, fraction_of
 from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
-from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
+from ..core.scalars import INF
 from ..core.tags import RadiusReason
 from ..errors import Undecided
 from ..model.methods import Method
