@@ -104,10 +104,12 @@ def prove_completely_monotone(numerator, denominator):
         if pair is not None:
             b_star, b2 = pair
             require(b_star >= 0 and b_star * b_star >= 4 * b2, f"bernstein: p* = {describe(p_exact)} and one pair on its line: "
-                    f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {describe(b_star * b_star)} < 4|b|^2 = {describe(4 * b2)}, "
+                    f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {describe(b_star * b_star)} "
+                    f"< 4|b|^2 = {describe(4 * b2)}, "
                     "negative somewhere")
             return (f"p* = {describe(p_exact)} and one pair on its line: f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) >= 0, "
-                    f"b_* = {describe(b_star)} >= 2|b| (4|b|^2 = {describe(4 * b2)}), c >= 0 (Bernstein: r(-x) completely monotone)")
+                    f"b_* = {describe(b_star)} >= 2|b| (4|b|^2 = {describe(4 * b2)}), "
+                    "c >= 0 (Bernstein: r(-x) completely monotone)")
         line = line_density(g, h, p_exact)  # every pole on Re z = p*: f = e^(-p* t) T(t/L), exact
         if line is not None and _sturm_affordable(line[0]):  # else the general proof below (dominance)
             Q, where = line

@@ -23,6 +23,8 @@ from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
 from .failure import require
 from .rationals import describe, dot, matrix, matvec, rational, vector
+from .reals import Real, quotient
+from .sparse import diagonal, row_dot
 
 GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 
@@ -53,8 +55,6 @@ def _matmul(X, Y):
         charge(0, "a product of the gain LP's matrices")
         out.append([sum(a * b for a, b in zip(row, col)) for col in cols])
     return out
-from .reals import Real, quotient
-from .sparse import diagonal, row_dot
 
 
 def _dual(record, m, n, q, what):

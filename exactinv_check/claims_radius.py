@@ -236,7 +236,8 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf,
+                  "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

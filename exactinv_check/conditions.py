@@ -115,7 +115,9 @@ def method_matrix_at(A, numerator, denominator, dt):
     within_budget(n ** 3 * w * w + s * n ** 3 * w, f"r(dt A) for a {n} x {n} matrix A at dt = a {b}-bit rational")
     den = _common_denominator(list(numerator) + list(denominator))
     powers = _integer_powers(Ai, s)
-    scaled = lambda coeffs: [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+    def scaled(coeffs):
+        return [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+
     Hi, Gi = (_combination(scaled(c), powers, 1) for c in (denominator, numerator))
     d, X = integer_solve(Hi, Gi)
     return None if d == 0 else [[Fraction(x, d) for x in row] for row in X]

@@ -36,7 +36,8 @@ from .rationals import integer_rows, matrix, vector
 
 FORMAT = "exactinv-certificate"
 VERSIONS = (1, 2, 3)  # 3: H and H~ sparse (exactinv_check/sparse.py); the engine writes 3
-V2_KEYS = {"discrete_invariance": {"dt"}, "absolute_monotonicity_radius": {"poles"}}  # keys version 1 does not have (docs/certificate-format.md)
+# keys version 1 does not have (docs/certificate-format.md)
+V2_KEYS = {"discrete_invariance": {"dt"}, "absolute_monotonicity_radius": {"poles"}}
 MAX_METHOD_DEGREE = 64
 _ERRORS = (CheckFailure, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError,
            RecursionError, OverflowError, MemoryError)

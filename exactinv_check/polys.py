@@ -51,7 +51,6 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     monic,
     mul,
     mul_integers,
-    power,
     primitive,
     pseudo_remainder,
     scale,

@@ -160,7 +160,9 @@ def pieces_cost(D, N, s, ends):
     the piece ends plus E + 1 times those of the lifted coefficients (their common denominator).
     Measured: a genuine Pade(6,6) record on R^6 costs 7e8 here and runs in about a second."""
     E, size = max(len(D) - 1, len(N) - 1, 1), len(N[0]) + 1
-    size_of = lambda x: x.numerator.bit_length() + x.denominator.bit_length()
+    def size_of(x):
+        return x.numerator.bit_length() + x.denominator.bit_length()
+
     coefficient_bits = max([size_of(c) for c in D] + [size_of(x) for Nk in N for row in Nk for x in row])
     end_bits = max(size_of(t) for t in ends)
     bits = (E + 1) * coefficient_bits + E * (size_of(s) + 2 * end_bits)

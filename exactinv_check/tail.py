@@ -44,8 +44,8 @@ from math import ceil, comb
 
 from .disks import ball, ball_abs_upper, ball_inv, ball_mul, pole_disks, round_up, sqrt_bounds, taylor_balls
 from .failure import CheckFailure, require
-from .poly_arithmetic import derivative, divmod_, evaluate, monic, mul, sign, sub, trim
-from .polys import Sturm, count_roots, gcd, positive_roots, power, squarefree
+from .poly_arithmetic import derivative, divmod_, evaluate, monic, mul, power, sign, sub, trim
+from .polys import Sturm, count_roots, gcd, positive_roots, squarefree
 from .tie import kappa_enclosure, tie_interval
 
 MAX_INDEX = 1 << 20  # the largest tail index the kernel will certify

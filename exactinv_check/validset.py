@@ -175,7 +175,7 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
     negative = {("i", k) for _, k, p in ineq if polys.evaluate(p, sample) < 0}
     elements = []  # (kind, index, valid): ("point", k) then ("cell", k) alternately
     eq_names = {("e", k) for _, k, _ in eq}
-    for k, (real, vanishing) in enumerate(points):
+    for k, (_real, vanishing) in enumerate(points):
         if k == 0:  # decided by evaluation: the cell signs say nothing about h = 0 itself
             point_ok = (eq_names <= vanishing and ("D", 0) not in vanishing
                         and all(polys.evaluate(p, Fraction(0)) >= 0 for _, _, p in ineq))
