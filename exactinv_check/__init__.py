@@ -18,13 +18,17 @@ family of claims: claims_invariance, claims_thresholds, claims_radius,
 claims_sets; kernel is the driver.
 """
 
+from __future__ import annotations
+
+from typing import Any
+
 from .failure import CheckFailure
 from .kernel import FORMAT, VERSIONS, CheckReport, check
 
 __all__ = ["check", "CheckReport", "CheckFailure", "FORMAT", "VERSIONS", "main"]
 
 
-def main(argv=None):
+def main(argv: Any = None) -> int:
     """The command line (``python3 -m exactinv_check``); imported on call so that
     ``-m exactinv_check`` does not find its ``__main__`` already imported."""
     from .__main__ import main as _main

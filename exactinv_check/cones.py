@@ -9,7 +9,11 @@ rational vector is scaled once to (integers, denominator), a direction is kept
 primitive (divided by the gcd of its entries, a positive factor).
 """
 
+from __future__ import annotations
+
+from fractions import Fraction
 from math import gcd, lcm
+from typing import Any, Sequence
 
 from .budget import PYTHON_OP, charge, words
 from .failure import CheckFailure, require
@@ -18,13 +22,13 @@ MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate ver
 MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once
 
 
-def scaled_integers(v):
+def scaled_integers(v: Sequence[Fraction]) -> tuple[list[int], int]:
     """(integer vector p, denominator q > 0) with v = p / q."""
     q = lcm(*(x.denominator for x in v)) if v else 1
     return [x.numerator * (q // x.denominator) for x in v], q
 
 
-def primitive(v):
+def primitive(v: Any) -> Any:
     """v divided by the gcd of its entries (a positive factor); None if v = 0."""
     g = gcd(*v)
     if g == 0:
@@ -36,7 +40,8 @@ def primitive(v):
 # integer linear algebra
 
 
-def reduce_rows(rows, ncols, aug=None):
+def reduce_rows(rows: Sequence[list[int]], ncols: int, aug: Sequence[list[int]] | None = None) -> tuple[int,
+                list[int], list[int], list[list[Any]], list[list[Any]] | None]:
     """Fraction-free elimination of integer rows.
 
     Returns (rank, pivot columns, original indices of the pivot rows, reduced
@@ -88,12 +93,12 @@ def reduce_rows(rows, ncols, aug=None):
     return rank, cols, order[:rank], work[:rank], (ext[:rank] if ext is not None else None)
 
 
-def integer_rank(rows, ncols):
+def integer_rank(rows: Sequence[list[int]], ncols: int) -> Any:
     """The rank of integer rows of length ``ncols`` (fraction-free elimination, charged as it runs)."""
     return reduce_rows(rows, ncols)[0] if rows else 0
 
 
-def basis_rays(B, ncols):
+def basis_rays(B: Any, ncols: Any) -> Any:
     """Edge directions of a simplicial cone.
 
     For integer rows B (k of them, length ncols): None if they are dependent;
@@ -113,11 +118,11 @@ def basis_rays(B, ncols):
     # R d_b = -M T e_b, hence B d_b = T^{-1} R d_b = -M e_b.
     c = [R[i][cols[i]] for i in range(k)]
     M = lcm(*(abs(x) for x in c))
-    ys = [primitive([-T[i][b] * (M // c[i]) for i in range(k)]) for b in range(k)]
+    ys = [primitive([-T[i][b] * (M // c[i]) for i in range(k)]) for b in range(k)]  # type: ignore[index]
     return cols, ys
 
 
-def cone_rays(A, basis, r):
+def cone_rays(A: Any, basis: Any, r: Any) -> list[list[int]]:
     """The extreme rays of the pointed cone {y in Q^r : A y <= 0} (A integer,
     rank r, ``basis`` the indices of r independent rows), by the
     double-description method with the algebraic adjacency test."""
