@@ -12,7 +12,7 @@
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
@@ -21,12 +21,8 @@ from .rationals import describe, dot, integer, matmul, matrix, matvec, rational,
 from .reals import Real
 from .sparse import diagonal, read_square, row_dot
 
-if TYPE_CHECKING:
-    from .claims_control import _Vertex
-    from .kernel import Problem
 
-
-def read_H(problem: _Vertex | Problem, claim: Any, key: str, what: str) -> Any:
+def read_H(problem: Any, claim: Any, key: str, what: str) -> Any:
     """The m x m matrix ``claim[key]`` as sparse rows (:mod:`.sparse`): the certificate's version decides
     the encoding (version 3: only the nonzero entries, by row; versions 1 and 2: dense)."""
     return read_square(claim[key], what, problem.m, problem.version)
