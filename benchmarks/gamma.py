@@ -54,12 +54,11 @@ import cvxpy as cp
 import flint
 import highspy
 import numpy as np
-import scipy.sparse as sp
 
 import exactinv as ei
+from exactinv.lp.backends import HighsHint
 from exactinv.lp.exact import ppl_maximize
 from exactinv.lp.floatlp import FloatLP
-from exactinv.lp.hint import HighsHint
 
 PPL_BUDGET = 60.0  # seconds per instance; beyond it the remaining rows are extrapolated
 
@@ -262,7 +261,8 @@ def float_only_table(instances, repeat):
 def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
-    parser.add_argument("--hint-solver", default=None, help="the cvxpy solver of the cvxpy hint backend (default: cvxpy's choice)")
+    parser.add_argument("--hint-solver", default=None,
+                        help="the cvxpy solver of the cvxpy hint backend (default: cvxpy's choice)")
     parser.add_argument("--no-ppl", action="store_true", help="skip the pplpy column")
     parser.add_argument("--float-only", action="store_true",
                         help="only the certified route against the float-only solves (cvxpy, HiGHS whole LP, HiGHS rows)")

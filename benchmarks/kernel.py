@@ -27,10 +27,11 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 
+from largest import cube_system, polygon  # noqa: E402
+
 import exactinv as ei  # noqa: E402
 from exactinv.certificates import certificate  # noqa: E402
 from exactinv_check import check  # noqa: E402
-from largest import cube_system, polygon  # noqa: E402
 
 ROT = ei.LinearSystem([[-1, "1/2"], ["-1/2", -1]])
 

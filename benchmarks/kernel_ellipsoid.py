@@ -19,8 +19,8 @@ from fractions import Fraction
 
 from exactinv_check import polys
 from exactinv_check.ellipsoids import condition_polynomials, psd
+from exactinv_check.failure import CheckFailure
 from exactinv_check.linalg import characteristic_polynomial
-from exactinv_check.rationals import CheckFailure
 
 
 def fraction_psd(M):

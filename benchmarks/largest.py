@@ -76,7 +76,8 @@ def run(label, S, P, orders, grid=True):
             grid_text = f"{tg:>10.2f}{'~' if extrapolated else ' '}{tg / te:>11.2f}"
         else:
             grid_text = f"{'-':>10} {'-':>11}"
-        print(f"{label:<10}{len(P.vertices):>7}{P.m:>6}{p:>3}{P.m * len(P.vertices):>10}{V.distinct:>9}{te:>10.3f}{grid_text}  {first}")
+        print(f"{label:<10}{len(P.vertices):>7}{P.m:>6}{p:>3}{P.m * len(P.vertices):>10}{V.distinct:>9}{te:>10.3f}"
+              f"{grid_text}  {first}")
         sys.stdout.flush()
 
 
@@ -85,7 +86,8 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args(argv)
     rng = random.Random(20261122)
-    header = f"{'family':<10}{'verts':>7}{'facets':>6}{'p':>3}{'pairs':>10}{'distinct':>9}{'exact s':>10}{'grid s':>11}{'grid/exact':>11}  first interval ends at"
+    header = (f"{'family':<10}{'verts':>7}{'facets':>6}{'p':>3}{'pairs':>10}{'distinct':>9}{'exact s':>10}{'grid s':>11}"
+              f"{'grid/exact':>11}  first interval ends at")
     print(header)
     print("-" * len(header))
     cubes = [4, 7] if args.quick else [4, 7, 10, 12, 13, 14]

@@ -145,7 +145,7 @@ def family_ties(count: int, seed: int) -> list:
             p, b_star = R - kappa, Fraction(rng.randint(2, 12), 4)
             split = Fraction(rng.randint(1, 7), 8)
 
-            def pair(modulus):
+            def pair(modulus, R=R, kappa=kappa):
                 w, ph = _UNITS[rng.randrange(len(_UNITS))], _UNITS[rng.randrange(len(_UNITS))]
                 b = (modulus * ph[0], modulus * ph[1])
                 return [((R * w[0] - kappa, R * w[1]), b), ((R * w[0] - kappa, -R * w[1]), (b[0], -b[1]))]

@@ -22,8 +22,8 @@ from fractions import Fraction
 
 import sympy
 
-from exactinv.paper.bisection import paper_bisection
 from exactinv.core.roots import first_sign_change
+from exactinv.paper.bisection import paper_bisection
 
 
 def instance(degree: int, bits: int, rng: random.Random) -> list[int]:
@@ -66,9 +66,9 @@ def main(argv=None):
         for bits in bit_sizes:
             coeffs = instance(d, bits, rng)
             alphas = [Fraction(c) for c in coeffs]
-            te, ours = timed(lambda: first_sign_change(coeffs), repeat=3)
-            tp, paper = timed(lambda: paper_bisection(alphas, epsilon=Fraction(1, 2**53), repaired=True))
-            ts, interval = timed(lambda: sympy_first(coeffs))
+            te, ours = timed(lambda c=coeffs: first_sign_change(c), repeat=3)
+            tp, paper = timed(lambda a=alphas: paper_bisection(a, epsilon=Fraction(1, 2**53), repaired=True))
+            ts, interval = timed(lambda c=coeffs: sympy_first(c))
             assert paper.t_l <= ours <= paper.t_r or paper.tau == ours, (paper, ours)
             a, b = interval
             assert sympy.Rational(ours.lower if hasattr(ours, "lower") else ours) <= b

@@ -46,8 +46,9 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-import exactinv as ei  # noqa: E402
 from largest import cube_system, polygon  # noqa: E402
+
+import exactinv as ei  # noqa: E402
 
 BEFORE = "17e9024"
 ROT = [[-1, "1/2"], ["-1/2", -1]]
@@ -194,9 +195,12 @@ def row(name, tree, args):
         with open(path, "w", encoding="utf-8") as fh:
             json.dump(result.certificate, fh)
         (t_old, ok_old), (t_new, ok_new) = (kernel_seconds(path, t, args.cap) for t in (args.kernel_tree, str(HERE.parent)))
-        text = lambda t, ok: f"> {args.cap:.0f}" if t is None else f"{t:.2f} s ({'VERIFIED' if ok else 'REJECTED'})"
+        def text(t, ok):
+            return f"> {args.cap:.0f}" if t is None else f"{t:.2f} s ({'VERIFIED' if ok else 'REJECTED'})"
+
         ratio = f"{t_old / t_new:.1f}x" if t_old and t_new else "-"
-        kernel += f"\n    kernel by file: before ({args.kernel_before}) {text(t_old, ok_old)}, after {text(t_new, ok_new)}, {ratio}"
+        kernel += (f"\n    kernel by file: before ({args.kernel_before}) {text(t_old, ok_old)}, "
+                   f"after {text(t_new, ok_new)}, {ratio}")
     stats = _statistics(result)
     tb_text = f"> {args.cap:.0f}" if tb is None and not args.no_before else ("-" if tb is None else f"{tb:.2f}")
     ratio = f"{tb / ta:.1f}x" if tb else "-"

@@ -42,8 +42,9 @@ ROT = [[-1, "1/2"], ["-1/2", -1]]
 
 def _problem(sides: int):
     sys.path.insert(0, str(HERE))
-    import exactinv as ei
     from largest import polygon
+
+    import exactinv as ei
     from exactinv.interfaces.problem import Problem
 
     return Problem(ei.LinearSystem(ROT), polygon(sides), method=ei.methods.taylor(4), name=f"{sides}-gon")
@@ -74,8 +75,9 @@ def time_float_rows(S, P):
     start fails solved again from a fresh model (as the engine does), nothing verified."""
     import flint
     import numpy as np
+
+    from exactinv.lp.backends import HighsHint
     from exactinv.lp.floatlp import FloatLP
-    from exactinv.lp.hint import HighsHint
 
     m, n = P.m, P.n
     constraint = flint.fmpq_mat(n + 1, m, P.G_flint.transpose().entries() + P.b_flint.entries())

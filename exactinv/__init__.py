@@ -22,12 +22,13 @@ Fraction(1, 1)
 Fraction(1, 1)
 """
 
-from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
-from .beyond.conditions import ConditionSet
-from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
-from .core import scalars as numbers
-from .core.algebraic import RealAlgebraic
+
+from .beyond.conditions import ConditionSet
+from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
+from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
+from .core import scalars as numbers  # noqa: F401 (ei.numbers: the exact input conversions)
+from .core.real_algebraic import RealAlgebraic
 from .core.roots import first_sign_change, nonnegative_until, real_roots
 from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
 from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, Undecided, VerificationFailed

@@ -22,12 +22,11 @@ built-in suite of genuine and forged certificates (``python3 -S -m exactinv_chec
 
 from .format import Verdict
 from .kernel import FORMAT, VERSIONS, CheckReport, check
-from .rationals import CheckFailure
 
 __all__ = ["check", "CheckReport", "CheckFailure", "Verdict", "FORMAT", "VERSIONS", "main"]
 
 
-def main(argv=None):
+def main(argv: Any = None) -> int:
     """The command line (``python3 -m exactinv_check``); imported on call so that
     ``-m exactinv_check`` does not find its ``__main__`` already imported."""
     from .__main__ import main as _main

@@ -4,13 +4,16 @@ Exit status: 0 every certificate verified; 1 a claim was rejected (the last line
 kernel's budget, or a fault inside the kernel -- a bug, never an accept); 2 bad input (a file that
 cannot be read or is not an exactinv certificate).  The kernel's own test: python3 -S -m exactinv_check.selftest."""
 
+from __future__ import annotations
+
 import argparse
 import sys
+from typing import Any
 
 from .kernel import check
 
 
-def main(argv=None):
+def main(argv: Any = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python3 -S -m exactinv_check",
         description="The trusted kernel of exactinv: re-prove every claim of a certificate in exact "
@@ -20,7 +23,7 @@ def main(argv=None):
     parser.add_argument("-q", "--quiet", action="store_true", help="print only the final verdict per file")
     args = parser.parse_args(argv)
     status = 0
-    def progress(k, total, kind):
+    def progress(k: int, total: int, kind: str) -> None:
         if sys.stderr.isatty():
             print(f"\r  checking claim {k + 1}/{total}: {kind:<32}", end="", file=sys.stderr, flush=True)
 

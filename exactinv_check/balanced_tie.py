@@ -20,8 +20,11 @@ strictly closer to -kappa than p*, so by Pringsheim some c_j < 0 or a real pole 
 Exact rationals only; the sizes are bounded before any product (MAX_POLES, MAX_BITS).
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import isqrt
+from typing import Any, Sequence
 
 from .budget import charge, fraction_products_cost
 from .format import MAX_POLES
@@ -32,16 +35,16 @@ __all__ = ["prove_balanced_tie", "MAX_POLES"]
 MAX_BITS = 4096  # bits of a pole's coordinates
 
 
-def _mul(x, y):
+def _mul(x: tuple[Fraction, Fraction], y: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
     return (x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0])
 
 
-def _div(x, y):
+def _div(x: tuple[Fraction, Fraction], y: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
     n = y[0] * y[0] + y[1] * y[1]
     return ((x[0] * y[0] + x[1] * y[1]) / n, (x[1] * y[0] - x[0] * y[1]) / n)
 
 
-def _eval(p, z):
+def _eval(p: Sequence[Fraction], z: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
     acc = (Fraction(0), Fraction(0))
     for c in reversed(p):
         acc = _mul(acc, z)
@@ -49,7 +52,7 @@ def _eval(p, z):
     return acc
 
 
-def _sqrt_upper(q):
+def _sqrt_upper(q: Fraction) -> Fraction:
     """sqrt(q) exactly when q is the square of a rational, else a rational upper bound (q >= 0)."""
     n, d = q.numerator, q.denominator
     rn, rd = isqrt(n), isqrt(d)
@@ -59,7 +62,7 @@ def _sqrt_upper(q):
     return Fraction(isqrt(n * d * 4 ** s) + 1, d * 2 ** s)  # sqrt(n/d) = sqrt(n d)/d
 
 
-def _parse(poles):
+def _parse(poles: Sequence[list[Fraction]]) -> list[tuple[Fraction, Fraction]]:
     require(isinstance(poles, list) and 2 <= len(poles) <= MAX_POLES, f"balanced tie: 'poles' must list 2 to "
             f"{MAX_POLES} poles")
     out = []
@@ -73,7 +76,7 @@ def _parse(poles):
     return out
 
 
-def prove_balanced_tie(g, h, poles):
+def prove_balanced_tie(g: Any, h: Any, poles: Any) -> Any:
     """kappa* (a rational > 0) when the listed Gaussian-rational poles prove a balanced tie of r = g/h (lowest
     terms, h(0) > 0), module docstring; CheckFailure otherwise.  ``poles``: [[re, im], ...] as Fractions."""
     zs = _parse(poles)

@@ -57,8 +57,11 @@ on the principal parts, not on c.  With c < 0 (claims_radius, reason bernstein-r
 >= 0 for every kappa >= 0, and c_0(kappa) = c + int e^(-kappa t) f(t) dt decreases strictly from r(0) = 1 to c.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import ceil, comb, factorial, gcd
+from typing import Any, Sequence
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
 from .disks import ball, ball_abs_upper, ball_mul
@@ -80,7 +83,7 @@ MAX_EXPONENT = 2000  # the largest degree of F(u) for rational poles
 __all__ = ["prove_completely_monotone", "prove_density_nonnegative", "density_at_zero"]
 
 
-def density_at_zero(g, h, count):
+def density_at_zero(g: Sequence[Fraction], h: Sequence[Fraction], count: int) -> tuple[Fraction, list[Fraction]]:
     """(c, [f_0 .. f_{count-1}]): r(-x) = c + sum_n f_n x^(-n-1) at x = oo (deg g <= deg h), exactly:
     with u = 1/x, r(-1/u) = A(u)/B(u), A = sum g_i (-1)^i u^(D-i), B likewise (D = deg h, B(0) != 0)."""
     D = len(h) - 1
@@ -90,7 +93,7 @@ def density_at_zero(g, h, count):
         A[D - i] = c * (-1) ** i
     for i, c in enumerate(h):
         B[D - i] = c * (-1) ** i
-    s = []
+    s: list[Any] = []
     for n in range(count + 1):
         v = A[n] if n <= D else Fraction(0)
         for i in range(1, min(n, D) + 1):
@@ -99,7 +102,7 @@ def density_at_zero(g, h, count):
     return s[0], s[1:]
 
 
-def prove_completely_monotone(numerator, denominator):
+def prove_completely_monotone(numerator: Any, denominator: Any) -> Any:
     """A sentence saying why rho = oo (c >= 0 and f >= 0 on (0, oo), module docstring), or CheckFailure."""
     g, h = reduced(numerator, denominator)
     require(len(g) <= len(h), "bernstein: deg g > deg h, so r(-x) is unbounded and not completely monotone")
@@ -139,7 +142,8 @@ def _density_nonnegative(g, h):
         if pair is not None:
             b_star, b2 = pair
             require(b_star >= 0 and b_star * b_star >= 4 * b2, f"bernstein: p* = {describe(p_exact)} and one pair on its line: "
-                    f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {describe(b_star * b_star)} < 4|b|^2 = {describe(4 * b2)}, "
+                    f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {describe(b_star * b_star)} "
+                    f"< 4|b|^2 = {describe(4 * b2)}, "
                     "negative somewhere")
             return (f"p* = {describe(p_exact)} and one pair on its line: f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) >= 0, "
                     f"b_* = {describe(b_star)} >= 2|b| (4|b|^2 = {describe(4 * b2)})")
@@ -232,7 +236,7 @@ def _balanced_line(g, h, factors, poles, disks, terms, p_exact):
     return (q, M_q, delta), line
 
 
-def _sturm_affordable(Q):
+def _sturm_affordable(Q: Any) -> Any:
     """The line density's Sturm count fits the per-computation and the certificate's budgets.  When it does not
     (N = max |n_k| near MAX_LINE_EXPONENT: Q of degree 2N with 2N-bit binomials), the general proof below still
     decides every f that p* dominates strictly (a genuine certificate, 1 +- 60i beside p* = 1, was rejected)."""
@@ -243,7 +247,7 @@ def _sturm_affordable(Q):
     return cost <= STURM_BUDGET and affordable(cost // STURM_WORDS)
 
 
-def _single_pole(g, h, mu):
+def _single_pole(g: Any, h: Any, mu: Any) -> Any:
     f = squarefree_decomposition(h)[0][0]
     p = -f[0] / f[1]
     require(p > 0, "bernstein: the pole is not positive")
@@ -262,7 +266,7 @@ def _single_pole(g, h, mu):
             f"(0, oo) (Sturm)")
 
 
-def _rational_simple_poles(h, factors, poles):
+def _rational_simple_poles(h: Any, factors: Any, poles: Any) -> Any:
     """The poles as exact rationals when every pole is simple, real, positive and rational; else None.  A
     rational root k/q of the integer polynomial H has q | lc(H): an isolating interval narrower than 1/lc^2
     holds at most one fraction with such a denominator, the candidate ceil(lo lc)/lc, tested exactly."""
@@ -290,7 +294,7 @@ def _rational_simple_poles(h, factors, poles):
     return out
 
 
-def _rational_exponents(g, h, ps):
+def _rational_exponents(g: Any, h: Any, ps: Any) -> Any:
     """Simple rational poles p_k > 0: f(t) = sum b_k e^(-p_k t) = F(u) with u = e^(-t/L), L the lcm of the
     denominators, F(u) = sum b_k u^(L p_k) exactly (b_k = -g(p_k)/h'(p_k)); f >= 0 on (0, oo) iff F >= 0 on
     (0, 1): F positive right of 0 and no root of odd multiplicity in (0, 1) (Yun + Sturm).  None when F does
@@ -320,15 +324,15 @@ def _rational_exponents(g, h, ps):
 
 
 # ----------------------------------------------------------------- disk helpers
-def _add(x, y):
+def _add(x: Any, y: Any) -> Any:
     return ball(x[0] + y[0], x[1] + y[1], x[2] + y[2])
 
 
-def _scale(x, q):
+def _scale(x: Any, q: Any) -> Any:
     return ball(x[0] * q, x[1] * q, x[2] * abs(q))
 
 
-def _exp_point(x, y):
+def _exp_point(x: Fraction, y: Fraction) -> tuple[Fraction, Fraction, Fraction]:
     """A disk holding e^(x + iy) (x, y rational): an exact Taylor sum at (x + iy)/2^s, |.| <= 1/16, with its
     remainder 2|v|^(N+1)/(N+1)!, then s squarings."""
     s, size = 0, abs(x) + abs(y)
@@ -345,13 +349,13 @@ def _exp_point(x, y):
     return E
 
 
-def _exp(w):
+def _exp(w: tuple[Fraction, Fraction, Fraction]) -> tuple[Fraction, Fraction, Fraction]:
     """A disk holding e^u for every u in the disk w (radius <= 1: |e^(u-c) - 1| <= e^rad - 1 <= 2 rad)."""
     require(w[2] <= 1, "bernstein: an exponent's enclosure is too wide")
     return ball_mul(_exp_point(w[0], w[1]), (Fraction(1), Fraction(0), 2 * w[2]))
 
 
-def _exp_of(z, t):
+def _exp_of(z: Any, t: Any) -> Any:
     """A disk holding e^(-z t) for every z in the disk z, t >= 0 rational."""
     return _exp((-z[0] * t, -z[1] * t, z[2] * t))
 
@@ -361,7 +365,7 @@ def _positive(g, h, terms, mu, P_hi, rest=None):
     babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _, _ in terms]
     zabs = [ball_abs_upper(z) for z, _, _, _, _ in terms]
 
-    def derivative_bound(n, e, t_hi):  # >= |f^(n)(t)| for t in [t_lo, t_hi]; e[k] >= |e^(-z_k t_lo)|
+    def derivative_bound(n: Any, e: Any, t_hi: Any) -> Any:  # >= |f^(n)(t)| for t in [t_lo, t_hi]; e[k] >= |e^(-z_k t_lo)|
         total = Fraction(0)
         for k, (_, M, _, _, _) in enumerate(terms):
             for m in range(1, M + 1):
@@ -373,9 +377,9 @@ def _positive(g, h, terms, mu, P_hi, rest=None):
     _, fs = density_at_zero(g, h, len(h))
     n0 = next((n for n, v in enumerate(fs) if v != 0), None)
     require(n0 is not None, "bernstein: f vanishes to order deg h at 0")
-    require(fs[n0] > 0, f"bernstein: f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near t = 0")
-    B = derivative_bound(n0 + 1, [Fraction(1)] * len(terms), Fraction(1))
-    t_a = min(Fraction(1), (n0 + 1) * fs[n0] / (2 * B)) if B else Fraction(1)
+    require(fs[n0] > 0, f"bernstein: f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near t = 0")  # type: ignore[index]
+    B = derivative_bound(n0 + 1, [Fraction(1)] * len(terms), Fraction(1))  # type: ignore[operator]
+    t_a = min(Fraction(1), (n0 + 1) * fs[n0] / (2 * B)) if B else Fraction(1)  # type: ignore[index, operator]
     t_a = Fraction(1, 2 ** max(0, (1 / t_a).__ceil__().bit_length()))  # a dyadic <= t_a
 
     star = next(k for k, t in enumerate(terms) if t[3])
@@ -384,7 +388,7 @@ def _positive(g, h, terms, mu, P_hi, rest=None):
     delta = [None if k == star else Fraction(0) if line else z[0] - z[2] - P_hi
              for k, (z, _, _, _, line) in enumerate(terms)]
 
-    def dominated_beyond(T):
+    def dominated_beyond(T: Any) -> Any:
         total = sum(babs[star][m - 1] * Fraction(factorial(mu - 1), factorial(m - 1)) * T ** (m - mu)
                     for m in range(1, mu))
         for k, (_, M, _, _, _) in enumerate(terms):

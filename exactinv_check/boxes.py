@@ -44,9 +44,14 @@ right of 0).  If D(h) < 0 the largest q_s(h) is at -s, also recorded.  So
 every condition holds at h, and V_S = V: the recomputed set is exact.
 """
 
+from __future__ import annotations
+
+from fractions import Fraction
 from math import gcd
+from typing import Any, Sequence
 
 from . import polys
+from .budget import affordable, descartes_node_cost, within_budget
 from .conditions import method_matrices, rebuild_size
 from .budget import affordable, descartes_node_cost
 from .failure import require_budget
@@ -55,11 +60,11 @@ from .reals import Real, separate
 from .validset import breakpoints
 
 
-def prove_box(G, b):
+def prove_box(G: Sequence[list[Fraction]], b: Sequence[Fraction]) -> Any:
     """(lo, hi, facets): P = {Gx <= b} is exactly the box [lo, hi] (see (a));
     facets[l] = ((row, |a|) of hi_l, (row, |a|) of lo_l) (|a| > 0 scales a condition, no sign).  Rejects anything else."""
     n = len(G[0])
-    best = {}
+    best: dict[Any, Any] = {}
     for k, (row, beta) in enumerate(zip(G, b)):
         support = [l for l, x in enumerate(row) if x != 0]
         require(len(support) == 1, f"row {k} of G has {len(support)} nonzero entries: P is not given as a box")
@@ -77,13 +82,13 @@ def prove_box(G, b):
     return lo, hi, [(best[l, True][1:], best[l, False][1:]) for l in range(n)]
 
 
-def vertex_of(index, lo, hi):
+def vertex_of(index: int, lo: Sequence[int | Fraction], hi: Sequence[int | Fraction]) -> list[int | Fraction]:
     """The box vertex of that index in the sorted vertex list: hi_l where bit n-1-l is set."""
     n = len(lo)
     return [hi[l] if index >> (n - 1 - l) & 1 else lo[l] for l in range(n)]
 
 
-def _price(A, numerator, denominator):
+def _price(A: Sequence[list[Fraction]], numerator: Sequence[Fraction], denominator: Sequence[Fraction]) -> None:
     """Reject, before any work, a rebuild of D, N and the conditions over the kernel's work budget:
     the rebuild as priced by :func:`exactinv_check.conditions.rebuild_size`, then about 2 n^3 d^2 w
     word operations for the conditions (n rows, up to (n + 1) d + 1 sign patterns each, n + 1
@@ -94,7 +99,7 @@ def _price(A, numerator, denominator):
     within_budget(cost, f"the box route of a {n} x {n} problem with entries of degree {d}")
 
 
-def _price_roots(polynomials, what):
+def _price_roots(polynomials: Any, what: str) -> None:
     """Reject, before any root isolation, polynomials whose isolation cannot fit in what is left of the
     certificate's account: at least one Descartes node (a Moebius transform, O(d^2) additions) per
     polynomial with a sign variation.  The isolation itself (Descartes' rule with bisection, no Sturm
@@ -108,7 +113,8 @@ def _price_roots(polynomials, what):
             f"(at least {least:.1e} word operations, more than the certificate has left)")
 
 
-def _entries(D, N, lo, hi):
+def _entries(D: Sequence[Fraction], N: Sequence[list[list[Any]]], lo: Sequence[Fraction],
+             hi: Sequence[Fraction]) -> tuple[list[list[Any]], list[Fraction]]:
     """rows[j] = [v_j0, v_j1, .., v_jn] (see (b)) and the half-widths w."""
     n = len(lo)
     c = [(a + b) / 2 for a, b in zip(lo, hi)]
@@ -120,7 +126,7 @@ def _entries(D, N, lo, hi):
     return rows, w
 
 
-def _samples(row):
+def _samples(row: Sequence[list[Fraction]]) -> list[Fraction]:
     """A rational in every open cell of (0, oo) cut by the positive roots of the row's entries."""
     distinct = {tuple(p): p for p in row if len(p) > 1}
     points = [Real.rational(0)] + [real for real, _ in breakpoints(list(distinct.items()), {})]
@@ -131,7 +137,7 @@ def _samples(row):
     return out + [points[-1].bounds()[1] + 1]
 
 
-def _patterns(row, negate):
+def _patterns(row: Sequence[list[Fraction]], negate: bool) -> Any:
     """The sign patterns of the row at its cell samples (and their negations)."""
     out = set()
     ints = [polys.integer_coefficients(p) for p in row]  # positive multiples: the same signs
@@ -143,7 +149,7 @@ def _patterns(row, negate):
     return out
 
 
-def _integer_row(row):
+def _integer_row(row: Sequence[list[Fraction]]) -> tuple[int, list[list[Any]]]:
     """(L, [L p for p in row]) with L > 0 clearing every denominator, each padded to one length."""
     L, width = 1, max(len(p) for p in row)
     for p in row:
@@ -152,7 +158,7 @@ def _integer_row(row):
     return L, [[int(x * L) for x in p] + [0] * (width - len(p)) for p in row]
 
 
-def box_conditions(A, G, b, numerator, denominator, claimed):
+def box_conditions(A: Any, G: Any, b: Any, numerator: Any, denominator: Any, claimed: Any) -> Any:
     """(D, inequalities, box): the conditions of (d), keyed like
     :func:`exactinv_check.conditions.condition_polynomials` to (kind, vertex index, facet),
     after proving P is the claimed box; box = (lo, hi)."""
@@ -167,7 +173,7 @@ def box_conditions(A, G, b, numerator, denominator, claimed):
     _price_roots([p for row in rows for p in row], "the box route's entry polynomials")
     negate = not all(c >= 0 for c in D) and not all(c <= 0 for c in D)  # D may change sign on (0, oo)
     D_int = polys.integer_coefficients(D)  # a positive multiple of D: the same signs
-    inequalities = {}
+    inequalities: dict[Any, Any] = {}
     for j, row in enumerate(rows):
         scale, ints = _integer_row([polys.scale(D, w[j])] + row)  # scale * (w_j D, v_j0, .., v_jn), scale > 0
         for s in sorted(_patterns(row, negate)):

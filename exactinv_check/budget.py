@@ -41,9 +41,12 @@ work.  Genuine certificates stay far below both limits.  Outside
 are not counted.
 """
 
+from __future__ import annotations
+
 from contextlib import contextmanager
 from contextvars import ContextVar
 from time import process_time
+from typing import Any, Callable, Iterator, Sequence
 
 from .failure import require_budget
 
@@ -73,12 +76,13 @@ class Account:
 
     __slots__ = ("limit", "spent", "memo", "deadline", "time_limit", "charges")
 
-    def __init__(self, limit=CERTIFICATE_BUDGET, time_limit=TIME_LIMIT):
-        self.limit, self.spent, self.memo, self.charges = limit, 0, {}, 0
+    def __init__(self, limit: Any = CERTIFICATE_BUDGET, time_limit: Any = TIME_LIMIT) -> None:
+        self.limit, self.spent, self.charges = limit, 0, 0
+        self.memo: dict[Any, Any] = {}
         self.time_limit = time_limit
         self.deadline = None if time_limit is None else process_time() + time_limit
 
-    def __repr__(self):
+    def __repr__(self) -> Any:
         return f"Account(spent={self.spent:.3e}, limit={self.limit:.0e})"
 
 
@@ -86,22 +90,22 @@ _CURRENT = ContextVar("exactinv_check_account", default=None)
 
 
 @contextmanager
-def account(limit=CERTIFICATE_BUDGET, time_limit=TIME_LIMIT):
+def account(limit: Any = CERTIFICATE_BUDGET, time_limit: Any = TIME_LIMIT) -> Iterator[Any]:
     """Open the account of one certificate: every charge inside goes to it (time_limit None: no clock)."""
     acc = Account(limit, time_limit)
-    token = _CURRENT.set(acc)
+    token = _CURRENT.set(acc)  # type: ignore[arg-type]
     try:
         yield acc
     finally:
         _CURRENT.reset(token)
 
 
-def active():
+def active() -> bool:
     """Is an account open?  (Callers skip working out a cost when none is.)"""
     return _CURRENT.get() is not None
 
 
-def charge(cost, what):
+def charge(cost: int, what: str) -> None:
     """Charge ``cost`` word operations to the open account; reject once it is overdrawn."""
     acc = _CURRENT.get()
     if acc is not None:
@@ -114,7 +118,7 @@ def charge(cost, what):
             require_budget(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
 
 
-def memo(key, compute):
+def memo(key: tuple[str, Sequence[int]], compute: Callable[..., Any]) -> Any:
     """compute(), remembered in the open account under ``key``: a result shared between claims
     (a squarefree part, a proved radius) is computed and charged once per certificate."""
     acc = _CURRENT.get()
@@ -125,13 +129,13 @@ def memo(key, compute):
     return acc.memo[key]
 
 
-def affordable(cost):
+def affordable(cost: int) -> bool:
     """Would ``cost`` more word operations still fit in the open account?"""
     acc = _CURRENT.get()
     return acc is None or acc.spent + cost <= acc.limit
 
 
-def within_budget(cost, what, limit=WORK_BUDGET):
+def within_budget(cost: int, what: str, limit: int = WORK_BUDGET) -> None:
     """Reject (never run) a computation whose estimated cost exceeds ``limit`` or what is left of
     the certificate's account; otherwise charge it: a certificate must not make the kernel work
     for minutes before its verdict."""
@@ -141,18 +145,18 @@ def within_budget(cost, what, limit=WORK_BUDGET):
 
 
 # ------------------------------------------------------------------ cost formulas
-def words(bits):
+def words(bits: int) -> int:
     """Machine words of a bits-bit integer (at least one)."""
     return 1 + bits // 64
 
 
-def sturm_cost(degree, bits):
+def sturm_cost(degree: int, bits: int) -> int:
     """degree^4 bits^2: the price of a pseudo-remainder sequence (gcd with the derivative, Sturm
     sequence) of a degree-``degree`` integer polynomial with ``bits``-bit coefficients."""
     return degree ** 4 * bits ** 2
 
 
-def within_sturm_budget(degree, bits, what):
+def within_sturm_budget(degree: int, bits: int, what: str) -> None:
     """Reject, before it starts, a pseudo-remainder sequence over STURM_BUDGET or over what is left
     of the certificate's account (its steps charge their actual cost as they run)."""
     cost = sturm_cost(degree, bits)
@@ -163,14 +167,14 @@ def within_sturm_budget(degree, bits, what):
             "more than the certificate has left)")
 
 
-def remainder_step_cost(length, lead_bits, other_bits):
+def remainder_step_cost(length: int, lead_bits: int, other_bits: int) -> int:
     """One reduction step of a pseudo-remainder: a polynomial of ``length`` coefficients multiplied
     and reduced, its content removed (gcds, quadratic in the words)."""
     w = words(lead_bits + other_bits)
     return length * (PYTHON_OP + w * (4 + w))
 
 
-def descartes_node_cost(degree, bits, end_bits=0):
+def descartes_node_cost(degree: int, bits: int, end_bits: int = 0) -> int:
     """One Descartes test (a Moebius transform and a Taylor shift): about 2 degree^2 products and
     additions of numbers of up to ``bits`` bits (the coefficients' plus degree times the ends'), the
     degree^2 / 2 products of the Horner step each by a number of ``end_bits`` bits (quadratic in words)."""
@@ -178,39 +182,39 @@ def descartes_node_cost(degree, bits, end_bits=0):
     return CALL + 2 * (degree + 1) ** 2 * (PYTHON_OP + w) + (degree + 1) ** 2 * w * words(end_bits) // 2
 
 
-def fraction_products_cost(count, bits):
+def fraction_products_cost(count: int, bits: int) -> Any:
     """``count`` Fraction products and sums of numbers of about ``bits`` bits (each normalised by gcds,
     quadratic in the words)."""
     w = words(bits)
     return count * (FRACTION_WEIGHT + 2 * w * w)
 
 
-def condition_cost(terms, n, d_terms):
+def condition_cost(terms: int, n: int, d_terms: int) -> int:
     """One generator-facet condition: g_j N_k w for ``terms`` coefficient matrices in dimension n, times
     D (``d_terms`` coefficients), made coprime (measured: 40-90 us each at degree 2)."""
     return 1000 + 2 * PYTHON_OP * terms * (n + 2 * d_terms)
 
 
-def modular_squarefree_cost(degree, bits):
+def modular_squarefree_cost(degree: int, bits: int) -> int:
     """A gcd of p and p' modulo a prime: the reduction of the coefficients, then degree^2 small operations."""
     return (degree + 1) * words(bits) + 4 * (degree + 1) ** 2
 
 
-def disk_step_cost(terms):
+def disk_step_cost(terms: Any) -> Any:
     """One step (or one step-size trial) of the Bernstein positivity proof (exactinv_check.bernstein): a few
     operations on 128-bit disks per term b_{k,m} t^(m-1) e^(-z_k t) (``terms`` of them in all); measured about
     1 ms of work per term and step at degree 15."""
     return DISK_STEP * terms
 
 
-def evaluation_cost(degree, bits, end_bits=0):
+def evaluation_cost(degree: int, bits: int, end_bits: int = 0) -> int:
     """One exact value of a degree-``degree`` polynomial with ``bits``-bit coefficients at a rational of
     ``end_bits``-bit numerator and denominator (Horner: each step multiplies a number growing to
     bits + degree end_bits bits by one of end_bits bits)."""
     return (degree + 1) * (PYTHON_OP + words(bits + degree * end_bits) * words(end_bits))
 
 
-def sparse_read_cost(entries, longest_chars):
+def sparse_read_cost(entries: int, longest_chars: int) -> int:
     """Reading ``entries`` nonzero entries of a sparse matrix (version 3), each a number string of at most
     ``longest_chars`` characters: a regular-expression match and a Fraction each (decimal-to-binary
     conversion, quadratic in the words)."""

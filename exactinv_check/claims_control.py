@@ -18,8 +18,13 @@
   (rational, P without lines, beta = max_i max_r (H_i v)_r / v_r recomputed).
 """
 
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any, Sequence
+
 from . import claims_invariance
-from .budget import WORK_BUDGET, charge, fraction_products_cost
+from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
 from .failure import Record
 from .rationals import describe, dot, matrix, matvec, rational, require, vector, within_budget
@@ -27,7 +32,7 @@ from .rationals import describe, dot, matrix, matvec, rational, require, vector,
 GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 
 
-def _bits(*arrays):
+def _bits(*arrays: Any) -> int:
     """The largest numerator plus denominator bits over the entries (matrices or vectors)."""
     out = 1
     for M in arrays:
@@ -37,7 +42,7 @@ def _bits(*arrays):
     return out
 
 
-def _price_gain(problem, count, *arrays):
+def _price_gain(problem: Problem, count: int, *arrays: Any) -> None:
     """The gain LP's rows are ``count`` Fraction products and sums of the problem's and the record's numbers:
     priced (by their sizes) and charged before any of them is formed, so a large record is rejected, not run."""
     within_budget(fraction_products_cost(count, _bits(problem.A, problem.B, problem.G, [problem.b], problem.E,
@@ -45,7 +50,7 @@ def _price_gain(problem, count, *arrays):
                   "the gain LP's rows (dense Fraction products)", GAIN_WORK_BUDGET)
 
 
-def _matmul(X, Y):
+def _matmul(X: Any, Y: Any) -> Any:
     """X Y, one row at a time; each row is a charge of nothing (a tick of the account's clock)."""
     cols = list(zip(*Y))
     out = []
@@ -53,18 +58,16 @@ def _matmul(X, Y):
         charge(0, "a product of the gain LP's matrices")
         out.append([sum(a * b for a, b in zip(row, col)) for col in cols])
     return out
-from .reals import Real, quotient
-from .sparse import diagonal, row_dot
 
 
-def _dual(record, m, n, q, what):
+def _dual(record: Any, m: Any, n: Any, q: Any, what: Any) -> Any:
     require(isinstance(record, dict) and set(record) == {"Y", "mu", "nu", "Z", "w"},
             f"{what} has the keys Y, mu, nu, Z, w")
     return (matrix(record["Y"], f"{what} Y", m, n), vector(record["mu"], f"{what} mu", m),
             vector(record["nu"], f"{what} nu", m), matrix(record["Z"], f"{what} Z", q, n), vector(record["w"], f"{what} w", q))
 
 
-def _dual_rows(problem, Y, mu, nu, Z, w):
+def _dual_rows(problem: Any, Y: Any, mu: Any, nu: Any, Z: Any, w: Any) -> Any:
     """The dual's constraints, one per primal variable; returns the dual objective <GA, Y> + e.w."""
     G, b, m, n, q = problem.G, problem.b, problem.m, problem.n, len(problem.E)
     require(all(x >= 0 for x in mu) and all(x >= 0 for x in nu) and all(x >= 0 for x in w), "mu, nu, w must be >= 0")
@@ -88,7 +91,7 @@ def _dual_rows(problem, Y, mu, nu, Z, w):
     return sum(dot(GA[i], Y[i]) for i in range(m)) + dot(problem.e, w)
 
 
-def optimal_gain(problem, claim, context):
+def optimal_gain(problem: Any, claim: Any, context: Any) -> str:
     require(problem.B is not None, "an optimal_gain claim needs B in the problem")
     A, B, G, b, m, n, p = problem.A, problem.B, problem.G, problem.b, problem.m, problem.n, problem.p
     E, e, q = problem.E, problem.e, len(problem.E)
@@ -144,12 +147,12 @@ def optimal_gain(problem, claim, context):
 class _Vertex:
     """The problem seen from one vertex A_i of the hull (for the gamma_star check)."""
 
-    def __init__(self, problem, A):
+    def __init__(self, problem: Problem, A: Sequence[list[Fraction]]) -> None:
         self.A, self.G, self.b, self.m, self.n, self.method = A, problem.G, problem.b, problem.m, problem.n, problem.method
         self.version = problem.version
 
 
-def robust_threshold(problem, claim, context):
+def robust_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     method = problem.method
     require(method is not None, "a robust_threshold claim needs the problem's method")
     rho = context.get("rho")
@@ -216,7 +219,7 @@ def robust_threshold(problem, claim, context):
                 "bound the spectral radius the rational method's series needs")
         v = vector(claim["v"], "v", problem.m)
         require(all(x > 0 for x in v), "v must be positive")
-        beta = max(row_dot(row, v) / vr for H in Hs for row, vr in zip(H, v))
+        beta = max(row_dot(row, v) / vr for H in Hs for row, vr in zip(H, v))  # type: ignore[arg-type]
         require(rational(claim["beta"], "beta") == beta, f"beta is max_i max_r (H_i v)_r / v_r = {describe(beta)}")
         if beta > 0:
             candidates.append((quotient(pole, Real.rational(beta)), False))

@@ -13,18 +13,25 @@ symmetric positive definite when the problem is read).
   (:mod:`exactinv_check.validset`); the claim must equal it, end by end and flag by flag.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import TYPE_CHECKING, Any
 
 from . import polys
-from .claims_invariance import _discrete_matrix
+from .budget import FRACTION_WEIGHT, within_budget
+from .claims_invariance import discrete_matrix
 from .ellipsoids import condition_polynomials, psd
-from .rationals import (FRACTION_WEIGHT, boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational,
-                        require, transpose, vector, within_budget)
+from .failure import require
+from .rationals import boolean, describe, dot, integer, integer_matrix, matmul, matvec, rational, transpose, vector
 from .reals import Real
 from .validset import first_end, require_intervals, valid_set
 
+if TYPE_CHECKING:
+    from .kernel import Problem
 
-def _witness(problem, claim, form, what):
+
+def _witness(problem: Any, claim: Any, form: Any, what: Any) -> Any:
     """form(v) = v^T X v for the claim's rational v, compared with the recorded value, > 0."""
     w = claim.get("witness")
     require(isinstance(w, dict) and set(w) <= {"v", "value"} and "v" in w, "a witness has the keys v (and value)")
@@ -36,7 +43,7 @@ def _witness(problem, claim, form, what):
     return value
 
 
-def _integer_product(X, Y, what):
+def _integer_product(X: Any, Y: Any, what: str) -> Any:
     """(x, y, X_i Y_i) with X = X_i/x, Y = Y_i/y, X_i and Y_i integral, priced first."""
     (x, Xi), (y, Yi) = integer_matrix(X), integer_matrix(Y)
     n = len(X)
@@ -45,7 +52,7 @@ def _integer_product(X, Y, what):
     return x, y, matmul(Xi, Yi)
 
 
-def continuous_invariance(problem, claim, context):
+def continuous_invariance(problem: Any, claim: Any, context: Any) -> str | None:
     """-(A^T Q + Q A) >= 0, decided on beta alpha (A^T Q + Q A) = (Q_i A_i)^T + Q_i A_i (a
     positive multiple, integral); or a v with v^T (A^T Q + Q A) v = 2 v^T Q A v > 0."""
     A, Q = problem.A, problem.Q
@@ -60,7 +67,7 @@ def continuous_invariance(problem, claim, context):
     return f"E is NOT invariant: v^T (A^T Q + Q A) v = {describe(value)} > 0, so v/||v||_Q leaves E"
 
 
-def _price_step(problem, claim):
+def _price_step(problem: Problem, claim: dict[str, list[list[Any]] | bool | str]) -> None:
     """Reject before recomputing r(dt A) in Fractions when that is over the work budget."""
     if "dt" in claim and problem.method is not None:
         n, g, h = problem.n, problem.method.numerator, problem.method.denominator
@@ -68,11 +75,11 @@ def _price_step(problem, claim):
         within_budget(FRACTION_WEIGHT * n ** 3 * steps, f"r(dt A) for a {n} x {n} matrix A")
 
 
-def discrete_invariance(problem, claim, context):
+def discrete_invariance(problem: Any, claim: Any, context: Any) -> str | None:
     """Q - A_d^T Q A_d >= 0, decided on beta delta^2 (Q - A_d^T Q A_d) = delta^2 Q_i - N^T Q_i N
     (A_d = N/delta, Q = Q_i/beta integral); or v with (A_d v)^T Q (A_d v) - v^T Q v > 0."""
     _price_step(problem, claim)
-    Ad, what = _discrete_matrix(problem, claim)
+    Ad, what = discrete_matrix(problem, claim)
     Q = problem.Q
     if boolean(claim["holds"], "holds"):
         require("witness" not in claim, "a claim that holds carries no witness")
@@ -84,14 +91,14 @@ def discrete_invariance(problem, claim, context):
         require(psd(M)[0], "Q - A_d^T Q A_d is not positive semidefinite")
         return f"A_d E is a subset of E for {what} (Q - A_d^T Q A_d >= 0)"
 
-    def form(v):
+    def form(v: Any) -> Any:
         w = matvec(Ad, v)
         return dot(w, matvec(Q, w)) - dot(v, matvec(Q, v))
     value = _witness(problem, claim, form, "v^T (A_d^T Q A_d - Q) v > 0")
     return f"A_d E is NOT a subset of E for {what}: v^T (A_d^T Q A_d - Q) v = {describe(value)} > 0"
 
 
-def _conditions(problem, claim, context, numerator=None, denominator=None):
+def _conditions(problem: Any, claim: Any, context: Any, numerator: Any = None, denominator: Any = None) -> Any:
     """(D, conditions), rebuilt once per certificate and method (kept in the context)."""
     if numerator is None:
         require(problem.method is not None, "a method is needed")
@@ -107,7 +114,7 @@ def _conditions(problem, claim, context, numerator=None, denominator=None):
     return D, conditions, full
 
 
-def valid_steplengths(problem, claim, context):
+def valid_steplengths(problem: Any, claim: Any, context: Any) -> str | None:
     D, conditions, _ = _conditions(problem, claim, context)
     truth = valid_set(D, conditions, [], conditions[:1])  # c_1 (the trace) first: exact pruning
     require_intervals(claim["intervals"], truth)
@@ -115,7 +122,7 @@ def valid_steplengths(problem, claim, context):
             f"H^T Q H - G^T Q G and det h(hA)")
 
 
-def largest_threshold(problem, claim, context):
+def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     D, conditions, full = _conditions(problem, claim, context)
     tau, attained = first_end(D, conditions, [], conditions[:1])
     value = Real.parse(claim["value"], "tau")
@@ -130,7 +137,7 @@ def largest_threshold(problem, claim, context):
     return f"largest threshold on E {value} ({'attained' if attained else 'not attained'}), recomputed"
 
 
-def forward_euler_threshold(problem, claim, context):
+def forward_euler_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     D, conditions, _ = _conditions(problem, {}, context, [Fraction(1), Fraction(1)], [Fraction(1)])
     tau, _ = first_end(D, conditions, [])
     value = Real.parse(claim["value"], "tau")

@@ -9,7 +9,10 @@
   bounds it from above, the LP dual of its binding row from below.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
@@ -19,13 +22,13 @@ from .reals import Real
 from .sparse import diagonal, read_square, row_dot
 
 
-def read_H(problem, claim, key, what):
+def read_H(problem: Any, claim: Any, key: str, what: str) -> Any:
     """The m x m matrix ``claim[key]`` as sparse rows (:mod:`.sparse`): the certificate's version decides
     the encoding (version 3: only the nonzero entries, by row; versions 1 and 2: dense)."""
     return read_square(claim[key], what, problem.m, problem.version)
 
 
-def check_H(problem, rows):
+def check_H(problem: Any, rows: Any) -> None:
     """H (sparse rows, :mod:`.sparse`) is an invariance certificate: off-diagonal >= 0, HG = GA,
     Hb <= 0 -- over the nonzero entries of each row of H only (a row LP's basic solution has at
     most n + 1 of its m)."""
@@ -42,7 +45,7 @@ def check_H(problem, rows):
     require(all(x >= 0 for i, row in enumerate(rows) for k, x in row if k != i), "an off-diagonal entry of H is negative")
 
 
-def facet_witness(problem, M, w, on_facet):
+def facet_witness(problem: Any, M: Any, w: Any, on_facet: Any) -> Any:
     """x in P, facet j and g_j.Mx; checks the recorded value and (optionally) that x is on facet j."""
     require(isinstance(w, dict) and set(w) <= {"x", "facet", "value"} and {"x", "facet"} <= set(w),
             "a witness has the keys x, facet (and value)")
@@ -57,7 +60,7 @@ def facet_witness(problem, M, w, on_facet):
     return j, value
 
 
-def continuous_invariance(problem, claim, context):
+def continuous_invariance(problem: Any, claim: Any, context: Any) -> str:
     if claim["holds"]:
         check_H(problem, read_H(problem, claim, "H", "H"))
         return "P is invariant for x' = Ax (H: off-diagonal >= 0, HG = GA, Hb <= 0)"
@@ -66,7 +69,7 @@ def continuous_invariance(problem, claim, context):
     return f"P is NOT invariant: a point of facet {j} has g_j.Ax = {describe(value)} > 0"
 
 
-def _discrete_matrix(problem, claim):
+def discrete_matrix(problem: Any, claim: Any) -> Any:
     """A_d: r(dt A) recomputed when the claim names dt, else the matrix the claim states."""
     if "dt" in claim:
         require(problem.method is not None, "a claim with dt needs the problem's method")
@@ -80,8 +83,8 @@ def _discrete_matrix(problem, claim):
     return matrix(claim["Ad"], "Ad", problem.n, problem.n), "the matrix A_d stated in the claim"
 
 
-def discrete_invariance(problem, claim, context):
-    Ad, what = _discrete_matrix(problem, claim)
+def discrete_invariance(problem: Any, claim: Any, context: Any) -> str | None:
+    Ad, what = discrete_matrix(problem, claim)
     G, b = problem.G, problem.b
     if claim["holds"]:
         rows = read_H(problem, claim, "H", "H~")
@@ -100,7 +103,7 @@ def discrete_invariance(problem, claim, context):
     return f"A_d P is NOT a subset of P for {what}: a point of P is mapped beyond facet {j}"
 
 
-def gamma_star(problem, claim, context):
+def gamma_star(problem: Any, claim: Any, context: Any) -> str | None:
     A, G, b, m, n = problem.A, problem.G, problem.b, problem.m, problem.n
     # the cheap structural test first: gamma* is rational or infinite, so an algebraic value
     # ({"poly", "interval"}) is rejected before any root isolation could prove it well defined

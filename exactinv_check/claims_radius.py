@@ -25,8 +25,11 @@ The set of admissible kappa is the interval [0, rho], closed unless a pole sits
 at -rho or rho = 0 is itself inadmissible.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import comb, gcd
+from typing import Any, Sequence
 
 from . import polys
 from .claims_thresholds import smallest_positive_root
@@ -37,14 +40,13 @@ from .budget import SCAN_BUDGET, within_sturm_budget
 from .format import MAX_COEFFICIENTS, RadiusReason
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
-from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .validset import first_end
 
 REASONS = frozenset(RadiusReason)  # the format's radius reasons (exactinv_check.format)
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 
-def scan_cost(num, den, count):
+def scan_cost(num: Sequence[Fraction], den: Sequence[Fraction], count: int) -> Any:
     """Estimated word operations of d_0 .. d_{count-1}: d_j has degree about (j + 1) deg h and numbers of
     about j (deg h) (bits of g, h) bits, and costs about j (deg h)^3 Fraction products whose gcds grow with
     those numbers (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work)."""
@@ -53,7 +55,7 @@ def scan_cost(num, den, count):
     return count * count * dh ** 3 * (FRACTION_WEIGHT + count * dh * bits // 8) // 2
 
 
-def d_polynomials(num, den, count):
+def d_polynomials(num: Any, den: Any, count: Any) -> Any:
     """d_0 .. d_{count-1}, d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), by series division at -kappa;
     priced first (a certificate's tail_index or d list must not make the kernel work for minutes)."""
     require(count <= MAX_COEFFICIENTS, f"more than {MAX_COEFFICIENTS} coefficients requested")
@@ -61,7 +63,8 @@ def d_polynomials(num, den, count):
 
     G = [_shift(num, i) for i in range(max(len(num), count))]
     H = [_shift(den, i) for i in range(len(den))]
-    powers, d = [[Fraction(1)]], []
+    powers: list[list[Fraction]] = [[Fraction(1)]]
+    d: list[Any] = []
     for j in range(count):
         while len(powers) <= j:
             powers.append(polys.mul(powers[-1], H[0]))
@@ -73,7 +76,7 @@ def d_polynomials(num, den, count):
     return d
 
 
-def _shift(p, i):
+def _shift(p: Sequence[Fraction], i: int) -> Any:
     """[w^i] p(w - kappa) as a polynomial in kappa: sum_k p_k C(k, i) (-kappa)^(k-i)."""
     out = [Fraction(0)] * max(len(p) - i, 0)
     for k in range(i, len(p)):
@@ -81,7 +84,7 @@ def _shift(p, i):
     return polys.trim(out)
 
 
-def sign_at_zero(num, den, j):
+def sign_at_zero(num: Any, den: Any, j: Any) -> Any:
     """The exact sign of c_j(0) = [z^j] g/h, in integers (no Fraction gcds: a witness index up to
     MAX_COEFFICIENTS costs well under a second).  With G = L g, H = L h integral, c_k = u_k / H_0^(k+1) where
     u_k = G_k H_0^k - sum_{i=1..k} H_i u_{k-i} H_0^(i-1)  (multiply H_0 c_k = G_k - sum H_i c_{k-i} by H_0^k).
@@ -99,7 +102,7 @@ def sign_at_zero(num, den, j):
     within_budget((j + 1) ** 2 * len(H) * bits // 128 * (4096 + terms * bits) // 4096,
                   f"the series coefficients c_0(0) .. c_{j}(0)")
     H0 = [H[0] ** i for i in range(len(H))]
-    u = []
+    u: list[Any] = []
     for k in range(j + 1):
         v = G[k] * H[0] ** k if k < len(G) else 0
         for i in range(1, min(k, len(H) - 1) + 1):
@@ -108,7 +111,7 @@ def sign_at_zero(num, den, j):
     return polys.sign(u[j]) * polys.sign(H[0]) ** (j + 1)
 
 
-def _all_roots_real_positive(h):
+def _all_roots_real_positive(h: Any) -> Any:
     """Every root of h (with multiplicity) is real and positive."""
     p = polys.trim(h)
     total, k = 0, 1
@@ -125,14 +128,14 @@ def _all_roots_real_positive(h):
     return total == len(p) - 1
 
 
-def _positive_up_to(p, K):
+def _positive_up_to(p: Sequence[Fraction], K: Fraction) -> bool:
     """True proves p > 0 on (0, K] (its first end lies beyond K): positive right of 0 and at K, and no
     root in (0, K) by Descartes' rule.  False says nothing."""
     return polys.sign_right_of(p, Fraction(0)) > 0 and polys.sign_at(polys.integer_coefficients(p), K) > 0 \
         and polys.no_root_in(p, K, depth=1)
 
 
-def recompute(num, den, count, K_is_infinite, K=None):
+def recompute(num: Any, den: Any, count: Any, K_is_infinite: bool, K: Fraction | None = None) -> Any:
     """(rho, attained, ends) from d_0 .. d_{count-1} and the poles on the negative axis.  With a finite K
     the caller requires rho <= K: d_j proved positive on (0, K] cannot end the interval first and are set
     aside, and a guard 2K + 1 - kappa (ending beyond K) bounds the root isolation of the others."""
@@ -155,7 +158,7 @@ def recompute(num, den, count, K_is_infinite, K=None):
     return rho, attained, d
 
 
-def _tie(num, den, value, claim):
+def _tie(num: Any, den: Any, value: Any, claim: Any) -> Any:
     """(rho, attained, d, N, count) for a tie claim: kappa* = value > 0 (rho is a sup over kappa >= 0, and
     rho = 0 has its own reasons), proved a tie (tail.prove_tail(tie=...)), the tail positive on [0, kappa*],
     no c_j (j < count) ending and no pole on the negative axis before kappa*: rho = kappa*, attained unless a

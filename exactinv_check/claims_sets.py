@@ -15,29 +15,35 @@ per facet, the pieces of [0, oo) with a basis each, proved optimal by weak
 duality; the pieces' vertices give the conditions, no vertex enumeration).
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any, Sequence
 
 from . import boxes, lp_pieces, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
 from .format import GeneratorKind
 from .polyhedra import prove_generators
-from .rationals import boolean, integer, matrix, require, vector
+from .rationals import boolean, integer, matrix, vector
 from .reals import Real
 from .validset import first_end, require_intervals, valid_set
+
+if TYPE_CHECKING:
+    from .kernel import Problem
 
 
 class _BoxVertices:
     """The vertices of the box [lo, hi], by index (never listed)."""
 
-    def __init__(self, lo, hi):
+    def __init__(self, lo: Sequence[Fraction], hi: Sequence[Fraction]) -> None:
         self.lo, self.hi = lo, hi
 
-    def __getitem__(self, i):
+    def __getitem__(self, i: int) -> Any:
         return boxes.vertex_of(i, self.lo, self.hi)
 
 
-def _generators(problem, claim):
+def _generators(problem: Problem, claim: Any) -> Any:
     """(count, vectors) per kind of a box claim or of generator lists (shape-checked), and whether a box."""
     has_box, has_lists = "box" in claim, {"vertices", "rays", "lines"} & set(claim)
     if "lp" in claim:
@@ -53,7 +59,7 @@ def _generators(problem, claim):
     return claim["box"], None
 
 
-def _pruning_variable(method, record):
+def _pruning_variable(method: Any, record: dict[str, list[int] | int | str] | None) -> None:
     """The cheap test of a pruning record's variable against the method, before any generator is proved:
     a record in h (no variable) belongs to a polynomial method, one in u = h/(s+h) to a rational method."""
     if record is None:
@@ -65,7 +71,7 @@ def _pruning_variable(method, record):
             "for rational methods only: a polynomial method's record is in h (no variable)")
 
 
-def _conditions(problem, claim, context, first_end_claim=False):
+def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = False) -> Any:
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
     With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
@@ -101,7 +107,7 @@ def _conditions(problem, claim, context, first_end_claim=False):
     return gens, D, inequalities, equalities, start
 
 
-def _listed(problem, claim, context, lists, first_end_claim):
+def _listed(problem: Any, claim: Any, context: Any, lists: Any, first_end_claim: Any) -> Any:
     gkey = ("generators", repr(lists))
     if gkey not in context:
         g = prove_generators(problem.G, problem.b, *lists)
@@ -119,7 +125,7 @@ def _listed(problem, claim, context, lists, first_end_claim):
     return (gens, *context[key])
 
 
-def _pruned(problem, gens, record, first_end_claim):
+def _pruned(problem: Any, gens: Any, record: Any, first_end_claim: Any) -> Any:
     """The conditions of vertex k, the surviving pairs, every ray and line pair, and
     vertex k's own set (first end) with its conditions (:func:`_require_bound`)."""
     method = problem.method
@@ -144,11 +150,11 @@ def _pruned(problem, gens, record, first_end_claim):
                                    lambda kind, i: kind == "vertex" and (T is None or i != k)), start)
 
 
-def _require_bound(problem, gens, args, k, T, first_end_claim):
+def _require_bound(problem: Any, gens: Any, args: Any, k: Any, T: Any, first_end_claim: Any) -> Any:
     """Vertex k's own valid set (first interval) ends by the horizon T; returns that set
     (its end) and vertex k's conditions, the ``start`` of :func:`valid_set` (:func:`first_end`)."""
     alone = SimpleNamespace(vertices=[gens.vertices[k]], rays=[], lines=[])
-    D, own, _ = condition_polynomials(*args, alone)
+    D, own, _ = condition_polynomials(*args, alone)  # type: ignore[call-arg]
     if first_end_claim:
         end, _ = first_end(D, own, {})
         start = (end, list(own))
@@ -162,7 +168,7 @@ def _require_bound(problem, gens, args, k, T, first_end_claim):
     return start
 
 
-def _first_vertex(inequalities, claim, n):
+def _first_vertex(inequalities: Any, claim: Any, n: int) -> list[Sequence[int]]:
     """The conditions of vertex 0: A_d(h)v in P alone already bounds the valid set
     for a bounded P, which lets the others be pruned (validset.valid_set).  A box claim
     rarely has vertex 0's conditions: there the n tightest ones (smallest p(0) relative
@@ -172,7 +178,7 @@ def _first_vertex(inequalities, claim, n):
     return [p for p, origin in inequalities.items() if origin[:2] == ("vertex", 0)]
 
 
-def largest_threshold(problem, claim, context):
+def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     gens, D, inequalities, equalities, start = _conditions(problem, claim, context, first_end_claim=True)
     tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities, claim, problem.n), start)
     value = Real.parse(claim["value"], "tau")
@@ -201,7 +207,7 @@ def largest_threshold(problem, claim, context):
             f"{len(inequalities) + len(equalities)} distinct conditions over {_over(claim, gens)}")
 
 
-def _over(claim, gens):
+def _over(claim: Any, gens: Any) -> str:
     if "lp" in claim:
         return (f"the LP route's {gens.counts[0]} pieces (each basis proved optimal on its piece by weak "
                 f"duality, no vertex list)")
@@ -210,7 +216,7 @@ def _over(claim, gens):
     return f"{gens.counts[0]} vertices, {gens.counts[1]} rays and {gens.counts[2]} lines proved complete"
 
 
-def valid_steplengths(problem, claim, context):
+def valid_steplengths(problem: Any, claim: Any, context: Any) -> str | None:
     gens, D, inequalities, equalities, start = _conditions(problem, claim, context)
     truth = valid_set(D, list(inequalities), list(equalities), _first_vertex(inequalities, claim, problem.n), start)
     require_intervals(claim["intervals"], truth)

@@ -11,16 +11,19 @@
   over a generator system proved complete, and 1/gamma*, must agree.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import comb, gcd
+from typing import Any
 
 from . import polys
+from .budget import fraction_products_cost, within_budget
 from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
 from .linalg import characteristic_polynomial, largest_real_root, strongly_connected_blocks
 from .polyhedra import prove_generators
-from .budget import fraction_products_cost
-from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
+from .rationals import integer, integer_matrix, integer_rows, matrix, rational, vector
 from .reals import Real, quotient
 from .sparse import diagonal, row_dot
 from .validset import first_end
@@ -28,17 +31,17 @@ from .validset import first_end
 ZERO, INF = Real.rational(0), Real(inf=1)
 
 
-def f_i(sigmas, gamma, i):
+def f_i(sigmas: Any, gamma: Any, i: Any) -> Any:
     return polys.trim([Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
                        for k in range(len(sigmas))])
 
 
-def _verified(context, key, claim_type):
+def _verified(context: dict[str, list[list[Any]] | Real] | dict[str, bool | Real], key: str, claim_type: str) -> Any:
     require(key in context, f"a verified {claim_type} claim must precede this one")
     return context[key]
 
 
-def polynomial_threshold(problem, claim, context):
+def polynomial_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     method = problem.method
     require(method is not None and method.is_polynomial, "a polynomial method is needed")
     sigmas = method.numerator
@@ -71,14 +74,14 @@ def polynomial_threshold(problem, claim, context):
     return f"tau = min_i tau_i over the {p + 1} recomputed f_i (Theorem 3.4)"
 
 
-def singular_point(problem):
+def singular_point(problem: Any) -> Any:
     """The first h > 0 with h_r(hA) singular (a Real), or None."""
     D, _ = method_matrices(problem.A, [Fraction(1)], problem.method.denominator)
     roots = polys.positive_roots(D) if len(D) > 1 else []
     return Real.root_in(D, *roots[0]) if roots else None
 
 
-def rational_threshold(problem, claim, context):
+def rational_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     method = problem.method
     require(method is not None and not method.is_polynomial, "a rational method is needed")
     gamma = _verified(context, "gamma", "gamma_star")
@@ -127,7 +130,7 @@ def rational_threshold(problem, claim, context):
             "(Theorem 3.12 with the corrections of errata E2 and E2')")
 
 
-def _e2_may_bind(H, b, pole, candidates):
+def _e2_may_bind(H: Any, b: Any, pole: Real, candidates: Any) -> bool:
     """False when a cheap exact bound shows z_p/alpha(H) cannot be the least bound.
 
     H is in sparse rows (exactinv_check.sparse).  Collatz-Wielandt for the nonnegative matrix H + cI: for any v > 0,
@@ -173,19 +176,19 @@ def _largest_real_eigenvalue(H):
     return alpha
 
 
-def _same(recorded, computed, what):
+def _same(recorded: Any, computed: Any, what: Any) -> None:
     """A value the claim records for information must still be the true one."""
     if recorded is not None:
         require(computed is not None and Real.parse(recorded, what).compare(computed) == 0,
                 f"the recorded {what} is not {computed}")
 
 
-def smallest_positive_root(p):
+def smallest_positive_root(p: Any) -> Any:
     roots = polys.positive_roots(p)
     return Real.root_in(p, *roots[0]) if roots else None
 
 
-def _ratio_tests(problem, gens):
+def _ratio_tests(problem: Any, gens: Any) -> Any:
     """min over the generator-facet pairs of eps: for a vertex x with g_j.Ax > 0,
     eps = (b_j - g_j.x)/(g_j.Ax); for a ray, -g_j.x/(g_j.Ax); for a line with g_j.Ax != 0, 0
     (None: no pair limits the step).  In integers: with A = Ai/L, x = xi/d and row j times
@@ -225,7 +228,7 @@ def _ratio_tests(problem, gens):
     return None if best is None else Fraction(*best)
 
 
-def forward_euler_threshold(problem, claim, context):
+def forward_euler_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     gens = prove_generators(problem.G, problem.b, *(matrix(claim[k], k, cols=problem.n) for k in ("vertices", "rays", "lines")))
     gamma = _verified(context, "gamma", "gamma_star")
     best = _ratio_tests(problem, gens)

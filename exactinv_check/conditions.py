@@ -14,18 +14,23 @@ A_d(h) l in lin(P) (multiplying by D(h)^2 > 0 keeps the sign); where
 D(h) = 0, r(hA) does not exist and h is not a valid steplength.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import gcd
+from typing import Any, Iterator, Sequence
 
 from . import polys
+from .budget import charge, condition_cost, within_budget
+from .failure import require
 from .linalg import integer_solve
-from .budget import charge, condition_cost
-from .rationals import integer_matrix, require, within_budget
+from .rationals import integer_matrix
 
 MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
 
 
-def rebuild_size(A, numerator, denominator):
+def rebuild_size(A: Sequence[list[Fraction]], numerator: Sequence[Fraction],
+                 denominator: Sequence[Fraction]) -> tuple[int, int, int]:
     """(cost, d, w) of rebuilding D and N (:func:`method_matrices`): d = deg N (and so of D up to n deg h_r),
     w the words of an entry, cost in word operations.  With A = Ai / L (Ai integral, entries of b bits):
     polynomial methods n^3 deg g products of numbers of about k b bits (the powers Ai^k) and the
@@ -48,7 +53,7 @@ def rebuild_size(A, numerator, denominator):
     return (count + n * dh) * n ** 3 * w * w + n * n * count * count * w, d, w
 
 
-def _integer_powers(Ai, top):
+def _integer_powers(Ai: Sequence[list[int]], top: int) -> list[list[list[Any]]]:
     """[Ai^0, .., Ai^top] for an integer matrix Ai, products over Z."""
     n = len(Ai)
     columns = list(zip(*Ai))
@@ -58,7 +63,7 @@ def _integer_powers(Ai, top):
     return out
 
 
-def method_matrices(A, numerator, denominator):
+def method_matrices(A: Any, numerator: Any, denominator: Any) -> Any:
     """(D, [N_0, N_1, ...]): D(h) = det h_r(hA), N(h) = D(h) r(hA) = sum_k h^k N_k.
 
     Integers throughout: A = Ai / L (Ai integral); with c = den L^s (den clearing the
@@ -81,7 +86,9 @@ def method_matrices(A, numerator, denominator):
     gs = [int(x * den) * L ** (s - k) for k, x in enumerate(numerator)]
     powers = _integer_powers(Ai, s)
     count = max(n * dh, (n - 1) * dh + dg) + 1
-    points, dets, mats = [], [], []
+    points: list[Any] = []
+    dets: list[Any] = []
+    mats: list[Any] = []
     for t in range(count + n * dh + 1):  # at most n*dh points are singular
         if len(points) == count:
             break
@@ -95,13 +102,13 @@ def method_matrices(A, numerator, denominator):
     scale = Fraction(1, (den * L**s) ** n)  # 1 / c^n
     basis, delta = _lagrange_basis(points)
     D = polys.trim([Fraction(x, delta) * scale for x in _interpolate_integers(basis, dets)])
-    entries = [[_interpolate_integers(basis, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]
+    entries = [[_interpolate_integers(basis, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]  # type: ignore[index]
     degree = max([len(polys.trim(e)) for row in entries for e in row] + [1])
     N = [[[Fraction(e[k], delta) * scale if e[k] else Fraction(0) for e in row] for row in entries] for k in range(degree)]
     return D, N
 
 
-def method_matrix_at(A, numerator, denominator, dt):
+def method_matrix_at(A: Any, numerator: Any, denominator: Any, dt: Any) -> Any:
     """r(dt A) at one rational dt >= 0, or None where h_r(dt A) is singular: one fraction-free solve
     h_r(dt A) X = g(dt A) over the integers (with dt A = p Ai / (q L), both sides scaled by
     den (q L)^s), priced first like one interpolation point of :func:`method_matrices`."""
@@ -114,13 +121,15 @@ def method_matrix_at(A, numerator, denominator, dt):
     within_budget(n ** 3 * w * w + s * n ** 3 * w, f"r(dt A) for a {n} x {n} matrix A at dt = a {b}-bit rational")
     den = _common_denominator(list(numerator) + list(denominator))
     powers = _integer_powers(Ai, s)
-    scaled = lambda coeffs: [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+    def scaled(coeffs: Sequence[Fraction]) -> Any:
+        return [int(x * den) * p ** k * (q * L) ** (s - k) for k, x in enumerate(coeffs)]
+
     Hi, Gi = (_combination(scaled(c), powers, 1) for c in (denominator, numerator))
     d, X = integer_solve(Hi, Gi)
-    return None if d == 0 else [[Fraction(x, d) for x in row] for row in X]
+    return None if d == 0 else [[Fraction(x, d) for x in row] for row in X]  # type: ignore[union-attr]
 
 
-def _combination(coeffs, powers, t):
+def _combination(coeffs: Sequence[int], powers: Sequence[list[list[Any]]], t: int) -> list[list[int]]:
     """sum_k coeffs[k] t^k powers[k], an integer matrix."""
     n = len(powers[0])
     out = [[0] * n for _ in range(n)]
@@ -131,7 +140,7 @@ def _combination(coeffs, powers, t):
     return out
 
 
-def _lagrange_basis(points):
+def _lagrange_basis(points: Sequence[int]) -> tuple[list[list[Any]], int]:
     """(basis, delta): integer polynomials with delta * l_i = basis[i] for the Lagrange basis l_i
     of the integer points (delta > 0), so p = sum_i p(t_i) l_i = (sum_i p(t_i) basis[i]) / delta."""
     numerators, denominators = [], []
@@ -149,7 +158,7 @@ def _lagrange_basis(points):
     return [[c * (delta // d) for c in poly] for poly, d in zip(numerators, denominators)], delta
 
 
-def _interpolate_integers(basis, values):
+def _interpolate_integers(basis: Sequence[list[int]], values: Sequence[int]) -> Any:
     """sum_i values[i] basis[i], coefficient by coefficient (integers)."""
     out = [0] * len(basis[0])
     for v, b in zip(values, basis):
@@ -159,14 +168,15 @@ def _interpolate_integers(basis, values):
     return out
 
 
-def _common_denominator(values):
+def _common_denominator(values: Sequence[Fraction] | Iterator[Any]) -> int:
     d = 1
     for x in values:
         d = d * x.denominator // gcd(d, x.denominator)
     return d
 
 
-def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of=None, without_D=None):
+def condition_polynomials(A: Any, G: Any, b: Any, numerator: Any, denominator: Any, generators: Any,
+                          facets_of: Any = None, without_D: Any = None) -> Any:
     """(D, inequalities, equalities): the distinct nonzero condition polynomials
     (each inequality must be >= 0, each equality = 0), as tuples of coprime
     integers (a positive multiple of the condition, so with its signs), keyed to
@@ -200,7 +210,8 @@ def condition_polynomials(A, G, b, numerator, denominator, generators, facets_of
     GN_int = [[GN_rows[j][k] for j in range(m)] for k in range(len(N))]  # L[j] * g_j N_k
     dD = _common_denominator(D)
     D_int = [int(c * dD) for c in D]
-    inequalities, equalities = {}, {}
+    inequalities: dict[Any, Any] = {}
+    equalities: dict[Any, Any] = {}
     each = condition_cost(len(GN_int), len(G[0]) if G else 0, len(D_int))
     for kind, vectors in (("vertex", generators.vertices), ("ray", generators.rays), ("line", generators.lines)):
         for index, w in enumerate(vectors):

@@ -9,22 +9,26 @@ rational vector is scaled once to (integers, denominator), a direction is kept
 primitive (divided by the gcd of its entries, a positive factor).
 """
 
+from __future__ import annotations
+
+from fractions import Fraction
 from math import gcd, lcm
+from typing import Any, Sequence
 
 from .budget import PYTHON_OP, charge, words
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
 
 MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
 MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once
 
 
-def _scaled(v):
+def scaled_integers(v: Sequence[Fraction]) -> tuple[list[int], int]:
     """(integer vector p, denominator q > 0) with v = p / q."""
     q = lcm(*(x.denominator for x in v)) if v else 1
     return [x.numerator * (q // x.denominator) for x in v], q
 
 
-def _primitive(v):
+def primitive(v: Any) -> Any:
     """v divided by the gcd of its entries (a positive factor); None if v = 0."""
     g = gcd(*v)
     if g == 0:
@@ -36,7 +40,8 @@ def _primitive(v):
 # integer linear algebra
 
 
-def _reduce(rows, ncols, aug=None):
+def reduce_rows(rows: Sequence[list[int]], ncols: int, aug: Sequence[list[int]] | None = None) -> tuple[int,
+                list[int], list[int], list[list[Any]], list[list[Any]] | None]:
     """Fraction-free elimination of integer rows.
 
     Returns (rank, pivot columns, original indices of the pivot rows, reduced
@@ -88,15 +93,12 @@ def _reduce(rows, ncols, aug=None):
     return rank, cols, order[:rank], work[:rank], (ext[:rank] if ext is not None else None)
 
 
-def integer_rank(rows, ncols):
+def integer_rank(rows: Sequence[list[int]], ncols: int) -> Any:
     """The rank of integer rows of length ``ncols`` (fraction-free elimination, charged as it runs)."""
-    return _reduce(rows, ncols)[0] if rows else 0
+    return reduce_rows(rows, ncols)[0] if rows else 0
 
 
-_rank = integer_rank  # its old name, used within the kernel
-
-
-def _basis_rays(B, ncols):
+def basis_rays(B: Any, ncols: Any) -> Any:
     """Edge directions of a simplicial cone.
 
     For integer rows B (k of them, length ncols): None if they are dependent;
@@ -108,7 +110,7 @@ def _basis_rays(B, ncols):
     """
     k = len(B)
     identity = [[int(i == j) for j in range(k)] for i in range(k)]
-    rank, cols, _, R, T = _reduce(B, ncols, identity)
+    rank, cols, _, R, T = reduce_rows(B, ncols, identity)
     if rank != k:
         return None
     # Gauss-Jordan: R = T B with R[i][cols[i']] = 0 for i != i'; so with
@@ -116,11 +118,11 @@ def _basis_rays(B, ncols):
     # R d_b = -M T e_b, hence B d_b = T^{-1} R d_b = -M e_b.
     c = [R[i][cols[i]] for i in range(k)]
     M = lcm(*(abs(x) for x in c))
-    ys = [_primitive([-T[i][b] * (M // c[i]) for i in range(k)]) for b in range(k)]
+    ys = [primitive([-T[i][b] * (M // c[i]) for i in range(k)]) for b in range(k)]  # type: ignore[index]
     return cols, ys
 
 
-def _cone_rays(A, basis, r):
+def cone_rays(A: Any, basis: Any, r: Any) -> list[list[int]]:
     """The extreme rays of the pointed cone {y in Q^r : A y <= 0} (A integer,
     rank r, ``basis`` the indices of r independent rows), by the
     double-description method with the algebraic adjacency test."""
@@ -130,7 +132,7 @@ def _cone_rays(A, basis, r):
     full = 0
     for i in basis:
         full |= 1 << i
-    _, initial = _basis_rays(S, r)  # S is square and nonsingular: its columns are 0..r-1
+    _, initial = basis_rays(S, r)  # S is square and nonsingular: its columns are 0..r-1
     rays = [(y, full & ~(1 << basis[k])) for k, y in enumerate(initial)]
     in_basis = set(basis)
     pairs = 0
@@ -160,10 +162,10 @@ def _cone_rays(A, basis, r):
                     low = Z & -Z
                     tight.append(A[low.bit_length() - 1])
                     Z ^= low
-                if _rank(tight, r) != r - 2:
+                if integer_rank(tight, r) != r - 2:
                     continue
                 # vp > 0 > vq: a positive combination with a.y = 0
-                y = _primitive([vp * qi - vq * pi for pi, qi in zip(p, q)])
+                y = primitive([vp * qi - vq * pi for pi, qi in zip(p, q)])
                 if y is not None:
                     kept.append((y, (Zp & Zq) | bit))
             if pairs > MAX_CONE_PAIRS:

@@ -9,18 +9,21 @@ Taylor coefficients of a polynomial on a disk come from the exact Taylor shift
 at its centre (the centred form).  Rational bounds of square roots are exact.
 """
 
+from __future__ import annotations
+
 import cmath
 from fractions import Fraction
 from math import ceil, comb, isqrt
+from typing import Any, Sequence
 
-from .polys import primitive
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
+from .poly_arithmetic import primitive
 
 PREC = 128  # bits kept in the centres of the disk arithmetic
 MAX_WEIERSTRASS = 40  # refinement steps of the root approximations
 
 
-def _sqrt_bounds(x):
+def sqrt_bounds(x: Fraction) -> tuple[Fraction, Fraction]:
     """Rationals lo <= sqrt(x) <= hi for a Fraction x >= 0."""
     if x == 0:
         return Fraction(0), Fraction(0)
@@ -29,11 +32,11 @@ def _sqrt_bounds(x):
     return Fraction(isqrt(y.numerator // y.denominator), 2 ** s), Fraction(isqrt(ceil(y)) + 1, 2 ** s)
 
 
-def _scale_of(x):
+def _scale_of(x: Fraction) -> int:
     return x.numerator.bit_length() - x.denominator.bit_length()
 
 
-def _up(x):
+def round_up(x: Fraction) -> Fraction:
     """A short dyadic >= x (x >= 0)."""
     if x == 0:
         return Fraction(0)
@@ -41,7 +44,7 @@ def _up(x):
     return ceil(x * s) / s
 
 
-def _short(x):
+def _short(x: Fraction) -> Fraction:
     """x rounded to PREC significant bits."""
     if x == 0:
         return Fraction(0)
@@ -49,29 +52,35 @@ def _short(x):
     return round(x * s) / s
 
 
-def _ball(re, im, rad):
+def ball(re: int | Fraction, im: int | Fraction, rad: int | Fraction) -> tuple[Fraction, Fraction, Fraction]:
     """The disk {|z - (re + i im)| <= rad}, centre rounded, the rounding error added to the radius."""
     re2, im2 = _short(Fraction(re)), _short(Fraction(im))
-    return re2, im2, _up(rad + abs(re - re2) + abs(im - im2))
+    return re2, im2, round_up(rad + abs(re - re2) + abs(im - im2))
 
 
-def _absup(x):
-    return _sqrt_bounds(x[0] ** 2 + x[1] ** 2)[1] + x[2]
+def ball_abs_upper(x: tuple[Fraction, Fraction, Fraction]) -> Fraction:
+    """A rational upper bound of |z| over the disk x = (re, im, rad)."""
+    return sqrt_bounds(x[0] ** 2 + x[1] ** 2)[1] + x[2]
 
 
-def _bmul(x, y):
-    return _ball(x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0],
-                 (_absup(x) - x[2]) * y[2] + (_absup(y) - y[2]) * x[2] + x[2] * y[2])
+def ball_mul(x: tuple[Fraction, Fraction, Fraction], y: tuple[Fraction, Fraction, Fraction]) -> tuple[Fraction,
+             Fraction, Fraction]:
+    """A disk holding every product z w, z in the disk x, w in the disk y (rounded outward)."""
+    return ball(x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0],
+                 (ball_abs_upper(x) - x[2]) * y[2] + (ball_abs_upper(y) - y[2]) * x[2] + x[2] * y[2])
 
 
-def _binv(x):  # |1/z - 1/c| = |z - c|/(|z||c|) <= rad/(L (L - rad)) with L <= |c|
+def ball_inv(x: tuple[Fraction, Fraction, Fraction]) -> tuple[Fraction, Fraction, Fraction]:
+    """A disk holding 1/z for every z in the disk x (not containing 0):
+    |1/z - 1/c| = |z - c|/(|z||c|) <= rad/(L (L - rad)) with L <= |c|."""
     n = x[0] ** 2 + x[1] ** 2
-    L = _sqrt_bounds(n)[0]
+    L = sqrt_bounds(n)[0]
     require(L > x[2], "tail: a pole's enclosure is too wide to invert a Taylor coefficient")
-    return _ball(x[0] / n, -x[1] / n, x[2] / (L * (L - x[2])))
+    return ball(x[0] / n, -x[1] / n, x[2] / (L * (L - x[2])))
 
 
-def _taylor_balls(p, z, first, count):
+def taylor_balls(p: Sequence[Fraction], z: tuple[Fraction, Fraction, Fraction], first: int,
+                 count: int) -> list[tuple[Fraction, Fraction, Fraction]]:
     """Enclosures of T_i(w) = [v^i] p(w + v), i = first .. first+count-1, for all w in the disk z = (c, rho):
     exactly p(c + u) = sum_k s_k u^k (Taylor shift at the centre), so T_i(c + u) = sum_{k>=i} C(k,i) s_k u^(k-i)
     and |T_i(c + u) - s_i| <= sum_{k>i} C(k,i) |s_k| rho^(k-i)  (the centred form: no cancellation is lost)."""
@@ -80,19 +89,19 @@ def _taylor_balls(p, z, first, count):
     for i in range(len(p) - 1):  # repeated synthetic division by (x - c)
         for k in range(len(p) - 2, i - 1, -1):
             sr[k], si[k] = sr[k] + re * sr[k + 1] - im * si[k + 1], si[k] + re * si[k + 1] + im * sr[k + 1]
-    size = [_sqrt_bounds(a * a + b * b)[1] for a, b in zip(sr, si)]
+    size = [sqrt_bounds(a * a + b * b)[1] for a, b in zip(sr, si)]
     out = []
     for i in range(first, first + count):
         if i >= len(p):
-            out.append(_ball(0, 0, 0))
+            out.append(ball(0, 0, 0))
             continue
         rad = sum(comb(k, i) * size[k] * rho ** (k - i) for k in range(i + 1, len(p))) if rho else 0
-        out.append(_ball(sr[i], si[i], rad))
+        out.append(ball(sr[i], si[i], rad))
     return out
 
 
 
-def _approx_roots(f, iterations=200):
+def _approx_roots(f: Any, iterations: int = 200) -> list[Any]:
     """Float approximations of the roots of f (Aberth-Ehrlich iteration): hints only."""
     d = len(f) - 1
     try:
@@ -119,7 +128,7 @@ def _approx_roots(f, iterations=200):
     return z
 
 
-def _weierstrass(f, X, s):
+def _weierstrass(f: Any, X: Sequence[tuple[int, int]], s: int) -> list[tuple[Fraction, Fraction]]:
     """W_i = f(x_i) / (lc prod_{j != i} (x_i - x_j)) exactly, for x_i = X_i / 2^s (X_i Gaussian integers
     (re, im)) and f with integer coefficients: integer arithmetic, one division per root."""
     d, S = len(f) - 1, 1 << s
@@ -139,7 +148,7 @@ def _weierstrass(f, X, s):
     return out
 
 
-def _disks(f):
+def pole_disks(f: Any) -> list[tuple[Fraction, Fraction, Fraction]]:
     """Pairwise disjoint exact disks (re, im, rad), each holding exactly one root of the squarefree f: float
     hints, refined by Weierstrass steps x_i <- x_i - W_i in 2^-s fixed point, then the Gerschgorin disks."""
     f = [int(c) for c in primitive(f)]
@@ -154,13 +163,10 @@ def _disks(f):
         if all((wr * wr + wi * wi) * 4 ** (PREC - 16) <= a * a + b * b for (wr, wi), (a, b) in zip(W, centres)):
             break
         X = [(round(a * 2 ** s), round(b * 2 ** s)) for a, b in centres]
-    out = [_ball(a, b, (d - 1) * _sqrt_bounds(wr * wr + wi * wi)[1]) for (a, b), (wr, wi) in zip(centres, W)]
+    out = [ball(a, b, (d - 1) * sqrt_bounds(wr * wr + wi * wi)[1]) for (a, b), (wr, wi) in zip(centres, W)]
     for i, x in enumerate(out):
         for y in out[i + 1:]:
             require((x[0] - y[0]) ** 2 + (x[1] - y[1]) ** 2 > (x[2] + y[2]) ** 2,
                     "tail: the inclusion disks of two poles overlap (poles too close to separate)")
     return out
 
-
-# public names for the radius modules (tail, bernstein)
-ball, ball_mul, ball_abs_upper, round_up, sqrt_bounds, pole_disks = _ball, _bmul, _absup, _up, _sqrt_bounds, _disks

@@ -7,36 +7,39 @@ modulo L).  The edges at a vertex are the extreme rays of its tangent cone
 (module :mod:`exactinv_check.cones`).
 """
 
+from __future__ import annotations
+
 from collections import deque
 from fractions import Fraction
 from math import gcd
 from operator import mul
+from typing import Any, Iterator, Sequence
 
-from .cones import _basis_rays, _cone_rays, _primitive, _reduce, _scaled
 from .budget import PYTHON_OP, charge
-from .rationals import CheckFailure, require
+from .cones import basis_rays, cone_rays, primitive, reduce_rows, scaled_integers
+from .failure import CheckFailure, require
 
 
-def _text(v):
+def _text(v: Sequence[int | Fraction]) -> str:
     return "(" + ", ".join(str(x) for x in v) + ")"
 
 
-class _IntegerPolyhedron:
+class IntegerPolyhedron:
     """(G | b) with each row scaled once to coprime integers (a positive factor),
     its rank r and a row basis B; G_B x determines x modulo L = {x : Gx = 0}."""
 
-    def __init__(self, G, b, n):
+    def __init__(self, G: Sequence[list[Fraction]], b: Sequence[Fraction], n: int) -> None:
         self.rows, self.rhs = [], []
         for g, beta in zip(G, b):
-            ints, _ = _scaled(list(g) + [beta])
-            ints = _primitive(ints) or ints
+            ints, _ = scaled_integers(list(g) + [beta])
+            ints = primitive(ints) or ints
             self.rows.append(ints[:n])
             self.rhs.append(ints[n])
         self.n, self.m = n, len(self.rows)
         self.columns = [[row[i] for row in self.rows] for i in range(n)]
-        self.rank, _, self.row_basis, _, _ = _reduce(self.rows, n)
+        self.rank, _, self.row_basis, _, _ = reduce_rows(self.rows, n)
 
-    def times(self, x):
+    def times(self, x: Sequence[int]) -> list[int]:
         """G x for an integer vector x (column by column, skipping zeros)."""
         acc = None
         for xi, col in zip(x, self.columns):
@@ -44,7 +47,7 @@ class _IntegerPolyhedron:
                 acc = [xi * c for c in col] if acc is None else [a + xi * c for a, c in zip(acc, col)]
         return [0] * self.m if acc is None else acc
 
-    def slacks(self, p, q):
+    def slacks(self, p: Sequence[int], q: int) -> list[int]:
         """q (b - G p/q) = b q - G p, row by row."""
         acc = [beta * q for beta in self.rhs]
         for pi, col in zip(p, self.columns):
@@ -53,7 +56,7 @@ class _IntegerPolyhedron:
         return acc
 
     @staticmethod
-    def point_key(num, den):
+    def point_key(num: Sequence[int], den: int) -> Any:
         """Canonical form of the minimal face (x + L) from (G_B x) = num / den."""
         g = gcd(*num, den)
         if g == 1:
@@ -61,19 +64,19 @@ class _IntegerPolyhedron:
         return (*[x // g for x in num], den // g)
 
 
-class _EdgeWalk:
+class EdgeWalk:
     """The walk over the vertex-edge graph of P/L from the first listed vertex."""
 
-    def __init__(self, P, G, b, vertices, ray_index):
+    def __init__(self, P: Any, G: Any, b: Any, vertices: Any, ray_index: Any) -> None:
         self.P, self.G, self.b, self.vertices, self.ray_index = P, G, b, vertices, ray_index
-        self.points = [_scaled(v) for v in vertices]
+        self.points = [scaled_integers(v) for v in vertices]
         self.keys = [P.point_key([sum(map(mul, P.rows[j], p)) for j in P.row_basis], q) for p, q in self.points]
-        self.point_index = {}
+        self.point_index: dict[Any, Any] = {}
         for i, key in enumerate(self.keys):  # points indexed by their minimal face modulo L
             self.point_index.setdefault(key, i)
-        self.in_P = set()
+        self.in_P: set[Any] = set()
 
-    def slacks_in_P(self, i):
+    def slacks_in_P(self, i: int) -> Any:
         """The slacks b q - G p of listed point i = p/q, all proved >= 0."""
         p, q = self.points[i]
         s = self.P.slacks(p, q)
@@ -85,7 +88,7 @@ class _EdgeWalk:
         self.in_P.add(i)
         return s
 
-    def edges_at(self, i):
+    def edges_at(self, i: Any) -> Any:
         """(slacks, active rows, integer edge directions) at listed point i, or
         None if the point is not a vertex (its active rows have rank < r)."""
         P = self.P
@@ -96,15 +99,15 @@ class _EdgeWalk:
         if len(active) < P.rank:
             return None
         if len(active) == P.rank:  # the active rows are a basis, or v is no vertex
-            found = _basis_rays(A, P.n)
+            found = basis_rays(A, P.n)
             if found is None:
                 return None
             cols, ys = found
         else:  # degenerate: more than r active rows
-            rank, cols, basis, _, _ = _reduce(A, P.n)
+            rank, cols, basis, _, _ = reduce_rows(A, P.n)
             if rank != P.rank:
                 return None
-            ys = _cone_rays([[row[c] for c in cols] for row in A], basis, P.rank)
+            ys = cone_rays([[row[c] for c in cols] for row in A], basis, P.rank)
         directions = []
         for y in ys:
             d = [0] * P.n
@@ -113,7 +116,7 @@ class _EdgeWalk:
             directions.append(d)
         return s, active, directions
 
-    def run(self):
+    def run(self) -> Any:
         """(minimal faces reached, ray keys hit); CheckFailure if an edge leaves the lists."""
         start = found = None
         for i in self.point_index.values():
@@ -123,7 +126,7 @@ class _EdgeWalk:
                 break
         require(start is not None,
                 f"no listed point is a vertex of P (none has active rows of rank {self.P.rank} = rank G)")
-        seen, rays_hit = {self.keys[start]}, set()
+        seen, rays_hit = {self.keys[start]}, set()  # type: ignore[index]
         queue = deque([(start, found)])
         while queue:
             i, found = queue.popleft()
@@ -138,7 +141,7 @@ class _EdgeWalk:
                     queue.append((j, self.edges_at(j)))
         return seen, rays_hit
 
-    def _ends(self, i, s, active, directions):
+    def _ends(self, i: Any, s: Any, active: Any, directions: Any) -> Iterator[Any]:
         """For each edge at vertex i: ("ray", key) of a listed ray, or ("vertex", key)
         of the listed vertex where it ends."""
         P = self.P
@@ -154,7 +157,7 @@ class _EdgeWalk:
                     best_s, best_g = sj, gj
             gd_basis = [gd[j] for j in P.row_basis]
             if best_g is None:
-                key = tuple(_primitive(gd_basis))
+                key = tuple(primitive(gd_basis))
                 require(key in self.ray_index,
                         f"incomplete generators: P has an unbounded edge from vertex {i} = "
                         f"{_text(self.vertices[i])} in direction {_text(d)}, and no listed ray is that "

@@ -14,27 +14,32 @@ coefficient polynomials of "A_d(h) E is a subset of E".
   Each c_k is rebuilt, up to a positive constant factor, by evaluating
   L M'(t) (L clears denominators) at integer t, characteristic polynomials over
   Z (Berkowitz, division-free) and interpolation of each coefficient.
-* Work budgets (rationals.within_budget): each elimination and each rebuild
+* Work budgets (budget.within_budget): each elimination and each rebuild
   of the conditions is priced before it runs; over the budget the claim is
   rejected with "over the kernel's work budget", never left to run for minutes.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
 from . import polys
+from .budget import within_budget
+from .failure import require
 from .linalg import integer_characteristic_polynomial, integer_determinant
-from .rationals import integer_matrix, matmul, require, transpose, within_budget
+from .rationals import integer_matrix, matmul, transpose
 
 
-def quadratic_form(M, v):
+def quadratic_form(M: Any, v: Any) -> Any:
     return sum(vi * sum(m * vj for m, vj in zip(row, v)) for vi, row in zip(v, M))
 
 
-def is_symmetric(M):
+def is_symmetric(M: Any) -> bool:
     return all(M[i][j] == M[j][i] for i in range(len(M)) for j in range(i))
 
 
-def psd(M):
+def psd(M: Any) -> tuple[bool, bool]:
     """(is M >= 0, is M > 0) for a symmetric rational M.
 
     M is scaled to the integer L M (L > 0: no sign changes), then eliminated
@@ -64,19 +69,19 @@ def psd(M):
     return True, True
 
 
-def _scaled(M, c):
+def _scaled(M: Any, c: int) -> list[list[int]]:
     return [[c * v for v in row] for row in M]
 
 
-def _added(X, Y):
+def _added(X: Sequence[list[int]], Y: Sequence[list[int]]) -> list[list[int]]:
     return [[a + b for a, b in zip(r, s)] for r, s in zip(X, Y)]
 
 
-def _bits(M):
+def _bits(M: Sequence[list[int]]) -> int:
     return max((abs(x).bit_length() for row in M for x in row), default=0)
 
 
-def coefficient_matrices(A, Q, numerator, denominator):
+def coefficient_matrices(A: Any, Q: Any, numerator: Any, denominator: Any) -> list[list[list[Any]]]:
     """Integer matrices [K_0, ..., K_{2s-1}] with L M'(h) = sum_j K_j h^j for one
     constant L > 0, where M(h) = H^T Q H - G^T Q G = sum_j M_j h^j (M_0 = 0) and
     M'(h) = M(h)/h.  With A = Ai/alpha, Q = Qi/beta and gamma g, gamma h_r integral:
@@ -105,7 +110,7 @@ def coefficient_matrices(A, Q, numerator, denominator):
     return out
 
 
-def _at(coefficients, t):
+def _at(coefficients: Sequence[list[list[Any]]], t: int) -> Any:
     """sum_j K_j t^j (Horner)."""
     out = coefficients[-1]
     for Mj in reversed(coefficients[:-1]):
@@ -113,7 +118,7 @@ def _at(coefficients, t):
     return out
 
 
-def _conditions_cost(coefficients, n, count):
+def _conditions_cost(coefficients: Sequence[list[list[Any]]], n: int, count: int) -> int:
     """Estimated word operations of condition_polynomials: Berkowitz (~n^4/4
     products of numbers up to n (bits + log n) bits) at `count` points, and the
     Newton interpolation of n value columns."""
@@ -122,7 +127,7 @@ def _conditions_cost(coefficients, n, count):
     return count * n ** 4 * words // 4 + (n + 1) * count ** 2 * words + count * n ** 3 * words
 
 
-def condition_polynomials(A, Q, numerator, denominator):
+def condition_polynomials(A: Any, Q: Any, numerator: Any, denominator: Any) -> Any:
     """(D, [c_1, ..., c_n]) with D(h) = det h_r(hA) and c_k(h) = h e_k(L M'(h)) for
     a constant L > 0 (module docstring; e_k(L M') = L^k e_k(M') has the same signs
     and roots); a c_k that vanishes identically is the empty list.  r = 1 (s = 0)
@@ -143,7 +148,7 @@ def condition_polynomials(A, Q, numerator, denominator):
     for t in points:
         p = integer_characteristic_polynomial(_at(coefficients, t))  # det(x I - L M'(t)), low to high
         values.append([(-1) ** k * p[n - k] for k in range(1, n + 1)])
-    points = [Fraction(t) for t in points]
+    points = [Fraction(t) for t in points]  # type: ignore[misc]
     conditions = [polys.trim([Fraction(0)] + polys.interpolate(points, [Fraction(row[k]) for row in values]))
                   for k in range(n)]
     D = [Fraction(1)]
@@ -153,7 +158,7 @@ def condition_polynomials(A, Q, numerator, denominator):
     return D, conditions
 
 
-def _denominator_matrices(A, denominator):
+def _denominator_matrices(A: Any, denominator: Any) -> Any:
     """Integer matrices B_k with gamma alpha^m h_r(tA) = sum_k B_k t^k (m = deg h_r,
     A = Ai/alpha, gamma h_r integral): D(t) = det of it is det h_r(tA) times the
     positive constant (gamma alpha^m)^n."""

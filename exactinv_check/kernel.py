@@ -15,11 +15,24 @@ Within a claim, cheap structural checks (keys, types, shapes) come before any
 root isolation or elimination.
 """
 
+from __future__ import annotations
+
 import json
 import os
 from fractions import Fraction
+from typing import Any, NoReturn, Sequence
 
-from . import budget, claims_control, claims_ellipsoid, claims_invariance, claims_radius, claims_sets, claims_thresholds, ellipsoids, polys
+from . import (
+    budget,
+    claims_control,
+    claims_ellipsoid,
+    claims_invariance,
+    claims_radius,
+    claims_sets,
+    claims_thresholds,
+    ellipsoids,
+    polys,
+)
 from .cones import integer_rank
 from .failure import OverBudget, Record
 from .format import (BOOLEAN_KEYS, ENVELOPE_KEYS, FORMAT, MAX_METHOD_DEGREE, METHOD_KEYS, PROBLEM_KEYS, VERSIONS,
@@ -89,7 +102,7 @@ class Problem:
     """A, G, b (each shape-checked) and the method; or A, Q (an ellipsoid, Q proved
     symmetric positive definite) and the method; radius certificates have only the method."""
 
-    def __init__(self, record, version=VERSIONS[-1]):
+    def __init__(self, record: Any, version: Any = VERSIONS[-1]) -> None:
         self.version = version  # the encoding of H and H~ in the claims (version 3: sparse, exactinv_check/sparse.py)
         require(isinstance(record, dict) and set(record) <= set(PROBLEM_KEYS),
                 "problem has the keys A, G, b (or Q), method; B and inputs (a gain); hull, G, b, method (robust)")
@@ -136,7 +149,7 @@ class Problem:
                 self.e = vector(U["e"], "inputs e", len(self.E))
                 require(self.E and all(any(row) for row in self.E), "inputs E is empty or has a zero row")
 
-    def _hull(self, record):
+    def _hull(self, record: Any) -> None:
         """conv{A_1, ..., A_k} on P = {x : Gx <= b}: the vertices, G, b and the method."""
         require(set(record) <= {"hull", "G", "b", "method"} and {"G", "b"} <= set(record),
                 "a robust problem has the keys hull, G, b, method")
@@ -147,7 +160,7 @@ class Problem:
         require(self.m >= 1 and self.n >= 1, "G is empty")
         self.b = vector(record["b"], "b", self.m)
         require(all(any(row) for row in self.G), "G has a zero row (void or infeasible; exactinv never writes one)")
-        self.hull = [matrix(A, f"hull[{i}]", self.n, self.n) for i, A in enumerate(record["hull"])]
+        self.hull = [matrix(A, f"hull[{i}]", self.n, self.n) for i, A in enumerate(record["hull"])]  # type: ignore[assignment]
         self.A = None
         # fraction-free and charged as it runs (a Fraction Gauss-Jordan here ran minutes uncharged on a 400 x 200 G)
         self.lines_possible = integer_rank([g for g, _ in integer_rows(self.G, self.b)], self.n) < self.n
@@ -175,13 +188,13 @@ class CheckReport:
         self.kind = kind
 
     @property
-    def ok(self):
+    def ok(self) -> bool:
         return bool(self.verdicts) and all(ok for _, ok, _ in self.verdicts)
 
-    def __bool__(self):
+    def __bool__(self) -> Any:
         return self.ok
 
-    def __str__(self):
+    def __str__(self) -> str:
         lines = [f"[{'ok' if ok else 'REJECTED'}] {kind}: {msg}" for kind, ok, msg in self.verdicts]
         last = {Verdict.ACCEPTED: "certificate VERIFIED",
                 Verdict.OVER_BUDGET: "certificate REJECTED (over the kernel's budget)",
@@ -193,7 +206,7 @@ class CheckReport:
     __repr__ = __str__
 
 
-def load(certificate):
+def load(certificate: Any) -> Any:
     """A certificate dict from a dict, a JSON string or a path; BadInput otherwise."""
     if isinstance(certificate, dict):
         return certificate
@@ -202,10 +215,10 @@ def load(certificate):
     strict = {"parse_float": _no_float, "parse_constant": _no_float, "object_pairs_hook": _no_duplicates}
     try:
         if isinstance(certificate, str) and certificate.lstrip().startswith("{"):
-            data = json.loads(certificate, **strict)
+            data = json.loads(certificate, **strict)  # type: ignore[arg-type]
         else:
             with open(certificate, encoding="utf-8") as fh:
-                data = json.load(fh, **strict)
+                data = json.load(fh, **strict)  # type: ignore[arg-type]
     except OSError as exc:
         raise BadInput(f"cannot read {certificate!r}: {exc}") from None
     except (ValueError, CheckFailure, RecursionError) as exc:
@@ -215,18 +228,18 @@ def load(certificate):
     return data
 
 
-def _no_duplicates(pairs):
+def _no_duplicates(pairs: Sequence[tuple[str, Any]]) -> Any:
     keys = [k for k, _ in pairs]
     if len(set(keys)) != len(keys):
         raise CheckFailure(f"duplicate JSON keys {sorted({k for k in keys if keys.count(k) > 1})}: ambiguous")
     return dict(pairs)
 
 
-def _no_float(text):
+def _no_float(text: str) -> NoReturn:
     raise CheckFailure(f"the JSON number {text} is not exact: certificates write numbers as strings")
 
 
-def _check_keys(claim, kind, version):
+def _check_keys(claim: Any, kind: Any, version: Any) -> None:
     _, required, optional = CLAIMS[kind]
     keys = set(claim) - {"type"}
     require(required <= keys, f"missing keys {sorted(required - keys)}")
@@ -237,7 +250,7 @@ def _check_keys(claim, kind, version):
         require(isinstance(claim[key], bool), f"{key} must be a JSON boolean")
 
 
-def check(certificate, progress=None, time_limit=budget.TIME_LIMIT):
+def check(certificate: Any, progress: Any = None, time_limit: Any = budget.TIME_LIMIT) -> CheckReport:
     """Re-verify a certificate (a dict, a JSON string or a path to a JSON file).
 
     Returns a :class:`CheckReport`, truthy only if every claim was proved.

@@ -1,12 +1,15 @@
 """Characteristic polynomials, the largest real eigenvalue, fraction-free determinants and solves, exactly."""
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
 from . import polys
 from .reals import Real
 
 
-def characteristic_polynomial(M):
+def characteristic_polynomial(M: Sequence[list[Fraction]]) -> list[Fraction]:
     """det(xI - M), low to high: Hessenberg reduction by similarity, then the
     Hessenberg recurrence (O(n^3) rational operations)."""
     n = len(M)
@@ -39,7 +42,7 @@ def characteristic_polynomial(M):
     return p[n]
 
 
-def integer_characteristic_polynomial(M):
+def integer_characteristic_polynomial(M: Sequence[list[int]]) -> list[int]:
     """det(xI - M), low to high, for an integer matrix M: Berkowitz's algorithm,
     division-free (integer additions and multiplications only, O(n^4)), so it is
     exact over Z with no fraction and no gcd.  Step k multiplies the characteristic
@@ -56,7 +59,7 @@ def integer_characteristic_polynomial(M):
     return p[::-1]
 
 
-def integer_determinant(M):
+def integer_determinant(M: Sequence[list[int]]) -> Any:
     """det M for an integer matrix M: Bareiss's fraction-free elimination (every
     intermediate entry is a minor of M, so each division is exact)."""
     S, sign, last = [list(r) for r in M], 1, 1
@@ -73,7 +76,7 @@ def integer_determinant(M):
     return sign * last if n else 1
 
 
-def integer_solve(M, B):
+def integer_solve(M: Sequence[list[int]], B: Sequence[list[int]]) -> tuple[int, list[list[Any]] | None]:
     """(d, X) with d = det M and X = d M^-1 B = adj(M) B, for integer matrices M (square)
     and B: Bareiss's fraction-free elimination on [M | B], then back substitution whose
     divisions are exact (X is integral); (0, None) if M is singular."""

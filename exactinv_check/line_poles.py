@@ -32,8 +32,12 @@ proof, which decides every f that p* dominates strictly.
 Standard library only; every step is priced (exactinv_check.budget) before it runs or as it runs.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
-from math import ceil, comb, gcd as igcd, isqrt
+from math import ceil, comb, isqrt
+from math import gcd as igcd
+from typing import Any, Sequence
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, fraction_products_cost, sturm_cost, within_sturm_budget
 from .format import MAX_LINE_EXPONENT  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
@@ -48,11 +52,11 @@ __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_dens
 MAX_PIN = 4000  # bisections to pin a rational root
 
 
-def _bits(p):
+def _bits(p: Sequence[Fraction]) -> int:
     return max((abs(c.numerator).bit_length() + c.denominator.bit_length() for c in p), default=1)
 
 
-def rational_root(p, lo, hi):
+def rational_root(p: Any, lo: Fraction, hi: Fraction) -> Any:
     """The rational root of p in the isolating data (lo, hi) (one root in the open interval, or lo = hi a
     root), or None when that root is irrational.  A rational root k/q of the integer polynomial H has
     q | lc(H): once hi - lo < 1/lc^2 the interval holds at most one such fraction, ceil(lo lc)/lc."""
@@ -74,14 +78,14 @@ def rational_root(p, lo, hi):
     return q if lo <= q <= hi and sign_at(H, q) == 0 else None
 
 
-def _shift(f, p):
+def _shift(f: Any, p: Any) -> list[Fraction]:
     """[w^k] f(p + w), exactly (priced)."""
     n = len(f)
     charge(fraction_products_cost(n * n, _bits(f) + n * _bits([p])), "the Taylor shift to the line Re z = p*")
     return [sum(f[k] * comb(k, i) * p ** (k - i) for k in range(i, n)) for i in range(n)]
 
 
-def line_parts(f, p):
+def line_parts(f: Sequence[Fraction], p: Fraction) -> Any:
     """(U, V) with f(p + iy) = U(y) + i V(y), U, V in Q[y]."""
     s = _shift(f, p)
     U = [Fraction(0)] * len(s)
@@ -94,14 +98,14 @@ def line_parts(f, p):
     return trim(U), trim(V)
 
 
-def line_gcd(f, p):
+def line_gcd(f: Any, p: Any) -> list[Fraction]:
     """G = gcd(U, V), monic ([1] when coprime): its real roots y are exactly the roots p + iy of f on the line."""
     U, V = line_parts(f, p)
     G = trim(U or V) if not U or not V else trim(affordable_gcd(U, V))
     return [c / G[-1] for c in G] if G else [Fraction(1)]
 
 
-def _sqrt_lower(x):
+def _sqrt_lower(x: Fraction) -> Fraction:
     """A rational 0 <= s <= sqrt(x) (x >= 0)."""
     if x <= 0:
         return Fraction(0)
@@ -110,7 +114,7 @@ def _sqrt_lower(x):
     return Fraction(isqrt(y.numerator // y.denominator), 2 ** s)
 
 
-def disk_on_line(G, disk, p):
+def disk_on_line(G: Sequence[Fraction], disk: tuple[Fraction, Fraction, Fraction], p: Fraction) -> Any:
     """True when the root of f in the inclusion disk (re, im, rad) is proved to be p + iy with y != 0 real:
     G (= :func:`line_gcd`) has a root in the chord [im - w, im + w] of the disk at Re z = p (w <= the half
     chord), and the chord does not contain 0."""
@@ -128,7 +132,7 @@ def disk_on_line(G, disk, p):
     return count_roots(G, lo, hi) + (1 if evaluate(G, lo) == 0 else 0) > 0  # roots in (lo, hi], and lo
 
 
-def _real_rational_roots(G):
+def _real_rational_roots(G: Any) -> Any:
     """Every real root of G as an exact rational, or None if one is irrational."""
     out = [Fraction(0)] if evaluate(G, Fraction(0)) == 0 else []
     for sign in (1, -1):
@@ -141,16 +145,16 @@ def _real_rational_roots(G):
     return out
 
 
-def _cmul(x, y):
+def _cmul(x: Any, y: Any) -> Any:
     return (x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0])
 
 
-def _cdiv(x, y):
+def _cdiv(x: Any, y: Any) -> Any:
     n = y[0] * y[0] + y[1] * y[1]
     return ((x[0] * y[0] + x[1] * y[1]) / n, (x[1] * y[0] - x[0] * y[1]) / n)
 
 
-def _ceval(p, z):
+def _ceval(p: Any, z: Any) -> Any:
     acc = (Fraction(0), Fraction(0))
     for c in reversed(p):
         acc = _cmul(acc, z)
@@ -158,7 +162,7 @@ def _ceval(p, z):
     return acc
 
 
-def _cpoly_mul(a, b):
+def _cpoly_mul(a: Any, b: Any) -> Any:
     out = [(Fraction(0), Fraction(0))] * (len(a) + len(b) - 1)
     for i, x in enumerate(a):
         for j, y in enumerate(b):
@@ -167,14 +171,14 @@ def _cpoly_mul(a, b):
     return out
 
 
-def _cpoly_pow(a, n):
+def _cpoly_pow(a: Any, n: Any) -> Any:
     out = [(Fraction(1), Fraction(0))]
     for _ in range(n):
         out = _cpoly_mul(out, a)
     return out
 
 
-def line_density(g, h, p):
+def line_density(g: Sequence[Fraction], h: Sequence[Fraction], p: Fraction) -> Any:
     """For h squarefree with every root on the line Re z = p (p > 0 rational) at rational heights: the
     polynomial Q with Q >= 0 on R iff f >= 0 on (0, oo) (module docstring), and a description; None when h
     is not of that kind (then no claim is made here)."""
@@ -270,7 +274,7 @@ def _even_odd_at(P, Y):
     return A, B
 
 
-def _norm_at_line(P, p, Y):
+def _norm_at_line(P: Sequence[Fraction], p: Fraction, Y: Fraction) -> Fraction:
     """|P(p + iy)|^2 for y^2 = Y, exactly: U(y) = A_U, V(y) = y B_V, so U^2 + V^2 = A_U^2 + Y B_V^2."""
     U, V = line_parts(P, p) if len(P) > 1 else (list(P), [])
     A, _ = _even_odd_at(U, Y)
@@ -278,7 +282,7 @@ def _norm_at_line(P, p, Y):
     return A * A + Y * B * B
 
 
-def single_pair(g, h, p):
+def single_pair(g: Sequence[Fraction], h: Sequence[Fraction], p: Fraction) -> tuple[Fraction, Fraction] | None:
     """For h = c (z - p)((z - p)^2 + Y), Y > 0 (p* and one pair p* +- i sqrt(Y) on its line): (b_*, |b|^2),
     exact rationals, where f(t) = e^(-p* t) (b_* + 2 Re(b e^(-i sqrt(Y) t))); so f >= 0 on (0, oo) iff
     b_* >= 0 and b_*^2 >= 4 |b|^2.  (y^2 = Y is rational since (z - p)^2 + Y is a rational factor of h, and
@@ -294,7 +298,7 @@ def single_pair(g, h, p):
     return b_star, _norm_at_line(g, p, Y) / _norm_at_line(dh, p, Y)
 
 
-def nonnegative_on_line(Q):
+def nonnegative_on_line(Q: Any) -> Any:
     """Q >= 0 on R: Q positive just right of 0 (or at 0) and no real root of odd multiplicity."""
     if not Q or len(Q) == 1:
         return bool(Q) and Q[0] > 0

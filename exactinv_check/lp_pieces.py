@@ -42,13 +42,16 @@ the horizon by one condition negative beyond it (:func:`_negative_beyond`); each
 falls back to the direct computation when it proves nothing.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import gcd
 from operator import mul
 from types import SimpleNamespace
+from typing import Any
 
 from . import polys
-from .budget import PYTHON_OP, charge, descartes_node_cost, words
+from .budget import PYTHON_OP, WORK_BUDGET, charge, descartes_node_cost, within_budget, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .failure import require_budget
 from .linalg import integer_solve
@@ -95,7 +98,7 @@ def parse(record, m, n):
     return out, point
 
 
-def _price(problem, pieces):
+def _price(problem: Any, pieces: Any) -> None:
     """Reject before any work.  One piece is one computation, priced against the kernel's budget of one
     (:func:`within_budget`): a Bareiss solve (n^3 w^2) and n components of degree d whose sign is decided
     on the piece (about d^2 w each); the rebuild of D and N likewise.  All pieces together are bounded by
@@ -115,14 +118,14 @@ def _price(problem, pieces):
 class _Bases:
     """The proved bases: B nonsingular and x_B in P; the integer rows of G."""
 
-    def __init__(self, G, b):
+    def __init__(self, G: Any, b: Any) -> None:
         self.rows = integer_rows(G, b)  # (g, beta) in integers, the same half-spaces
-        self.proved = {}
-        self.packs = {}
+        self.proved: dict[Any, Any] = {}
+        self.packs: dict[Any, Any] = {}
         self.norm1 = max(sum(abs(v) for v in g) for g, _ in self.rows)
         self.beta_max = max(abs(beta) for _, beta in self.rows)
 
-    def adjugate(self, basis, previous):
+    def adjugate(self, basis: Any, previous: Any) -> Any:
         """(order, det B, adj B) for B the integer rows ``order`` of G (``basis`` in some order), B
         nonsingular or CheckFailure.  When ``previous`` (an earlier (order, det, adj)) differs from
         ``basis`` in exactly one row, the exchange of that row (:func:`_exchange`, n^2 operations);
@@ -141,7 +144,7 @@ class _Bases:
         require(d != 0, f"the basis {list(basis)} is singular")
         return tuple(basis), d, adj
 
-    def vertex(self, basis, order, d, adj):
+    def vertex(self, basis: Any, order: Any, d: Any, adj: Any) -> Any:
         """x_B as Fractions, after proving G x_B <= b (x_B = adj(B) b_B / det B, B the rows ``order``)."""
         key = tuple(sorted(basis))
         if key not in self.proved:
@@ -155,7 +158,7 @@ class _Bases:
             self.proved[key] = [Fraction(v, d) for v in x]
         return self.proved[key]
 
-    def packed_slacks(self, x, d):
+    def packed_slacks(self, x: Any, d: Any) -> Any:
         """True proves v_k = g_k x - beta_k d <= 0 for every row k (x integers, d > 0); False says nothing.
 
         All m rows in n big-integer products (Kronecker substitution): with fields of K bits,
@@ -176,7 +179,7 @@ class _Bases:
         S = sum(map(mul, x, columns)) - d * pb - U + O
         return S >= 0 and S.bit_length() <= m * K and not S & top
 
-    def _pack(self, K):
+    def _pack(self, K: Any) -> Any:
         """(P_j for every column j, P_b, U, O, the mask of bit K-1 of every field) for fields of K bits."""
         rows = self.rows
         n = len(rows[0][0])
@@ -186,7 +189,7 @@ class _Bases:
         return columns, pb, U, U << (K - 1), U << (K - 1)
 
 
-def _exchange(rows, previous, p, come):
+def _exchange(rows: Any, previous: Any, p: Any, come: Any) -> Any:
     """(order, det, adj) after row ``p`` of B (the rows ``order``) is replaced by row ``come`` of G,
     from (order, det, adj) of B; CheckFailure if the new B is singular.
 
@@ -216,7 +219,7 @@ def _exchange(rows, previous, p, come):
     return order, d2, new
 
 
-def _components(order, d, adj, C_int):
+def _components(order: Any, d: Any, adj: Any, C_int: Any) -> Any:
     """The components of a positive multiple of B^-T C (h), before the factor D: integer coefficient
     lists, one per row of B (``order``), each times sign(det B) (adj(B)^T C: a positive row scaling of
     B -- the integer rows of G -- scales each component by a positive factor)."""
@@ -225,7 +228,7 @@ def _components(order, d, adj, C_int):
     return [[s * sum(map(mul, col, c)) for c in cols] for col in zip(*adj)]
 
 
-def _transform(ints, a, b):
+def _transform(ints: Any, a: Any, b: Any) -> Any:
     """The coefficients whose sign variations :func:`polys.descartes_variations` counts, for ``ints``
     of any length (zeros on top allowed, no trimming): (1+x)^D q(1/(1+x)) times s^D, q(y) = p(a + (b-a) y),
     s > 0 a common denominator; for b None, v^D p(a + y) (a = u/v).  Linear in ``ints``."""
@@ -246,7 +249,7 @@ def _transform(ints, a, b):
     return q
 
 
-def _batch_positive(Y, D_int, a, b):
+def _batch_positive(Y: Any, D_int: Any, a: Any, b: Any) -> Any:
     """For each row y of Y (integer coefficients, L of them): True proves D y > 0 on the open (a, b)
     (b None: (a, oo)) or D y = 0.  One matrix for all rows: the transform of Descartes' rule is linear,
     so the transformed coefficients of D y are y times T (row k of T: the transform of D h^k); all of one
@@ -272,12 +275,12 @@ def _batch_positive(Y, D_int, a, b):
     return out
 
 
-def _bits(q):
+def _bits(q: Any) -> Any:
     """The bits of a rational's numerator and denominator together."""
     return q.numerator.bit_length() + q.denominator.bit_length()
 
 
-def _shift_signs(ints, a):
+def _shift_signs(ints: Any, a: Any) -> Any:
     """v^D p(a + y) for a = u/v (v > 0): integer coefficients with the signs of p(a + y)'s
     (Horner: r_D = c_D, r_k = r_(k+1) (u + v y) + c_k v^(D-k))."""
     u, v = a.numerator, a.denominator
@@ -289,7 +292,7 @@ def _shift_signs(ints, a):
     return q
 
 
-def _positive_around(ints, a, b):
+def _positive_around(ints: Any, a: Any, b: Any) -> Any:
     """True proves p > 0 on the open (a, b) (b None: (a, oo)); False says nothing."""
     if b is None:
         D = len(ints) - 1
@@ -300,7 +303,7 @@ def _positive_around(ints, a, b):
     return polys.descartes_variations(ints, a, b) == 0 and polys.sign_at(ints, (a + b) / 2) > 0
 
 
-def _vanishes_at(p, r):
+def _vanishes_at(p: Any, r: Any) -> Any:
     """True if p(r) = 0 for an algebraic r (its squarefree polynomial has the one root r in (lo, hi)):
     gcd(p, r's polynomial) changes sign on (lo, hi).  False says nothing."""
     g = polys.gcd(p, r.poly)
@@ -308,7 +311,7 @@ def _vanishes_at(p, r):
         polys.sign_at(polys.integer_coefficients(g), r.hi) < 0
 
 
-def _sliver(p, ints, r, inner):
+def _sliver(p: Any, ints: Any, r: Any, inner: Any) -> Any:
     """True proves p > 0 on the part of r's enclosure inside the piece ([r, hi] when r starts it,
     [lo, r) when r ends it; ``inner`` is the other end of the enclosure, hi or lo): Descartes sees
     no root in (lo, hi), or exactly one and it is r itself; and p > 0 at ``inner``.  When p is r's own
@@ -325,7 +328,7 @@ def _sliver(p, ints, r, inner):
     return v == 0 or (v == 1 and _vanishes_at(p, r))
 
 
-def _fast(p, ints, start, end):
+def _fast(p: Any, ints: Any, start: Any, end: Any) -> Any:
     """True proves p >= 0 on [start, end]: Descartes on the open interval between the enclosures of
     the ends, and on each algebraic end's enclosure (:func:`_sliver`).  False says nothing."""
     a = start.hi if start.poly is not None else start.q
@@ -339,7 +342,7 @@ def _fast(p, ints, start, end):
     return end.inf or end.poly is None or _sliver(p, ints, end, end.lo)
 
 
-def _require_nonnegative(p, start, end, what, tried=False):
+def _require_nonnegative(p: Any, start: Any, end: Any, what: Any, tried: Any = False) -> None:
     """p >= 0 on the closed piece [start, end] (end may be oo), or CheckFailure.  ``tried``: Descartes'
     rule on the enclosing (lower end of start, upper end of end) already failed (:func:`_batch_positive`)."""
     if not p:
@@ -503,7 +506,7 @@ def lp_conditions(problem, record):
     return generators, D2, inequalities, horizon
 
 
-def _negative_beyond(p, E):
+def _negative_beyond(p: Any, E: Any) -> Any:
     """True proves p < 0 on the open (E, oo) (E finite); False says nothing.  A rational E: the Taylor
     shift at E (:func:`_positive_around` of -p); an algebraic E: the same at its upper end, and
     -p > 0 on (E, hi] (:func:`_sliver`: p may vanish at E itself)."""
@@ -516,7 +519,7 @@ def _negative_beyond(p, E):
     return _positive_around(neg, E.hi, None) and _sliver(neg, neg, E, E.hi)  # -p > 0 on (E, hi] and beyond
 
 
-def require_horizon(D, inequalities, horizon, context, key):
+def require_horizon(D: Any, inequalities: Any, horizon: Any, context: Any, key: Any) -> None:
     """When the pieces stop at E < oo: the set of the conditions lies in [0, E] (then it is the valid set)."""
     if horizon.inf:
         return

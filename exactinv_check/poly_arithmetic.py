@@ -4,8 +4,11 @@ kernel builds from a certificate bounded by MAX_DEGREE.  Re-exported by
 :mod:`exactinv_check.polys`.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import gcd as _igcd
+from typing import Any, Sequence
 
 from .budget import active, charge, fraction_products_cost, remainder_step_cost
 from .format import MAX_DEGREE  # bound on every polynomial the kernel builds from a certificate
@@ -13,18 +16,18 @@ from .rationals import require
 
 
 
-def trim(p):
+def trim(p: Any) -> Any:
     p = list(p)
     while p and p[-1] == 0:
         p.pop()
     return p
 
 
-def degree(p):
+def degree(p: Any) -> Any:
     return len(trim(p)) - 1
 
 
-def evaluate(p, x):
+def evaluate(p: Sequence[int | Fraction], x: Any) -> Any:
     """p(x) over Q (Horner), charged to the certificate's account by the size of x."""
     if active():
         x = Fraction(x)
@@ -36,34 +39,34 @@ def evaluate(p, x):
     return acc
 
 
-def sign(x):
+def sign(x: int | Fraction) -> Any:
     return (x > 0) - (x < 0)
 
 
-def integer_coefficients(p):
+def integer_coefficients(p: Sequence[int | Fraction]) -> Any:
     """Coprime integers proportional to p by a positive factor (so signs agree)."""
     p = trim(p)
     den = 1
     for c in p:
         if not isinstance(c, int):
             den = den * c.denominator // _igcd(den, c.denominator)
-    return _content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
+    return content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
 
 
-def add(p, q):
+def add(p: Sequence[Fraction], q: Sequence[Fraction]) -> Any:
     n = max(len(p), len(q))
     return trim([(p[i] if i < len(p) else 0) + (q[i] if i < len(q) else 0) for i in range(n)])
 
 
-def sub(p, q):
+def sub(p: Sequence[Fraction], q: Sequence[Fraction]) -> Any:
     return add(p, [-c for c in q])
 
 
-def scale(p, c):
+def scale(p: Sequence[Fraction], c: Fraction) -> Any:
     return trim([c * a for a in p])
 
 
-def mul(p, q):
+def mul(p: Sequence[Fraction], q: Any) -> Any:
     """p q over Q, charged to the certificate's account by the sizes of the numbers (Fraction products)."""
     if not p or not q:
         return []
@@ -77,12 +80,12 @@ def mul(p, q):
     return trim(out)
 
 
-def _bits(p):
+def _bits(p: Sequence[Fraction]) -> int:
     """The largest numerator or denominator of p's coefficients, in bits."""
     return max(max(abs(Fraction(c).numerator).bit_length(), Fraction(c).denominator.bit_length()) for c in p)
 
 
-def mul_integers(p, q):
+def mul_integers(p: Any, q: Sequence[int]) -> list[int]:
     """The product of two polynomials with integer coefficients, in integers (not trimmed)."""
     out = [0] * (len(p) + len(q) - 1)
     for i, a in enumerate(p):
@@ -92,18 +95,18 @@ def mul_integers(p, q):
     return out
 
 
-def power(p, k):
+def power(p: Sequence[Fraction], k: int) -> list[Fraction]:
     out = [Fraction(1)]
     for _ in range(k):
         out = mul(out, p)
     return out
 
 
-def derivative(p):
+def derivative(p: Any) -> Any:
     return trim([k * p[k] for k in range(1, len(p))])
 
 
-def divmod_(p, d):
+def divmod_(p: Any, d: Any) -> Any:
     p, d = trim(p), trim(d)
     require(d, "division by the zero polynomial")
     q = [Fraction(0)] * max(len(p) - len(d) + 1, 1)
@@ -119,18 +122,18 @@ def divmod_(p, d):
     return trim(q), r
 
 
-def primitive(p):
+def primitive(p: Any) -> Any:
     """p scaled by a POSITIVE rational to coprime integer coefficients (sign kept)."""
     return [Fraction(c) for c in integer_coefficients(p)]
 
 
-def monic(p):
+def monic(p: Sequence[int | Fraction]) -> Any:
     p = trim(p)
     return [Fraction(c, 1) / p[-1] for c in p] if p else p
 
 
 # --------------------------------------------- integer core (Python ints, no Fractions)
-def _content_free(a):
+def content_free(a: Sequence[int]) -> Any:
     """a divided by the positive gcd of its coefficients (signs kept)."""
     g = 0
     for c in a:
@@ -138,7 +141,7 @@ def _content_free(a):
     return [c // g for c in a] if g > 1 else a
 
 
-def _pseudo_remainder(a, b):
+def pseudo_remainder(a: Sequence[int], b: Sequence[int]) -> list[int]:
     """r with s^k a = q b + r for s = |lc(b)| > 0: the remainder up to a POSITIVE factor,
     so signs (Sturm) and divisibility (gcd) are those of the rational remainder."""
     s, sgn = abs(b[-1]), (1 if b[-1] > 0 else -1)
@@ -152,19 +155,19 @@ def _pseudo_remainder(a, b):
             r[k + shift] -= c * bk
         while r and r[-1] == 0:
             r.pop()
-        r = _content_free(r)
+        r = content_free(r)
     return r
 
 
-def _integer_gcd(a, b):
+def integer_gcd(a: Sequence[int], b: Sequence[int]) -> Any:
     """gcd of two integer polynomials: primitive, positive leading coefficient."""
     while b:
-        a, b = b, _pseudo_remainder(a, b)
-    a = _content_free(a)
+        a, b = b, pseudo_remainder(a, b)
+    a = content_free(a)
     return [-c for c in a] if a and a[-1] < 0 else a
 
 
-def _exact_quotient(a, b):
+def exact_quotient(a: Sequence[int], b: Sequence[int]) -> list[int]:
     """a / b for integer polynomials where b divides a over Z (checked)."""
     a, q = list(a), [0] * (len(a) - len(b) + 1)
     for shift in range(len(a) - len(b), -1, -1):
@@ -177,22 +180,24 @@ def _exact_quotient(a, b):
     return q
 
 
-def _integer_derivative(a):
+def integer_derivative(a: Sequence[int]) -> list[int]:
+    """The derivative of an integer polynomial (coefficients from x^0 up)."""
     return [k * a[k] for k in range(1, len(a))]
 
 
-def gcd(p, q):
+def gcd(p: Any, q: Any) -> Any:
     """The monic gcd over Q."""
-    g = _integer_gcd(integer_coefficients(_bounded(p)), integer_coefficients(_bounded(q)))
+    g = integer_gcd(integer_coefficients(bounded(p)), integer_coefficients(bounded(q)))
     return [Fraction(c, g[-1]) for c in g] if g else []
 
 
-def _bounded(p):
+def bounded(p: Sequence[int | Fraction]) -> Any:
+    """p itself, after checking its degree is at most MAX_DEGREE (else the claim is rejected)."""
     require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
     return p
 
 
-def strip_zero_roots(p):
+def strip_zero_roots(p: Sequence[int | Fraction]) -> Any:
     p = trim(p)
     while p and p[0] == 0:
         p = p[1:]

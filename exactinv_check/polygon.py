@@ -36,25 +36,29 @@ None and the general proof decides.  Integers throughout: each row of (G | b)
 is scaled to integers once, corners are (x, y, d) with d > 0.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from functools import cmp_to_key
 from math import gcd
+from typing import Any, Sequence
 
-from .rationals import CheckFailure, within_budget
+from .budget import within_budget
+from .failure import CheckFailure
 
 __all__ = ["prove_polygon"]
 
 
-def _cross(g, h):
+def _cross(g: tuple[int, int, int], h: tuple[int, int, int]) -> Any:
     return g[0] * h[1] - g[1] * h[0]
 
 
-def _half(g):
+def _half(g: tuple[int, int, int]) -> int:
     """0 for angles in [0, pi), 1 for [pi, 2 pi)."""
     return 0 if g[1] > 0 or (g[1] == 0 and g[0] > 0) else 1
 
 
-def _angle_order(g, h):
+def _angle_order(g: tuple[int, int, int], h: tuple[int, int, int]) -> Any:
     """Negative, zero or positive as the angle of g is below, equal to or above h's."""
     a, b = _half(g), _half(h)
     if a != b:
@@ -62,7 +66,7 @@ def _angle_order(g, h):
     return -_cross(g, h)
 
 
-def _corner(g, h):
+def _corner(g: tuple[int, int, int], h: tuple[int, int, int]) -> tuple[int, int, int] | None:
     """The point where the lines g.x = g[2] and h.x = h[2] meet, as integers (x, y, d), d > 0
     (Cramer's rule; None when the normals are parallel)."""
     d = _cross(g, h)
@@ -72,12 +76,12 @@ def _corner(g, h):
     return (x, y, d) if d > 0 else (-x, -y, -d)
 
 
-def _below(g, point):
+def _below(g: tuple[int, int, int], point: Any) -> Any:
     """g . p <= beta for the row g = (gx, gy, beta) and the point p = (x, y, d), d > 0."""
     return g[0] * point[0] + g[1] * point[1] <= g[2] * point[2]
 
 
-def _rows(G, b):
+def _rows(G: Sequence[list[Fraction]], b: Sequence[Fraction]) -> list[tuple[int, int, int]]:
     """Each (g_j | b_j) times a positive integer: integer triples (gx, gy, beta)."""
     rows = []
     for g, beta in zip(G, b):
@@ -88,11 +92,11 @@ def _rows(G, b):
     return rows
 
 
-def _candidates(rows):
+def _candidates(rows: Any) -> tuple[list[int], list[int]]:
     """(sorted facet indices, indices kept as edges): the tightest of each normal
     direction, then facets redundant for their two neighbours removed (a search)."""
     order = sorted(range(len(rows)), key=cmp_to_key(lambda i, j: _angle_order(rows[i], rows[j])))
-    kept = []
+    kept: list[Any] = []
     for j in order:
         if kept and _angle_order(rows[kept[-1]], rows[j]) == 0:
             g, h = rows[kept[-1]], rows[j]  # same direction: keep the smaller b / ||g||_1
@@ -117,7 +121,7 @@ def _candidates(rows):
     return order, [k for k in kept if k in alive]
 
 
-def _proved_corners(rows, order, used):
+def _proved_corners(rows: Any, order: Any, used: Any) -> Any:
     """The corners w_i (steps 2-4 of the module docstring), or None if a step fails."""
     r = len(used)
     if r < 3:
@@ -129,7 +133,7 @@ def _proved_corners(rows, order, used):
         return None
     corners = [_corner(u[i], u[(i + 1) % r]) for i in range(r)]
     for i in range(r):
-        (x0, y0, d0), (x1, y1, d1) = corners[i - 1], corners[i]
+        (x0, y0, d0), (x1, y1, d1) = corners[i - 1], corners[i]  # type: ignore[misc]
         if -u[i][1] * (x1 * d0 - x0 * d1) + u[i][0] * (y1 * d0 - y0 * d1) <= 0:
             return None  # edge i has no positive length
     position = {k: i for i, k in enumerate(used)}
@@ -144,7 +148,7 @@ def _proved_corners(rows, order, used):
     return corners
 
 
-def prove_polygon(G, b, vertices):
+def prove_polygon(G: Sequence[list[Fraction]], b: Sequence[Fraction], vertices: Any) -> tuple[int, int] | None:
     """(corners, extra) for a bounded convex polygon P = {Gx <= b} in the plane whose
     every corner is among ``vertices`` (G, b, vertices: Fraction lists, proved as in the
     module docstring); ``corners`` is the number of vertices of P, ``extra`` the
@@ -171,7 +175,7 @@ def prove_polygon(G, b, vertices):
     corners = _proved_corners(rows, order, used)
     if corners is None:
         return None
-    listed = {}
+    listed: dict[Any, Any] = {}
     for i, v in enumerate(vertices):
         listed.setdefault((Fraction(v[0]), Fraction(v[1])), i)
     hit = set()
@@ -187,7 +191,7 @@ def prove_polygon(G, b, vertices):
     return len(corners), len(extra)
 
 
-def _require_in(rows, v, i):
+def _require_in(rows: Sequence[tuple[int, int, int]], v: Any, i: int) -> None:
     q = v[0].denominator * v[1].denominator // gcd(v[0].denominator, v[1].denominator)
     point = (int(v[0] * q), int(v[1] * q), q)
     for j, g in enumerate(rows):

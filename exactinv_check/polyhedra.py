@@ -35,15 +35,18 @@ integers once, each point is an integer vector over one denominator, each
 direction an integer vector.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
-from typing import NamedTuple
+from typing import Any, NamedTuple, Sequence
 
-from .cones import MAX_CONE_PAIRS, MAX_CONE_RAYS, _primitive, _rank, _scaled  # the bounds re-exported: their old home
-from .edge_walk import _EdgeWalk, _IntegerPolyhedron
+from .cones import integer_rank, primitive, scaled_integers
+from .edge_walk import EdgeWalk, IntegerPolyhedron
+from .failure import require
 from .polygon import prove_polygon
-from .rationals import MAX_DIMENSION, require
+from .rationals import MAX_DIMENSION
 
-__all__ = ["Generators", "prove_generators", "MAX_CONE_PAIRS", "MAX_CONE_RAYS"]
+__all__ = ["Generators", "prove_generators"]
 
 
 class Generators(NamedTuple):
@@ -64,11 +67,11 @@ class Generators(NamedTuple):
 # input
 
 
-def _is_exact(x):
+def _is_exact(x: Fraction) -> bool:
     return isinstance(x, (int, Fraction)) and not isinstance(x, bool)
 
 
-def _vector(v, n, what):
+def _vector(v: Sequence[Fraction], n: int, what: str) -> Any:
     require(isinstance(v, list), f"{what}: expected a list, got {type(v).__name__}")
     require(len(v) == n, f"{what}: expected {n} entries, got {len(v)}")
     for x in v:
@@ -76,7 +79,7 @@ def _vector(v, n, what):
     return v
 
 
-def _list(x, what):
+def _list(x: Any, what: str) -> Any:
     require(isinstance(x, list), f"{what}: expected a list, got {type(x).__name__}")
     return x
 
@@ -85,7 +88,7 @@ def _list(x, what):
 # the proof
 
 
-def prove_generators(G, b, vertices, rays, lines):
+def prove_generators(G: Any, b: Any, vertices: Any, rays: Sequence[list[Fraction]], lines: Sequence[list[Fraction]]) -> Any:
     """Prove P = {x : Gx <= b} = conv(vertices) + cone(rays) + span(lines).
 
     G is a list of m rows of n rationals (Fraction or int), b a list of m; the
@@ -109,12 +112,12 @@ def prove_generators(G, b, vertices, rays, lines):
     return _general_proof(G, b, vertices, rays, lines, n)
 
 
-def _general_proof(G, b, vertices, rays, lines, n):
+def _general_proof(G: Any, b: Any, vertices: Any, rays: Any, lines: Any, n: Any) -> Generators | None:
     """The edge walk of the module docstring, for any dimension."""
-    P = _IntegerPolyhedron(G, b, n)
+    P = IntegerPolyhedron(G, b, n)
     _prove_lines(P, lines)
     ray_index = _index_rays(P, rays)
-    walk = _EdgeWalk(P, G, b, vertices, ray_index)
+    walk = EdgeWalk(P, G, b, vertices, ray_index)
     seen, rays_hit = walk.run()
     for i in range(len(vertices)):  # every other listed point is in P too
         if i not in walk.in_P:
@@ -132,7 +135,8 @@ def _general_proof(G, b, vertices, rays, lines, n):
     )
 
 
-def _check_shapes(G, b, vertices, rays, lines):
+def _check_shapes(G: Sequence[list[Fraction]], b: Sequence[Fraction], vertices: Sequence[Sequence[Any]],
+                  rays: Sequence[list[Fraction]], lines: Sequence[list[Fraction]]) -> int | None:
     """Lists of the right lengths, at least one point; returns n."""
     for value, name in ((G, "G"), (b, "b"), (vertices, "vertices"), (rays, "rays"), (lines, "lines")):
         _list(value, name)
@@ -152,30 +156,30 @@ def _check_shapes(G, b, vertices, rays, lines):
     return n
 
 
-def _prove_lines(P, lines):
+def _prove_lines(P: IntegerPolyhedron, lines: Sequence[list[Fraction]]) -> None:
     """Every line is nonzero and in L, and together they span L."""
     line_ints = []
     for i, l in enumerate(lines):
-        li, _ = _scaled(l)
+        li, _ = scaled_integers(l)
         require(any(li), f"line {i} is the zero vector")
         j = next((j for j, x in enumerate(P.times(li)) if x), None)
         require(j is None, f"line {i} is not in the lineality space: row {j} of G l is nonzero")
         line_ints.append(li)
-    rank = _rank(line_ints, P.n)
+    rank = integer_rank(line_ints, P.n)
     require(rank == P.n - P.rank, f"the lines span a space of dimension {rank}, but the lineality space "
             f"{{x : Gx = 0}} has dimension {P.n - P.rank}")
 
 
-def _index_rays(P, rays):
+def _index_rays(P: IntegerPolyhedron, rays: Sequence[list[Fraction]]) -> Any:
     """Every ray is nonzero and in rec(P); indexed modulo L up to a positive factor."""
-    ray_index = {}
+    ray_index: dict[Any, Any] = {}
     for i, d in enumerate(rays):
-        di, _ = _scaled(d)
+        di, _ = scaled_integers(d)
         require(any(di), f"ray {i} is the zero vector")
         gd = P.times(di)
         j = next((j for j, x in enumerate(gd) if x > 0), None)
         require(j is None, f"ray {i} is not in the recession cone: row {j} of G r is positive")
-        key = _primitive([gd[j] for j in P.row_basis])
+        key = primitive([gd[j] for j in P.row_basis])
         if key is not None:  # a ray inside L is harmless and represents nothing
             ray_index.setdefault(tuple(key), i)
     return ray_index

@@ -18,29 +18,44 @@ The arithmetic (:mod:`exactinv_check.poly_arithmetic`) and the resultants
 every polynomial function as ``polys.<name>``.
 """
 
-from fractions import Fraction
-from math import gcd as _igcd, isqrt
+from __future__ import annotations
 
+from fractions import Fraction
+from math import gcd as _igcd
+from math import isqrt
+from typing import Any, Sequence
+
+from .budget import (  # noqa: F401
+    STURM_BUDGET,
+    active,
+    charge,
+    descartes_node_cost,
+    evaluation_cost,
+    modular_squarefree_cost,
+    sturm_cost,
+    within_sturm_budget,
+)
+from .budget import memo as _memo
+from .failure import require
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
     MAX_DEGREE,
-    _bounded,
-    _content_free,
-    _exact_quotient,
-    _integer_derivative,
-    _integer_gcd,
-    _pseudo_remainder,
     add,
+    bounded,
+    content_free,
     degree,
     derivative,
     divmod_,
     evaluate,
+    exact_quotient,
     gcd,
     integer_coefficients,
+    integer_derivative,
+    integer_gcd,
     monic,
     mul,
     mul_integers,
-    power,
     primitive,
+    pseudo_remainder,
     scale,
     sign,
     strip_zero_roots,
@@ -59,7 +74,7 @@ MAX_BISECTIONS = 4000
 _PRIMES = (2**61 - 1, 2**31 - 1, 1000000007)  # for the modular squarefree test
 
 
-def sign_at(ints, x):
+def sign_at(ints: Sequence[int], x: Any) -> Any:
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
     (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
     n, d = x.numerator, x.denominator
@@ -75,7 +90,7 @@ def sign_at(ints, x):
     return (acc > 0) - (acc < 0)
 
 
-def descartes_variations(ints, a, b):
+def descartes_variations(ints: Sequence[int], a: Any, b: Any) -> int:
     """Sign variations of (1+x)^D q(1/(1+x)), q(y) = p(a + (b - a) y): an upper bound,
     of the same parity, on the number of roots of p in the open (a, b) (Descartes'
     rule after the Moebius map (0, oo) -> (a, b)).  Integer arithmetic throughout."""
@@ -100,13 +115,13 @@ def descartes_variations(ints, a, b):
     return sum(1 for x, y in zip(signs, signs[1:]) if x != y)
 
 
-def no_root_in(p, T, depth=4):
+def no_root_in(p: Sequence[int | Fraction], T: Fraction, depth: int = 4) -> bool:
     """True proves that p has no root in the open (0, T): Descartes' rule on (0, T),
     on halves where it is inconclusive, up to depth times.  False says nothing."""
     return no_root_between(p, Fraction(0), Fraction(T), depth)
 
 
-def no_root_between(p, a, b, depth=4):
+def no_root_between(p: Sequence[int | Fraction], a: Fraction, b: Fraction, depth: int = 4) -> bool:
     """True proves that p has no root in the open (a, b), a < b: Descartes' rule on (a, b),
     on halves where it is inconclusive, up to depth times.  False says nothing."""
     ints = integer_coefficients(p)
@@ -122,7 +137,7 @@ def no_root_between(p, a, b, depth=4):
     return True
 
 
-def _affordable(ints):
+def _affordable(ints: Sequence[int]) -> Any:
     """Reject, before any pseudo-remainder sequence, an integer polynomial whose
     degree^4 * bits^2 (the cost of its gcd or Sturm sequence) is over the budget,
     or more than the certificate has left, whether a certificate wrote it or the kernel built it."""
@@ -131,7 +146,7 @@ def _affordable(ints):
     return ints
 
 
-def affordable_gcd(p, q):
+def affordable_gcd(p: Any, q: Any) -> Any:
     """gcd(p, q) over Q (monic), priced first: the common denominator of each is built with a
     running bound on its size (at most the bits degree^4 bits^2 <= STURM_BUDGET allows), then
     each integer polynomial is priced by :func:`_affordable` -- so no certificate's coefficients
@@ -147,27 +162,27 @@ def affordable_gcd(p, q):
     return gcd(p, q)
 
 
-def squarefree(p):
+def squarefree(p: Sequence[int | Fraction]) -> Any:
     """The squarefree part p / gcd(p, p') as coprime integers, with p's leading sign.
 
     p itself when a gcd modulo a prime proves it squarefree (if p = f^2 g over Z with
     deg f >= 1 and the prime does not divide lc(p), f mod the prime has f's degree and
     divides both p and p' there, so their gcd there is not constant); else the priced
     pseudo-remainder sequence.  Within a certificate each polynomial's part is computed once."""
-    a = integer_coefficients(_bounded(trim(p)))
+    a = integer_coefficients(bounded(trim(p)))
     if len(a) <= 2:
         return a
     return list(_memo(("squarefree", tuple(a)), lambda: _squarefree_integers(a)))
 
 
-def _squarefree_integers(a):
+def _squarefree_integers(a: Any) -> Any:
     if is_squarefree_mod_prime(a):
         return a
-    g = _integer_gcd(_affordable(a), _integer_derivative(a))
-    return _exact_quotient(a, g) if len(g) > 1 else a
+    g = integer_gcd(_affordable(a), integer_derivative(a))
+    return exact_quotient(a, g) if len(g) > 1 else a
 
 
-def is_squarefree_mod_prime(a):
+def is_squarefree_mod_prime(a: Sequence[int]) -> bool:
     """True proves the integer polynomial a (degree >= 1) squarefree over Q: gcd(a, a') = 1
     modulo a prime not dividing its leading coefficient (see :func:`squarefree`).  False
     says nothing (a may be squarefree and every prime tried unlucky)."""
@@ -181,13 +196,13 @@ def is_squarefree_mod_prime(a):
     return False
 
 
-def _trim_mod(f):
+def _trim_mod(f: Any) -> Any:
     while f and f[-1] == 0:
         f.pop()
     return f
 
 
-def _gcd_mod(f, g, prime):
+def _gcd_mod(f: Any, g: Any, prime: Any) -> Any:
     """The gcd of f and g over the integers modulo a prime (Euclid; a constant: [1])."""
     f, g = _trim_mod(list(f)), _trim_mod(list(g))
     while g:
@@ -201,7 +216,7 @@ def _gcd_mod(f, g, prime):
     return f
 
 
-def isolate(q, a, b):
+def isolate(q: Sequence[int], a: Fraction, b: Fraction) -> list[tuple[Fraction, Fraction]]:
     """The real roots of the squarefree integer polynomial q in the open (a, b), a < b, in
     increasing order: (lo, hi) with exactly one root in the open (lo, hi) and none at lo or hi,
     or (r, r) for a rational root r -- by Descartes' rule with bisection (see the module
@@ -233,7 +248,7 @@ def isolate(q, a, b):
     return out
 
 
-def sign_right_of(p, x):
+def sign_right_of(p: Sequence[int | Fraction], x: int | Fraction) -> Any:
     """The sign of p on (x, x + eps) for small eps > 0 (0 only for p = 0): the sign of
     the first nonzero derivative at x (at x = 0, of the lowest nonzero coefficient), in integers."""
     q = integer_coefficients(p)
@@ -243,34 +258,34 @@ def sign_right_of(p, x):
         s = sign_at(q, Fraction(x))
         if s:
             return s
-        q = _integer_derivative(q)
+        q = integer_derivative(q)
     return 0
 
 
 class Sturm:
     """The Sturm sequence of a polynomial: exact counts of its distinct real roots."""
 
-    def __init__(self, p):
-        a = _affordable(integer_coefficients(_bounded(p)))
+    def __init__(self, p: Sequence[Fraction]) -> None:
+        a = _affordable(integer_coefficients(bounded(p)))
         self.p = a
-        seq = [a, _content_free(_integer_derivative(a))] if len(a) > 1 else [a]
+        seq = [a, content_free(integer_derivative(a))] if len(a) > 1 else [a]
         while len(seq) > 1 and seq[-1]:
-            seq.append([-c for c in _pseudo_remainder(seq[-2], seq[-1])])
+            seq.append([-c for c in pseudo_remainder(seq[-2], seq[-1])])
         self.ints = [s for s in seq if s]
 
-    def _variations_at(self, x):
+    def _variations_at(self, x: Fraction) -> int:
         if x is None:  # +oo
             signs = [s[-1] > 0 for s in self.ints]
         else:
             signs = [v > 0 for v in (sign_at(s, x) for s in self.ints) if v]
         return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
-    def count(self, a, b):
+    def count(self, a: Fraction, b: Fraction) -> int:
         """Distinct real roots in (a, b]; b = None means +oo."""
         return self._variations_at(a) - self._variations_at(b)
 
 
-def count_roots(p, a, b):
+def count_roots(p: Sequence[int | Fraction], a: Any, b: Fraction | None) -> Any:
     """Distinct real roots of p in (a, b] (b = None: +oo), by Descartes isolation of p's
     squarefree part (:func:`isolate`)."""
     if len(trim(p)) <= 1:
@@ -283,7 +298,7 @@ def count_roots(p, a, b):
     return len(isolate(q, a, b)) + (sign_at(q, Fraction(b)) == 0)
 
 
-def cauchy_bound(p):
+def cauchy_bound(p: Sequence[int | Fraction]) -> Any:
     """A power of two B (of any sign of exponent) with every complex root of p in |z| < B:
     Fujiwara's bound 2 max_i |p_(d-i)/p_d|^(1/i), each ratio bounded by bit lengths
     (|n/m| < 2^(bits(n) - bits(m) + 1)).  Unlike Cauchy's 1 + max |p_i/p_d| (the name is
@@ -306,7 +321,7 @@ def cauchy_bound(p):
     return Fraction(2) ** (0 if k is None else k)
 
 
-def positive_roots(p, upper=None):
+def positive_roots(p: Sequence[int | Fraction], upper: Fraction | None = None) -> Any:
     """The distinct real roots of p in (0, upper] (upper = None: all positive roots)
     as isolating data, in increasing order: a list of (lo, hi) with lo < hi (one root
     in the open (lo, hi), none at the ends) or (q, q) for an exact rational root q.

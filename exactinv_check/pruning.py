@@ -37,8 +37,11 @@ small; a longer one is rejected before any piece is built, and the pieces themse
 priced first (:func:`pieces_cost`).
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import gcd, isqrt
+from typing import Any
 
 from . import conditions
 from .budget import charge
@@ -55,7 +58,7 @@ MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the 
 MAX_SLOT_TESTS = 4 * 10**8  # vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
 
 
-def parse(record, vertex_count):
+def parse(record: Any, vertex_count: Any) -> Any:
     """(T, k, order) from a pruning record, shape-checked."""
     require(isinstance(record, dict) and set(record) == {"horizon", "vertex", "order"},
             "pruning has the keys horizon, vertex, order")
@@ -72,7 +75,7 @@ def parse(record, vertex_count):
     return T, k, order
 
 
-def nodes(T):
+def nodes(T: Any) -> Any:
     """The ends of the pieces of [0, T]."""
     if T == 0:
         return [Fraction(0), Fraction(0)]
@@ -81,7 +84,7 @@ def nodes(T):
     return [T * x for x in sorted(xs)]
 
 
-def _piece(N, t, d):
+def _piece(N: Any, t: Any, d: Any) -> Any:
     """(X, Z, M) for the piece [t, t + d]: the secant's ends X = A_d(t), Z = A_d(t + d) and the
     remainder M = sum_{k>=2} c_k d^k |D_k| entrywise, c_k = min(1, (k - 1)/4), where
     A_d(t + s) = sum_k s^k D_k, D_k = sum_{i>=k} C(i, k) t^(i-k) N_i.  (A_d(t + s) minus the
@@ -106,7 +109,7 @@ def _piece(N, t, d):
     return X, Z, M
 
 
-def _shifted(a, t):
+def _shifted(a: Any, t: Any) -> Any:
     """(e, L): the coefficients of P(t + s) = sum_k e_k s^k / (L q^(deg - k)) for P(h) = sum_i a_i h^i
     (rationals a_i, t = p/q): with L a_i = c_i integers and h = (p + sigma)/q, sigma = q s,
     L q^deg P = sum_i c_i q^(deg - i) (p + sigma)^i = sum_k e_k sigma^k, a Taylor shift by the
@@ -123,7 +126,7 @@ def _shifted(a, t):
     return e, L
 
 
-def pieces_cost(N, ends):
+def pieces_cost(N: Any, ends: Any) -> Any:
     """The price of :func:`chord_pieces` in word operations: per piece and entry a Taylor shift of
     (deg + 1)^2 / 2 products of a short integer by one of B bits (a product in C, counted per 512
     bits), 4 (deg + 1) more for the ends and the remainder, and three gcds of B-bit integers
@@ -140,7 +143,7 @@ def pieces_cost(N, ends):
     return (len(ends) - 1) * n * n * per_entry
 
 
-def morton_order(boxes):
+def morton_order(boxes: Any) -> Any:
     """The vertices in Morton order of the ranks of their coordinates (equal values, equal
     ranks), each scaled to 12 bits: near vertices stay near, so a block's box stays small.
     Ranks, not values: one far vertex cannot put all the others in one cell; every coordinate:
@@ -161,19 +164,19 @@ def morton_order(boxes):
     return sorted(range(count), key=keys.__getitem__)
 
 
-def chord_pieces(N, T):
+def chord_pieces(N: Any, T: Any) -> Any:
     """(X, Z, M) per piece of [0, T] (:func:`_piece`)."""
     ends = nodes(T)
     return [_piece(N, t, u - t) for t, u in zip(ends, ends[1:])]
 
 
-def _on_grid(x, bits, up):
+def _on_grid(x: Any, bits: Any, up: Any) -> Any:
     """floor (up: ceil) of x 2^bits, an integer."""
     y = x.numerator << bits
     return -((-y) // x.denominator) if up else y // x.denominator
 
 
-def vertex_box(v):
+def vertex_box(v: Any) -> Any:
     """(c2, r2): the vertex's coordinates rounded outwards to the grid 2^-w, as centre and
     radius times 2^(w + 1) -- c2 = lo + hi, r2 = hi - lo, with lo, hi = floor, ceil of 2^w v."""
     lo = [_on_grid(x, VERTEX_BITS, False) for x in v]
@@ -181,7 +184,7 @@ def vertex_box(v):
     return [a + z for a, z in zip(lo, hi)], [z - a for a, z in zip(lo, hi)]
 
 
-def group_box(boxes):
+def group_box(boxes: Any) -> Any:
     """The box (c2, r2) around boxes given as (c2, r2): per coordinate the least lo and the
     greatest hi (c2 - r2 = 2 lo and c2 + r2 = 2 hi are even)."""
     lo2 = [min(column) for column in zip(*([c - r for c, r in zip(c2, r2)] for c2, r2 in boxes))]
@@ -210,9 +213,9 @@ class _Ends:
     (the width S is chosen so); adding 2^(S - 1) to every slot makes each digit lie in
     [0, 2^S), and the digits are read off the bytes."""
 
-    def __init__(self, pieces, boxes):
+    def __init__(self, pieces: Any, boxes: Any) -> None:
         s = MATRIX_BITS
-        ends = []  # (E, M): each end's matrix and remainder
+        ends: list[Any] = []  # (E, M): each end's matrix and remainder
         for X, Z, M in pieces:
             if ends and ends[-1][0] == X:
                 ends[-1] = (X, [[max(a, z) for a, z in zip(ra, rz)] for ra, rz in zip(ends[-1][1], M)])
@@ -235,12 +238,13 @@ class _Ends:
         self.half = 1 << (S - 1)
         self.bias = pack([self.half] * count)
 
-    def boxes(self, box):
+    def boxes(self, box: Any) -> Any:
         """Per end, the integer box (hi + lo, on the grid 1/K) around the path of every vertex in
         the box near that end: (1) rounded outwards."""
         n, size = self.n, self.width
         c2, r2 = box
-        his, los = [], []
+        his: list[Any] = []
+        los: list[Any] = []
         for k in range(n):
             centre = sum(self.PX[k][c] * c2[c] for c in range(n) if c2[c])
             width = sum(self.PW[k][c] * r2[c] + self.PM[k][c] * abs(c2[c]) for c in range(n)) + self.bias
@@ -251,20 +255,20 @@ class _Ends:
         return [list(hi) + [-x for x in lo] for hi, lo in zip(zip(*his), zip(*los))]
 
 
-def _hull(boxes):
+def _hull(boxes: Any) -> Any:
     """The box (hi + lo) around boxes given as hi + lo: coordinate-wise max of hi, min of lo."""
     n = len(boxes[0]) // 2
     columns = list(zip(*boxes))
     return [max(c) for c in columns[:n]] + [min(c) for c in columns[n:]]
 
 
-def _outside(row, box):
+def _outside(row: Any, box: Any) -> Any:
     """True unless the box [lo, hi] / K lies in g x < b (then the pairs are pruned):
     max over the box of g x is g+ hi + g- lo."""
     return row[1] <= sum(map(int.__mul__, row[0], box))
 
 
-def _slot_bytes(rows, entry):
+def _slot_bytes(rows: Any, entry: Any) -> Any:
     """Bytes per slot of a :class:`_Packed` test: |g . box - K b| < 2^(8 W - 2) for every
     row and every box with entries at most ``entry`` in size, and every |row entry| and
     |K b| as well."""
@@ -289,7 +293,7 @@ class _Packed:
     iff v_t >= 0, i.e. iff :func:`_outside` holds for row J_t: those slots are read
     off X masked to the top bits (bytes 0x80 of its little-endian bytes)."""
 
-    def __init__(self, table, J):
+    def __init__(self, table: Any, J: Any) -> None:
         width, signs, cells = table
         self.J, self.width, self.size, self.signs = J, width, width * len(J), signs
         self.columns = [int.from_bytes(b"".join([column[j] for j in J]), "little") for column in cells[:-1]]
@@ -297,7 +301,7 @@ class _Packed:
         self.mask = int.from_bytes((bytes(width - 1) + b"\x80") * len(J), "little")
 
     @staticmethod
-    def table(rows, width):
+    def table(rows: Any, width: Any) -> Any:
         """(width, signs s_c, cells): each |a_jc| and 2^(S-1) - K b_j as W little-endian bytes,
         column by column, once; a :class:`_Packed` joins the cells of its rows."""
         columns = len(rows[0][0])
@@ -307,7 +311,7 @@ class _Packed:
         cells.append([(half - row[1]).to_bytes(width, "little") for row in rows])
         return width, [1] * n + [-1] * n, cells
 
-    def outside(self, box):
+    def outside(self, box: Any) -> Any:
         """The rows J_t for which :func:`_outside` holds (in the order of J)."""
         X = self.base
         for C, s, x in zip(self.columns, self.signs, box):
@@ -324,7 +328,7 @@ class _Packed:
         return out
 
 
-def survivors(G, b, vertices, N, T):
+def survivors(G: Any, b: Any, vertices: Any, N: Any, T: Any) -> Any:
     """{vertex index: [facets]} of the pairs the test on the pieces of [0, T] cannot prune
     (:func:`survivors_of_pieces` on the secants and remainders of A_d(h)), after pricing the
     pieces (:func:`pieces_cost`)."""
@@ -334,7 +338,7 @@ def survivors(G, b, vertices, N, T):
     return survivors_of_pieces(G, b, vertices, chord_pieces(N, T))
 
 
-def survivors_of_pieces(G, b, vertices, pieces):
+def survivors_of_pieces(G: Any, b: Any, vertices: Any, pieces: Any) -> Any:
     """{vertex index: [facets]} of the pairs the chord test cannot prune on the pieces given
     as (X, Z, M) (the path of v on a piece within M |v| entrywise of the chord from X v to
     Z v): exactly the pairs (i, j) with :func:`_outside` for row j and vertex i's box at
@@ -343,7 +347,7 @@ def survivors_of_pieces(G, b, vertices, pieces):
     of its vertices): a block's boxes against every row, each vertex's against the rows its
     block does not clear there (:class:`_Packed`)."""
     rows = integer_rows(G, b)
-    out = {i: set() for i in range(len(vertices))}
+    out: dict[int, set[Any]] = {i: set() for i in range(len(vertices))}
     if not rows or not vertices:
         return {i: [] for i in out}
     boxes = [vertex_box(v) for v in vertices]

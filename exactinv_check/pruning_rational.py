@@ -26,8 +26,11 @@ The kernel proves, trusting nothing in the record:
    pair when U = 1) as q itself, whose sign is c's on [0, T] by 2.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import comb, gcd
+from typing import Any
 
 from . import polys, pruning
 from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
@@ -41,12 +44,12 @@ _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the 
 
 
 
-def is_rational_record(record):
+def is_rational_record(record: dict[str, list[int] | int | str]) -> bool:
     """True for a record in the variable u (it names one)."""
     return isinstance(record, dict) and "variable" in record
 
 
-def parse(record, vertex_count, n):
+def parse(record: Any, vertex_count: Any, n: Any) -> Any:
     """(s, U, pieces, k, order) from a record in u, shape-checked and priced."""
     require(isinstance(record, dict) and set(record) == KEYS, f"pruning in u has the keys {', '.join(sorted(KEYS))}")
     require(record["variable"] == VARIABLE, f"pruning variable must be {VARIABLE!r}")
@@ -60,18 +63,18 @@ def parse(record, vertex_count, n):
     return s, U, count, k, order
 
 
-def horizon(s, U):
+def horizon(s: Any, U: Any) -> Any:
     """T = sU/(1 - U), the horizon in h (None for U = 1: every h >= 0)."""
     return None if U == 1 else s * U / (1 - U)
 
 
-def require_positive_determinant(D, T):
+def require_positive_determinant(D: Any, T: Any) -> None:
     """D > 0 on [0, T] (T None: on [0, oo)): else q > 0 would not give c = q D > 0."""
     require(polys.evaluate(D, Fraction(0)) > 0 and polys.count_roots(D, Fraction(0), T) == 0,
             f"det h(hA) vanishes in the pruning range [0, {'oo' if T is None else T}]")
 
 
-def lifted(D, N, s):
+def lifted(D: Any, N: Any, s: Any) -> Any:
     """The coefficients (in u) of P(u) = sum_k s^k u^k (1 - u)^(E-k) diag(D_k, N_k)."""
     n = len(N[0])
     E = max(len(D) - 1, len(N) - 1, 1)
@@ -90,7 +93,7 @@ def lifted(D, N, s):
     return P
 
 
-def _entry_bernstein(coeffs, t, d):
+def _entry_bernstein(coeffs: Any, t: Any, d: Any) -> Any:
     """(X, Z, M) of one entry on [t, t + d]: its Bernstein coefficients B_0 .. B_E (degree E) give
     X = B_0, Z = B_E and M = max_k |B_k - (1 - k/E) B_0 - (k/E) B_E|, exactly.  Integers throughout
     (integer Horner on a common denominator, then every B_k over the one denominator R = lcm_k C(E, k)
@@ -118,7 +121,7 @@ def _entry_bernstein(coeffs, t, d):
     return Fraction(b[0], R), Fraction(b[E], R), Fraction(M, E * R)
 
 
-def _piece(P, t, d):
+def _piece(P: Any, t: Any, d: Any) -> Any:
     """(X, Z, M) of the piece [t, t + d] (module docstring, 3.), normalised and rounded."""
     size, E = len(P[0]), len(P) - 1
     X = [[Fraction(0)] * size for _ in range(size)]
@@ -133,10 +136,10 @@ def _piece(P, t, d):
     f = Fraction(1) if top == 0 else Fraction(2) ** -(top.numerator.bit_length() - top.denominator.bit_length())
     grid = 1 << _BITS
 
-    def near(x):  # nearest multiple of 2^-_BITS: moves by <= 2^-(_BITS+1)
+    def near(x: Any) -> Any:  # nearest multiple of 2^-_BITS: moves by <= 2^-(_BITS+1)
         return Fraction((2 * x.numerator * grid + x.denominator) // (2 * x.denominator), grid)
 
-    def up(x):  # a multiple of 2^-_BITS >= x + 2^-(_BITS+1) (the widening by the rounding of X and Z)
+    def up(x: Any) -> Any:  # a multiple of 2^-_BITS >= x + 2^-(_BITS+1) (the widening by the rounding of X and Z)
         y = x + Fraction(1, 2 * grid)
         return Fraction(-((-y.numerator * grid) // y.denominator), grid)
 
@@ -144,14 +147,14 @@ def _piece(P, t, d):
             [[up(x * f) for x in row] for row in M])
 
 
-def nodes(U, count):
+def nodes(U: Any, count: Any) -> Any:
     """The ends of the pieces of [0, U]."""
     xs = {Fraction(a, count) for a in range(count + 1)}
     xs |= {Fraction(1, 2**i) for i in range(1, 13)} | {1 - Fraction(1, 2**i) for i in range(1, 13)}
     return [U * x for x in sorted(xs)]
 
 
-def pieces_cost(D, N, s, ends):
+def pieces_cost(D: Any, N: Any, s: Any, ends: Any) -> Any:
     """The price of the Bernstein pieces, by the size of their numbers: per piece and entry of the
     (n + 1) x (n + 1) lifted matrix, (E + 1)^2 products of integers of B bits (Horner, the B_k; a
     product of a big by a small integer runs in C, counted per 512 bits) and three gcds of B-bit
@@ -159,14 +162,16 @@ def pieces_cost(D, N, s, ends):
     the piece ends plus E + 1 times those of the lifted coefficients (their common denominator).
     Measured: a genuine Pade(6,6) record on R^6 costs 7e8 here and runs in about a second."""
     E, size = max(len(D) - 1, len(N) - 1, 1), len(N[0]) + 1
-    size_of = lambda x: x.numerator.bit_length() + x.denominator.bit_length()
+    def size_of(x: Any) -> Any:
+        return x.numerator.bit_length() + x.denominator.bit_length()
+
     coefficient_bits = max([size_of(c) for c in D] + [size_of(x) for Nk in N for row in Nk for x in row])
     end_bits = max(size_of(t) for t in ends)
     bits = (E + 1) * coefficient_bits + E * (size_of(s) + 2 * end_bits)
     return (len(ends) - 1) * size**2 * ((E + 1) ** 2 * (1 + bits // 512) + 3 * (1 + bits // 64) ** 2)
 
 
-def survivors(G, b, vertices, D, N, s, U, count):
+def survivors(G: Any, b: Any, vertices: Any, D: Any, N: Any, s: Any, U: Any, count: Any) -> Any:
     """{vertex index: [facets]} of the pairs the lifted test on [0, U] cannot prune."""
     ends = nodes(U, count)
     cost = pieces_cost(D, N, s, ends)

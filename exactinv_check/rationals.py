@@ -6,9 +6,12 @@ allows an infinity.  Anything else -- a JSON float, a bool, an exponent, an
 over-long string -- is rejected, so parsing can neither hang nor guess.
 """
 
+from __future__ import annotations
+
 import re
 from fractions import Fraction
 from math import gcd
+from typing import Any
 
 from .budget import FRACTION_WEIGHT, WORK_BUDGET, within_budget  # noqa: F401 (re-exported: their old home)
 from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
@@ -22,7 +25,7 @@ _ZERO = Fraction(0)
 _NUMBER = re.compile(r"[+-]?(?:0|[1-9][0-9]*)(?:/[1-9][0-9]*|\.[0-9]+)?")
 
 
-def describe(x):
+def describe(x: Any) -> Any:
     """x for a message: in full if short, else by its size ("a 6001-digit integer"),
     so that a huge exact number never reaches str() (Python limits int -> str)."""
     if isinstance(x, (int, Fraction)) and not isinstance(x, bool):
@@ -34,7 +37,7 @@ def describe(x):
     return str(x)
 
 
-def integer_matrix(M):
+def integer_matrix(M: Any) -> Any:
     """(L, L M) with L > 0 the least common denominator of M's entries: L M is integral,
     and L M >= 0 iff M >= 0 (a positive factor changes no sign)."""
     L = 1
@@ -44,7 +47,7 @@ def integer_matrix(M):
     return L, [[x.numerator * (L // x.denominator) for x in row] for row in M]
 
 
-def integer_rows(G, b):
+def integer_rows(G: Any, b: Any) -> Any:
     """Each row of (G | b) times its least positive common denominator: (g, beta) in integers,
     the same half-space g x <= beta."""
     rows = []
@@ -54,7 +57,7 @@ def integer_rows(G, b):
     return rows
 
 
-def rational(s, what="number"):
+def rational(s: Any, what: str = "number") -> Any:
     """A Fraction from an exact number string (never from a float or bool)."""
     if isinstance(s, bool) or not isinstance(s, (str, int)):
         raise CheckFailure(f"{what}: expected an exact number string, got {s!r}")
@@ -71,20 +74,20 @@ def rational(s, what="number"):
         raise CheckFailure(f"{what}: {s!r} has a zero denominator") from None
 
 
-def integer(x, what, low=None, high=None):
+def integer(x: Any, what: Any, low: Any = None, high: Any = None) -> Any:
     """A JSON integer (not a bool) in [low, high)."""
     require(isinstance(x, int) and not isinstance(x, bool), f"{what}: expected an integer, got {x!r}")
     require((low is None or x >= low) and (high is None or x < high), f"{what}: {x} is out of range")
     return x
 
 
-def boolean(x, what):
+def boolean(x: Any, what: str) -> Any:
     """A JSON boolean (not the string "false", not 0/1)."""
     require(isinstance(x, bool), f"{what}: expected true or false, got {x!r}")
     return x
 
 
-def vector(v, what, length=None):
+def vector(v: Any, what: Any, length: Any = None) -> Any:
     """A list of rationals, of the given length when one is given."""
     require(isinstance(v, list), f"{what}: expected a list")
     require(len(v) <= MAX_DIMENSION * MAX_DIMENSION, f"{what}: too long")
@@ -92,7 +95,7 @@ def vector(v, what, length=None):
     return [rational(x, what) for x in v]
 
 
-def matrix(M, what, rows=None, cols=None):
+def matrix(M: Any, what: Any, rows: Any = None, cols: Any = None) -> Any:
     """A list of equal-length rows of rationals (shape checked when given)."""
     require(isinstance(M, list), f"{what}: expected a list of rows")
     require(rows is None or len(M) == rows, f"{what}: expected {rows} rows, got {len(M)}")
@@ -102,29 +105,29 @@ def matrix(M, what, rows=None, cols=None):
     return out
 
 
-def dot(u, v):
+def dot(u: Any, v: Any) -> Any:
     require(len(u) == len(v), "vector lengths differ")
     return sum(a * b for a, b in zip(u, v))
 
 
-def matvec(X, v):
+def matvec(X: Any, v: Any) -> Any:
     return [dot(row, v) for row in X]
 
 
-def matmul(X, Y):
+def matmul(X: Any, Y: Any) -> Any:
     cols = list(zip(*Y)) if Y else []
     return [[dot(row, col) for col in cols] for row in X]
 
 
-def transpose(X):
+def transpose(X: Any) -> Any:
     return [list(r) for r in zip(*X)]
 
 
-def identity(n):
+def identity(n: Any) -> Any:
     return [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
 
 
-def rank_and_nullspace(M, n):
+def rank_and_nullspace(M: Any, n: Any) -> tuple[int, list[list[Any]]]:
     """(rank, a basis of {x : Mx = 0}) of a list of rows of length n, by Gauss-Jordan."""
     rows = [list(r) for r in M]
     pivots = []
@@ -153,7 +156,7 @@ def rank_and_nullspace(M, n):
     return r, basis
 
 
-def solve(M, B):
+def solve(M: Any, B: Any) -> Any:
     """X with M X = B (Gauss-Jordan over Q, M square); None if M is singular."""
     n = len(M)
     aug = [list(M[i]) + list(B[i]) for i in range(n)]
@@ -171,7 +174,7 @@ def solve(M, B):
     return [row[n:] for row in aug]
 
 
-def determinant(M):
+def determinant(M: Any) -> Any:
     n = len(M)
     a = [list(r) for r in M]
     det = Fraction(1)

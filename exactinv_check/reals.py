@@ -12,7 +12,10 @@ only root of ``poly`` in the open (lo, hi), and poly(lo), poly(hi) are nonzero
 (so of opposite signs).  Bisections are charged to the certificate's account.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
 from . import polys, text
 from .format import INFINITY, NEG_INFINITY
@@ -27,7 +30,8 @@ class Real:
 
     __slots__ = ("inf", "q", "poly", "lo", "hi", "_ints", "_sign_lo", "_bits")
 
-    def __init__(self, inf=0, q=None, poly=None, lo=None, hi=None):
+    def __init__(self, inf: int = 0, q: Fraction | None = None, poly: Sequence[int] | None = None,
+                 lo: Fraction | None = None, hi: Fraction | None = None) -> None:
         self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
         if poly is not None:
             self._ints = polys.integer_coefficients(poly)
@@ -51,11 +55,11 @@ class Real:
         return cls(q=rational(data, what))
 
     @classmethod
-    def rational(cls, q):
+    def rational(cls, q: Any) -> Any:
         return cls(q=Fraction(q))
 
     @classmethod
-    def algebraic(cls, poly, lo, hi, what="number"):
+    def algebraic(cls, poly: Any, lo: Fraction, hi: Fraction, what: str = "number") -> Any:
         """The unique root of poly in the open (lo, hi) -- proved, or CheckFailure."""
         require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
         require(lo < hi, f"{what}: empty isolating interval")
@@ -65,7 +69,7 @@ class Real:
         return cls._made(p, lo, hi)
 
     @classmethod
-    def claimed(cls, poly, lo, hi, what="number"):
+    def claimed(cls, poly: Any, lo: Any, hi: Any, what: str = "number") -> Any:
         """A certificate's algebraic number, proved well defined cheaply first.
 
         Descartes' rule on (lo, hi) counting exactly one sign variation proves
@@ -81,32 +85,32 @@ class Real:
         return cls.algebraic(poly, lo, hi, what)
 
     @classmethod
-    def _made(cls, p, lo, hi):
+    def _made(cls, p: Sequence[int], lo: Fraction, hi: Fraction) -> Real:
         if len(p) == 2:  # a linear polynomial: the root is rational
             return cls(q=-Fraction(p[0]) / p[1])
         return cls(poly=p, lo=lo, hi=hi)
 
     @classmethod
-    def root_in(cls, p, lo, hi):
+    def root_in(cls, p: Sequence[int | Fraction], lo: Fraction, hi: Fraction) -> Any:
         """From (lo, hi) data of polys.positive_roots (lo == hi: the rational root)."""
         return cls(q=lo) if lo == hi else cls._made(polys.squarefree(polys.strip_zero_roots(p)), lo, hi)
 
     # -------------------------------------------------------------- queries
     @property
-    def is_rational(self):
+    def is_rational(self) -> bool:
         return not self.inf and self.poly is None
 
-    def is_zero(self):
+    def is_zero(self) -> Any:
         return self.is_rational and self.q == 0
 
-    def bounds(self):
+    def bounds(self) -> Any:
         """Rational (lower, upper) with lower <= self <= upper; None for infinities."""
         if self.inf:
             return None
         return (self.q, self.q) if self.poly is None else (self.lo, self.hi)
 
-    def bisect(self):
-        mid = (self.lo + self.hi) / 2
+    def bisect(self) -> None:
+        mid = (self.lo + self.hi) / 2  # type: ignore[operator]
         s = polys.sign_at(self._ints, mid)
         if s == 0:
             self.q, self.poly = mid, None
@@ -115,14 +119,14 @@ class Real:
         else:
             self.hi = mid
 
-    def refine_below(self, width):
+    def refine_below(self, width: Any) -> None:
         """Bisect until the enclosure is narrower than width."""
         for _ in range(MAX_REFINEMENTS):
-            if self.poly is None or self.hi - self.lo < width:
+            if self.poly is None or self.hi - self.lo < width:  # type: ignore[operator]
                 return
             self.bisect()
 
-    def sign_of(self, f):
+    def sign_of(self, f: Any) -> Any:
         """The exact sign of the polynomial f at this (finite) real."""
         require(not self.inf, "sign at infinity")
         f = polys.trim(f)
@@ -143,7 +147,7 @@ class Real:
             self.bisect()
         raise CheckFailure("could not decide a sign at an algebraic number")
 
-    def compare(self, other):
+    def compare(self, other: Any) -> Any:
         """-1, 0 or 1: the exact order of self and other."""
         if self.inf or other.inf:
             return sign(self.inf - other.inf)
@@ -171,15 +175,15 @@ class Real:
                 return 1
             # refine the wider enclosure only: a number compared often (a running
             # minimum) then keeps the precision it needs, instead of gaining bits each time
-            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()
+            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()  # type: ignore[operator]
         raise CheckFailure("could not separate two real numbers")
 
-    def _same_polynomial(self, other):
+    def _same_polynomial(self, other: Real) -> bool:
         """Both roots of one polynomial (up to a nonzero factor)?"""
         a, b = self._ints, other._ints
         return len(a) == len(b) and (a == b or a == [-c for c in b])
 
-    def _compare_conjugate(self, other):
+    def _compare_conjugate(self, other: Any) -> Any:
         """-1, 0 or 1 for two roots of the same polynomial p: equal iff one enclosure lies inside
         the other (a root of p in the other's (lo, hi) is the other's root, p has only that one
         there); else refine the wider until they are disjoint or nested -- this ends, since two
@@ -194,10 +198,10 @@ class Real:
                 return 1
             if (other.lo <= self.lo and self.hi <= other.hi) or (self.lo <= other.lo and other.hi <= self.hi):
                 return 0
-            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()
+            (self if self.hi - self.lo >= other.hi - other.lo else other).bisect()  # type: ignore[operator]
         raise CheckFailure("could not compare two roots of one polynomial")
 
-    def _shares_root_with(self, other):
+    def _shares_root_with(self, other: Any) -> Any:
         """Are these two overlapping algebraic numbers equal?  Each is a root of
         g = gcd iff g changes sign on its own isolating interval (g divides the
         squarefree poly, so it has at most that one root there); if both are,
@@ -212,7 +216,7 @@ class Real:
         lo, hi = min(self.lo, other.lo), max(self.hi, other.hi)
         return polys.count_roots(g, lo, hi) == 1
 
-    def __str__(self):
+    def __str__(self) -> str:
         if self.inf:
             return INFINITY if self.inf > 0 else NEG_INFINITY
         if self.poly is None:
@@ -220,7 +224,7 @@ class Real:
         return text.algebraic_text(self._ints, self.lo, self.hi)  # the engine's format (exactinv.core.digits)
 
 
-def separate(a, b):
+def separate(a: Real, b: Real) -> tuple[Fraction, Fraction]:
     """Rationals a1 < b0 with a <= a1 < b0 <= b, for reals a < b (refining them)."""
     for _ in range(MAX_REFINEMENTS):
         (a0, a1), (b0, b1) = a.bounds(), b.bounds()
@@ -233,7 +237,7 @@ def separate(a, b):
     raise CheckFailure("two reals could not be separated")
 
 
-def scaled(a, c):
+def scaled(a: Any, c: Any) -> Any:
     """c a for an algebraic a and a rational c > 0, with no new isolation: if a is the simple root
     of p alone in (lo, hi), c a is the simple root of p(x / c) alone in (c lo, c hi) (x -> c x is an
     increasing bijection), so the Real invariant carries over."""
@@ -243,7 +247,7 @@ def scaled(a, c):
     return Real._made([p * m ** k * n ** (d - k) for k, p in enumerate(a._ints)], a.lo * c, a.hi * c)
 
 
-def quotient(a, b):
+def quotient(a: Any, b: Any) -> Any:
     """a / b as a Real, for a finite Real a and a rational or algebraic b > 0."""
     require(not a.inf and not b.inf and b.compare(Real.rational(0)) > 0, "quotient needs finite a and b > 0")
     if b.poly is None:

@@ -3,18 +3,21 @@ whose roots are the quotients of two algebraic numbers.  Re-exported by
 :mod:`exactinv_check.polys`.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
-from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
 from .budget import active, charge, fraction_products_cost
-from .rationals import require
+from .failure import require
+from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
 
 
-def _bits(p):
+def _bits(p: Sequence[Fraction]) -> int:
     return max((max(abs(c.numerator).bit_length(), c.denominator.bit_length()) for c in p), default=1)
 
 
-def resultant(f, g):
+def resultant(f: Any, g: Any) -> Any:
     """The resultant of f and g over Q (Euclid's algorithm on the defining identity
     res(f, g) = lc(g)^deg f * prod_{g(b)=0} f(b))."""
     f, g = trim(f), trim(g)
@@ -35,7 +38,7 @@ def resultant(f, g):
     return result * g[0] ** (len(f) - 1)
 
 
-def interpolate(points, values):
+def interpolate(points: Any, values: Sequence[Fraction]) -> Any:
     """The polynomial of degree < len(points) through (points, values) (Newton form)."""
     k = len(points)
     coef = list(values)
@@ -50,7 +53,7 @@ def interpolate(points, values):
     return trim(result)
 
 
-def quotient_polynomial(p, q):
+def quotient_polynomial(p: Any, q: Any) -> Any:
     """A nonzero polynomial in t vanishing at a/b for every root a of p and b != 0 of q:
     res_y(p(t y), q(y)), by evaluation and interpolation."""
     p, q = strip_zero_roots(p), strip_zero_roots(q)

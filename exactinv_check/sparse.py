@@ -19,15 +19,19 @@ zeros dropped).  The checks over such rows (HG = GA, Hb <= 0, signs) cost the
 number of nonzero entries, never m^2.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
 from .budget import CERTIFICATE_BUDGET, sparse_read_cost, within_budget
-from .rationals import MAX_DIMENSION, matrix, rational, require
+from .failure import require
+from .rationals import MAX_DIMENSION, matrix, rational
 
 SPARSE_VERSION = 3  # the first certificate version that writes H and H~ sparse
 
 
-def read_square(value, what, m, version):
+def read_square(value: Any, what: Any, m: Any, version: Any) -> list[list[tuple[Any, Any]]] | None:
     """The m x m matrix ``value`` of a claim, as sparse rows: the version 3 encoding
     (:func:`sparse_matrix`) from version 3 on, the dense list of rows before."""
     if version >= SPARSE_VERSION:
@@ -35,7 +39,7 @@ def read_square(value, what, m, version):
     return [[(k, x) for k, x in enumerate(row) if x] for row in matrix(value, what, m, m)]
 
 
-def sparse_matrix(value, what, rows, cols):
+def sparse_matrix(value: Any, what: str, rows: int, cols: int) -> list[list[tuple[Any, Any]]] | None:
     """A ``rows`` x ``cols`` matrix in the version 3 encoding (module docstring), as lists of
     (column, nonzero Fraction) pairs, strictly increasing columns."""
     require(isinstance(value, dict) and set(value) == {"sparse"},
@@ -78,11 +82,11 @@ def sparse_matrix(value, what, rows, cols):
     return out
 
 
-def diagonal(rows):
+def diagonal(rows: Any) -> Any:
     """The diagonal entries of a square matrix in sparse rows (0 where a row has none)."""
     return [next((x for k, x in row if k == i), Fraction(0)) for i, row in enumerate(rows)]
 
 
-def row_dot(row, v):
+def row_dot(row: Sequence[tuple[int, Fraction]], v: Any) -> Any:
     """The sparse row times a dense vector, exactly."""
     return sum((x * v[k] for k, x in row), Fraction(0))

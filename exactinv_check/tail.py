@@ -39,8 +39,11 @@ centred form), the b_{k,m} from them by midpoint-radius disk arithmetic over Gau
 isotone, outward rounding of every centre and radius): each enclosure holds the exact value at the true pole.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from math import ceil, comb
+from typing import TYPE_CHECKING, Any, Sequence
 
 from .disks import _absup, _ball, _bmul, _binv, _disks, _sqrt_bounds, _taylor_balls, _up
 from .format import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
@@ -52,7 +55,7 @@ from .tie import kappa_enclosure, tie_interval
 MAX_REFINE = 2000  # bisections when separating a real pole from other roots
 
 
-def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
+def prove_tail(numerator: Any, denominator: Any, K: Any, N_hint: Any = 0, tie: Any = None) -> Any:
     """An int N >= N_hint with c_j(kappa) > 0 for all kappa in [0, K] (K None: [0, oo)) and all j >= N
     (the least such index the certificate proves); CheckFailure when no certificate applies.
     With ``tie`` (a Real kappa*, claimed to be the first kappa where another pole is as close to -kappa
@@ -82,7 +85,7 @@ def prove_tail(numerator, denominator, K, N_hint=0, tie=None):
     return _dominance(g, h, factors, f_star, mu, poles[0], Fraction(K), max(N_hint, first))
 
 
-def reduced(numerator, denominator):
+def reduced(numerator: Sequence[float | Fraction], denominator: Any) -> Any:
     """(g, h): r = g/h in lowest terms with h(0) > 0, checked exact, h(0) > 0 and r(0) = 1; every root of h
     is then a pole of r (CheckFailure for a polynomial r)."""
     exact = all(isinstance(c, (int, Fraction)) and not isinstance(c, bool) for c in [*numerator, *denominator])
@@ -100,7 +103,7 @@ def reduced(numerator, denominator):
 
 
 # ----------------------------------------------------------------- exact algebra
-def _yun(h):
+def _yun(h: Sequence[Fraction]) -> Any:
     """[(f, M)]: h = lc(h) prod f^M, f monic squarefree and pairwise coprime (checked)."""
     a = gcd(h, derivative(h))
     b = divmod_(h, a)[0]
@@ -124,7 +127,7 @@ def _yun(h):
     return out
 
 
-def _factor_of(factors, iv):
+def _factor_of(factors: Sequence[tuple[list[Any], int]], iv: tuple[Fraction, Fraction]) -> tuple[list[Fraction], int]:
     """(f, M): the factor of h with the real root isolated by iv (an open (lo, hi) or an exact (q, q))."""
     lo, hi = iv
     for f, M in factors:
@@ -133,7 +136,7 @@ def _factor_of(factors, iv):
     raise CheckFailure("tail: a real pole belongs to no squarefree factor")
 
 
-def _halve(f, lo, hi, cut=None):
+def _halve(f: Sequence[Fraction], lo: Fraction, hi: Fraction, cut: Fraction | None = None) -> tuple[Fraction, Fraction]:
     """The part (lo, cut) or (cut, hi) holding the root z of f (or (cut, cut) when cut = z; cut defaults to the
     midpoint).  f squarefree with exactly one root in (lo, hi) and none at lo, hi: f changes sign at z only."""
     cut = (lo + hi) / 2 if cut is None else cut
@@ -143,7 +146,7 @@ def _halve(f, lo, hi, cut=None):
     return (lo, cut) if sign(value) != sign(evaluate(f, lo)) else (cut, hi)
 
 
-def _sign_at(P, f, iv):
+def _sign_at(P: Any, f: Any, iv: Any) -> Any:
     """The exact sign of P at the root z of f isolated by iv (f squarefree, no root at lo or hi)."""
     lo, hi = iv
     if lo == hi:
@@ -164,19 +167,20 @@ def _sign_at(P, f, iv):
     raise CheckFailure("tail: could not separate a real pole from the roots of a polynomial")
 
 
-def _taylor(p):
+def _taylor(p: Sequence[Fraction]) -> list[list[Fraction]]:
     """T[i]: the polynomial in z with p(z + w) = sum_i T[i](z) w^i."""
     return [[comb(k, i) * p[k] for k in range(i, len(p))] for i in range(len(p))]
 
 
-def _b_signs(g, h, f, M, iv):
+def _b_signs(g: Sequence[Fraction], h: Sequence[Fraction], f: Sequence[Fraction], M: int,
+             iv: tuple[Fraction, Fraction]) -> list[int]:
     """Exact signs of b_1..b_M at the real pole z (root of f in iv, multiplicity M).  With tg_i, th_t the
     Taylor coefficients of g, h at z (th_t = 0 for t < M): phi_i th_M = tg_i - sum_{t=1..i} th_{M+t} phi_{i-t};
     A_i = phi_i th_M^(i+1) is a polynomial in z, so sign(phi_i) = sign(A_i(z)) sign(th_M(z))^(i+1)."""
     Tg, Th = _taylor(g), _taylor(h)
     tg = [divmod_(Tg[i], f)[1] if i < len(Tg) else [] for i in range(M)]
     th = [divmod_(Th[M + t], f)[1] if M + t < len(Th) else [] for t in range(M)]
-    A = []
+    A: list[Any] = []
     for i in range(M):
         acc = mul(tg[i], power(th[0], i))
         for t in range(1, i + 1):
@@ -189,27 +193,28 @@ def _b_signs(g, h, f, M, iv):
 
 
 # ----------------------------------------------------------------- disk enclosures of b_{k,m} (module disks)
-def _b_balls(g, h, M, z):
+def _b_balls(g: Sequence[Fraction], h: Sequence[Fraction], M: int,
+             z: tuple[Fraction, Fraction, Fraction]) -> list[tuple[Fraction, Fraction, Fraction]]:
     """Enclosures of b_1..b_M at the pole in the disk z (multiplicity M), by the recursion of _b_signs."""
-    tg, th = _taylor_balls(g, z, 0, M), _taylor_balls(h, z, M, M)
-    inverse = _binv(th[0])
-    phi = []
+    tg, th = taylor_balls(g, z, 0, M), taylor_balls(h, z, M, M)
+    inverse = ball_inv(th[0])
+    phi: list[Any] = []
     for i in range(M):
         acc = tg[i]
         for t in range(1, i + 1):
-            p = _bmul(th[t], phi[i - t])
-            acc = _ball(acc[0] - p[0], acc[1] - p[1], acc[2] + p[2])
-        phi.append(_bmul(acc, inverse))
-    return [_ball((-1) ** m * phi[M - m][0], (-1) ** m * phi[M - m][1], phi[M - m][2]) for m in range(1, M + 1)]
+            p = ball_mul(th[t], phi[i - t])
+            acc = ball(acc[0] - p[0], acc[1] - p[1], acc[2] + p[2])
+        phi.append(ball_mul(acc, inverse))
+    return [ball((-1) ** m * phi[M - m][0], (-1) ** m * phi[M - m][1], phi[M - m][2]) for m in range(1, M + 1)]
 
 
 
 # ----------------------------------------------------------------- dominance
-def _ratio_bound(z, P, K):
+def _ratio_bound(z: tuple[Fraction, Fraction, Fraction], P: Fraction, K: Any) -> Any:
     """A rational Q < 1 with p + kappa <= Q |w + kappa| for all kappa in [0, K], p <= P, w in the disk z."""
     a, b, rho = z
 
-    def ratio(k):  # float hint
+    def ratio(k: int | Fraction) -> float:  # float hint
         dist = abs(complex(float(a) + float(k), float(b))) - float(rho)
         return (float(P) + float(k)) / dist if dist > 0 else float("inf")
 
@@ -217,34 +222,35 @@ def _ratio_bound(z, P, K):
     require(hint < 1, f"tail: p* does not dominate the pole near {complex(float(a), float(b)):.6g} on [0, {K}] "
                       f"(it is as close to -kappa as p*, ratio {hint:.6g})")
     for slack in (2.0 ** -24, 2.0 ** -8, 0.5):
-        Q = _up(Fraction(hint + (1 - hint) * slack))
+        Q = round_up(Fraction(hint + (1 - hint) * slack))
         P1 = P + Q * rho
         if Q < 1 and all(Q * Q * ((a + k) ** 2 + b * b) - (P1 + k) ** 2 >= 0 for k in (0, K)):
             return Q
     raise CheckFailure(f"tail: could not certify that p* dominates the pole near {complex(float(a), float(b)):.6g}")
 
 
-def _tie_located(h, value, disks, P_lo, P_hi):
+def _tie_located(h: Sequence[Fraction], value: Real, disks: dict[int, list[tuple[Any, Any, Any]]], P_lo: Fraction,
+                 P_hi: Fraction) -> Any:
     """(lo, hi) isolating kappa* = value among the roots of the tie polynomial (tie.tie_interval), after a
     cheap necessary test: kappa* = kappa_z for some pole z, so value meets some pole's kappa_z enclosure."""
     v_lo, v_hi = value.bounds()
-    near = [kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) for zs in disks.values() for z in zs]
+    near = [kappa_enclosure(z, P_lo, P_hi, sqrt_bounds) for zs in disks.values() for z in zs]
     require(any(e and e[0] <= v_hi and v_lo <= e[1] for e in near),
             "tie: the claimed kappa* meets no pole's enclosure of kappa_z (no pole ties with p* there)")
     return tie_interval(h, value)
 
 
-def _pow_up(Q, n):
+def _pow_up(Q: Fraction, n: int) -> Fraction:
     """A dyadic upper bound of Q^n (0 < Q < 1), by squaring with upward rounding."""
     result, base = Fraction(1), Q
     while n:
         if n & 1:
-            result = _up(result * base)
-        base, n = _up(base * base), n >> 1
+            result = round_up(result * base)
+        base, n = round_up(base * base), n >> 1
     return result
 
 
-def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
+def _dominance(g: Any, h: Any, factors: Any, f_star: Any, mu: Any, iv: Any, K: Any, first: Any, tie: Any = None) -> Any:
     """The least N >= first with B(N) < b_{*,mu} (module docstring, dominance), or CheckFailure.
     ``tie`` = kappa* (a Real; K is then hi), located by _tie_located as (lo, hi) isolating kappa* among the
     roots of the tie polynomial: a pole whose
@@ -263,13 +269,13 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
         for k, z in enumerate(disks[id(f)]):
             if f is f_star and k == hits[0]:
                 continue
-            enclosure = kappa_enclosure(z, P_lo, P_hi, _sqrt_bounds) if tie else None
+            enclosure = kappa_enclosure(z, P_lo, P_hi, sqrt_bounds) if tie else None
             if enclosure and tie[0] < enclosure[0] and enclosure[1] < tie[1]:
                 require(M <= mu, "tie: a tied pole has a higher multiplicity than p*; p* does not dominate")
                 Q, tied = Fraction(1), tied + 1
             else:
                 Q = _ratio_bound(z, P_hi, K)
-            others.append((Q, M, [_absup(b) for b in _b_balls(g, h, M, z)]))
+            others.append((Q, M, [ball_abs_upper(b) for b in _b_balls(g, h, M, z)]))
     return _least_index(others, star, mu, b_mu, D_hi, P_lo, first, tie is None or tied > 0)
 
 
@@ -296,7 +302,9 @@ def star_enclosure(factors, f_star, iv, disks=None):
     return disks, hits, P_lo, P_hi
 
 
-def _least_index(others, star, mu, b_mu, D_hi, P_lo, first, some_tied):
+def _least_index(others: Sequence[tuple[Fraction, int, list[Any]]],
+                 star: Sequence[tuple[Fraction, Fraction, Fraction]], mu: int, b_mu: Fraction, D_hi: Fraction,
+                 P_lo: Fraction, first: int, some_tied: bool) -> int | None:
     """The least N >= first with B(N) < b_mu (module docstring, dominance)."""
     require(some_tied, "tie: no pole is proved to reach p*'s distance at the claimed kappa*")
     start = first
@@ -305,10 +313,10 @@ def _least_index(others, star, mu, b_mu, D_hi, P_lo, first, some_tied):
             start = max(start, ceil((M * Q - mu) / (1 - Q)))
     require(start <= MAX_INDEX, f"tail: the tail bound is monotone only beyond index {start} > {MAX_INDEX}")
 
-    def bound(j):
-        def R(m):
+    def bound(j: int) -> Any:
+        def R(m: int) -> Fraction:
             return Fraction(comb(j + m - 1, m - 1), comb(j + mu - 1, mu - 1))
-        total = sum(_absup(star[m - 1]) * R(m) * D_hi ** (mu - m) for m in range(1, mu))
+        total = sum(ball_abs_upper(star[m - 1]) * R(m) * D_hi ** (mu - m) for m in range(1, mu))
         for Q, M, babs in others:
             for m in range(1, M + 1):
                 D_m = D_hi ** (mu - m) if m <= mu else P_lo ** (mu - m)

@@ -14,7 +14,10 @@ bisection, and a shorter decimal enclosure is shown only where Descartes' rule
 proves it isolates the same root.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Sequence
 
 from .polys import no_root_between, sign_at
 from .rationals import SHOWN_DIGITS
@@ -25,7 +28,7 @@ TIDY_DIGITS = 12  # decimals of the printed isolating interval (as the engine's 
 MAX_PRINT_BISECTIONS = 400
 
 
-def significant_digits(lo, hi, digits=17):
+def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> Any:
     """The common leading ``digits`` significant digits of every number in [lo, hi]
     (truncated towards zero; lo and hi of one sign), or None if the enclosure is too
     wide to certify them."""
@@ -55,7 +58,7 @@ def significant_digits(lo, hi, digits=17):
     return ("-" if neg else "") + text
 
 
-def decimal_text(q):
+def decimal_text(q: Fraction) -> str:
     """q as an exact decimal when its denominator divides a power of ten, else as a fraction."""
     q = Fraction(q)
     d, twos, fives = q.denominator, 0, 0
@@ -71,7 +74,7 @@ def decimal_text(q):
     return ("-" if q < 0 else "") + text
 
 
-def rational_text(q):
+def rational_text(q: Any) -> str:
     """A rational: as it is when short, with its leading digits when long, by its size when huge."""
     q = Fraction(q)
     size = max(_length(q.numerator), _length(q.denominator))
@@ -86,12 +89,12 @@ def rational_text(q):
     return f"{text}  (= {digits}{'' if Fraction(digits) == q else '...'})"
 
 
-def root_text(digits, poly, lower, upper):
+def root_text(digits: str, poly: str, lower: Fraction, upper: Fraction) -> str:
     """A real algebraic number: certified ``digits``, its polynomial (text), an isolating interval."""
     return f"{digits}  (the root of {poly} in [{decimal_text(lower)}, {decimal_text(upper)}])"
 
 
-def poly_text(coeffs, var="x"):
+def poly_text(coeffs: Sequence[int], var: str = "x") -> str:
     """Plain text of a polynomial (rational coefficients from the constant term up), highest degree first."""
     cs = [Fraction(c) for c in coeffs]
     terms = []
@@ -111,7 +114,7 @@ def poly_text(coeffs, var="x"):
     return ("-" + text[3:]) if text.startswith(" - ") else text[3:]
 
 
-def algebraic_text(ints, lo, hi):
+def algebraic_text(ints: Sequence[int], lo: Any, hi: Any) -> str:
     """The root of the integer polynomial ``ints`` (low to high) isolated by (lo, hi), in the
     one format: 17 certified digits from exact bisection of a copy of the enclosure, the
     polynomial with a positive leading coefficient, and the interval the cell
@@ -142,7 +145,7 @@ def algebraic_text(ints, lo, hi):
     return root_text(digits, shown, lo, hi)
 
 
-def _decade(q):
+def _decade(q: Fraction) -> int:
     """e with 10**e <= q < 10**(e+1), for q > 0 (from bit lengths: no int -> str)."""
     e = (q.numerator.bit_length() - q.denominator.bit_length()) * 30103 // 100000
     while Fraction(10) ** e > q:
@@ -152,9 +155,9 @@ def _decade(q):
     return e
 
 
-def _length(k):
+def _length(k: int) -> int:
     return 1 if k == 0 else _decade(Fraction(abs(k))) + 1
 
 
-def _floor(q):
+def _floor(q: Fraction) -> int:
     return q.numerator // q.denominator

@@ -18,17 +18,21 @@ resultants whose numbers grow to about deg T (bits of h + log deg T) bits, and a
 root of T.  A pole whose rational enclosure of kappa_z lies in (lo, hi) then has kappa_z = value exactly.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
+from typing import Any, Callable, Sequence
 
 from . import polys
-from .rationals import FRACTION_WEIGHT, require, within_budget
+from .budget import FRACTION_WEIGHT, within_budget
+from .failure import require
 from .reals import Real
 
 MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate
 MAX_ISOLATE = 4000
 
 
-def _power_sums(monic, count):
+def _power_sums(monic: Sequence[Fraction], count: int) -> list[Fraction]:
     d = len(monic) - 1
     e = [(-1) ** k * monic[d - k] for k in range(d + 1)]
     s = [Fraction(0)] * (count + 1)
@@ -40,14 +44,14 @@ def _power_sums(monic, count):
     return s[1:]
 
 
-def _from_power_sums(s, d):
+def _from_power_sums(s: Sequence[Fraction], d: int) -> list[Fraction]:
     e = [Fraction(1)]
     for k in range(1, d + 1):
         e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
     return [(-1) ** (d - i) * e[d - i] for i in range(d + 1)]
 
 
-def _shift(p, t):
+def _shift(p: Sequence[Fraction], t: Fraction) -> list[Fraction]:
     """p(w - t) (coefficients low to high)."""
     out = [Fraction(0)] * len(p)
     for k in range(len(p) - 1, -1, -1):  # Horner in (w - t)
@@ -56,7 +60,7 @@ def _shift(p, t):
     return out
 
 
-def _value(h, t):
+def _value(h: Sequence[Fraction], t: Fraction) -> Any:
     q = _shift(h, t)
     c = [x / q[-1] for x in q]
     d = len(c) - 1
@@ -67,7 +71,7 @@ def _value(h, t):
     return polys.resultant(P2, G) * polys.resultant(G, polys.derivative(G))
 
 
-def interpolation_cost(degree, bits):
+def interpolation_cost(degree: int, bits: int) -> int:
     """Estimated word operations of building T of formal degree ``degree`` for an h with ``bits``-bit
     integer coefficients (calibrated: about a second of work per 10^8 on the kernel's Fractions)."""
     linear = (degree + 1) ** 2 * (3 * FRACTION_WEIGHT + degree * (bits + degree.bit_length()) // 2)
@@ -77,7 +81,7 @@ def interpolation_cost(degree, bits):
     return max(linear, (degree + 1) ** 2 * w * w // 8)
 
 
-def tie_polynomial(h):
+def tie_polynomial(h: Any) -> Any:
     """T for the squarefree part of h (degree >= 2), by interpolation; priced first (work budget)."""
     sq = polys.monic(polys.squarefree(h))
     d = len(sq) - 1
@@ -93,7 +97,7 @@ def tie_polynomial(h):
     return T
 
 
-def tie_interval(h, value):
+def tie_interval(h: Any, value: Any) -> Any:
     """(lo, hi) with value in it and exactly one root of T there (so every root of T in it is value)."""
     require(not value.inf, "tie: the tie value must be finite")
     T = polys.squarefree(tie_polynomial(h))
@@ -117,7 +121,8 @@ def tie_interval(h, value):
     require(False, "tie: could not isolate the claimed radius among the roots of the tie polynomial")
 
 
-def kappa_enclosure(z, P_lo, P_hi, sqrt_bounds):
+def kappa_enclosure(z: tuple[Fraction, Fraction, Fraction], P_lo: Fraction, P_hi: Fraction,
+                    sqrt_bounds: Callable[..., Any]) -> tuple[Fraction, Fraction] | None:
     """Rationals (lo, hi) around kappa_z for every pole in the disk z = (a, b, rad) and p* in [P_lo, P_hi],
     or None unless Re z < p* is certain."""
     a, b, rad = z
@@ -132,7 +137,7 @@ def kappa_enclosure(z, P_lo, P_hi, sqrt_bounds):
     return lo, hi
 
 
-def balanced_tie(g, h):
+def balanced_tie(g: Any, h: Any) -> Any:
     """kappa* for r = g/h (lowest terms, h(0) > 0) with exactly two simple poles p > 0 > a, |a| > p, whose residues
     balance: |b_a| = b_p > 0 (b = -g(z)/h'(z)).  Then, for j > deg g - 2 and 0 <= kappa <= kappa* = -(a + p)/2,
         c_j(kappa) = b_p (p + kappa)^-(j+1) + b_a (a + kappa)^-(j+1) >= b_p ((p + kappa)^-(j+1) - |a + kappa|^-(j+1)) >= 0

@@ -13,11 +13,15 @@ unchanged.  The result is the list of maximal intervals, each end exact and
 marked closed or open -- what a valid-set claim must equal.
 """
 
+from __future__ import annotations
+
 from fractions import Fraction
 from functools import cmp_to_key
+from typing import Any, Sequence
 
 from . import polys
-from .rationals import boolean, require
+from .failure import require
+from .rationals import boolean
 from .reals import Real, separate
 
 
@@ -26,20 +30,20 @@ class Interval:
 
     __slots__ = ("lo", "hi", "lo_closed", "hi_closed")
 
-    def __init__(self, lo, hi, lo_closed, hi_closed):
+    def __init__(self, lo: Real, hi: Real | None, lo_closed: bool, hi_closed: bool) -> None:
         self.lo, self.hi, self.lo_closed, self.hi_closed = lo, hi, lo_closed, hi_closed
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"{'[' if self.lo_closed else '('}{self.lo}, {self.hi}{']' if self.hi_closed else ')'}"
 
 
-def _no_positive_root(p):
+def _no_positive_root(p: Sequence[int | Fraction]) -> bool:
     """Descartes: no sign variation among the coefficients means no positive root."""
     signs = [c > 0 for c in p if c != 0]
     return all(s == signs[0] for s in signs)
 
 
-def breakpoints(named, bounds):
+def breakpoints(named: Any, bounds: Any) -> list[tuple[Real, set[Any]]]:
     """Sorted distinct positive roots of the named polynomials (those of a name
     with a bound only up to that bound), each with the set of names vanishing there."""
     roots = []
@@ -51,8 +55,8 @@ def breakpoints(named, bounds):
             if real.poly is not None:  # narrow enclosures: most comparisons then need no gcd
                 real.refine_below((hi - lo) / 2**24)
             roots.append((real, name))
-    roots.sort(key=cmp_to_key(lambda x, y: x[0].compare(y[0])))
-    merged = []
+    roots.sort(key=cmp_to_key(lambda x, y: x[0].compare(y[0])))  # type: ignore[index]
+    merged: list[Any] = []
     for real, name in roots:
         if merged and merged[-1][0].compare(real) == 0:
             merged[-1][1].add(name)
@@ -61,12 +65,13 @@ def breakpoints(named, bounds):
     return merged
 
 
-def _tightness(p):
+def _tightness(p: Any) -> Fraction:
     """p(0) relative to p's size: small for a condition close to binding at h = 0."""
     return Fraction(abs(p[0]), max(abs(c) for c in p)) if p else Fraction(0)
 
 
-def valid_set(D, inequalities, equalities, first=(), start=None):
+def valid_set(D: Sequence[Fraction], inequalities: Sequence[Sequence[int | Fraction]], equalities: Sequence[Any],
+              first: Sequence[Sequence[int | Fraction]] = (), start: None = None) -> Any:
     """The maximal intervals of valid h >= 0 (see the module docstring).
 
     Condition by condition: V starts as {h >= 0 : D(h) != 0, every equality = 0}
@@ -83,7 +88,7 @@ def valid_set(D, inequalities, equalities, first=(), start=None):
     ``start = (V0, done)``: V0 is this function's valid set of D and the
     inequalities ``done`` alone (the same D); V then starts as V0 n {every
     equality = 0} and skips ``done`` -- the same intersection, done once."""
-    done = set(map(tuple, start[1])) if start is not None else set()
+    done: set[Any] = set(map(tuple, start[1])) if start is not None else set()
     early = [list(p) for p in first if tuple(p) not in done]
     seen = set(map(tuple, early)) | done
     rest = sorted((list(p) for p in inequalities if tuple(p) not in seen), key=_tightness)
@@ -100,7 +105,7 @@ def valid_set(D, inequalities, equalities, first=(), start=None):
     return V
 
 
-def _hull(V):
+def _hull(V: Any) -> tuple[Fraction, Fraction | None]:
     """Rationals a <= b with V inside [a, b] (b short and close above V's end); b is None
     if V is unbounded."""
     end = V[-1].hi
@@ -111,7 +116,7 @@ def _hull(V):
     return V[0].lo.bounds()[0], _coarse_above(end.bounds()[1])
 
 
-def _nonnegative_on(ints, a, b):
+def _nonnegative_on(ints: Sequence[int], a: Fraction, b: Fraction | None) -> Any:
     """True proves p >= 0 on [a, b] (p as integer coefficients; b = None: on [a, oo)): p(a) >= 0
     if a = b; else p positive just right of a with no root in the open (a, b) by Descartes'
     rule (then p > 0 on (a, b), and p >= 0 at the ends by continuity); for b = None, p
@@ -124,12 +129,12 @@ def _nonnegative_on(ints, a, b):
     return polys.sign_right_of(ints, a) > 0 and polys.no_root_between(ints, a, b)
 
 
-def _later_start(a, b):
+def _later_start(a: Interval, b: Interval) -> tuple[Real, bool]:
     c = a.lo.compare(b.lo)
     return (a.lo, a.lo_closed) if c > 0 else (b.lo, b.lo_closed) if c < 0 else (a.lo, a.lo_closed and b.lo_closed)
 
 
-def _intersect(A, B):
+def _intersect(A: Any, B: Any) -> list[Interval]:
     """The intersection of two lists of maximal intervals (ordered, disjoint), as one:
     pairwise intersections, exact comparisons of the ends.  (Maximal again: two pieces
     that touched would lie in one interval of A and one of B.)"""
@@ -147,7 +152,7 @@ def _intersect(A, B):
     return out
 
 
-def _valid_set(D, inequalities, equalities, exact_count, top):
+def _valid_set(D: Any, inequalities: Any, equalities: Any, exact_count: Any, top: Any) -> list[Interval]:
     """The valid set; the first exact_count inequalities (and D and the
     equalities) have all their roots isolated, the others only up to top -- sound
     when those first ones already make every h > top invalid."""
@@ -159,10 +164,10 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
         named.append((("D", 0), D))
     polys_by_name = dict(named)
     points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
-    bounds = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
+    bounds: dict[Any, Any] = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
     points += breakpoints(named, bounds)
 
-    def cell_sample(k):
+    def cell_sample(k: int) -> Any:
         if k + 1 < len(points):
             a1, b0 = separate(points[k][0], points[k + 1][0])
             return (a1 + b0) / 2
@@ -174,7 +179,7 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
     negative = {("i", k) for _, k, p in ineq if polys.evaluate(p, sample) < 0}
     elements = []  # (kind, index, valid): ("point", k) then ("cell", k) alternately
     eq_names = {("e", k) for _, k, _ in eq}
-    for k, (real, vanishing) in enumerate(points):
+    for k, (_real, vanishing) in enumerate(points):
         if k == 0:  # decided by evaluation: the cell signs say nothing about h = 0 itself
             point_ok = (eq_names <= vanishing and ("D", 0) not in vanishing
                         and all(polys.evaluate(p, Fraction(0)) >= 0 for _, _, p in ineq))
@@ -192,7 +197,7 @@ def _valid_set(D, inequalities, equalities, exact_count, top):
     return _intervals(points, elements)
 
 
-def _intervals(points, elements):
+def _intervals(points: Sequence[tuple[Real, set[Any]]], elements: Sequence[tuple[str, int, bool]]) -> list[Interval]:
     out = []
     current = None
     for kind, k, ok in elements:
@@ -212,7 +217,7 @@ def _intervals(points, elements):
     return out
 
 
-def _coarse_above(x):
+def _coarse_above(x: Fraction) -> Any:
     """A dyadic rational >= x with about 64 significant bits: bisection from it
     keeps short numbers, where x itself may carry thousands of bits."""
     shift = 64 - (x.numerator.bit_length() - x.denominator.bit_length())
@@ -220,7 +225,7 @@ def _coarse_above(x):
         Fraction(-(-x.numerator // (x.denominator << -shift)) << -shift)
 
 
-def _first_sign_change(p, upper):
+def _first_sign_change(p: Any, upper: Any) -> Any:
     """The first root in (0, upper] where p (positive right of 0) changes sign, or None."""
     ints = polys.integer_coefficients(p)
     for lo, hi in polys.positive_roots(p, upper):
@@ -232,7 +237,7 @@ def _first_sign_change(p, upper):
     return None
 
 
-def first_end(D, inequalities, equalities, first=(), start=None):
+def first_end(D: Any, inequalities: Any, equalities: Any, first: Any = (), start: Any = None) -> Any:
     """(tau, attained): the end of the valid interval that starts at 0.
 
     tau = min over the inequalities c of sup{T : c >= 0 on [0, T]} (the first
@@ -274,7 +279,7 @@ def first_end(D, inequalities, equalities, first=(), start=None):
     return best, attained
 
 
-def require_intervals(claimed, truth):
+def require_intervals(claimed: Any, truth: Any) -> None:
     """The claim's intervals are exactly the recomputed ones: the same number,
     each end equal as a real number, each closed/open flag equal."""
     require(isinstance(claimed, list), "intervals is a list")

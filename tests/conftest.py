@@ -1,4 +1,5 @@
 import os
+import sys
 
 from hypothesis import HealthCheck, settings
 
@@ -14,8 +15,6 @@ settings.register_profile(
 )
 settings.load_profile("ci")
 
-import sys
-
 sys.path.insert(0, os.path.dirname(__file__))  # tests/strategies.py, under --import-mode=importlib
 
 
@@ -23,9 +22,9 @@ sys.path.insert(0, os.path.dirname(__file__))  # tests/strategies.py, under --im
 # documented JSON Schema (docs/certificate.schema.json): the kernel's entry
 # point is wrapped here, before any test module (or exactinv) binds it.
 import json  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 import pytest  # noqa: E402
-from pathlib import Path  # noqa: E402
 
 import exactinv_check  # noqa: E402
 import exactinv_check.kernel  # noqa: E402

@@ -4,9 +4,10 @@ slot tests counted (the ``forced`` fixture is in conftest.py)."""
 
 from fractions import Fraction
 
-from exactinv_check import pruning
-from exactinv_check.rationals import CheckFailure
 from kernel_deadline import TooSlow
+
+from exactinv_check import pruning
+from exactinv_check.failure import CheckFailure
 
 
 def fractions_of(S, P):

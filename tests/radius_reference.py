@@ -58,7 +58,7 @@ def from_partial_fractions(terms, constant=None):
     for z in zs:
         h = mul(h, [(-z[0], -z[1]), (Fraction(1), Fraction(0))])
     num = [(Fraction(0), Fraction(0))] * len(h)
-    for k, (z, b) in enumerate(terms):
+    for k, (_z, b) in enumerate(terms):
         q = [(Fraction(1), Fraction(0))]
         for i, w in enumerate(zs):
             if i != k:

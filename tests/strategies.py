@@ -6,7 +6,7 @@ from hypothesis import assume
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.core.scalars import fmpq_matrix
+from exactinv.core.flintq import fmpq_matrix
 
 
 @st.composite

@@ -4,13 +4,14 @@ re-proved by the kernel and every radius checked against the slow exact referenc
 
 from fractions import Fraction as F
 
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from radius_reference import admissible, coefficients_at, from_partial_fractions
 
 import exactinv as ei
 from exactinv.paper.balanced_tie import balanced_tie, gaussian_poles
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
-from radius_reference import admissible, coefficients_at, from_partial_fractions
 
 UNITS = [(F(3, 5), F(4, 5)), (F(-3, 5), F(4, 5)), (F(5, 13), F(12, 13)), (F(-8, 17), F(15, 17)), (F(0), F(1)),
          (F(-7, 25), F(24, 25)), (F(4, 5), F(3, 5))]  # points of the unit circle in Q(i), upper half plane

@@ -19,7 +19,6 @@ import pytest
 distributed = pytest.importorskip("dask.distributed")
 
 import exactinv as ei  # noqa: E402
-from exactinv.validset.results import LargestThreshold, ValidSteplengths  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
 from exactinv.interfaces.batch import run_batch  # noqa: E402
 from exactinv.interfaces.batch.corpus import done_ids, read_corpus  # noqa: E402
@@ -27,6 +26,7 @@ from exactinv.interfaces.cli import main  # noqa: E402
 from exactinv.interfaces.oracle import judge_batch  # noqa: E402
 from exactinv.interfaces.pipeline import certify  # noqa: E402
 from exactinv.interfaces.problem import load_problem  # noqa: E402
+from exactinv.validset.results import LargestThreshold, ValidSteplengths  # noqa: E402
 
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
 SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}

@@ -14,7 +14,6 @@ import flint
 
 from exactinv.interfaces.batch.resident import Sandbox
 
-
 _kept: list = []  # what a run leaves behind in the child (a long-lived process's growth)
 
 

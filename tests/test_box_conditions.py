@@ -4,7 +4,8 @@ sign patterns of the rows of N(h), equal to the general vertex-facet route, no v
 from fractions import Fraction
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.beyond.box_conditions import box_route, detect_box, vertex_index

@@ -217,9 +217,11 @@ MALFORMED = {
     "linearity zero": ("linearity 1 0\nbegin\n1 2 integer\n1 1\nend\n", r"line 1: linearity row indices start at 1"),
     "empty row": ("begin\n2 2 integer\n-1 0\n1 1\nend\n", r"line 3: the row reads 0 <= -1, so the polyhedron is empty"),
     "whole space": ("begin\n1 2 integer\n1 0\nend\n", r"no inequality; P would be the whole space"),
-    "V row neither 0 nor 1": ("V-representation\nbegin\n1 2 integer\n2 1\nend\n", r"line 4: a V-representation row starts with 1"),
+    "V row neither 0 nor 1": ("V-representation\nbegin\n1 2 integer\n2 1\nend\n",
+                              r"line 4: a V-representation row starts with 1"),
     "V zero ray": ("V-representation\nbegin\n2 2 integer\n1 1\n0 0\nend\n", r"line 5: the ray is the zero vector"),
-    "V point as line": ("V-representation\nlinearity 1 1\nbegin\n1 2 integer\n1 1\nend\n", r"line 5: linearity names row 1, a point"),
+    "V point as line": ("V-representation\nlinearity 1 1\nbegin\n1 2 integer\n1 1\nend\n",
+                        r"line 5: linearity names row 1, a point"),
     "V whole space": ("V-representation\nlinearity 1 2\nbegin\n2 2 integer\n1 0\n0 1\nend\n", r"span the whole space"),
 }
 

@@ -21,7 +21,6 @@ import re
 from pathlib import Path
 
 import pytest
-
 from certificate_corpus import corpus
 from exactinv_check import format as fmt
 from exactinv_check import kernel
@@ -326,11 +325,13 @@ def _mutants():
         ("a string boolean", mutate(lambda c: c["claims"][3].update(attained="true"))),
         ("an algebraic number with an extra key",
          mutate(lambda c: c["claims"][3].update(value={"poly": ["-2", "0", "1"], "interval": ["1", "2"], "approx": "1.41"}))),
-        ("an algebraic number of degree 0", mutate(lambda c: c["claims"][3].update(value={"poly": ["2"], "interval": ["1", "2"]}))),
+        ("an algebraic number of degree 0",
+         mutate(lambda c: c["claims"][3].update(value={"poly": ["2"], "interval": ["1", "2"]}))),
         ("an algebraic number of degree 201",
          mutate(lambda c: c["claims"][3].update(value={"poly": ["-2"] + ["0"] * 200 + ["1"], "interval": ["1", "2"]}))),
         ("oo where a rational is needed", mutate(lambda c: c["problem"]["b"].__setitem__(0, "oo"))),
-        ("an algebraic gamma*", mutate(lambda c: c["claims"][gamma].update(value={"poly": ["-2", "0", "1"], "interval": ["1", "2"]}))),
+        ("an algebraic gamma*",
+         mutate(lambda c: c["claims"][gamma].update(value={"poly": ["-2", "0", "1"], "interval": ["1", "2"]}))),
         ("a finite gamma* without its dual", mutate(lambda c: c["claims"][gamma].pop("dual"))),
         ("A without G and b", mutate(lambda c: [c["problem"].pop("G"), c["problem"].pop("b")])),
         ("a method without a denominator", mutate(lambda c: c["problem"]["method"].pop("denominator"))),

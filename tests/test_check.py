@@ -42,7 +42,8 @@ def _gap_set():
 def _e2_largest():
     S, O = ei.LinearSystem([[-1, 2], [0, 1]]), ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
     return certificate(S, O, ei.methods.backward_euler(),
-                       [ei.steplength_threshold(S, O, ei.methods.backward_euler()), ei.largest_threshold(S, O, ei.methods.backward_euler())])
+                       [ei.steplength_threshold(S, O, ei.methods.backward_euler()),
+                        ei.largest_threshold(S, O, ei.methods.backward_euler())])
 
 
 def _largest_taylor2():
@@ -107,11 +108,14 @@ TAMPERS = {
     "H entry": (_box_taylor3, lambda c: _claim(c, "gamma_star")["H"]["sparse"][0][1].__setitem__(
         1, _bump(_claim(c, "gamma_star")["H"]["sparse"][0][1][1]))),  # version 3: [column, value] pairs
     "gamma value": (_box_taylor3, lambda c: _claim(c, "gamma_star").__setitem__("value", "1/2")),
-    "dual entry": (_box_taylor3, lambda c: _claim(c, "gamma_star")["dual"]["y"].__setitem__(0, _bump(_claim(c, "gamma_star")["dual"]["y"][0]))),
+    "dual entry": (_box_taylor3,
+                   lambda c: _claim(c, "gamma_star")["dual"]["y"].__setitem__(0, _bump(_claim(c, "gamma_star")["dual"]["y"][0]))),
     "dual lambda sign": (_box_taylor3, lambda c: _claim(c, "gamma_star")["dual"].__setitem__("lambda", "-1")),
-    "binding row": (_box_taylor3, lambda c: _claim(c, "gamma_star").__setitem__("binding_row", 1 - _claim(c, "gamma_star")["binding_row"] + 2)),
+    "binding row": (_box_taylor3,
+                    lambda c: _claim(c, "gamma_star").__setitem__("binding_row", 1 - _claim(c, "gamma_star")["binding_row"] + 2)),
     "threshold value": (_box_taylor3, lambda c: _claim(c, "polynomial_threshold").__setitem__("value", "3/2")),
-    "tau interval end": (_box_taylor3, lambda c: _claim(c, "polynomial_threshold")["f"][0]["tau"]["interval"].__setitem__(0, "17/10")),
+    "tau interval end": (_box_taylor3,
+                         lambda c: _claim(c, "polynomial_threshold")["f"][0]["tau"]["interval"].__setitem__(0, "17/10")),
     "tau polynomial": (_box_taylor3, lambda c: _claim(c, "polynomial_threshold")["f"][0]["tau"]["poly"].__setitem__(0, "7")),
     "f coefficient": (_box_taylor3, lambda c: _claim(c, "polynomial_threshold")["f"][2]["coefficients"].__setitem__(3, "1")),
     "tau_i too large": (_box_taylor3, lambda c: _claim(c, "polynomial_threshold")["f"][2].__setitem__("tau", "2")),
@@ -121,7 +125,9 @@ TAMPERS = {
     "b changed": (_box_taylor3, lambda c: c["problem"]["b"].__setitem__(0, "2")),
     "witness point": (_non_invariant, lambda c: _claim(c, "gamma_star")["witness"]["x"].__setitem__(0, "1/2")),
     "witness facet": (_non_invariant, lambda c: _claim(c, "gamma_star")["witness"].__setitem__("facet", 3)),
-    "ray sign": (_minus_infinity, lambda c: _claim(c, "gamma_star")["rows"][0]["ray"].__setitem__(0, str(-Fraction(_claim(c, "gamma_star")["rows"][0]["ray"][0]) - 1))),
+    "ray sign": (_minus_infinity,
+                 lambda c: _claim(c, "gamma_star")["rows"][0]["ray"].__setitem__(
+                     0, str(-Fraction(_claim(c, "gamma_star")["rows"][0]["ray"][0]) - 1))),
     "H~ entry": (_discrete, lambda c: c["claims"][0]["H"]["sparse"][0].insert(0, [0, "1"])),
     "discrete verdict flipped": (_discrete, lambda c: c["claims"][1].__setitem__("holds", True)),
     "version": (_box_taylor3, lambda c: c.__setitem__("version", 99)),

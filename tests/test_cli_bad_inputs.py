@@ -17,7 +17,6 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
-
 from certificate_corpus import corpus
 
 ROOT = Path(__file__).resolve().parent.parent

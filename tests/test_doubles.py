@@ -10,6 +10,7 @@ from pathlib import Path
 
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from strategies import metzler_cones
 
 import exactinv as ei
 from exactinv import methods as M
@@ -17,7 +18,6 @@ from exactinv import oracle
 from exactinv.core.doubles import DOUBLE_MAX, double_above, double_below
 from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.interfaces.problem import load_problem
-from strategies import metzler_cones
 
 ROOT = Path(__file__).parent.parent
 

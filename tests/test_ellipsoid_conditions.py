@@ -4,10 +4,9 @@ sum of the k x k principal minors of M(h) = H^T Q H - G^T Q G computed here."""
 from fractions import Fraction
 from itertools import combinations
 
+import flint
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-import flint
 
 import exactinv as ei
 from exactinv.beyond.ellipsoid_conditions import psd_polynomials

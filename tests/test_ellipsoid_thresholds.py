@@ -213,7 +213,8 @@ def test_result_fields_land_where_they_belong():
     arguments): on the unit disc with A = -I and Taylor-2, q_1 = 2 c(h), q_2 = c(h)^2 with
     c = (1 - h/2)(2 - h + h^2/2); q_1 changes sign at h = 2 and binds, q_2 only touches 0."""
     from exactinv import Ellipsoid, LinearSystem, methods
-    from exactinv import largest_threshold as ellipsoid_largest_threshold, valid_steplengths as ellipsoid_valid_steplengths
+    from exactinv import largest_threshold as ellipsoid_largest_threshold
+    from exactinv import valid_steplengths as ellipsoid_valid_steplengths
     S, E = LinearSystem([[-1, 0], [0, -1]]), Ellipsoid([[1, 0], [0, 1]])
     L = ellipsoid_largest_threshold(S, E, methods.taylor(2))
     assert (L.value, L.coefficient, L.pruning) == (2, 1, None)

@@ -8,7 +8,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import flint
-from hypothesis import given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from exactinv.core.float_hint import float_hint, float_hints, ldexp_hint, log2_hint

@@ -15,7 +15,8 @@ from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.lp.solver import LPPath

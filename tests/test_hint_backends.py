@@ -17,10 +17,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv_check import check
-from exactinv.lp import ExactLPSolver, hint
+from exactinv.lp import ExactLPSolver, hint, hint_types
 from exactinv.lp import solver as lp
 from exactinv.lp.exact import ppl_maximize
+from exactinv_check import check
 
 needs_cvxpy = pytest.mark.skipif(importlib.util.find_spec("cvxpy") is None, reason="cvxpy (optional) is not installed")
 
@@ -47,7 +47,8 @@ def _problems():
         row = [rng.randint(-5, 5) for _ in range(n)]
         if any(row):
             G.append(row)
-    A = [[Fraction(rng.randint(-50, 50), 50 * 18 * n * n) - (Fraction(1, 2) if i == j else 0) for j in range(n)] for i in range(n)]
+    A = [[Fraction(rng.randint(-50, 50), 50 * 18 * n * n) - (Fraction(1, 2) if i == j else 0) for j in range(n)]
+         for i in range(n)]
     out.append(("polytope", ei.LinearSystem(A), ei.Polyhedron(G, [1] * len(G))))
     return out
 
@@ -112,26 +113,26 @@ class _Liar(hint.HintBackend):
     def model(self, A, equality):
         liar = self
 
-        class Model(hint.HintModel):
+        class Model(hint_types.HintModel):
             def solve(self, cost, rhs, nonneg):
                 R, N = A.shape
                 kind = liar.rng.integers(0, 6)
                 if kind == 5:  # malformed: NaN, infinities, wrong lengths, out-of-range basis
                     if liar.rng.integers(0, 2):
-                        return hint.Hint(hint.LPStatus.OPTIMAL, np.zeros(N), np.zeros(R), ((N + 3, -1), (R, R)))
-                    return hint.Hint(hint.LPStatus.OPTIMAL, np.full(N, np.nan), np.full(R + 1, np.inf))
+                        return hint_types.Hint(hint_types.LPStatus.OPTIMAL, np.zeros(N), np.zeros(R), ((N + 3, -1), (R, R)))
+                    return hint_types.Hint(hint_types.LPStatus.OPTIMAL, np.full(N, np.nan), np.full(R + 1, np.inf))
                 if kind == 0:
-                    return hint.Hint(hint.LPStatus.INFEASIBLE)
+                    return hint_types.Hint(hint_types.LPStatus.INFEASIBLE)
                 if kind == 1:
-                    return hint.Hint(hint.LPStatus.UNBOUNDED)
+                    return hint_types.Hint(hint_types.LPStatus.UNBOUNDED)
                 if kind == 2:
-                    return hint.Hint(hint.LPStatus.UNKNOWN)
+                    return hint_types.Hint(hint_types.LPStatus.UNKNOWN)
                 basis = None
                 if kind == 3:
                     k = int(liar.rng.integers(0, min(R, N) + 1))
                     basis = (tuple(sorted(liar.rng.choice(N, k, replace=False).tolist())),
                              tuple(sorted(liar.rng.choice(R, k, replace=False).tolist())))
-                return hint.Hint(hint.LPStatus.OPTIMAL, liar.rng.normal(size=N) * 3, liar.rng.normal(size=R), basis)
+                return hint_types.Hint(hint_types.LPStatus.OPTIMAL, liar.rng.normal(size=N) * 3, liar.rng.normal(size=R), basis)
 
         return Model()
 

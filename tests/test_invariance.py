@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.certificates import certificate
+from exactinv.core.flintq import fmpq_matrix
 from exactinv_check import check
 
 
@@ -70,9 +71,9 @@ def test_gamma_invariant_under_change_of_coordinates(A, data):
     T = [[data.draw(st.integers(-2, 2)) for _ in range(n)] for _ in range(n)]
     Tq = flint.fmpq_mat(T)
     assume(Tq.det() != 0)
-    Aq = Tq.inv() * ei.numbers.fmpq_matrix(A) * Tq
+    Aq = Tq.inv() * fmpq_matrix(A) * Tq
     P = _box(n)
-    GT = ei.numbers.fmpq_matrix(P.G) * Tq
+    GT = fmpq_matrix(P.G) * Tq
     S2 = ei.LinearSystem([[Aq[i, j] for j in range(n)] for i in range(n)])
     P2 = ei.Polyhedron([[GT[i, j] for j in range(n)] for i in range(P.m)], P.b)
     assert ei.optimal_gamma(S2, P2).value == ei.optimal_gamma(ei.LinearSystem(A), P).value
@@ -114,7 +115,7 @@ def test_continuous_invariance_holds_with_H():
     P = _box(2)
     result = ei.continuous_invariance(S, P)
     assert result.holds and bool(result)
-    H = ei.numbers.fmpq_matrix(result.certificate)
+    H = fmpq_matrix(result.certificate)
     assert H * P.G_flint == P.G_flint * S.A_flint
 
 

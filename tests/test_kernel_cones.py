@@ -17,10 +17,10 @@ def test_degenerate_cone_enumeration_matches_brute_force():
     while tested < 300:
         r = rng.randint(1, 4)
         A = [[rng.randint(-2, 2) for _ in range(r)] for _ in range(rng.randint(r, r + 5))]
-        rank, _, basis, _, _ = cones._reduce(A, r)
+        rank, _, basis, _, _ = cones.reduce_rows(A, r)
         if rank != r:
             continue
-        got = [tuple(y) for y in cones._cone_rays(A, basis, r)]
+        got = [tuple(y) for y in cones.cone_rays(A, basis, r)]
         want = set()
         for S in itertools.combinations(range(len(A)), r - 1):
             k, null = rank_and_nullspace([[F(x) for x in A[i]] for i in S], r)
@@ -31,6 +31,6 @@ def test_degenerate_cone_enumeration_matches_brute_force():
                 Ay = [sum(a * c for a, c in zip(row, y)) for row in A]
                 if max(Ay) <= 0 and any(Ay):
                     den = math.lcm(*(x.denominator for x in y))
-                    want.add(tuple(cones._primitive([int(x * den) for x in y])))
+                    want.add(tuple(cones.primitive([int(x * den) for x in y])))
         assert len(got) == len(set(got)) and set(got) == want, (A, got, want)
         tested += 1

@@ -9,9 +9,9 @@ import json
 import time
 
 import pytest
+from certificate_corpus import BOX, ROT, corpus
 
 import exactinv as ei
-from certificate_corpus import BOX, ROT, corpus
 from exactinv.certificates import certificate
 from exactinv_check import check
 

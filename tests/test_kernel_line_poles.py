@@ -5,14 +5,14 @@ import copy
 from fractions import Fraction as F
 
 import pytest
+from radius_reference import from_partial_fractions, product
 
 import exactinv as ei
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
 from exactinv_check.bernstein import prove_completely_monotone
+from exactinv_check.failure import CheckFailure
 from exactinv_check.line_poles import disk_on_line, line_gcd, rational_root, single_pair
-from exactinv_check.rationals import CheckFailure
-from radius_reference import from_partial_fractions, product
 
 BOTH = product([1, -1], [1, -1, F(1, 2)])  # poles 1, 1 +- i
 

@@ -12,8 +12,9 @@ import json
 import random
 from fractions import Fraction
 
-import exactinv as ei
 from certificate_corpus import corpus
+
+import exactinv as ei
 from exactinv_check import check
 
 PER_CERTIFICATE = 160  # mutants sampled per certificate (deterministic)

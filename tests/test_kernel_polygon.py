@@ -8,13 +8,13 @@ from fractions import Fraction as F
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from pruning_helpers import polygon_rows
 
 import exactinv as ei
 from exactinv_check import check, polyhedra
+from exactinv_check.failure import CheckFailure
 from exactinv_check.polygon import prove_polygon
 from exactinv_check.polyhedra import prove_generators
-from exactinv_check.rationals import CheckFailure
-from pruning_helpers import polygon_rows
 
 
 def hull(points):

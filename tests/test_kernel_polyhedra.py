@@ -9,11 +9,11 @@ from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
+from pruning_helpers import polygon_rows
 
 from exactinv_check import polyhedra
+from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import Generators, prove_generators
-from exactinv_check.rationals import CheckFailure
-from pruning_helpers import polygon_rows
 
 
 def vec(*xs):

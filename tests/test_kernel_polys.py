@@ -4,11 +4,12 @@ Descartes isolation costs the same for roots near 10^60, 1 or 10^-60 (issue 22: 
 
 from fractions import Fraction
 
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from kernel_deadline import check_within
 
 import exactinv as ei
 from exactinv_check.polys import cauchy_bound, count_roots, positive_roots
-from kernel_deadline import check_within
 
 
 def _from_roots(roots):

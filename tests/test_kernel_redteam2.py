@@ -10,7 +10,6 @@ import random
 
 from test_kernel_redteam import _cert, _check_in_subprocess  # shared with round 1
 
-
 # --------------------------------------------------------------------------
 # 1. Exact root work on a small, bounded-degree input runs for minutes
 #

@@ -11,17 +11,15 @@ import random
 from fractions import Fraction as F
 
 import pytest
+from kernel_deadline import check_within
 
 import exactinv as ei
 from exactinv.certificates import certificate
-from exactinv_check import check
-from exactinv_check import boxes
+from exactinv_check import boxes, check
 from exactinv_check.conditions import condition_polynomials
 from exactinv_check.kernel import Method
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.validset import first_end, valid_set
-
-from kernel_deadline import check_within
 
 M = ei.methods
 

@@ -16,7 +16,7 @@ import pytest
 
 from exactinv_check import budget, check
 from exactinv_check.bernstein import prove_completely_monotone
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -150,10 +150,12 @@ def test_tie_polynomial_priced_by_the_square_of_its_numbers():
     method) it priced the interpolation of T at 3.2e7 word operations (under the 1e8 limit) and it ran 47 s of
     CPU.  The resultants' Fraction gcds are quadratic in the words: now rejected before it runs."""
     import random
+
     from exactinv_check import tie
     rng = random.Random(2)
     bits = 100000
-    h = [F(rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))) for _ in range(2)] + [F(rng.randint(2**bits, 2**(bits + 1)))]
+    h = ([F(rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))) for _ in range(2)]
+         + [F(rng.randint(2**bits, 2**(bits + 1)))])
     start = time.process_time()
     with budget.account(time_limit=None):
         with pytest.raises(CheckFailure, match="work budget"):
@@ -168,6 +170,7 @@ def test_quotient_polynomial_resultants_and_interpolation_are_charged():
     charge (of the final products) overdrew the account.  Now every resultant step and interpolation level is
     charged: an account of 2e8 stops it within seconds."""
     import random
+
     from exactinv_check import polys
     rng = random.Random(3)
     p = [F(rng.randint(1, 2**300) * rng.choice((-1, 1))) for _ in range(41)]

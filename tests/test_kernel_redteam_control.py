@@ -36,8 +36,9 @@ import exactinv as ei
 import exactinv_check
 from exactinv_check import budget
 from exactinv_check.cones import integer_rank
+from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
-from exactinv_check.rationals import CheckFailure, rank_and_nullspace
+from exactinv_check.rationals import rank_and_nullspace
 
 # ------------------------------------------------------------------ finding 1: a Farkas vector on an empty P
 

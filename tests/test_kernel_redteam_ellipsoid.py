@@ -24,13 +24,13 @@ import random
 from fractions import Fraction
 
 import pytest
+from test_kernel_redteam import _check_in_subprocess
 
 from exactinv_check import check
 from exactinv_check.ellipsoids import condition_polynomials
 from exactinv_check.kernel import Method
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
-from test_kernel_redteam import _check_in_subprocess
 
 ROT = [["-1", "-2"], ["2", "-1"]]  # A = [[-a, -b], [b, -a]], a = 1, b = 2
 I2 = [["1", "0"], ["0", "1"]]

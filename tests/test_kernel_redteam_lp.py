@@ -159,7 +159,7 @@ def test_an_algebraic_end_with_a_wrong_interval_is_rejected():
     S, P, meth = _problem(0, M.pade(1, 1))
     cert = ei.valid_steplengths(S, P, meth, route="lp").certificate
     for f in cert["claims"][0]["lp"]["facets"]:
-        for k, e in enumerate(f["ends"]):
+        for e in f["ends"]:
             if isinstance(e, dict):
                 lo, hi = (F(x) for x in e["interval"])
                 e["interval"] = [str(hi), str(hi + (hi - lo))]  # next to the root, not around it

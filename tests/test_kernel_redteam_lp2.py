@@ -14,8 +14,8 @@ import exactinv as ei
 import exactinv_check
 from exactinv_check import lp_pieces, polys
 from exactinv_check.budget import account
+from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
-from exactinv_check.rationals import CheckFailure
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
 

@@ -13,12 +13,11 @@ import random
 from fractions import Fraction as F
 
 import pytest
+from radius_reference import coefficients_at
 
 from exactinv_check import check
 from exactinv_check.bernstein import prove_completely_monotone
-from exactinv_check.rationals import CheckFailure
-
-from radius_reference import coefficients_at
+from exactinv_check.failure import CheckFailure
 
 
 # ------------------------------------------------------------------ helpers (independent of the kernel)
@@ -184,7 +183,9 @@ def test_a_cancelled_factor_is_no_pole():
     and the list of the reduced poles is accepted."""
     num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
     f = [F(1), F(1, 5)]
-    mul = lambda p: [sum(p[i] * f[k - i] for i in range(len(p)) if 0 <= k - i < 2) for k in range(len(p) + 1)]
+    def mul(p):
+        return [sum(p[i] * f[k - i] for i in range(len(p)) if 0 <= k - i < 2) for k in range(len(p) + 1)]
+
     num5, den5 = mul(num), mul(den)
     assert not verified(num5, den5, value="1", reason="balanced-tie", attained=True,
                         poles=POLES_TEXT + [["-5", "0"]])
@@ -413,7 +414,7 @@ def test_seeded_mutation_fuzzer():
             j = next((j for j, z in enumerate(poles) if z == (poles[i][0], -poles[i][1])), i)
             new[j] = (new[i][0], -new[i][1]) if j != i else new[i]
             variants.append((new, "nudged"))
-        for rs, how in variants:
+        for rs, _how in variants:
             try:
                 num, den = from_poles(poles, rs, constant=rng.random() < .5)
             except (AssertionError, ZeroDivisionError):

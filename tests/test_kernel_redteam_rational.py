@@ -13,12 +13,10 @@ import random
 from math import factorial
 
 import pytest
+from kernel_deadline import check_within
 
 import exactinv as ei
 from exactinv_check import check
-
-from kernel_deadline import check_within
-
 
 SQUARE = [["1", "1"], ["1", "-1"], ["-1", "1"], ["-1", "-1"]]
 SQUARE_G = [["1", "0"], ["-1", "0"], ["0", "1"], ["0", "-1"]]
@@ -47,7 +45,9 @@ def test_bernstein_pieces_priced_by_bit_size_taylor64():
 
 def test_bernstein_pieces_priced_by_method_coefficient_size():
     rng = random.Random(1)
-    big = lambda: str(rng.randrange(10 ** 999, 10 ** 1000))
+    def big():
+        return str(rng.randrange(10 ** 999, 10 ** 1000))
+
     method = {"numerator": ["1"] + [f"{big()}/{big()}" for _ in range(20)], "denominator": ["1"]}
     cert = _square_cert(method, [["-1", "0"], ["0", "-1"]], _record("1", "1", 8))
     assert not check_within(cert, 2).ok

@@ -5,7 +5,8 @@ The HOLE sections documented holes (first as ``xfail(strict=True)``); they are f
 fixes: a tie radius must be positive (a tie at kappa* <= 0 is refused, rho = 0 has its own reasons), the tie
 polynomial and the d_j scan are priced against the kernel's work budget, the pruning horizon has at most 64-bit
 numerator and denominator, and the engine certifies rho = 0 by a witness for both tie functions.  The other
-tests are attacks the kernel resists, kept as regression guards.  Slow exact references (sympy Taylor coefficients) decide the truth.
+tests are attacks the kernel resists, kept as regression guards.  Slow exact references (sympy Taylor
+coefficients) decide the truth.
 """
 
 import copy
@@ -15,9 +16,9 @@ from math import factorial
 
 import pytest
 import sympy as sp
+from test_kernel_redteam import _cert, _check_in_subprocess
 
 from exactinv_check import check
-from test_kernel_redteam import _cert, _check_in_subprocess
 
 z = sp.symbols("z")
 
@@ -341,8 +342,9 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
     import math
     import random
     from types import SimpleNamespace
-    from exactinv_check.conditions import condition_polynomials, method_matrices
+
     from exactinv_check import pruning
+    from exactinv_check.conditions import condition_polynomials, method_matrices
     from exactinv_check.validset import first_end, valid_set
 
     def same(x, y):
@@ -369,14 +371,15 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
         truth, tau = valid_set(D, list(ineq), list(eq)), first_end(D, ineq, eq)
         N = method_matrices(A, num, [Fraction(1)])[1]
         for vk in range(k):
-            _, own, _ = condition_polynomials(A, G, b, num, [Fraction(1)], SimpleNamespace(vertices=[verts[vk]], rays=[], lines=[]))
+            _, own, _ = condition_polynomials(A, G, b, num, [Fraction(1)],
+                                              SimpleNamespace(vertices=[verts[vk]], rays=[], lines=[]))
             own_set = valid_set(D, list(own), [])
             for end, mode in ((own_set[-1].hi if own_set else None, "set"), (first_end(D, own, {})[0], "first")):
                 if end is None or end.inf:
                     continue
                 near = pruning.survivors(G, b, verts, N, end.bounds()[1])
                 D2, i2, e2 = condition_polynomials(A, G, b, num, [Fraction(1)], gens,
-                                                   lambda kind, i: range(len(G)) if i == vk else near[i])
+                                                   lambda kind, i, G=G, vk=vk, near=near: range(len(G)) if i == vk else near[i])
                 if mode == "set":
                     assert same(valid_set(D2, list(i2), list(e2)), truth)
                 else:
@@ -408,7 +411,7 @@ def test_the_dos_inputs_are_rejected_by_the_work_budget():
     # the claimed value "1" meets no pole's kappa_z enclosure: rejected before the tie polynomial is built;
     # and T itself is priced (before the price, the Sturm budget on T rejected only AFTER interpolating it:
     # d = 6 with a 60-digit q took 49 s), whatever value is claimed
-    from exactinv_check.rationals import CheckFailure
+    from exactinv_check.failure import CheckFailure
     from exactinv_check.tie import tie_polynomial
     assert "meets no pole's enclosure of kappa_z" in _reason(_tie_dos_cert())
     for digits, d in ((3, 6), (60, 6), (2, 7)):

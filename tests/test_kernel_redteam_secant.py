@@ -29,14 +29,12 @@ import random
 from fractions import Fraction as F
 
 import pytest
+from kernel_deadline import check_within
+from pruning_helpers import count_slot_tests, polygon_rows
 
 import exactinv as ei
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
-
-from kernel_deadline import check_within
-from pruning_helpers import count_slot_tests, polygon_rows
-
 
 # ------------------------------------------------------------------ soundness that held
 

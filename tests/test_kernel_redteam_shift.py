@@ -63,17 +63,17 @@ from fractions import Fraction as F
 from math import comb
 
 import pytest
+from kernel_deadline import TooSlow
+from pruning_helpers import count_slot_tests, polygon_rows
+from test_kernel_redteam_secant import _circle_polygon
 
 import exactinv as ei
 from exactinv_check import check, pruning
 from exactinv_check import pruning_rational as kernel_rational
+from exactinv_check.budget import WORK_BUDGET
 from exactinv_check.conditions import method_matrices
+from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Method
-from exactinv_check.rationals import WORK_BUDGET, CheckFailure
-
-from kernel_deadline import TooSlow
-from pruning_helpers import count_slot_tests, polygon_rows
-from test_kernel_redteam_secant import _circle_polygon
 
 
 class _Deadline:
@@ -256,7 +256,8 @@ def _mutant(rng, cert):
     rational = "variable" in record
     for op in rng.sample(range(10), rng.randint(1, 3)):
         if op == 0:
-            record["horizon"] = rng.choice(["0", "1", "1/2", str(F(record["horizon"]) * F(rng.randint(1, 20), rng.randint(1, 20)))])
+            scaled = str(F(record["horizon"]) * F(rng.randint(1, 20), rng.randint(1, 20)))
+            record["horizon"] = rng.choice(["0", "1", "1/2", scaled])
             if rational and F(record["horizon"]) > 1:
                 record["horizon"] = "1"
         elif op == 1:

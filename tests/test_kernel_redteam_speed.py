@@ -15,11 +15,11 @@ instance.
 from fractions import Fraction as F
 
 import pytest
+from pruning_helpers import polygon_rows
 
 from exactinv_check import check, conditions, polygon, pruning
+from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import prove_generators
-from exactinv_check.rationals import CheckFailure
-from pruning_helpers import polygon_rows
 
 
 def _parabola_polygon(m):
@@ -118,8 +118,8 @@ def test_survivors_stop_at_the_condition_bound(monkeypatch):
 # The slot width is set by the largest row and box entry over ALL rows, so one
 # row with a 3000-digit entry (a redundant facet 10^3000 x <= 10^3001) gives every
 # one of the m short rows a ~1250-byte slot, in each of the 2n + 2 columns of the
-# table (2n + 1 since the remainder widens each coordinate on its own).  Measured (survivors on the 4 corners of a square, T = 2, A = -I, forward
-# Euler): 20,001 rows -> 380 MB resident, 100,001 rows (about 1.5 MB of G) ->
+# table (2n + 1 since the remainder widens each coordinate on its own).  Measured (survivors on the 4
+# corners of a square, T = 2, A = -I, forward Euler): 20,001 rows -> 380 MB resident, 100,001 rows (about 1.5 MB of G) ->
 # 1.85 GB, a memory amplification of about 1000x.  (Time stays a few seconds.)
 # A fix: price m x slot width before building the table, or pack rows in groups of
 # similar size (a slot width per group), or test the long rows one by one.

@@ -17,16 +17,17 @@ import random
 from fractions import Fraction as F
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from versions import as_version, dense_of
 
 import exactinv as ei
+from exactinv import forward_euler_threshold
 from exactinv import methods as M
 from exactinv.certificates import certificate
 from exactinv.core.encode import sparse_of_dense
-from exactinv import forward_euler_threshold
 from exactinv_check import check
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 from exactinv_check.sparse import read_square, sparse_matrix
 
 ROT = ei.LinearSystem([[-1, 1], [-1, -1]])

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from exactinv_check import check, claims_thresholds, polys, pruning, validset
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure, integer_rows
+from exactinv_check.failure import CheckFailure
+from exactinv_check.rationals import integer_rows
 
 big = st.integers(-(2**130), 2**130)
 small = st.integers(-9, 9)
@@ -338,7 +339,8 @@ def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
     A = [[q() for _ in range(n)] for _ in range(n)]
     G = [[q() for _ in range(n)] for _ in range(rng.randint(1, 6))]
     b = [q() for _ in G]
-    gens = SimpleNamespace(**{k: [[q() for _ in range(n)] for _ in range(rng.randint(0, 4))] for k in ("vertices", "rays", "lines")})
+    gens = SimpleNamespace(**{k: [[q() for _ in range(n)] for _ in range(rng.randint(0, 4))]
+                              for k in ("vertices", "rays", "lines")})
     problem = SimpleNamespace(A=A, G=G, b=b)
     assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
 

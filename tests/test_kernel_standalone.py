@@ -7,8 +7,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-import exactinv_check
 from certificate_corpus import corpus
+
+import exactinv_check
 
 KERNEL = Path(exactinv_check.__file__).parent
 

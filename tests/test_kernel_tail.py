@@ -13,10 +13,10 @@ from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
-
-from exactinv_check.rationals import CheckFailure
-from exactinv_check.tail import prove_tail
 from radius_reference import coefficients_at
+
+from exactinv_check.failure import CheckFailure
+from exactinv_check.tail import prove_tail
 
 
 def P(*cs):

@@ -4,11 +4,11 @@ import pytest
 import sympy
 from hypothesis import assume, given
 from hypothesis import strategies as st
+from strategies import metzler_cones as cones
 
 import exactinv as ei
-from exactinv import methods as M
 from exactinv import compare_thresholds, forward_euler_threshold, largest_threshold, valid_steplengths
-from strategies import metzler_cones as cones
+from exactinv import methods as M
 
 BOX_S = ei.LinearSystem([[-1, 1], [-1, -1]])
 BOX = ei.Polyhedron.box([-1, -1], [1, 1])
@@ -133,7 +133,8 @@ def test_forward_euler_two_derivations_agree(problem):
     assert L.value == fe.value
 
 
-@given(st.one_of(random_polytopes(), cones()), st.sampled_from([M.taylor(2), M.heun(), M.rk4(), M.trapezoid(), M.backward_euler(), M.theta("1/4")]))
+@given(st.one_of(random_polytopes(), cones()),
+       st.sampled_from([M.taylor(2), M.heun(), M.rk4(), M.trapezoid(), M.backward_euler(), M.theta("1/4")]))
 def test_paper_threshold_never_exceeds_the_largest(problem, method):
     S, P = problem
     assume(ei.continuous_invariance(S, P).holds)

@@ -15,7 +15,6 @@ import re
 import shutil
 import subprocess
 
-
 import pytest
 
 import exactinv as ei

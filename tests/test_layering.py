@@ -161,3 +161,63 @@ def test_the_layering_test_sees_an_upward_import():
     node = ast.parse("from ..paper.invariance import optimal_gamma").body[0]
     target = _resolve("exactinv.core.roots", False, node)[0]
     assert LAYERS[_layer(target)] > LAYERS[_layer("exactinv.core.roots")]
+
+
+# ------------------------------------------------------------------ private names stay private (issue 26)
+
+def _private_cross_imports(path: Path, source: str | None = None) -> list[str]:
+    """``from <project module> import _name`` and ``<imported project module>._name`` in one file of
+    exactinv/ or exactinv_check/: a private name used outside its module (dunder names excepted)."""
+    package = path.relative_to(ROOT).parts[0]
+    tree = ast.parse(source if source is not None else path.read_text())
+    is_package = path.name == "__init__.py"
+    here = _module_name(path) if package == "exactinv" else ".".join(path.relative_to(ROOT).with_suffix("").parts)
+
+    def private(name: str) -> bool:
+        return name.startswith("_") and not name.startswith("__")
+
+    def project(target: str) -> bool:
+        return target.split(".")[0] in ("exactinv", "exactinv_check")
+
+    found, modules = [], set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = here.split(".") if is_package else here.split(".")[:-1]
+                base = base[: len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if not project(target):
+                continue
+            for alias in node.names:
+                if private(alias.name):
+                    found.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {alias.name} from {target}")
+                else:
+                    modules.add(alias.asname or alias.name)  # maybe a module: checked below
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if project(alias.name):
+                    modules.add(alias.asname or alias.name.split(".")[0])
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Attribute) and private(node.attr) and isinstance(node.value, ast.Name)
+                and node.value.id in modules):
+            found.append(f"{path.relative_to(ROOT)}:{node.lineno} uses {node.value.id}.{node.attr}")
+    return found
+
+
+def test_no_private_name_crosses_a_module_boundary():
+    """A name with a leading underscore is used only in its own module: what two modules share is
+    public (documented, no underscore) or lives where it is used."""
+    found = [hit for package in ("exactinv", "exactinv_check")
+             for path in sorted((ROOT / package).rglob("*.py")) for hit in _private_cross_imports(path)]
+    assert found == [], "\n".join(found)
+
+
+def test_the_private_name_test_sees_a_private_import():
+    """The test itself: both forms are caught, a dunder and a public name are not."""
+    path = ROOT / "exactinv_check" / "polys.py"
+    assert len(_private_cross_imports(path, "from .cones import _primitive, primitive, __doc__")) == 1
+    assert len(_private_cross_imports(path, "from . import cones\ncones._reduce(1, 2)\ncones.__name__")) == 1
+    assert len(_private_cross_imports(ROOT / "exactinv" / "core" / "roots.py", "from ..paper import threshold as t\nt._x")) == 1
+    assert _private_cross_imports(path, "from fractions import _gcd") == []

@@ -9,12 +9,11 @@ import pytest
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 import exactinv as ei
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.core.scalars import INF
 from exactinv.paper.line_poles import line_density, line_gcd, single_pair
 from exactinv.paper.monotonicity import absolute_monotonicity_radius
 from exactinv_check import check
-from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 BOTH = [F(1), F(-2), F(3, 2), F(-1, 2)]  # (1 - z)(1 - z + z^2/2): poles 1, 1 +- i
 

@@ -1,15 +1,15 @@
 from fractions import Fraction
 
 import flint
+import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-import numpy as np
-
 from exactinv.core.scalars import INF
 from exactinv.lp import solve_lp
+from exactinv.lp.backends import HighsHint
 from exactinv.lp.exact import ppl_maximize
-from exactinv.lp.hint import UNKNOWN_HINT, Hint, HighsHint, HintBackend, HintModel, LPStatus
+from exactinv.lp.hint_types import UNKNOWN_HINT, Hint, HintBackend, HintModel, LPStatus
 from exactinv.lp.reconstruct import basis_solution, exact_pivots
 from exactinv.lp.verify import LPData, verify_optimal
 
@@ -128,7 +128,7 @@ def test_exact_fallback_when_float_solver_gives_up():
 def test_lying_hints_cannot_change_the_answer():
     """A backend that calls every LP infeasible (or unbounded) still yields the verified answer."""
     for lie in (LPStatus.INFEASIBLE, LPStatus.UNBOUNDED):
-        res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True], hint=_Scripted(lambda h: Hint(lie)))
+        res = _solve([[3, 1], [1, 3]], [False, False], [1, 1], [1, 1], [True, True], hint=_Scripted(lambda h, lie=lie: Hint(lie)))
         assert res.status == "optimal" and res.value == Fraction(1, 2)
 
 

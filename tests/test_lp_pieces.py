@@ -180,10 +180,11 @@ def test_the_pieces_together_are_priced_first(monkeypatch):
 
 # ------------------------------------------------------------------ the cheap paths, against the direct ones
 
-from hypothesis import given, settings, strategies as st  # noqa: E402
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
 
+from exactinv_check.failure import CheckFailure  # noqa: E402
 from exactinv_check.linalg import integer_determinant, integer_solve  # noqa: E402
-from exactinv_check.rationals import CheckFailure  # noqa: E402
 
 _small = st.integers(-6, 6)
 

@@ -9,7 +9,8 @@ from fractions import Fraction
 
 import ppl
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 import exactinv_check
@@ -19,6 +20,7 @@ from exactinv.beyond.lp_route import LPRouteCache, LPRouteDeclined, lp_route, ve
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity
 from exactinv.errors import InvalidInput
+from exactinv.validset.lp import LP_ABOVE
 
 M = ei.methods
 F = Fraction

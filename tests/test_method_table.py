@@ -8,11 +8,10 @@ from pathlib import Path
 
 import mpmath
 import pytest
+from radius_reference import admissible, coefficients_at, tie_kappa
 
 import exactinv as ei
-from exactinv.core.algebraic import RealAlgebraic
-
-from radius_reference import admissible, coefficients_at, tie_kappa
+from exactinv.core.real_algebraic import RealAlgebraic
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 spec = importlib.util.spec_from_file_location("gen_method_table", DOCS / "gen_method_table.py")

@@ -8,8 +8,8 @@ import flint
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv.core.intervals import complement_of_open
 from exactinv.core.algebraic import ExactKey
+from exactinv.core.intervals import complement_of_open
 from exactinv.core.nonnegative import earliest_first, first_end, nonnegative_set, tightest_first
 from exactinv.core.polys import positive_below
 from exactinv.core.roots import negative_segments, nonnegative_until, positive_roots

@@ -47,7 +47,8 @@ def test_float_opt_in_is_exact():
     assert ei.LinearSystem([[0.5]], allow_float=True).A == ((Fraction(1, 2),),)
 
 
-@pytest.mark.parametrize("bad", ["nan", "inf", "-Infinity", Decimal("NaN"), float("nan"), "abc", "1/0", True, None, sympy.sqrt(2)])
+@pytest.mark.parametrize("bad", ["nan", "inf", "-Infinity", Decimal("NaN"), float("nan"), "abc", "1/0", True, None,
+                                 sympy.sqrt(2)])
 def test_bad_scalars(bad):
     with pytest.raises(ei.ExactinvError):
         to_rational(bad, "x")
@@ -74,7 +75,8 @@ def test_matrix_shapes_are_named():
 
 def test_infinity():
     assert -INF < -10**100 < Fraction(1, 3) < INF
-    assert -(-INF) is INF
+    minus_inf = -INF
+    assert -minus_inf is INF
     assert float(INF) == math.inf and INF == math.inf
     assert max([Fraction(2), INF, -INF], key=lambda v: (v > 10**9, v if not isinstance(v, ei.Infinity) else 0)) is INF
     assert sorted([INF, Fraction(1), -INF]) == [-INF, Fraction(1), INF]

@@ -205,7 +205,7 @@ def test_infeasible_gain_has_a_kernel_checked_farkas_certificate():
     report = ei.check(cert)
     assert report.ok, str(report)
     with pytest.raises(ei.NotInvariant):
-        g.system
+        _ = g.system
     # a controllable pair whose input limit is too tight (test_double_integrator_by_hand): |u| <= 1 on SKEWED
     A, B = DOUBLE_INTEGRATOR
     tight = ei.optimal_gain(A, B, SKEWED, inputs=ei.Polyhedron.box([-1], [1]))

@@ -5,8 +5,8 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.paper.bisection import paper_bisection, paper_bisection_float, paper_bound
 from exactinv.core.roots import first_sign_change
+from exactinv.paper.bisection import paper_bisection, paper_bisection_float, paper_bound
 
 
 def test_erratum_e3_printed_algorithm_returns_infinity_for_1_minus_t():

@@ -15,7 +15,8 @@ import jsonschema
 import pytest
 
 from exactinv.errors import InvalidInput
-from exactinv.interfaces.problem import METHOD_KINDS, TOP_KEYS, load_problem
+from exactinv.interfaces.method_format import METHOD_KINDS
+from exactinv.interfaces.problem import TOP_KEYS, load_problem
 from exactinv.model.methods import PRESETS
 
 ROOT = Path(__file__).resolve().parent.parent

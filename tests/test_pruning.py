@@ -6,15 +6,15 @@ from fractions import Fraction
 
 import flint
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from pruning_helpers import fractions_of
 
 import exactinv as ei
 import exactinv.beyond.pruning as engine_pruning
 from exactinv.beyond.conditions import ConditionSet, Kind
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
-
-from pruning_helpers import fractions_of
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])

@@ -7,7 +7,9 @@ import math
 from fractions import Fraction
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from pruning_helpers import fractions_of
 
 import exactinv as ei
 import exactinv.beyond.pruning as engine_pruning
@@ -16,9 +18,7 @@ from exactinv.beyond.conditions import ConditionSet
 from exactinv_check import check
 from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
-from exactinv_check.rationals import CheckFailure
-
-from pruning_helpers import fractions_of
+from exactinv_check.failure import CheckFailure
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])

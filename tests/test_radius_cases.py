@@ -1,18 +1,18 @@
 """Issue 14's cases: the Pade table k, l <= 6, Lobatto IIIC 2-4, Radau IIA 1-3, the SDIRK and SSP-SDIRK
-families and 1/(1 - z + z^2/4 - z^3/40) (rho = oo by Bernstein's theorem, issue 22).  Each is decided by the engine and its certificate re-proved by the
-kernel (every one, in CI too: the largest tail index, N = 78 for Pade(1,3), takes about two seconds in
-the pure-Python kernel; a kernel budget once set too tight rejected six of them), and the value is checked against the slow reference of tests/radius_reference.py."""
+families and 1/(1 - z + z^2/4 - z^3/40) (rho = oo by Bernstein's theorem, issue 22).  Each is decided by
+the engine and its certificate re-proved by the kernel (every one, in CI too: the largest tail index,
+N = 78 for Pade(1,3), takes about two seconds in the pure-Python kernel; a kernel budget once set too
+tight rejected six of them), and the value is checked against the slow reference of tests/radius_reference.py."""
 
 from fractions import Fraction
 
 import mpmath
 import pytest
+from radius_reference import admissible, coefficients_at, tie_kappa
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.core.algebraic import RealAlgebraic
-
-from radius_reference import admissible, coefficients_at, tie_kappa
+from exactinv.core.real_algebraic import RealAlgebraic
 
 CASES = {f"pade({k},{l})": (lambda k=k, l=l: M.pade(k, l)) for k in range(7) for l in range(7)}
 CASES.update({name: (lambda name=name: M.preset(name)) for name in
@@ -22,7 +22,8 @@ CASES.update({f"ssp_sdirk({s})": (lambda s=s: M.ssp_sdirk(s)) for s in range(1, 
 CASES["1/(1-z+z^2/4-z^3/40)"] = lambda: M.rational([1], [1, -1, "1/4", "-1/40"])  # rho = oo by Bernstein
 CASES["1/(1-2z/3-z^2/4)"] = lambda: M.rational([1], [1, "-2/3", "-1/4"])  # balanced tie: rho = 4/3
 CASES["1/((1-z)(1-z+z^2/2))"] = lambda: M.rational([1], [1, -2, "3/2", "-1/2"])  # poles 1, 1 +- i on one line: rho = oo
-UNDECIDED = {"p* = 2 - sqrt 2 with p* +- i": lambda: M.rational([1], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"])}
+UNDECIDED = {"p* = 2 - sqrt 2 with p* +- i":
+             lambda: M.rational([1], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"])}
 J = 120  # coefficients in the slow check
 
 

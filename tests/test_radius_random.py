@@ -6,12 +6,11 @@ from fractions import Fraction
 import mpmath
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from radius_reference import admissible, coefficients_at, tie_kappa
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.core.algebraic import RealAlgebraic
-
-from radius_reference import admissible, coefficients_at, tie_kappa
+from exactinv.core.real_algebraic import RealAlgebraic
 
 STATS = {"decided": 0, "undecided": 0}
 small = st.fractions(min_value=-3, max_value=3, max_denominator=6)

@@ -4,12 +4,12 @@ import flint
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import metzler_cones as cones
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.core.scalars import fmpq_matrix
+from exactinv.core.flintq import fmpq_matrix
 from exactinv.paper.rational import rational_threshold, spectral_abscissa
-from strategies import metzler_cones as cones
 
 E2_SYSTEM = ei.LinearSystem([[-1, 2], [0, 1]])
 ORTHANT = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])

@@ -7,8 +7,9 @@ from fractions import Fraction
 import pytest
 
 import exactinv as ei
-from exactinv.core.algebraic import RealAlgebraic, significant_digits
+from exactinv.core.digits import significant_digits
 from exactinv.core.polys import poly_text
+from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.interfaces.pipeline import exact_text
 
 SQRT2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)

@@ -4,12 +4,12 @@ batched Descartes signs -- against the definitions (exact roots, exact signs at 
 from fractions import Fraction
 
 import flint
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.polys import count_real_roots, sign_at
-from exactinv.core.real_signs import (interval_signs, narrowed, next_sign_change, rational_right_of,
-                                      sign_right_of_real)
+from exactinv.core.real_algebraic import RealAlgebraic
+from exactinv.core.real_signs import interval_signs, narrowed, next_sign_change, rational_right_of, sign_right_of_real
 from exactinv.core.roots import real_roots
 from exactinv.core.scalars import INF
 

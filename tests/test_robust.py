@@ -17,7 +17,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.core.algebraic import RealAlgebraic
+from exactinv.core.real_algebraic import RealAlgebraic
 
 POLY_METHODS = [ei.methods.taylor(1), ei.methods.taylor(2), ei.methods.taylor(4), ei.methods.rk4()]
 RATIONAL_METHODS = [ei.methods.backward_euler(), ei.methods.trapezoid(), ei.methods.pade(1, 2), ei.methods.theta("3/4")]

@@ -7,7 +7,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.core.roots import count_real_roots, first_sign_change, nonnegative_until, real_roots, sign_right_of
+from exactinv.core.polys import count_real_roots, sign_right_of
+from exactinv.core.roots import first_sign_change, nonnegative_until, real_roots
 
 
 def poly(*factors):

@@ -8,7 +8,8 @@ forced route that does not accept the problem is refused with a message naming i
 from fractions import Fraction
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.core.scalars import Infinity

@@ -6,7 +6,8 @@ from fractions import Fraction as F
 
 import flint
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.core.sparse import SparseRows

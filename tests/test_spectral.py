@@ -14,6 +14,7 @@ import flint
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from strategies import metzler_cones
 
 import exactinv as ei
 from exactinv import methods as M
@@ -21,9 +22,13 @@ from exactinv.core.algebraic import ExactKey
 from exactinv.core.roots import real_roots
 from exactinv.core.sparse import SparseRows
 from exactinv.paper import rational
-from exactinv.paper.spectral import (abscissa_is_nonpositive, collatz_wielandt_upper, components, perron_lower,
-                                     spectral_abscissa)
-from strategies import metzler_cones
+from exactinv.paper.spectral import (
+    abscissa_is_nonpositive,
+    collatz_wielandt_upper,
+    components,
+    perron_lower,
+    spectral_abscissa,
+)
 
 
 def dense_abscissa(H):
@@ -32,7 +37,7 @@ def dense_abscissa(H):
 
 
 @st.composite
-def metzler(draw, size=st.integers(1, 7)):
+def metzler(draw, size=st.integers(1, 7)):  # noqa: B008 (a hypothesis strategy: immutable)
     """A Metzler matrix, often reducible (sparse off-diagonal pattern)."""
     m = draw(size)
     entries = []

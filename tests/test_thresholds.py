@@ -8,8 +8,8 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import exactinv as ei
+from exactinv.core.flintq import fmpq_matrix
 from exactinv_check import check
-from exactinv.core.scalars import fmpq_matrix
 
 
 @st.composite

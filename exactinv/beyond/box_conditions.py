@@ -43,11 +43,12 @@ from fractions import Fraction
 
 import flint
 
-from ..core.algebraic import ExactKey, RealAlgebraic
+from ..core.algebraic import ExactKey
 from ..core.encode import vec
+from ..core.flintq import fmpq_of
 from ..core.polys import integer_part, sign_variations
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of
 from .conditions import Condition, ConditionSet, Kind, never_binds
 
 __all__ = ["Box", "BoxRoute", "detect_box", "box_route", "vertex_index"]

@@ -33,8 +33,8 @@ from typing import Iterable, TypeVar
 import flint
 from exactinv_check.format import GeneratorKind
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.polys import integer_part
-from ..core.scalars import fmpq_of, fraction_of
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.methods import matrix_polynomial
 from ..model.validate import check_problem

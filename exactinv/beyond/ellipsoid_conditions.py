@@ -29,7 +29,7 @@ from fractions import Fraction
 
 import flint
 
-from ..core.scalars import fmpq_of
+from ..core.flintq import fmpq_of
 from ..model.methods import Method
 from ..model.system import LinearSystem
 

@@ -11,14 +11,15 @@ set of the one engine (:mod:`exactinv.validset.engine`), and they must agree.
 
 from __future__ import annotations
 
-import flint
-
 from fractions import Fraction
 
+import flint
+
 from ..core.algebraic import Real
+from ..core.flintq import matrix_of
 from ..core.psd import psd_decision
 from ..core.roots import real_roots
-from ..core.scalars import INF, matrix_of
+from ..core.scalars import INF
 
 __all__ = ["generalised_eigenvalue_step", "pivot_columns"]
 
@@ -37,7 +38,8 @@ def generalised_eigenvalue_step(A: flint.fmpq_mat, Q: flint.fmpq_mat) -> Real:
         return Fraction(0)
     n = K.nrows()
     rank_K = K.rank()
-    if flint.fmpq_mat(n, 2 * n, [v for i in range(n) for v in [K[i, j] for j in range(n)] + [B[i, j] for j in range(n)]]).rank() > rank_K:
+    KB = [v for i in range(n) for v in [K[i, j] for j in range(n)] + [B[i, j] for j in range(n)]]
+    if flint.fmpq_mat(n, 2 * n, KB).rank() > rank_K:
         return Fraction(0)  # some v in ker K has v^T B v > 0: K - hB fails for every h > 0
     if rank_K == 0:
         return INF

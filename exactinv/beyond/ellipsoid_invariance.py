@@ -26,6 +26,7 @@ from typing import Any
 from exactinv_check.format import ClaimType
 
 from ..core.encode import mat, vec
+from ..core.flintq import fmpq_matrix, matrix_of
 from ..core.latex import LatexMixin, latex_column
 from ..core.psd import LDLT, psd_decision, quadratic_form
 from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, vector_text

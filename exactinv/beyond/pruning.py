@@ -42,19 +42,21 @@ from __future__ import annotations
 
 import math
 import time
-from math import comb
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
+from math import comb
 
 import flint
 import numpy as np
 from exactinv_check.format import HORIZON_BITS  # the kernel's bound on the horizon's numerator and denominator
 
 from ..core.algebraic import upper_bound
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hints
 from ..core.intervals import IntervalUnion
-from ..core.nonnegative import earliest_first, first_end as earliest_end, nonnegative_set
-from ..core.scalars import Infinity, fmpq_of, fraction_of
+from ..core.nonnegative import earliest_first, nonnegative_set
+from ..core.nonnegative import first_end as earliest_end
+from ..core.scalars import Infinity
 from .conditions import Kind
 
 __all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]

@@ -44,10 +44,10 @@ from math import comb
 import flint
 from exactinv_check.format import PRUNING_VARIABLE
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import log2_hint
 from ..core.intervals import IntervalUnion
 from ..core.roots import positive_roots
-from ..core.scalars import fmpq_of, fraction_of
 from .conditions import Kind
 from .pruning import Pruning, bounding_horizon, build_survivors, coarse_above, pieces_test, vertex_order
 

@@ -17,18 +17,18 @@ from typing import Any
 import flint
 from exactinv_check.format import ClaimType
 
-from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
-from ..validset.results import LargestThreshold, ValidSteplengths
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.scalars import INF, Infinity, Matrix, to_matrix
 from ..errors import ExactinvError, InvalidInput, NotInvariant, VerificationFailed
-from ..lp import OPTIMAL, INFEASIBLE, solve_lp
+from ..lp import INFEASIBLE, OPTIMAL, solve_lp
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method, check_polyhedron
 from ..paper.forward_euler import ForwardEulerThreshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
 from ..paper.threshold import steplength_threshold
+from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
+from ..validset.results import LargestThreshold, ValidSteplengths
 from .gain_lp import GainLP, gain_lp
 
 __all__ = ["OptimalGain", "optimal_gain", "gain_problem_record"]

@@ -31,10 +31,11 @@ from exactinv_check.format import ClaimType
 from ..validset.engine import valid_steplengths
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
+from ..core.flintq import fraction_of
 from ..core.intervals import IntervalUnion
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
-from ..core.scalars import INF, Infinity, Matrix, fraction_of
+from ..core.scalars import INF, Infinity, Matrix
 from ..core.sparse import SparseRows
 from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import LinearSystem, Method, Polyhedron
@@ -43,6 +44,7 @@ from ..model.validate import check_method, check_pair
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
 from ..paper.rational import smallest_positive_pole
+from ..validset.engine import valid_steplengths
 
 __all__ = ["RobustThreshold", "robust_threshold", "abscissa_bound"]
 

@@ -3,20 +3,22 @@ and the aliases Real and FiniteReal.
 
 Comparisons are exact in either order (a Fraction on the left defers to the
 RealAlgebraic on the right).  :class:`RealAlgebraic` (module
-:mod:`exactinv.core.real_algebraic`) and :func:`significant_digits` (module
-:mod:`exactinv.core.digits`) are re-exported here, their old home.
+:mod:`exactinv.core.real_algebraic`) is imported from there; :func:`significant_digits`
+(:mod:`exactinv.core.digits`) and :func:`sign_at` (:mod:`exactinv.core.polys`) moved, and
+their old spelling here warns.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
 
-from .digits import significant_digits  # noqa: F401 (re-exported: its old home)
-from .polys import sign_at  # noqa: F401 (re-exported, as before)
+from .moved import moved_names
 from .real_algebraic import RealAlgebraic
 from .scalars import Infinity
 
-__all__ = ["RealAlgebraic", "Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "significant_digits", "exact_cmp", "upper_bound", "sign_at"]
+__all__ = ["Real", "FiniteReal", "ExactKey", "exact_lt", "exact_eq", "exact_cmp", "upper_bound"]
+
+__getattr__ = moved_names(__name__, {"significant_digits": "exactinv.core.digits", "sign_at": "exactinv.core.polys"})
 
 
 FiniteReal = Fraction | RealAlgebraic

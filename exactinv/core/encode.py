@@ -15,8 +15,9 @@ from typing import Any, Iterable
 import flint
 from exactinv_check.format import FORMAT, INFINITY, NEG_INFINITY, VERSION
 
-from .algebraic import Real, RealAlgebraic
+from .algebraic import Real
 from .flintq import exact_text
+from .real_algebraic import RealAlgebraic
 from .scalars import INF, Infinity  # noqa: F401 (INF: the doctest above)
 
 __all__ = ["encode_real", "vec", "mat", "sparse_mat", "sparse_of_dense", "envelope", "dumps"]

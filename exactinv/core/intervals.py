@@ -12,8 +12,9 @@ from fractions import Fraction
 from functools import cmp_to_key
 from typing import Any, Iterator
 
+from .algebraic import Real, exact_cmp, exact_eq, exact_lt
 from .latex import latex_decimal
-from .algebraic import Real, RealAlgebraic, exact_cmp, exact_eq, exact_lt
+from .real_algebraic import RealAlgebraic
 from .scalars import INF, Infinity, to_rational
 
 __all__ = ["Interval", "IntervalUnion", "complement_of_open"]

@@ -12,8 +12,8 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from .algebraic import RealAlgebraic
 from .polys import poly_latex
+from .real_algebraic import RealAlgebraic
 from .scalars import Infinity
 
 __all__ = ["latex_decimal", "latex_text", "latex_real", "latex_matrix", "latex_column", "dt_poly_latex", "LatexMixin"]

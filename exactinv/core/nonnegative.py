@@ -117,7 +117,8 @@ def nonnegative_set(polys: Iterable[flint.fmpq_poly], start: IntervalUnion | Non
     [0, 2] U [3, 4]
     """
     V = start if start is not None else complement_of_open([], [])
-    for p in _unskipped(list(polys), lambda: _bound(V) if V.intervals else Fraction(0)):
+    # the bound is read lazily, at each step: V as it is then (late binding is the point)
+    for p in _unskipped(list(polys), lambda: _bound(V) if V.intervals else Fraction(0)):  # noqa: B023
         V = V.intersect(complement_of_open(negative_segments(p), []))
     return V
 
@@ -131,7 +132,8 @@ def first_end(polys: Iterable[flint.fmpq_poly]) -> Real:
     Fraction(1, 1)
     """
     best: Real = INF
-    for p in _unskipped(earliest_first(polys), lambda: upper_bound(best) if not isinstance(best, Infinity) else None):
+    # the bound is read lazily, at each step: the best end so far (late binding is the point)
+    for p in _unskipped(earliest_first(polys), lambda: upper_bound(best) if not isinstance(best, Infinity) else None):  # noqa: B023
         best = min(best, nonnegative_until(p), key=ExactKey)
     return best
 

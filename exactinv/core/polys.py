@@ -22,7 +22,8 @@ from typing import Any, Iterable
 import flint
 
 from ..errors import InvalidInput
-from .scalars import fmpq_of, to_rational
+from .flintq import fmpq_of
+from .scalars import to_rational
 
 __all__ = [
     "as_polynomial",

@@ -23,8 +23,9 @@ from typing import Any, Sequence
 
 import flint
 
-from .scalars import Matrix, Vector, fraction_of, to_matrix, vector_text
 from ..errors import InvalidInput
+from .flintq import fraction_of
+from .scalars import Matrix, Vector, to_matrix, vector_text
 
 __all__ = ["LDLT", "PSDDecision", "psd_decision", "quadratic_form", "symmetric_matrix"]
 

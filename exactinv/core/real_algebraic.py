@@ -11,6 +11,7 @@ as degree-1 algebraic numbers (:func:`algebraic` normalises).
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from functools import total_ordering
 from typing import Any
@@ -18,7 +19,7 @@ from typing import Any
 import flint
 
 from ..errors import InvalidInput
-from .digits import _floor, significant_digits
+from .digits import significant_digits
 from .float_hint import float_hint
 from .polys import count_real_roots, no_root_between, poly_latex, poly_text, sign_at
 from .scalars import Infinity, frac_latex, to_rational
@@ -107,9 +108,9 @@ class RealAlgebraic:
         True
         """
         scale = 10**digits
-        while _floor(self._lower * scale) != -_floor(-self._upper * scale) - 1:  # not yet inside one cell
+        while math.floor(self._lower * scale) != -math.floor(-self._upper * scale) - 1:  # not yet inside one cell
             self._bisect()
-        lo = Fraction(_floor(self._lower * scale), scale)
+        lo = Fraction(math.floor(self._lower * scale), scale)  # Fraction.__floor__: exact
         hi = lo + Fraction(1, scale)
         # the widened interval adds the slivers (lo, lower] and [upper, hi): prove them root-free
         if (lo == self._lower or no_root_between(self.poly, lo, self._lower)) and \
@@ -287,7 +288,8 @@ class RealAlgebraic:
         return sympy.CRootOf(expr, index)
 
     def _repr_latex_(self) -> str:
-        return f"$\\text{{root of }} {poly_latex(self.poly)} \\text{{ in }} ({frac_latex(self._lower)}, {frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$"
+        return (f"$\\text{{root of }} {poly_latex(self.poly)} \\text{{ in }} ({frac_latex(self._lower)}, "
+                f"{frac_latex(self._upper)}) \\approx {self.certified_digits(10)}$")
 
     def __reduce__(self):
         return (_rebuild, ([int(c) for c in self.poly.coeffs()], self._lower, self._upper))

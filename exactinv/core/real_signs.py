@@ -25,12 +25,13 @@ from fractions import Fraction
 
 import flint
 
-from .algebraic import FiniteReal, Real, RealAlgebraic
-from .polys import integer_part, no_root_between, sign_at, sign_right_of
-from .roots import first_sign_change
-from .scalars import INF
+from .algebraic import FiniteReal, Real
 from .flintq import dyadic_of
 from .float_hint import float_hint
+from .polys import integer_part, no_root_between, sign_at, sign_right_of
+from .real_algebraic import RealAlgebraic
+from .roots import first_sign_change
+from .scalars import INF
 
 __all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
            "positive_after"]

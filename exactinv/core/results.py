@@ -6,9 +6,10 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from .algebraic import RealAlgebraic, Real
+from .algebraic import Real
 from .doubles import DOUBLE_MAX, double_above, double_below
 from .latex import LatexMixin
+from .real_algebraic import RealAlgebraic
 from .scalars import INF, Infinity
 
 __all__ = ["LatexMixin", "ExactValueMixin"]

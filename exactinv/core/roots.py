@@ -28,29 +28,24 @@ from typing import Any
 import flint
 
 from ..errors import InvalidInput, VerificationFailed
-from .algebraic import ExactKey, FiniteReal, Real, RealAlgebraic
+from .algebraic import ExactKey, FiniteReal, Real
+from .flintq import dyadic_of
 from .polys import (
     as_polynomial,
-    count_real_roots,
     integer_part,
-    no_root_between,
     shift,
     sign_at,
     sign_right_of,
     sign_variations,
 )
-from .scalars import INF, dyadic_of, to_rational
+from .real_algebraic import RealAlgebraic
+from .scalars import INF, to_rational
 
 __all__ = [
-    "as_polynomial",
     "real_roots",
-    "count_real_roots",
-    "no_root_between",
-    "sign_variations",
     "first_sign_change",
     "root_bound_exponent",
     "nonnegative_until",
-    "sign_right_of",
     "positive_roots",
     "negative_segments",
 ]

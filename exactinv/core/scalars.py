@@ -38,15 +38,11 @@ import flint
 
 from ..errors import InvalidInput
 from .flintq import Matrix, Vector
-from .flintq import (  # noqa: F401 (the Fraction <-> FLINT conversions, re-exported: their old home)
-    dyadic_of,
-    fmpq_column,
-    fmpq_matrix,
-    fmpq_of,
-    fraction_of,
-    matrix_of,
-    vector_of,
-)
+from .moved import moved_names
+
+# The Fraction <-> FLINT conversions live in exactinv.core.flintq; their old spelling here warns.
+__getattr__ = moved_names(__name__, dict.fromkeys(
+    ["dyadic_of", "fmpq_column", "fmpq_matrix", "fmpq_of", "fraction_of", "matrix_of", "vector_of"], "exactinv.core.flintq"))
 
 __all__ = [
     "INF",

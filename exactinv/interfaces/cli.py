@@ -30,15 +30,16 @@ import exactinv_check.format
 from exactinv_check.kernel import BadInput, load as _load_certificate
 
 from ..core.encode import dumps
-from ..model.methods import PRESETS
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
+from ..model.methods import PRESETS
 from .batch import BatchInterrupted, run_batch
 from .exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 from .explain import explain
 from .files import atomic_write, check_writable, is_certificate, refuse_foreign, refuse_inputs
+from .method_format import method_from_text
 from .oracle import judge_batch
 from .pipeline import certify, stages
-from .problem import load_problem, method_from_text
+from .problem import load_problem
 from .report_output import report_json, report_latex
 
 __all__ = ["main"]

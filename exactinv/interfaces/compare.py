@@ -10,11 +10,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..validset.engine import largest_threshold
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
+from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity
 from ..model import LinearSystem, Polyhedron
 from ..paper.threshold import steplength_threshold
+from ..validset.engine import largest_threshold
 
 __all__ = ["ThresholdComparison", "compare_thresholds"]
 

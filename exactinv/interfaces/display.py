@@ -15,17 +15,17 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
-from ..validset.engine import largest_threshold, valid_steplengths
-from ..validset.families import ELLIPSOIDS, family_of
-from ..core.algebraic import RealAlgebraic
 from ..core.digits import significant_digits
 from ..core.float_hint import float_hint
 from ..core.latex import latex_matrix, latex_real
+from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
 from ..model import Ellipsoid
 from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
 from ..paper.threshold import steplength_threshold
+from ..validset.engine import largest_threshold, valid_steplengths
+from ..validset.families import ELLIPSOIDS, family_of
 
 __all__ = [
     "latex_real",
@@ -227,7 +227,8 @@ def plot_valid_set(system, polyhedron, method, upto: float | None = None):
     ax.set_ylim(-0.6, 0.7)
     ax.set_yticks([])
     ax.set_xlabel(r"$\Delta t$")
-    ax.set_title(f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ "), fontsize=9)
+    title = f"valid steplengths of {method.name} (green): {V.intervals!r}".replace("oo", "∞").replace(" U ", " ∪ ")
+    ax.set_title(title, fontsize=9)
     fig.tight_layout()
     return fig
 

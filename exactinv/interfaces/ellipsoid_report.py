@@ -7,9 +7,9 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from ..beyond.ellipsoid_invariance import ellipsoid_continuous_invariance
-from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 from ..core.text import exact_text, safe_step_text
 from ..model import Ellipsoid, LinearSystem, Method
+from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 
 __all__ = ["ellipsoid_results"]
 

@@ -196,8 +196,8 @@ def _forward_euler(c: dict) -> str:
 def _polynomial(c: dict) -> str:
     taus = "; ".join(f"tau_{e['i']} = {_real(e['tau'])}" for e in c.get("f") or [])
     return ("Theorem 3.4: with H^ = H + gamma* I >= 0, r(dt H) = sum_i f_i(dt) H^i, so r(dt H) >= 0 while "
-            f"every f_i >= 0.  For each i the certificate gives f_i at gamma* and tau_i = sup{{T : f_i >= 0 on "
-            f"[0, T]}} (checked by Sturm sequences of the odd-multiplicity part of f_i)"
+            "every f_i >= 0.  For each i the certificate gives f_i at gamma* and tau_i = sup{T : f_i >= 0 on "
+            "[0, T]} (checked by Sturm sequences of the odd-multiplicity part of f_i)"
             + (f": {taus}" if taus else "") + f".  tau = min_i tau_i = {_real(c['value'])}"
             + (f" (binding: f_{c['binding']})" if c.get("binding") is not None else "") + ".")
 

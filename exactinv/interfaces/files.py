@@ -71,7 +71,7 @@ def refuse_inputs(path: str, label: str, inputs: Iterable[str | os.PathLike]) ->
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: -o ....json: this is the input ....json; exactinv never overwrites an input (choose another file name)
-    """
+    """  # noqa: E501 (doctest output)
     for given in inputs:
         if same_file(path, given):
             raise InvalidInput(f"{label} {path}: this is the input {os.fspath(given)}; exactinv never overwrites "
@@ -89,7 +89,7 @@ def refuse_foreign(path: str, label: str, ours: Callable[[str], bool], what: str
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: -o ...notes.txt: the file exists and is not an exactinv certificate; exactinv does not overwrite it (delete it or choose another file name)
-    """
+    """  # noqa: E501 (doctest output)
     try:
         if os.path.getsize(path) == 0:
             return

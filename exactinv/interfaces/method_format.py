@@ -11,7 +11,16 @@ from typing import Any
 from ..errors import InvalidInput
 from ..model import methods as _methods
 from ..model.methods import Method
-from .strict_json import _At, _kind, _object, _refuse_constant, _refuse_float, _require, check_keys, did_you_mean
+from .strict_json import (
+    JsonPath,
+    check_keys,
+    constant_refuser,
+    did_you_mean,
+    expect_object,
+    float_refuser,
+    json_kind,
+    require_keys,
+)
 
 __all__ = ["parse_method", "method_from_text", "METHOD_KINDS"]
 
@@ -36,7 +45,7 @@ def parse_method(spec: Any, path: str = "method") -> Method:
     if isinstance(spec, str):
         return _preset(spec, path)
     if not isinstance(spec, dict) or len(spec) != 1:
-        got = f"keys {sorted(spec)}" if isinstance(spec, dict) else _kind(spec)
+        got = f"keys {sorted(spec)}" if isinstance(spec, dict) else json_kind(spec)
         raise InvalidInput(f"{path}: expected one key such as {{\"taylor\": 4}} or a preset name, got {got}")
     (kind, arg), = spec.items()
     where = f"{path}.{kind}"
@@ -45,9 +54,9 @@ def parse_method(spec: Any, path: str = "method") -> Method:
                            f"(known: {', '.join(METHOD_KINDS)})")
     if kind == "preset":
         if not isinstance(arg, str):
-            raise InvalidInput(f"{where}: expected a preset name (a string), got {_kind(arg)}")
+            raise InvalidInput(f"{where}: expected a preset name (a string), got {json_kind(arg)}")
         return _preset(arg, where)
-    with _At(where):
+    with JsonPath(where):
         if kind == "taylor":
             return _methods.taylor(arg)
         if kind == "polynomial":
@@ -56,21 +65,21 @@ def parse_method(spec: Any, path: str = "method") -> Method:
             return _methods.theta(arg)
         if kind == "ssprk_s1":
             return _methods.ssprk_s1(arg)
-    with _At(where, ("k", "l")):
+    with JsonPath(where, ("k", "l")):
         if kind == "pade":
             if not isinstance(arg, list) or len(arg) != 2:
                 raise InvalidInput("expected [k, l] (numerator and denominator degrees)")
             return _methods.pade(*arg)
     if kind == "rational":
-        _object(arg, where, '{"num": [...], "den": [...]}')
+        expect_object(arg, where, '{"num": [...], "den": [...]}')
         check_keys(arg, ("num", "den"), where)
-        _require(arg, ("num", "den"), where)
-        with _At(where, ("num", "den")):
+        require_keys(arg, ("num", "den"), where)
+        with JsonPath(where, ("num", "den")):
             return _methods.rational(arg["num"], arg["den"])
-    _object(arg, where, '{"A": [[...]], "b": [...]} (and optionally "c": [...])')
+    expect_object(arg, where, '{"A": [[...]], "b": [...]} (and optionally "c": [...])')
     check_keys(arg, ("A", "b", "c"), where)
-    _require(arg, ("A", "b"), where)
-    with _At(where, ("A", "b", "c")):
+    require_keys(arg, ("A", "b"), where)
+    with JsonPath(where, ("A", "b", "c")):
         return _methods.from_butcher(arg["A"], arg["b"], c=arg.get("c"))
 
 
@@ -98,8 +107,9 @@ def method_from_text(text: str, where: str = "--method") -> Method:
     text = text.strip()
     if text[:1] in "{[\"":
         try:
-            spec = json.loads(text, parse_float=_refuse_float(where), parse_constant=_refuse_constant(where))
+            spec = json.loads(text, parse_float=float_refuser(where), parse_constant=constant_refuser(where))
         except json.JSONDecodeError as exc:
-            raise InvalidInput(f"{where}: not valid JSON ({exc}); give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
+            raise InvalidInput(f"{where}: not valid JSON ({exc}); "
+                               f"give e.g. '{{\"taylor\": 4}}' or a preset name such as rk4") from None
         return parse_method(spec, where)
     return _preset(text, where)

@@ -15,8 +15,10 @@ from typing import Any
 
 from ..core.scalars import to_rational
 from ..errors import ExactinvException, InvalidInput
+from .method_format import method_from_text, parse_method
 from .oracle_judges import Verdict, judge_gamma, judge_radius, judge_threshold
-from .problem import did_you_mean, load_problem, method_from_text, parse_method
+from .problem import load_problem
+from .strict_json import did_you_mean
 
 __all__ = ["BatchRow", "judge_batch", "judge_row"]
 
@@ -54,7 +56,7 @@ def judge_batch(path: str, tolerance: Any = "1e-9") -> list[BatchRow]:
     >>> _ = (d / 'rows.csv').write_text('problem,quantity,method,claimed\\np.json,gamma,,0.5\\np.json,threshold,forward_euler,2\\nnope.json,gamma,,1\\n')
     >>> [row.status for row in judge_batch(d / 'rows.csv')]   # x' = -x on [-1, 1]: gamma* = 1/2, forward Euler (1 - dt) x: dt <= 2; no file nope.json
     [<Status.TIGHT: 'tight'>, <Status.TIGHT: 'tight'>, 'error']
-    """
+    """  # noqa: E501 (doctest output)
     tol = to_rational(tolerance, "--tolerance")
     if tol < 0:
         raise InvalidInput(f"--tolerance: must be >= 0, got {tolerance}")

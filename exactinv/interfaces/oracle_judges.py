@@ -13,8 +13,9 @@ from enum import StrEnum
 from fractions import Fraction
 from typing import Any
 
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
 from ..core.float_hint import float_hint
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput
@@ -57,7 +58,9 @@ class Verdict:
         return f"{self.status.upper()}: {self.message}"
 
 
-def _exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
+def exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
+    """A claimed value as the exact number it denotes: a float (the one place floats are accepted: judging
+    them is the point) exactly, +-inf as +-INF, anything else through the exact input conversion."""
     if isinstance(claimed, float):
         if math.isnan(claimed):
             raise InvalidInput(f"{name}: NaN is not a claim")
@@ -69,7 +72,7 @@ def _exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
     return to_rational(claimed, name)
 
 
-def _gap(claimed, exact) -> Fraction | None:
+def exact_gap(claimed, exact) -> Fraction | None:
     """(exact - claimed)/exact as an exact rational (bounds for algebraic exact values)."""
     if isinstance(exact, Infinity) or isinstance(claimed, Infinity) or exact == 0:
         return None
@@ -89,7 +92,8 @@ def _within(claimed, exact, tolerance: Fraction) -> bool:
     return abs(exact - claimed) <= tolerance * abs(exact)
 
 
-def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
+def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any,
+                    tolerance: Any = "1e-9") -> Verdict:
     """Judge a claimed steplength threshold: is every dt in [0, claimed] valid?
     Compared with the exact largest threshold (attained or not).
 
@@ -101,10 +105,11 @@ def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method
     (<Status.INVALID: 'invalid'>, True)
     """
     tol = to_rational(tolerance, "tolerance")
-    c = _exact_claim(claimed)
+    c = exact_claim(claimed)
     L = largest_threshold(system, polyhedron, method)
     tau = L.value
-    too_big = (not isinstance(c, Infinity) and not isinstance(tau, Infinity) and (tau < c if isinstance(tau, RealAlgebraic) else c > tau)) \
+    too_big = (not isinstance(c, Infinity) and not isinstance(tau, Infinity)
+               and (tau < c if isinstance(tau, RealAlgebraic) else c > tau)) \
         or (isinstance(c, Infinity) and not isinstance(tau, Infinity)) \
         or (not L.attained and c == tau)
     if c < 0 if not isinstance(c, Infinity) else c.sign < 0:
@@ -118,16 +123,16 @@ def judge_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method
         result = discrete_invariance(system, polyhedron, method, dt)
         w = result.witness
         if not hasattr(w, "facet"):  # an ellipsoid: a direction v whose boundary point is mapped outside E
-            return Verdict(INVALID, "threshold", c, tau, _gap(c, tau), {"dt": dt, "v": w.v, "value": w.value},
+            return Verdict(INVALID, "threshold", c, tau, exact_gap(c, tau), {"dt": dt, "v": w.v, "value": w.value},
                            f"claimed {claimed} exceeds the exact largest threshold {tau}"
                            f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the boundary point along "
                            f"v = [{', '.join(map(str, w.v))}] is mapped outside E")
-        return Verdict(INVALID, "threshold", c, tau, _gap(c, tau),
+        return Verdict(INVALID, "threshold", c, tau, exact_gap(c, tau),
                        {"dt": dt, "x": w.x, "facet": w.facet, "value": w.value},
                        f"claimed {claimed} exceeds the exact largest threshold {tau}"
                        f"{'' if L.attained else ' (not attained)'}: at dt = {dt} the point [{', '.join(map(str, w.x))}] "
                        f"leaves P through facet {w.facet}")
-    gap = _gap(c, tau)
+    gap = exact_gap(c, tau)
     if _within(c, tau, tol):
         return Verdict(TIGHT, "threshold", c, tau, gap, None, f"claimed {claimed} is within {tol} of the exact {tau}")
     return Verdict(VALID, "threshold", c, tau, gap, None,
@@ -194,7 +199,7 @@ def judge_gamma(system: LinearSystem, polyhedron: Polyhedron, claimed: Any, tole
     [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
     """
     tol = to_rational(tolerance, "tolerance")
-    c = _exact_claim(claimed)
+    c = exact_claim(claimed)
     g = optimal_gamma(system, polyhedron).value
     if isinstance(g, Infinity) or isinstance(c, Infinity):
         ok = c == g
@@ -217,15 +222,15 @@ def judge_root(f: Any, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
     [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
     """
     tol = to_rational(tolerance, "tolerance")
-    c = _exact_claim(claimed)
+    c = exact_claim(claimed)
     r = first_sign_change(f)
     if isinstance(r, Infinity) or isinstance(c, Infinity):
         ok = c == r
         return Verdict(TIGHT if ok else INVALID, "root", c, r, None, None, f"claimed {claimed}, exact first sign change {r}")
     if r < c if isinstance(r, RealAlgebraic) else c > r:
-        return Verdict(INVALID, "root", c, r, _gap(c, r), None, f"claimed {claimed} lies beyond the first sign change {r}")
+        return Verdict(INVALID, "root", c, r, exact_gap(c, r), None, f"claimed {claimed} lies beyond the first sign change {r}")
     status = TIGHT if _within(c, r, tol) else VALID
-    return Verdict(status, "root", c, r, _gap(c, r), None, f"claimed {claimed}; exact first sign change {r}")
+    return Verdict(status, "root", c, r, exact_gap(c, r), None, f"claimed {claimed}; exact first sign change {r}")
 
 
 def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdict:
@@ -236,19 +241,20 @@ def judge_radius(method: Method, claimed: Any, tolerance: Any = "1e-9") -> Verdi
     [<Status.TIGHT: 'tight'>, <Status.VALID: 'valid'>, <Status.INVALID: 'invalid'>]
     """
     tol = to_rational(tolerance, "tolerance")
-    c = _exact_claim(claimed)
+    c = exact_claim(claimed)
     rho = absolute_monotonicity_radius(method).value
     if isinstance(rho, Infinity) or isinstance(c, Infinity):
         ok = c == rho or (isinstance(rho, Infinity) and not isinstance(c, Infinity))
         status = TIGHT if c == rho else (VALID if ok else INVALID)
         return Verdict(status, "radius", c, rho, None, None, f"claimed {claimed}; exact rho = {rho}")
     if rho < c if isinstance(rho, RealAlgebraic) else c > rho:
-        return Verdict(INVALID, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed} exceeds the exact rho = {rho}")
+        return Verdict(INVALID, "radius", c, rho, exact_gap(c, rho), None, f"claimed {claimed} exceeds the exact rho = {rho}")
     status = TIGHT if _within(c, rho, tol) else VALID
-    return Verdict(status, "radius", c, rho, _gap(c, rho), None, f"claimed {claimed}; exact rho = {rho}")
+    return Verdict(status, "radius", c, rho, exact_gap(c, rho), None, f"claimed {claimed}; exact rho = {rho}")
 
 
-def assert_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any, tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
+def assert_threshold(system: LinearSystem, polyhedron: Polyhedron, method: Method, claimed: Any,
+                     tolerance: Any = "1e-9", require_tight: bool = False) -> Verdict:
     """pytest helper: fail (AssertionError with the counterexample) unless the claim is valid
     (and, with ``require_tight``, within ``tolerance`` of the exact largest threshold).
 

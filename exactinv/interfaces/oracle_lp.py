@@ -22,7 +22,7 @@ from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..core.tags import CounterexampleKind
 from ..errors import InvalidInput
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver, HintBackend, LPResult
-from .oracle_judges import INVALID, TIGHT, VALID, Verdict, _exact_claim, _gap
+from .oracle_judges import INVALID, TIGHT, VALID, Verdict, exact_claim, exact_gap
 
 __all__ = ["LPVerdict", "judge_lp"]
 
@@ -88,7 +88,7 @@ def judge_lp(problem: Any, claimed: Any = None, *, claim: str = "optimum", toler
     R, N = len(data["b"]), len(data["c"])
     solver = ExactLPSolver(_fmpq_matrix(data["A"], R, N), data["equality"], hint)
     res = solver.solve([-v for v in data["c"]], data["b"], [False] * N)  # max -c.x = -(min c.x)
-    common = dict(quantity="lp", claimed=_exact_claim(claimed), data=data, lp=res,
+    common = dict(quantity="lp", claimed=exact_claim(claimed), data=data, lp=res,
                   reported_point_feasible=_reported_point_feasible(data, problem))
     if res.status in (INFEASIBLE, UNBOUNDED):
         return _failure_verdict(res, data, claimed, maximize, common)
@@ -132,7 +132,7 @@ def _optimum_verdict(res: LPResult, data: dict, claimed: Any, maximize: bool, cl
     x = _by_variable(res.x, data)
     better = (c_claim < exact) if maximize else (c_claim > exact)  # a feasible point beats the claim
     close = abs(c_claim - exact) <= tol * max(abs(exact), Fraction(1)) if not isinstance(c_claim, Infinity) else False
-    common = dict(exact=exact, relative_gap=_gap(c_claim, exact), x=x, y=res.y, **common)
+    common = dict(exact=exact, relative_gap=exact_gap(c_claim, exact), x=x, y=res.y, **common)
     if close:
         return LPVerdict(TIGHT, message=f"claimed {claimed} is within {tol} of the exact {name} {exact}", **common)
     if better:

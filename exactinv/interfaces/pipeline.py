@@ -20,7 +20,9 @@ from typing import Any, Callable
 import exactinv_check
 
 from ..beyond.conditions import ConditionSet
+from ..control.optimal_gain import OptimalGain, optimal_gain
 from ..core.encode import encode_real, mat
+from ..core.scalars import matrix_text
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
 from ..model import Method
@@ -28,11 +30,9 @@ from ..model.record import certificate as make_certificate
 from ..paper.forward_euler import ForwardEulerThreshold
 from ..paper.gamma_star import OptimalGamma, optimal_gamma
 from ..paper.polynomial import SteplengthThreshold
-from ..paper.threshold import _steplength_threshold
-from ..control.optimal_gain import OptimalGain, optimal_gain
+from ..paper.threshold import steplength_threshold_from_gamma
 from ..validset.engine import forward_euler_with_gamma, largest_threshold, valid_steplengths
 from ..validset.results import EllipsoidForwardEulerThreshold, LargestThreshold, ValidSteplengths
-from ..core.scalars import matrix_text
 from .ellipsoid_report import ellipsoid_results
 from .problem import Problem
 
@@ -259,7 +259,7 @@ def _forward_euler(S, P, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
 
 
 def _paper_threshold(S, P, method: Method, gamma: OptimalGamma, lines: list[str]) -> list[Any]:
-    t = _steplength_threshold(method, gamma)
+    t = steplength_threshold_from_gamma(method, gamma)
     lines.append(f"paper's threshold for {method.name} ({t.theorem}): {exact_text(t.value)}"
                  + ("" if t.attained else "  (not attained: valid on [0, tau))") + safe_step_text(t))
     if t.paper != t.value:

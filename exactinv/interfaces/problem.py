@@ -23,16 +23,28 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..core.moved import moved_names
 from ..core.scalars import Matrix, to_matrix
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem, Polyhedron
 from ..model.methods import Method
 from ..validset.families import ELLIPSOIDS, family_of
-from .method_format import METHOD_KINDS, method_from_text, parse_method  # re-exported: their old home
-from .strict_json import _At, _kind, _object, _parse, _require, check_keys
-from .strict_json import did_you_mean  # noqa: F401 (re-exported: its old home)
+from .method_format import parse_method
+from .strict_json import (
+    JsonPath,
+    check_keys,
+    expect_object,
+    json_kind,
+    parse_strict_json,
+    require_keys,
+)
 
-__all__ = ["Problem", "load_problem", "parse_method", "method_from_text", "METHOD_KINDS", "TOP_KEYS"]
+__all__ = ["Problem", "load_problem", "TOP_KEYS"]
+
+# the method parsers live in exactinv.interfaces.method_format, did_you_mean in strict_json; the old spelling warns
+__getattr__ = moved_names(__name__, {"METHOD_KINDS": "exactinv.interfaces.method_format",
+                                     "method_from_text": "exactinv.interfaces.method_format",
+                                     "did_you_mean": "exactinv.interfaces.strict_json"})
 
 TOP_KEYS = ("system", "polyhedron", "ellipsoid", "method", "name", "description", "design", "inputs")
 DESIGNS = ("optimal_gain",)
@@ -61,7 +73,7 @@ class Problem:
 def _section(data: dict, key: str) -> dict:
     if key not in data:
         raise InvalidInput(f"{key}: missing section (a problem file needs \"system\" and \"polyhedron\" or \"ellipsoid\")")
-    return _object(data[key], key, "a JSON object")
+    return expect_object(data[key], key, "a JSON object")
 
 
 def _system(data: dict) -> LinearSystem:
@@ -70,10 +82,10 @@ def _system(data: dict) -> LinearSystem:
     if "A" in sys_data:
         if set(sys_data) != {"A"}:
             raise InvalidInput('system: give "A", or "A0", "B" and "F" -- not both')
-        with _At("system", ("A", "A0", "B", "F")):
+        with JsonPath("system", ("A", "A0", "B", "F")):
             return LinearSystem(sys_data["A"])
     if {"A0", "B", "F"} <= set(sys_data):
-        with _At("system", ("A", "A0", "B", "F")):
+        with JsonPath("system", ("A", "A0", "B", "F")):
             return LinearSystem.closed_loop(sys_data["A0"], sys_data["B"], sys_data["F"])
     missing = sorted({"A0", "B", "F"} - set(sys_data))
     raise InvalidInput(f'system: give "A", or "A0", "B" and "F" (missing {", ".join(missing)})')
@@ -87,7 +99,7 @@ def _cdd(poly: dict, base: str | None, key: str) -> Polyhedron:
         raise InvalidInput(f'{key}: give "cdd" (a cdd file) alone, without "G", "b", "vertices", "rays", "lines"')
     ref = poly["cdd"]
     if not isinstance(ref, str) or not ref.strip():
-        raise InvalidInput(f"{key}.cdd: expected the path of a cdd file (.ine or .ext), got {_kind(ref)}")
+        raise InvalidInput(f"{key}.cdd: expected the path of a cdd file (.ine or .ext), got {json_kind(ref)}")
     if "\n" in ref.strip():  # the file's text, inline
         source = ref
     else:
@@ -108,11 +120,11 @@ def _polyhedron(data: dict, base: str | None = None, key: str = "polyhedron") ->
         raise InvalidInput(f'{key}: give "G" and "b", or "vertices" (with optional "rays", "lines"), '
                            'or "cdd" -- not both')
     if h_keys:
-        _require(poly, ("G", "b"), key)
-        with _At(key, POLYHEDRON_KEYS):
+        require_keys(poly, ("G", "b"), key)
+        with JsonPath(key, POLYHEDRON_KEYS):
             return Polyhedron(poly["G"], poly["b"])
     if "vertices" in poly:
-        with _At(key, POLYHEDRON_KEYS):
+        with JsonPath(key, POLYHEDRON_KEYS):
             return Polyhedron.from_vertices(poly["vertices"], poly.get("rays", ()), poly.get("lines", ()))
     raise InvalidInput(f'{key}: give "G" and "b", or "vertices" (with optional "rays", "lines"), or "cdd"')
 
@@ -127,12 +139,13 @@ def _design(data: dict, name: str, base: str | None = None) -> Problem:
     check_keys(sys_data, ("A", "B"), "system")
     if set(sys_data) != {"A", "B"}:
         raise InvalidInput('system: "design": "optimal_gain" needs "A" and "B" (x\' = Ax + Bu)')
-    with _At("system", ("A", "B")):
+    with JsonPath("system", ("A", "B")):
         system = LinearSystem(sys_data["A"])
         B = to_matrix(sys_data["B"], "B", shape=(system.n, None))
     polyhedron = _polyhedron(data, base)
     if system.n != polyhedron.n:
-        raise InvalidInput(f"polyhedron: the system has dimension {system.n} but the polyhedron lives in dimension {polyhedron.n}")
+        raise InvalidInput(f"polyhedron: the system has dimension {system.n} "
+                           f"but the polyhedron lives in dimension {polyhedron.n}")
     inputs = _polyhedron(data, base, "inputs") if "inputs" in data else None
     if inputs is not None and inputs.n != len(B[0]):
         raise InvalidInput(f"inputs: B has {len(B[0])} columns (inputs) but the input polyhedron lives in dimension {inputs.n}")
@@ -141,10 +154,10 @@ def _design(data: dict, name: str, base: str | None = None) -> Problem:
 
 
 def _ellipsoid(data: dict) -> Ellipsoid:
-    ell = _object(data["ellipsoid"], "ellipsoid", "a JSON object")
+    ell = expect_object(data["ellipsoid"], "ellipsoid", "a JSON object")
     check_keys(ell, ("Q",), "ellipsoid")
-    _require(ell, ("Q",), "ellipsoid")
-    with _At("ellipsoid", ("Q",)):
+    require_keys(ell, ("Q",), "ellipsoid")
+    with JsonPath("ellipsoid", ("Q",)):
         return Ellipsoid(ell["Q"])
 
 
@@ -168,18 +181,18 @@ def problem_from_dict(data: Any, name: str = "problem", base: str | None = None)
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: methd: unknown key; did you mean "method"? (allowed: ...)
-    """
+    """  # noqa: E501 (doctest output)
     if not isinstance(data, dict):
-        raise InvalidInput(f"expected a JSON object with \"system\" and \"polyhedron\", got {_kind(data)}")
+        raise InvalidInput(f"expected a JSON object with \"system\" and \"polyhedron\", got {json_kind(data)}")
     if {"format", "claims"} & set(data):
         raise InvalidInput("this is a certificate, not a problem file (use `exactinv check` or `exactinv explain`)")
     check_keys(data, TOP_KEYS, "")
     if "name" in data:
         if not isinstance(data["name"], str):
-            raise InvalidInput(f"name: expected a string, got {_kind(data['name'])}")
+            raise InvalidInput(f"name: expected a string, got {json_kind(data['name'])}")
         name = data["name"]
     if "description" in data and not isinstance(data["description"], str):
-        raise InvalidInput(f"description: expected a string, got {_kind(data['description'])}")
+        raise InvalidInput(f"description: expected a string, got {json_kind(data['description'])}")
     if "design" in data:
         return _design(data, name, base)
     if "inputs" in data:
@@ -215,7 +228,7 @@ def load_problem(source: Any, base: str | None = None) -> Problem:
     if isinstance(source, dict):
         return problem_from_dict(source, base=base)
     if isinstance(source, str) and source.lstrip().startswith("{"):
-        return problem_from_dict(_parse(source, "problem"), base=base)
+        return problem_from_dict(parse_strict_json(source, "problem"), base=base)
     if not isinstance(source, (str, os.PathLike)):
         raise InvalidInput(f"problem: expected a dict, JSON text or a path, got {type(source).__name__}")
     path = str(source)
@@ -230,7 +243,7 @@ def load_problem(source: Any, base: str | None = None) -> Problem:
     except UnicodeDecodeError:
         raise InvalidInput(f"{path}: not a text file (a problem file is UTF-8 JSON)") from None
     try:
-        return problem_from_dict(_parse(text, path), name, os.path.dirname(os.path.abspath(path)))
+        return problem_from_dict(parse_strict_json(text, path), name, os.path.dirname(os.path.abspath(path)))
     except InvalidInput as exc:
         if str(exc).startswith(path):
             raise

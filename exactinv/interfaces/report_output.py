@@ -15,9 +15,9 @@ from typing import Any
 
 from ..control.optimal_gain import OptimalGain
 from ..core.latex import latex_matrix, latex_real, latex_text
-from ..validset.results import LargestThreshold, ValidSteplengths
 from ..paper.gamma_star import OptimalGamma
 from ..paper.polynomial import SteplengthThreshold
+from ..validset.results import LargestThreshold, ValidSteplengths
 from .exit_codes import CODES
 from .pipeline import Report
 

@@ -8,11 +8,12 @@ from __future__ import annotations
 import difflib
 import json
 import re
-from typing import Any, Iterable
+from typing import Any, Callable, Iterable, NoReturn
 
 from ..errors import InvalidInput
 
-__all__ = ["did_you_mean", "check_keys"]
+__all__ = ["did_you_mean", "check_keys", "JsonPath", "expect_object", "json_kind", "require_keys", "parse_strict_json",
+           "float_refuser", "constant_refuser"]
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
@@ -45,7 +46,7 @@ def check_keys(obj: dict, allowed: Iterable[str], path: str) -> None:
 _LEAD = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?=[\[:])")
 
 
-class _At:
+class JsonPath:
     """Prefix the message of an InvalidInput raised inside the block with a JSON path:
     an argument name that is one of ``keys`` becomes ``path.key``; any other leading
     argument name (the value itself, e.g. ``p`` of taylor) is replaced by ``path``."""
@@ -70,26 +71,30 @@ class _At:
         return False
 
 
-def _object(value: Any, path: str, what: str) -> dict:
+def expect_object(value: Any, path: str, what: str) -> dict:
+    """``value`` itself if it is a JSON object, else InvalidInput naming ``path`` and what was expected."""
     if not isinstance(value, dict):
-        raise InvalidInput(f"{path}: expected {what}, got {_kind(value)}")
+        raise InvalidInput(f"{path}: expected {what}, got {json_kind(value)}")
     return value
 
 
-def _kind(value: Any) -> str:
+def json_kind(value: Any) -> str:
+    """What a parsed JSON value is, in words for a message ("a JSON list", "a string", ...)."""
     return {dict: "a JSON object", list: "a JSON list", str: "a string", bool: "a boolean", int: "an integer",
             type(None): "null"}.get(type(value), type(value).__name__)
 
 
-def _require(obj: dict, keys: Iterable[str], path: str) -> None:
+def require_keys(obj: dict, keys: Iterable[str], path: str) -> None:
+    """InvalidInput naming the first of ``keys`` missing from the object at ``path``."""
     for key in keys:
         if key not in obj:
             raise InvalidInput(f"{path}: missing key {key!r}")
 
 
-def _parse(text: str, where: str) -> Any:
+def parse_strict_json(text: str, where: str) -> Any:
+    """JSON text parsed strictly: a float, NaN or Infinity, or a duplicate key is InvalidInput (at ``where``)."""
     try:
-        return json.loads(text, parse_float=_refuse_float(), parse_constant=_refuse_constant(),
+        return json.loads(text, parse_float=float_refuser(), parse_constant=constant_refuser(),
                           object_pairs_hook=_no_duplicates)
     except json.JSONDecodeError as exc:
         raise InvalidInput(f"{where}: not valid JSON ({exc})") from None
@@ -105,17 +110,19 @@ def _no_duplicates(pairs):
     return dict(pairs)
 
 
-def _refuse_float(where: str = ""):
+def float_refuser(where: str = "") -> Callable[[str], NoReturn]:
+    """A ``json.loads(parse_float=...)`` hook refusing every float (numbers are exact strings)."""
     prefix = f"{where}: " if where else ""
 
-    def refuse(text: str):
+    def refuse(text: str) -> NoReturn:
         raise InvalidInput(f"{prefix}the JSON number {text} is a float; write it as a string (\"{text}\") to mean it exactly")
     return refuse
 
 
-def _refuse_constant(where: str = ""):
+def constant_refuser(where: str = "") -> Callable[[str], NoReturn]:
+    """A ``json.loads(parse_constant=...)`` hook refusing NaN and +-Infinity."""
     prefix = f"{where}: " if where else ""
 
-    def refuse(text: str):
+    def refuse(text: str) -> NoReturn:
         raise InvalidInput(f"{prefix}{text} is not a number exactinv accepts")
     return refuse

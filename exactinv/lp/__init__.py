@@ -5,7 +5,9 @@ HiGHS, the default, or any solver through cvxpy) -> exact reconstruction
 (:mod:`~exactinv.lp.verify`) -> exact fallback (:mod:`~exactinv.lp.exact`);
 the chain is :mod:`exactinv.lp.solver`."""
 
-from .hint import CvxpyHint, HighsHint, HintBackend, get_hint_backend, hint_backend, set_hint_backend
+from .backends import CvxpyHint, HighsHint
+from .hint import get_hint_backend, hint_backend, set_hint_backend
+from .hint_types import HintBackend
 from .solver import INFEASIBLE, OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult, solve_lp
 
 __all__ = ["LPResult", "ExactLPSolver", "solve_lp", "OPTIMAL", "INFEASIBLE", "UNBOUNDED",

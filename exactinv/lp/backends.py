@@ -131,7 +131,7 @@ class CvxpyHint(HintBackend):
         >>> hint = CvxpyHint('CLARABEL').model(np.array([[1.0, 1.0]]), [False]).solve(np.array([1.0, 0.0]), np.array([3.0]), [True, True])
         >>> hint.status, [round(float(v), 6) for v in hint.x], hint.basis   # an interior-point solver: no basis
         (<LPStatus.OPTIMAL: 'optimal'>, [3.0, 0.0], None)
-        """
+        """  # noqa: E501 (doctest output)
         return _CvxpyModel(A, equality, self.solver, self.solver_options)
 
     def __repr__(self) -> str:

@@ -14,7 +14,7 @@ from typing import Sequence
 import flint
 import ppl
 
-from .hint import LPStatus
+from .hint_types import LPStatus
 
 __all__ = ["ppl_maximize", "ppl_dual"]
 
@@ -68,6 +68,9 @@ def ppl_dual(A: flint.fmpq_mat, equality: Sequence[bool], b: flint.fmpq_mat, c: 
     return ppl_maximize(dual_A, [not v for v in nonneg], neg_c, -b, [not e for e in equality])
 
 
-def _integer_expression(coeffs: Sequence[flint.fmpq], constant: flint.fmpq = flint.fmpq(0)) -> ppl.Linear_Expression:
+_ZERO = flint.fmpq(0)
+
+
+def _integer_expression(coeffs: Sequence[flint.fmpq], constant: flint.fmpq = _ZERO) -> ppl.Linear_Expression:
     d = lcm(*(int(v.q) for v in coeffs), int(constant.q))
     return ppl.Linear_Expression([int(v * d) for v in coeffs], int(constant * d))

@@ -15,7 +15,7 @@ import flint
 import numpy as np
 
 from ..core.float_hint import float_hints
-from .hint import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
+from .hint_types import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
 
 __all__ = ["FloatLP", "floats_of"]
 

@@ -37,23 +37,21 @@ import contextlib
 import contextvars
 from typing import Any, Iterator
 
+from ..core.moved import moved_names
 from .backends import CvxpyHint, HighsHint
-from .hint_types import UNKNOWN_HINT, Basis, Hint, HintBackend, HintModel, LPStatus
+from .hint_types import HintBackend
 
 __all__ = [
-    "LPStatus",
-    "Basis",
-    "Hint",
-    "UNKNOWN_HINT",
-    "HintBackend",
-    "HintModel",
-    "HighsHint",
-    "CvxpyHint",
     "set_hint_backend",
     "get_hint_backend",
     "hint_backend",
     "resolve_hint_backend",
 ]
+
+# the backend interface lives in exactinv.lp.hint_types, the two backends in exactinv.lp.backends;
+# their old spelling here warns
+__getattr__ = moved_names(__name__, {**dict.fromkeys(["LPStatus", "Basis", "Hint", "UNKNOWN_HINT", "HintModel"],
+                                                     "exactinv.lp.hint_types")})
 
 # ------------------------------------------------------------- selection
 _BACKENDS = {"highs": HighsHint, "cvxpy": CvxpyHint}

@@ -20,10 +20,11 @@ from typing import Sequence
 import flint
 import numpy as np
 
-from .hint import Basis
+from .hint_types import Basis
 from .verify import LPData
 
-__all__ = ["Basis", "COMMON_DENOMINATOR", "snap", "snapped", "snapped_numerators", "snap_tolerance", "guess_basis", "basis_solution", "exact_pivots"]
+__all__ = ["Basis", "COMMON_DENOMINATOR", "snap", "snapped", "snapped_numerators", "snap_tolerance", "guess_basis",
+           "basis_solution", "exact_pivots"]
 
 ROUNDING_DENOMINATOR = 1 << 24
 _SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 24)

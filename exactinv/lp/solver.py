@@ -36,13 +36,22 @@ from typing import NamedTuple, Sequence
 import flint
 import numpy as np
 
-from ..core.scalars import INF, Infinity, fraction_of
+from ..core.flintq import fraction_of
+from ..core.scalars import INF, Infinity
 from ..errors import VerificationFailed
 from .exact import ppl_dual, ppl_maximize
 from .floatlp import FloatLP, floats_of
-from .hint import Hint, HintBackend, LPStatus, resolve_hint_backend
-from .reconstruct import (COMMON_DENOMINATOR, basis_solution, exact_pivots, guess_basis, snap_tolerance, snapped,
-                          snapped_numerators)
+from .hint import resolve_hint_backend
+from .hint_types import Hint, HintBackend, LPStatus
+from .reconstruct import (
+    COMMON_DENOMINATOR,
+    basis_solution,
+    exact_pivots,
+    guess_basis,
+    snap_tolerance,
+    snapped,
+    snapped_numerators,
+)
 from .verify import LPData, dot, optimal_values, verify_farkas, verify_optimal, verify_ray
 from .verify_int import optimal_values_int
 

@@ -30,7 +30,8 @@ from typing import Sequence
 import flint
 import numpy as np
 
-__all__ = ["LPData", "optimal_mask", "optimal_values", "primal_mask", "dual_mask", "verify_optimal", "verify_farkas", "verify_ray", "dot"]
+__all__ = ["LPData", "optimal_mask", "optimal_values", "primal_mask", "dual_mask", "verify_optimal", "verify_farkas",
+           "verify_ray", "dot"]
 
 
 @dataclass(frozen=True, eq=False)

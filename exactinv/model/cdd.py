@@ -176,7 +176,8 @@ def _linearity(words: list[str], where: str, line: int) -> list[int]:
     try:
         values = [int(w) for w in words[1:]]
     except ValueError:
-        raise InvalidInput(f"{where}, line {line}: 'linearity k i_1 ... i_k' takes integers, got {' '.join(words[1:])!r}") from None
+        raise InvalidInput(f"{where}, line {line}: 'linearity k i_1 ... i_k' takes integers, "
+                           f"got {' '.join(words[1:])!r}") from None
     if not values or values[0] != len(values) - 1:
         raise InvalidInput(f"{where}, line {line}: 'linearity k i_1 ... i_k' must list k = {values[0] if values else '?'} "
                            f"row indices, got {max(len(values) - 1, 0)}")

@@ -14,10 +14,11 @@ from typing import Any, Sequence
 import flint
 import numpy as np
 
+from ..core.flintq import fmpq_matrix
 from ..core.float_hint import ldexp_hint, log2_hint
 from ..core.latex import LatexMixin, latex_matrix
 from ..core.psd import LDLT, psd_decision, quadratic_form, symmetric_matrix
-from ..core.scalars import Matrix, fmpq_matrix, matrix_text, nearest_rational, to_matrix, to_vector
+from ..core.scalars import Matrix, matrix_text, nearest_rational, to_matrix, to_vector
 from ..errors import InvalidInput, Undecided
 from .system import LinearSystem
 

@@ -13,10 +13,11 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.flintq import fmpq_matrix, fmpq_of, fraction_of
 from ..core.polys import interpolate
-from ..core.scalars import fmpq_matrix, fmpq_of, fraction_of, to_matrix, to_rational, to_vector
+from ..core.scalars import to_matrix, to_rational, to_vector
 from ..errors import InvalidInput
-from .method import Method, _make, _trim
+from .method import Method, make_method, trim_zeros
 
 __all__ = [
     "taylor", "polynomial", "forward_euler", "rational", "theta", "backward_euler", "trapezoid",
@@ -34,7 +35,7 @@ def polynomial(sigmas: Sequence[Any], name: str | None = None) -> Method:
     s = list(to_vector(sigmas, "sigmas"))
     if s[0] != 1:
         raise InvalidInput(f"sigmas: sigma_0 must be 1 (A_d = I at dt = 0), got sigma_0 = {s[0]}")
-    return Method(name or f"polynomial{tuple(str(x) for x in s)}", tuple(_trim(s)), (Fraction(1),))
+    return Method(name or f"polynomial{tuple(str(x) for x in s)}", tuple(trim_zeros(s)), (Fraction(1),))
 
 
 def taylor(p: int) -> Method:
@@ -67,7 +68,7 @@ def rational(num: Sequence[Any], den: Sequence[Any], name: str = "rational") -> 
     """
     g = to_vector(num, "num")
     h = to_vector(den, "den")
-    return _make(name, g, h)
+    return make_method(name, g, h)
 
 
 def theta(theta_value: Any) -> Method:
@@ -81,7 +82,7 @@ def theta(theta_value: Any) -> Method:
     t = to_rational(theta_value, "theta")
     if not 0 <= t <= 1:
         raise InvalidInput(f"theta: must lie in [0, 1], got {t}")
-    return _make(f"theta({t})", [Fraction(1), 1 - t], [Fraction(1), -t])
+    return make_method(f"theta({t})", [Fraction(1), 1 - t], [Fraction(1), -t])
 
 
 def backward_euler() -> Method:
@@ -90,7 +91,7 @@ def backward_euler() -> Method:
     >>> backward_euler()(-1)                      # 1/(1 + 1)
     Fraction(1, 2)
     """
-    return _make("backward_euler", [Fraction(1)], [Fraction(1), Fraction(-1)])
+    return make_method("backward_euler", [Fraction(1)], [Fraction(1), Fraction(-1)])
 
 
 def trapezoid() -> Method:
@@ -101,7 +102,7 @@ def trapezoid() -> Method:
     >>> trapezoid()(-6)                           # (1 - 3)/(1 + 3)
     Fraction(-1, 2)
     """
-    return _make("trapezoid", [Fraction(1), Fraction(1, 2)], [Fraction(1), Fraction(-1, 2)])
+    return make_method("trapezoid", [Fraction(1), Fraction(1, 2)], [Fraction(1), Fraction(-1, 2)])
 
 
 def implicit_midpoint() -> Method:
@@ -129,8 +130,9 @@ def pade(k: int, l: int) -> Method:
             raise InvalidInput(f"{name}: must be an int >= 0, got {v!r}")
     n = k + l
     num = [Fraction(factorial(n - j) * factorial(k), factorial(n) * factorial(j) * factorial(k - j)) for j in range(k + 1)]
-    den = [Fraction((-1) ** j * factorial(n - j) * factorial(l), factorial(n) * factorial(j) * factorial(l - j)) for j in range(l + 1)]
-    return _make(f"pade({k},{l})", num, den)
+    den = [Fraction((-1) ** j * factorial(n - j) * factorial(l), factorial(n) * factorial(j) * factorial(l - j))
+           for j in range(l + 1)]
+    return make_method(f"pade({k},{l})", num, den)
 
 
 def from_butcher(A: Any, b: Any, name: str = "butcher", c: Any = None) -> Method:
@@ -161,7 +163,7 @@ def from_butcher(A: Any, b: Any, name: str = "butcher", c: Any = None) -> Method
     den_vals = [(I - Aq * z).det() for z in points]
     num = interpolate(points, num_vals)
     den = interpolate(points, den_vals)
-    return _make(name, [fraction_of(c) for c in num.coeffs()] or [Fraction(0)],
+    return make_method(name, [fraction_of(c) for c in num.coeffs()] or [Fraction(0)],
                  [fraction_of(c) for c in den.coeffs()] or [Fraction(0)], butcher=(Am, bv))
 
 

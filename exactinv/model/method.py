@@ -1,7 +1,7 @@
 """The Method type: an exact stability function r = g/h (paper, Section 3).
 
 A one-step method applied to x' = Ax gives x+ = r(dt A) x; ``Method`` holds g
-and h as Fractions, coprime, with h(0) = 1 and r(0) = 1 (:func:`_make`
+and h as Fractions, coprime, with h(0) = 1 and r(0) = 1 (:func:`make_method`
 normalises them).  The constructors are in :mod:`exactinv.model.families` and
 :mod:`exactinv.model.presets`; :mod:`exactinv.model.methods` gathers them all.
 """
@@ -14,17 +14,9 @@ from typing import Any, Sequence
 
 import flint
 
+from ..core.flintq import fmpq_matrix, fmpq_of, fraction_of, matrix_of
 from ..core.latex import latex_text
-from ..core.scalars import (
-    Matrix,
-    Vector,
-    fmpq_matrix,
-    fmpq_of,
-    fraction_of,
-    matrix_of,
-    to_matrix,
-    to_rational,
-)
+from ..core.scalars import Matrix, Vector, to_matrix, to_rational
 from ..errors import InvalidInput
 from .system import LinearSystem
 
@@ -143,13 +135,16 @@ def matrix_polynomial(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fm
     return out
 
 
-def _trim(c: list[Fraction]) -> list[Fraction]:
+def trim_zeros(c: list[Fraction]) -> list[Fraction]:
+    """The coefficient list c without its trailing zeros (at least one entry kept); c itself is shortened."""
     while len(c) > 1 and c[-1] == 0:
         c.pop()
     return c
 
 
-def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
+def make_method(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
+    """The Method r = num/den (coefficients from z^0 up), exact: g and h made coprime with h(0) = 1;
+    InvalidInput naming ``name`` when den is zero or vanishes at 0, or r(0) != 1."""
     g = flint.fmpq_poly([fmpq_of(c) for c in num])
     h = flint.fmpq_poly([fmpq_of(c) for c in den])
     if h.is_zero():
@@ -163,9 +158,10 @@ def _make(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=N
     scale = h(0)
     g, h = g / scale, h / scale
     if g(0) != 1:
-        raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), got r(0) = {fraction_of(g(0))}")
-    numerator = _trim([fraction_of(c) for c in g.coeffs()])
-    denominator = _trim([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
+        raise InvalidInput(f"method {name}: r(0) must be 1 (consistency: dt = 0 gives the identity), "
+                           f"got r(0) = {fraction_of(g(0))}")
+    numerator = trim_zeros([fraction_of(c) for c in g.coeffs()])
+    denominator = trim_zeros([fraction_of(c) for c in h.coeffs()]) or [Fraction(1)]
     return Method(name, tuple(numerator), tuple(denominator), butcher)
 
 

@@ -16,37 +16,37 @@ The methods are built in three modules, gathered here (``exactinv.methods``):
 """
 
 from .families import (
-    taylor,
-    polynomial,
-    forward_euler,
-    rational,
-    theta,
     backward_euler,
-    trapezoid,
+    forward_euler,
+    from_butcher,
     implicit_midpoint,
     pade,
-    from_butcher,
+    polynomial,
+    rational,
+    taylor,
+    theta,
+    trapezoid,
 )
 from .method import Method, matrix_polynomial
 from .nodepy_methods import from_nodepy
 from .presets import (
-    heun,
-    ssprk22,
-    ssprk33,
-    rk4,
-    ssprk_s1,
-    radau_iia2,
-    lobatto_iiic2,
+    PRESETS,
     gauss2,
-    radau_iia1,
-    radau_iia3,
+    heun,
+    lobatto_iiic2,
     lobatto_iiic3,
     lobatto_iiic4,
+    preset,
+    radau_iia1,
+    radau_iia2,
+    radau_iia3,
+    rk4,
     sdirk2,
     sdirk4,
     ssp_sdirk,
-    PRESETS,
-    preset,
+    ssprk22,
+    ssprk33,
+    ssprk_s1,
 )
 
 __all__ = [

@@ -16,8 +16,9 @@ from typing import Any, Sequence
 import flint
 import ppl
 
+from ..core.flintq import fmpq_matrix
 from ..core.latex import LatexMixin, latex_column, latex_matrix
-from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_text, to_matrix, to_vector, vector_text
+from ..core.scalars import Matrix, Vector, matrix_text, to_matrix, to_vector, vector_text
 from ..errors import InvalidInput
 from ..lp import INFEASIBLE, ExactLPSolver
 from .cdd import ext_text, ine_text, read_cdd
@@ -38,7 +39,7 @@ class Polyhedron(LatexMixin):
     >>> P = Polyhedron.box([-1, -1], [1, 1])
     >>> P.vertices
     ((Fraction(-1, 1), Fraction(-1, 1)), (Fraction(-1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)), (Fraction(1, 1), Fraction(1, 1)))
-    """
+    """  # noqa: E501 (doctest output)
 
     G: Matrix
     b: Vector

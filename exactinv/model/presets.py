@@ -9,7 +9,6 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-
 from ..core.scalars import to_rational
 from ..errors import InvalidInput
 from .families import backward_euler, forward_euler, from_butcher, implicit_midpoint, pade, trapezoid

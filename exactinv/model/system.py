@@ -8,8 +8,9 @@ from typing import Any
 
 import flint
 
+from ..core.flintq import fmpq_matrix
 from ..core.latex import LatexMixin, latex_matrix
-from ..core.scalars import Matrix, fmpq_matrix, matrix_text, to_matrix
+from ..core.scalars import Matrix, matrix_text, to_matrix
 
 __all__ = ["LinearSystem"]
 

@@ -20,7 +20,6 @@ from math import isqrt
 import flint
 
 from ..core.polys import integer_part
-from ..core.scalars import fraction_of
 
 __all__ = ["gaussian_poles", "balanced_tie"]
 
@@ -87,7 +86,7 @@ def balanced_tie(g: list, h: list) -> tuple[Fraction, tuple] | None:
     (Fraction(1, 1), [(Fraction(-6, 1), Fraction(0, 1)), (Fraction(2, 1), Fraction(-4, 1)), (Fraction(2, 1), Fraction(4, 1)), (Fraction(4, 1), Fraction(0, 1))])
     >>> balanced_tie([F(1)], h) is None     # g = 1: the tied residues outweigh b_* (rho < kappa*, found by the scan)
     True
-    """
+    """  # noqa: E501 (doctest output)
     zs = gaussian_poles(h)
     if zs is None or len(zs) < 2:
         return None

@@ -32,6 +32,7 @@ from math import comb, factorial, gcd
 
 import flint
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots

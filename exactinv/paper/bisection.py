@@ -24,10 +24,11 @@ from typing import Any, Sequence
 import flint
 import numpy as np
 
-from ..errors import InvalidInput
+from ..core.flintq import fmpq_of
 from ..core.float_hint import float_hints
-from ..core.scalars import INF, Infinity, fmpq_of, to_rational, to_vector
+from ..core.scalars import INF, Infinity, to_rational, to_vector
 from ..core.tags import BisectionStep
+from ..errors import InvalidInput
 
 __all__ = ["PaperBisectionResult", "paper_bisection", "paper_bisection_float", "paper_bound"]
 

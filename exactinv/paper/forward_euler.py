@@ -58,7 +58,7 @@ class ForwardEulerThreshold(ExactValueMixin):
         >>> from exactinv.model import LinearSystem, Polyhedron
         >>> print(ei.forward_euler_threshold(LinearSystem([[-2]]), Polyhedron.box([-1], [1])).to_latex())   # gamma* = 1: (1 - 2 dt) x stays in [-1, 1] iff dt <= 1
         \\tau_{FE} = 1/\\gamma^* = 1
-        """
+        """  # noqa: E501 (doctest output)
         return rf"\tau_{{FE}} = 1/\gamma^* = {latex_real(self.value)}"
 
     @property

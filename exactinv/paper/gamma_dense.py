@@ -36,9 +36,9 @@ import numpy as np
 from ..core.float_hint import float_hints
 from ..core.sparse import SparseRows
 from ..lp import OPTIMAL, LPResult
+from ..lp.backends import HighsHint
 from ..lp.exact import ppl_maximize
 from ..lp.floatlp import FloatLP
-from ..lp.hint import HighsHint
 from ..lp.reconstruct import COMMON_DENOMINATOR, basis_solution, snap_tolerance, snapped_numerators
 from ..lp.solver import LPPath
 from ..lp.verify import LPData

@@ -21,12 +21,13 @@ from exactinv_check.format import ClaimType
 
 from ..core.algebraic import ExactKey
 from ..core.encode import encode_real, vec
+from ..core.flintq import fmpq_of, fraction_of, matrix_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
+from ..core.scalars import INF, Infinity, Matrix, Vector
 from ..core.sparse import SparseRows
 from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..errors import VerificationFailed
 from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
-from ..lp.solver import LPPath
 from ..model import LinearSystem, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.validate import check_pair
@@ -176,7 +177,7 @@ class OptimalGamma(LatexMixin):
         >>> P = Polyhedron([[1], [-1]], [1, 1])
         >>> print(optimal_gamma(LinearSystem([[-1]]), P).to_latex())
         \\gamma^* = \\frac{1}{2}, \\quad H = \\begin{pmatrix} -\\frac{1}{2} & \\frac{1}{2} \\\\ \\frac{1}{2} & -\\frac{1}{2} \\end{pmatrix}
-        """
+        """  # noqa: E501 (doctest output)
         if self.witness is not None:
             w = self.witness
             return (rf"\gamma^* = \infty \text{{ (not invariant: }} x = {latex_column(w.x)}"

@@ -22,6 +22,7 @@ import flint
 from exactinv_check.format import ClaimType
 
 from ..core.encode import mat, sparse_of_dense
+from ..core.flintq import fmpq_matrix, fraction_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix
 from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
 from ..errors import EmptyPolyhedron, VerificationFailed
@@ -150,7 +151,7 @@ class DiscreteInvariance(_Invariance):
         [{'type': 'discrete_invariance', 'holds': False, 'Ad': [['-2']], 'dt': '3', 'witness': {'x': ['-1'], 'facet': 0, 'value': '2'}}]
         >>> discrete_invariance([["1/2"]], P).claims()   # H~ = I/2: H~G = G/2, H~b = b/2 <= b
         [{'type': 'discrete_invariance', 'holds': True, 'Ad': [['1/2']], 'H': {'sparse': [[[0, '1/2']], [[1, '1/2']]]}}]
-        """
+        """  # noqa: E501 (doctest output)
         return self._claim(Ad=mat(self.Ad), **({} if self.dt is None else {"dt": str(self.dt)}))
 
     @property

@@ -21,15 +21,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 from cmath import phase
+from fractions import Fraction
 from math import atan, gcd, pi
 
 import flint
 from exactinv_check.format import MAX_LINE_EXPONENT  # the kernel's bound (exactinv_check.line_poles)
 
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import integer_part, sign_right_of
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of, fraction_of
 
 __all__ = ["line_gcd", "on_line_indices", "line_density", "LinePart", "line_part", "nonnegative", "single_pair",
            "trig_minimum_points", "trig_zero_points", "pair_minimum_points"]

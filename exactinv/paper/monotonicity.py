@@ -28,12 +28,13 @@ import flint
 from exactinv_check.format import RadiusReason
 
 from ..core.algebraic import ExactKey
+from ..core.flintq import fraction_of
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, fraction_of
 from ..model.methods import Method
 from ..model.validate import check_method
 from .monotonicity_radius import AbsoluteMonotonicityRadius
-from .monotonicity_tail import _coefficient_polynomials, _rational_radius
+from .monotonicity_tail import coefficient_polynomials, rational_radius
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 
@@ -49,7 +50,7 @@ def taylor_coefficient_polynomials(method: Method, count: int) -> list[flint.fmp
     >>> [[str(c) for c in d.coeffs()] for d in taylor_coefficient_polynomials(methods.trapezoid(), 3)]
     [['1', '-1/2'], ['1'], ['1/2']]
     """
-    return list(islice(_coefficient_polynomials(method), count))
+    return list(islice(coefficient_polynomials(method), count))
 
 
 def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
@@ -70,7 +71,7 @@ def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
     check_method(method)
     if method.is_polynomial:
         return _polynomial_radius(method)
-    return _rational_radius(method)
+    return rational_radius(method)
 
 
 def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:

@@ -13,6 +13,7 @@ from exactinv_check.format import ClaimType, RadiusReason
 from ..core.algebraic import Real, RealAlgebraic
 from ..core.encode import encode_real, envelope
 from ..core.latex import latex_real, latex_text
+from ..core.real_algebraic import RealAlgebraic
 from ..core.results import ExactValueMixin
 from ..model.methods import Method
 from ..model.record import method_record

@@ -63,16 +63,17 @@ from math import comb
 import flint
 from exactinv_check.format import MAX_COEFFICIENTS, MAX_DEGREE, RadiusReason
 
-from ..core.algebraic import ExactKey, Real, RealAlgebraic
+from ..core.algebraic import ExactKey, Real
+from ..core.flintq import dyadic_of, fmpq_of, fraction_of
 from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
 from ..core.roots import nonnegative_until, real_roots
 from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
 from ..errors import Undecided
 from ..model.methods import Method
-from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
 from .line_poles import on_line_indices
+from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
@@ -118,7 +119,7 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
     return sign_at(q, alpha.lower) * (1 if p.numer().leading_coefficient() * q.leading_coefficient() > 0 else -1)
 
 
-def _coefficient_polynomials(method: Method):
+def coefficient_polynomials(method: Method):
     """d_0, d_1, ... incrementally (:func:`exactinv.paper.monotonicity.taylor_coefficient_polynomials`
     lists the first ones): with G, H the coefficients of g(w - kappa), h(w - kappa) in w
     (polynomials in kappa), d_j = G_j H_0^j - sum_{i=1}^{min(j, deg h)} H_i d_{j-i} H_0^(i-1):
@@ -165,7 +166,9 @@ def _first_end(d: flint.fmpq_poly) -> Real:
     return end.refine_relative(64) if isinstance(end, RealAlgebraic) else end
 
 
-def _rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
+def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
+    """The exact radius of absolute monotonicity of a rational r = g/h with poles (see the module
+    docstring): 0, a positive algebraic number or oo with the reason that decides it, or Undecided."""
     h = method.h
     positive = [(z, m) for z, m in real_roots(h) if z > 0]
     if not positive:
@@ -279,7 +282,7 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
                 raise Undecided(f"absolute monotonicity of {method.name}: rho < {verdict.bound} (c_{verdict.j} < 0 "
                                 f"there), but the certified tail starts at j = {N} > {_MAX_INDEX} coefficients")
     value, binding, ds = None, None, []
-    for j, d in enumerate(_coefficient_polynomials(method)):
+    for j, d in enumerate(coefficient_polynomials(method)):
         if N is not None and j >= max(N, first):
             break
         if N is None and j >= (_MAX_SCAN if tie is not None else _MAX_SCAN_NO_TIE):

@@ -32,10 +32,10 @@ from math import comb
 import flint
 from exactinv_check.format import MAX_TAIL_INDEX
 
-from ..core.algebraic import RealAlgebraic
+from ..core.flintq import dyadic_of, fmpq_of
 from ..core.polys import integer_part, interpolate
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
-from ..core.scalars import dyadic_of, fmpq_of
 from ..errors import Undecided
 
 __all__ = ["PoleStructure", "pole_structure", "ambiguous_line_poles", "tie_polynomial", "Tie", "dominance_tie", "tail_index"]

@@ -131,7 +131,7 @@ class SteplengthThreshold(ExactValueMixin):
         >>> S, P = ei.LinearSystem([[-1, 1], [-1, -1]]), ei.Polyhedron.box([-1, -1], [1, 1])
         >>> print(ei.steplength_threshold(S, P, ei.methods.taylor(1)).to_latex())
         \\begin{array}{l} \\tau = 1\\ (\\text{Theorem 3.4 (polynomial methods)}) \\\\ \\begin{array}{c|l|l} i & f_i(\\Delta t) & \\tau_i \\\\ \\hline 0 & 1-\\Delta t & 1 \\\\ 1 & \\Delta t & \\infty \\end{array} \\end{array}
-        """
+        """  # noqa: E501 (doctest output)
         note = latex_text(self.theorem + ("" if self.attained else ", not attained"))
         text = rf"\tau = {latex_real(self.value)}\ ({note})"
         if not self.table:
@@ -162,7 +162,7 @@ def f_i(sigmas: tuple[Fraction, ...], gamma: Fraction, i: int) -> tuple[Fraction
     >>> sigmas = (Fraction(1), Fraction(1), Fraction(1, 2))   # Taylor-2: 1 + z + z^2/2
     >>> [f_i(sigmas, Fraction(1), i) for i in range(3)]   # 1 - dt + dt^2/2, dt - dt^2, dt^2/2
     [(Fraction(1, 1), Fraction(-1, 1), Fraction(1, 2)), (Fraction(0, 1), Fraction(1, 1), Fraction(-1, 1)), (Fraction(0, 1), Fraction(0, 1), Fraction(1, 2))]
-    """
+    """  # noqa: E501 (doctest output)
     p = len(sigmas) - 1
     return tuple(
         Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)

@@ -31,10 +31,12 @@ from fractions import Fraction
 
 import flint
 
-from ..core.algebraic import ExactKey, RealAlgebraic
+from ..core.algebraic import ExactKey
+from ..core.flintq import fraction_of
 from ..core.polys import interpolate
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
-from ..core.scalars import INF, Infinity, fraction_of
+from ..core.scalars import INF, Infinity
 from ..core.sparse import SparseRows
 from ..model.methods import Method, matrix_polynomial
 from .gamma_star import OptimalGamma

@@ -39,10 +39,11 @@ from typing import Sequence
 import flint
 import numpy as np
 
-from ..core.algebraic import ExactKey, RealAlgebraic
+from ..core.algebraic import ExactKey
+from ..core.flintq import fraction_of
 from ..core.float_hint import float_hints
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import positive_roots, real_roots
-from ..core.scalars import fraction_of
 from ..core.sparse import SparseRows
 
 __all__ = ["collatz_wielandt_upper", "perron_lower", "abscissa_is_nonpositive", "components", "spectral_abscissa"]

@@ -27,10 +27,10 @@ def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: M
     Fraction(1, 1)
     """
     check_method(method)
-    return _steplength_threshold(method, optimal_gamma(system, polyhedron))
+    return steplength_threshold_from_gamma(method, optimal_gamma(system, polyhedron))
 
 
-def _steplength_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
+def steplength_threshold_from_gamma(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
     """:func:`steplength_threshold` with gamma* already solved by
     :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims)."""
     if gamma.witness is not None:

@@ -10,7 +10,6 @@ from fractions import Fraction
 from ..core.encode import vec
 from ..core.scalars import Vector, vector_text
 
-
 __all__ = ["FacetWitness", "push_along_ray"]
 
 

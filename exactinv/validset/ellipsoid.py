@@ -15,8 +15,8 @@ from typing import Any
 import flint
 
 from ..beyond.conditions import Condition, Kind, never_binds
+from ..core.flintq import fraction_of
 from ..core.intervals import IntervalUnion
-from ..core.scalars import fraction_of
 from .families import ELLIPSOIDS
 from .problem import ValidSetProblem
 from .results import EllipsoidLargestThreshold, EllipsoidValidSteplengths

@@ -37,11 +37,12 @@ import flint
 
 from ..beyond.conditions import Condition, ConditionSet, distinct_conditions
 from ..core.algebraic import ExactKey, Real, exact_lt, upper_bound
+from ..core.flintq import fraction_of
 from ..core.intervals import Interval, IntervalUnion, complement_of_open
 from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.roots import nonnegative_until, positive_roots
-from ..core.scalars import INF, Infinity, fraction_of
+from ..core.scalars import INF, Infinity
 from ..errors import InvalidInput
 from ..model.methods import forward_euler
 from ..paper.gamma_star import OptimalGamma

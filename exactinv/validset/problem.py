@@ -18,7 +18,7 @@ import flint
 
 from ..beyond.conditions import ConditionSet
 from ..beyond.ellipsoid_conditions import psd_polynomials
-from ..core.scalars import fraction_of
+from ..core.flintq import fraction_of
 from ..errors import InvalidInput
 from .families import SetFamily, family_of
 

@@ -25,7 +25,8 @@ from ..core.intervals import IntervalUnion
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
 from ..model import Ellipsoid, LinearSystem, Method, Polyhedron
-from ..model.record import certificate as make_certificate, generator_record
+from ..model.record import certificate as make_certificate
+from ..model.record import generator_record
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "EllipsoidValidSteplengths", "EllipsoidLargestThreshold",
            "EllipsoidForwardEulerThreshold"]
@@ -201,7 +202,7 @@ class EllipsoidValidSteplengths(ValidSteplengths):
         >>> E = Ellipsoid([[1, 0], [0, 1]])
         >>> ei.valid_steplengths(ei.LinearSystem([[-1, -2], [2, -1]]), E, methods.forward_euler()).claims()
         [{'type': 'ellipsoid_valid_steplengths', 'intervals': [{'lo': '0', 'hi': '2/5', 'lo_closed': True, 'hi_closed': True}], 'determinant': ['1']}]
-        """
+        """  # noqa: E501 (doctest output)
         return [{
             "type": ClaimType.ELLIPSOID_VALID_STEPLENGTHS,
             "intervals": [{"lo": encode_real(iv.lo), "hi": encode_real(iv.hi), "lo_closed": iv.lo_closed,

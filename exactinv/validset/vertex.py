@@ -14,9 +14,10 @@ from __future__ import annotations
 
 from ..beyond.conditions import Kind
 from ..beyond.lp_route import vertex_bound
-from ..beyond.pruning import WORTHWHILE, bounding_horizon, prune as prune_pairs
+from ..beyond.pruning import WORTHWHILE, bounding_horizon
+from ..beyond.pruning import prune as prune_pairs
 from ..beyond.pruning_rational import prune_rational
-from .polyhedral import PolyhedralRoute, vertex_zero, vertex_zero
+from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions
 

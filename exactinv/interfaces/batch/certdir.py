@@ -13,7 +13,7 @@ file that is not an exactinv certificate.
 
 >>> certificate_names(["box.json", "sub/box.json", "poly #1", "box"])
 {'box.json': 'box.json.cert.json', 'sub/box.json': 'sub%2Fbox.cert.json', 'poly #1': 'poly%20%231.cert.json', 'box': 'box.cert.json'}
-"""
+"""  # noqa: E501 (doctest output)
 
 from __future__ import annotations
 
@@ -74,7 +74,7 @@ def prepare_cert_dir(cert_dir: str, ids: Iterable[str], inputs: Iterable[str], o
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: --cert-dir ...box.cert.json: this is the input ...box.cert.json; exactinv never overwrites an input (choose another file name)
-    """
+    """  # noqa: E501 (doctest output)
     if os.path.exists(cert_dir) and not os.path.isdir(cert_dir):
         raise InvalidInput(f"--cert-dir {cert_dir}: exists and is not a directory")
     parent = os.path.dirname(os.path.abspath(cert_dir))

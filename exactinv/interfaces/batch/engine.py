@@ -104,7 +104,7 @@ def run_batch(inputs: Sequence[str | os.PathLike], out: str | os.PathLike, *, wo
     Traceback (most recent call last):
     ...
     exactinv.errors.InvalidInput: --out ...box.json: this is the input ...box.json; exactinv never overwrites an input (choose another file name)
-    """
+    """  # noqa: E501 (doctest output)
     limits = _limits(timeout, memory_mb, check, tolerance)
     workers = _workers(workers, scheduler)
     out = os.fspath(out) if isinstance(out, (str, os.PathLike)) else out

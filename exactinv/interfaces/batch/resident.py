@@ -54,8 +54,7 @@ import time
 from dataclasses import replace
 from typing import Any, Callable
 
-from .sandbox import (CPU_GRACE, STDERR_TAIL, Outcome, address_space, decode_exit, die_with_parent,
-                      plain_fatal_signals)
+from .sandbox import CPU_GRACE, STDERR_TAIL, Outcome, address_space, decode_exit, die_with_parent, plain_fatal_signals
 
 __all__ = ["Sandbox", "resident", "RENEW_AFTER"]
 

@@ -19,7 +19,7 @@ timeout           1     2.000     2.000     60.0
 memory            0         -         -        -
 outcomes: proved 1, error 1 (exit code 4)
 3 problems: 1 already in out.jsonl (skipped), 2 run in 2.5 s on 2 workers (0.80 problems/s); the table covers all 2 records in out.jsonl
-"""
+"""  # noqa: E501 (doctest output)
 
 from __future__ import annotations
 
@@ -101,7 +101,7 @@ class BatchSummary:
         oracle verdicts: valid 2
         outcomes: proved 2 (exit code 0)
         2 problems: 0 already in out.jsonl (skipped), 2 run in 0.5 s on 1 worker (4.00 problems/s); the table covers all 2 records in out.jsonl
-        """
+        """  # noqa: E501 (doctest output)
         lines = [f"{'status':<10}{'count':>9}{'mean s':>10}{'max s':>10}{'max MB':>9}"]
         for status, n, total, slowest, peak in self.stats:
             if n:

@@ -32,8 +32,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
-from ...core.algebraic import RealAlgebraic
 from ...core.encode import dumps, encode_real
+from ...core.real_algebraic import RealAlgebraic
 from ...core.scalars import Infinity
 from ...errors import ExactinvException, InvalidInput, Undecided, VerificationFailed
 from ..exit_codes import CODES
