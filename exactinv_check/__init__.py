@@ -20,6 +20,8 @@ types, keys, versions, bounds; the JSON schema is generated from it) and selftes
 built-in suite of genuine and forged certificates (``python3 -S -m exactinv_check.selftest``).
 """
 
+from typing import Any
+
 from .format import Verdict
 from .kernel import FORMAT, VERSIONS, CheckReport, check
 

@@ -65,10 +65,9 @@ from typing import Any, Sequence
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
 from .disks import ball, ball_abs_upper, ball_mul
-from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, \
-    single_pair
-from .polys import MAX_DEGREE as MAX_DEGREE_OF_F, count_roots, evaluate, integer_coefficients, mul, positive_roots, \
-    sign_at, sign_right_of, trim
+from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, single_pair
+from .polys import MAX_DEGREE as MAX_DEGREE_OF_F
+from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
 from .rationals import describe, require
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
@@ -111,7 +110,7 @@ def prove_completely_monotone(numerator: Any, denominator: Any) -> Any:
     return f"{_density_nonnegative(g, h)}, c = {describe(c)} >= 0 (Bernstein: r(-x) completely monotone)"
 
 
-def prove_density_nonnegative(numerator, denominator):
+def prove_density_nonnegative(numerator: Any, denominator: Any) -> Any:
     """(c, a sentence saying why f >= 0 on (0, oo)), or CheckFailure: r(-x) = c + int_0^oo e^(-xt) f(t) dt with
     f >= 0 and every pole Re z > 0, whatever the sign of c (f does not depend on c: r - c has the same poles
     and principal parts).  Then c_j(kappa) = int t^j e^(-kappa t) f(t) dt/j! >= 0 for every j >= 1 and kappa >= 0,
@@ -122,7 +121,7 @@ def prove_density_nonnegative(numerator, denominator):
     return c, _density_nonnegative(g, h)
 
 
-def _density_nonnegative(g, h):
+def _density_nonnegative(g: Any, h: Any) -> Any:
     """A sentence saying why f >= 0 on (0, oo) and every pole has Re z > 0 (g, h reduced, deg g <= deg h)."""
     factors = squarefree_decomposition(h)
     poles = positive_roots(h)
@@ -186,7 +185,7 @@ def _density_nonnegative(g, h):
     return f"f > 0 on (0, oo): Taylor at 0, {steps} certified steps, {far}"
 
 
-def _line_outweighs(terms, mu):
+def _line_outweighs(terms: Any, mu: Any) -> Any:
     """Is the sum over the line poles of multiplicity mu of |b_(k,mu)| (upper bounds) >= b_(*,mu) (lower bound)?
     Only then is the far piece the balanced line's (p*'s own dominance bound, with |e^(-(z - p*) t)| = 1 on the
     line, can never hold; line poles of lower multiplicity decay against t^(mu-1))."""
@@ -196,7 +195,7 @@ def _line_outweighs(terms, mu):
     return sum(ball_abs_upper(t[2][mu - 1]) for t in terms if t[4] and t[1] == mu) >= star_b[0] - star_b[2]
 
 
-def _balanced_line(g, h, factors, poles, disks, terms, p_exact):
+def _balanced_line(g: Any, h: Any, factors: Any, poles: Any, disks: Any, terms: Any, p_exact: Any) -> Any:
     """The far piece when the line poles balance p* (module docstring, "balanced line"): e^(p* t) f = B + R with
     B, the part of p* and of the poles on the line, proved >= 0 exactly (line_poles.line_part: p* and every line
     pole simple; one pair, or rational heights), and R, the part of the poles off the line, dominated by its
@@ -361,7 +360,7 @@ def _exp_of(z: Any, t: Any) -> Any:
 
 
 # ----------------------------------------------------------------- f > 0 on (0, oo)
-def _positive(g, h, terms, mu, P_hi, rest=None):
+def _positive(g: Any, h: Any, terms: Any, mu: Any, P_hi: Any, rest: Any=None) -> Any:
     babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _, _ in terms]
     zabs = [ball_abs_upper(z) for z, _, _, _, _ in terms]
 
@@ -403,7 +402,7 @@ def _positive(g, h, terms, mu, P_hi, rest=None):
                 return False
         return total < b_mu
 
-    def rest_dominated_beyond(T):  # R(t) > 0 for t >= T (balanced line): q's dominance over the poles off the line
+    def rest_dominated_beyond(T: Any) -> Any:  # R(t) > 0 for t >= T (balanced line): q's dominance over the poles off the line
         q, M, delta_of = rest
         b_q = terms[q][2][M - 1][0] - terms[q][2][M - 1][2]
         total = sum(babs[q][m - 1] * Fraction(factorial(M - 1), factorial(m - 1)) * T ** (m - M) for m in range(1, M))

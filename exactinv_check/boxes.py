@@ -53,9 +53,8 @@ from typing import Any, Sequence
 from . import polys
 from .budget import affordable, descartes_node_cost, within_budget
 from .conditions import method_matrices, rebuild_size
-from .budget import affordable, descartes_node_cost
 from .failure import require_budget
-from .rationals import require, vector, within_budget
+from .rationals import require, vector
 from .reals import Real, separate
 from .validset import breakpoints
 

@@ -115,7 +115,8 @@ def charge(cost: int, what: str) -> None:
                     f"to {acc.spent:.2e} word operations > {acc.limit:.0e}")
         acc.charges += 1
         if acc.deadline is not None and (not acc.charges & 63 or cost >= BIG_CHARGE) and process_time() > acc.deadline:
-            require_budget(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time ({what} was next)")
+            require_budget(False, f"over the kernel's time limit: no verdict after {acc.time_limit} s of CPU time "
+                                  f"({what} was next)")
 
 
 def memo(key: tuple[str, Sequence[int]], compute: Callable[..., Any]) -> Any:

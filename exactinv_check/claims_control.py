@@ -27,7 +27,13 @@ from . import claims_invariance
 from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
 from .failure import Record
-from .rationals import describe, dot, matrix, matvec, rational, require, vector, within_budget
+from .rationals import describe, dot, matrix, matvec, rational, require, vector
+from .reals import Real, quotient
+from .sparse import diagonal, row_dot
+
+if TYPE_CHECKING:
+    from .kernel import Problem
+
 
 GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 
@@ -170,7 +176,7 @@ def robust_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         require(isinstance(record, dict) and "type" not in record, f"vertex {i}: a gamma* record without type")
         allowed = {"value", "H", "binding_row", "dual", "rows"}
         require(set(record) <= allowed and "value" in record, f"vertex {i}: keys {sorted(allowed)}")
-        ctx = {}
+        ctx: dict[str, Any] = {}
         claims_invariance.gamma_star(_Vertex(problem, A), Record(record, type="gamma_star"), ctx)
         require(ctx["gamma"].inf != 1, f"vertex {i}: P is not invariant, no robust threshold exists")
         gammas.append(ctx["gamma"])

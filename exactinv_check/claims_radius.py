@@ -32,12 +32,13 @@ from math import comb, gcd
 from typing import Any, Sequence
 
 from . import polys
-from .claims_thresholds import smallest_positive_root
-from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
-from .reals import Real
+from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .bernstein import prove_completely_monotone, prove_density_nonnegative
 from .budget import SCAN_BUDGET, within_sturm_budget
+from .claims_thresholds import smallest_positive_root
 from .format import MAX_COEFFICIENTS, RadiusReason
+from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
+from .reals import Real
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
 from .validset import first_end
@@ -174,7 +175,7 @@ def _tie(num: Any, den: Any, value: Any, claim: Any) -> Any:
     return value, attained if first.compare(value) == 0 else True, d, N, count
 
 
-def short_above(q, bits=16):
+def short_above(q: Any, bits: Any=16) -> Any:
     """A rational >= q >= 0 with about ``bits`` significant bits (q itself when it is that short).  The coefficient
     route proves the tail and the d_j's signs on [0, K] for this K instead of the claimed rho's isolating bound: a
     larger K only asks more (sound), and Descartes tests on [0, K] cost with the bits of K (a genuine certificate,
@@ -188,7 +189,7 @@ def short_above(q, bits=16):
         q.numerator.bit_length() + q.denominator.bit_length() else short
 
 
-def _bernstein_root(num, den):
+def _bernstein_root(num: Any, den: Any) -> Any:
     """(rho, sentence) for reason bernstein-root: c = lim r < 0, f >= 0 proved (prove_density_nonnegative; every
     pole then has Re z > 0), so c_j(kappa) = int t^j e^(-kappa t) f(t) dt/j! >= 0 for j >= 1 and every kappa >= 0,
     while c_0(kappa) = r(-kappa) = c + int e^(-kappa t) f(t) dt decreases strictly (f >= 0, not 0: r has a pole)
@@ -210,7 +211,7 @@ def _bernstein_root(num, den):
                  f"so rho is the one positive root of g(-kappa)")
 
 
-def absolute_monotonicity_radius(problem, claim, context):
+def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
     method = problem.method
     require(method is not None, "a method is needed")
     num, den = method.numerator, method.denominator
@@ -281,7 +282,8 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "bernstein-root": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "bernstein-root": not rho.inf, "tie": not rho.inf,
+                  "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

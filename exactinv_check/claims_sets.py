@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 from . import boxes, lp_pieces, polys, pruning, pruning_rational
 from .conditions import condition_polynomials, method_matrices
+from .failure import require
 from .format import GeneratorKind
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, vector

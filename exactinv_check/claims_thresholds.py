@@ -21,6 +21,7 @@ from . import polys
 from .budget import fraction_products_cost, within_budget
 from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
+from .failure import require
 from .linalg import characteristic_polynomial, largest_real_root, strongly_connected_blocks
 from .polyhedra import prove_generators
 from .rationals import integer, integer_matrix, integer_rows, matrix, rational, vector
@@ -145,7 +146,7 @@ def _e2_may_bind(H: Any, b: Any, pole: Real, candidates: Any) -> bool:
     return not any(lower.compare(bound) > 0 for bound, _ in candidates)
 
 
-def _largest_real_eigenvalue(H):
+def _largest_real_eigenvalue(H: Any) -> Any:
     """alpha(H), the largest real eigenvalue of H (sparse rows, m x m), or None.
 
     H is block triangular after a symmetric permutation (its strongly connected components in

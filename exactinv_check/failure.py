@@ -7,6 +7,8 @@ Any *other* exception raised while a claim is checked is a fault of the kernel, 
 certificate: :func:`exactinv_check.kernel.check` reports it as ``kind == "kernel-fault"`` (and
 never accepts)."""
 
+from typing import Any
+
 
 class CheckFailure(Exception):
     """A claim did not verify; the message says which fact failed."""
@@ -23,17 +25,17 @@ class Record(dict):
 
     __slots__ = ()
 
-    def __missing__(self, key):
+    def __missing__(self, key: Any) -> Any:
         raise CheckFailure(f"the claim has no {key!r}, which it needs here")
 
 
-def require(condition, message):
+def require(condition: Any, message: Any) -> Any:
     """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
     if not condition:
         raise CheckFailure(message)
 
 
-def require_budget(condition, message):
+def require_budget(condition: Any, message: Any) -> Any:
     """Raise :class:`OverBudget` with ``message`` unless ``condition`` (a bound on work, not on the format)."""
     if not condition:
         raise OverBudget(message)

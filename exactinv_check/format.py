@@ -141,16 +141,19 @@ class Key:
     JSON Schema of its value (read by :func:`json_schema` only; the kernel parses values itself)."""
 
     __slots__ = ("required", "since", "schema")
+    required: bool
+    since: int
+    schema: dict[str, Any]
 
     def __init__(self, schema: dict[str, Any], required: bool = False, since: int = 1) -> None:
         object.__setattr__(self, "schema", schema)
         object.__setattr__(self, "required", required)
         object.__setattr__(self, "since", since)
 
-    def __setattr__(self, name, value):
+    def __setattr__(self, name: Any, value: Any) -> Any:
         raise AttributeError("a Key is immutable")
 
-    def __repr__(self):
+    def __repr__(self) -> Any:
         return f"Key({'required' if self.required else 'optional'}, since={self.since})"
 
 
@@ -159,6 +162,11 @@ class ClaimSpec:
     and the constraints between keys that a key table cannot say (oneOf / anyOf)."""
 
     __slots__ = ("keys", "required", "optional", "description", "constraints")
+    keys: MappingProxyType[str, Key]
+    required: frozenset[str]
+    optional: frozenset[str]
+    description: str | None
+    constraints: MappingProxyType[str, Any]
 
     def __init__(self, keys: dict[str, Key], description: str | None = None,
                  constraints: dict[str, Any] | None = None) -> None:
@@ -168,30 +176,30 @@ class ClaimSpec:
         object.__setattr__(self, "description", description)
         object.__setattr__(self, "constraints", MappingProxyType(dict(constraints or {})))
 
-    def __setattr__(self, name, value):
+    def __setattr__(self, name: Any, value: Any) -> Any:
         raise AttributeError("a ClaimSpec is immutable")
 
-    def __repr__(self):
+    def __repr__(self) -> Any:
         return f"ClaimSpec(required={sorted(self.required)}, optional={sorted(self.optional)})"
 
 
-def _req(schema, since=1):
+def _req(schema: Any, since: Any=1) -> Any:
     return Key(schema, True, since)
 
 
-def _opt(schema, since=1):
+def _opt(schema: Any, since: Any=1) -> Any:
     return Key(schema, False, since)
 
 
-def _ref(name):
+def _ref(name: Any) -> Any:
     return {"$ref": f"#/$defs/{name}"}
 
 
-def _or_null(schema):
+def _or_null(schema: Any) -> Any:
     return {"oneOf": [schema, {"type": "null"}]}
 
 
-def _array(items, min_items=None, max_items=None):
+def _array(items: Any, min_items: Any=None, max_items: Any=None) -> Any:
     out = {"type": "array"}
     if min_items is not None:
         out["minItems"] = min_items
@@ -201,7 +209,7 @@ def _array(items, min_items=None, max_items=None):
     return out
 
 
-def _object(properties, required=None, description=None):
+def _object(properties: Any, required: Any=None, description: Any=None) -> Any:
     out = {"description": description} if description else {}
     out.update(type="object", required=list(properties) if required is None else required,
                additionalProperties=False, properties=properties)
@@ -375,7 +383,7 @@ def keys_since(version: int) -> dict[str, set[str]]:
     >>> keys_since(1)
     {'discrete_invariance': {'dt'}, 'absolute_monotonicity_radius': {'poles'}}
     """
-    out = {}
+    out: dict[str, set[str]] = {}
     for kind, spec in CLAIMS.items():
         newer = {k for k, key in spec.keys.items() if key.since > version}
         if newer:
@@ -401,7 +409,7 @@ _DESCRIPTION = (
     "exactinv_check/format.py (python -m exactinv_check.format); do not edit by hand.")
 
 
-def _value_defs():
+def _value_defs() -> dict[str, Any]:
     """The schema's definitions of values and records shared by the claims (data, not vocabulary)."""
     rows = [{"required": ["A", "G", "b"], "properties": {"A": {}, "G": {}, "b": {}, "method": {}}},
             {"required": ["A", "Q"], "properties": {"A": {}, "Q": {}, "method": {}}},
@@ -458,7 +466,7 @@ def _value_defs():
             "properties": {"A": nonempty_rows, "G": _MATRIX, "b": _VECTOR, "Q": _MATRIX, "B": nonempty_rows,
                            "inputs": _object({"E": nonempty_rows, "e": _VECTOR}),
                            "hull": _array(_MATRIX, 1), "method": _or_null(_ref("method"))},
-            "oneOf": [{**row, "additionalProperties": False} for row in rows]},
+            "oneOf": [{**row, "additionalProperties": False} for row in rows]},  # type: ignore[dict-item]
         "box": _object({"lo": _VECTOR, "hi": _VECTOR}, description=(
             "P = {Gx <= b} is exactly the box {lo <= x <= hi} (the kernel proves it from G and b); the claim's "
             "conditions come from the row sign patterns of the box route, with no vertex list. Either box or all of "
@@ -507,7 +515,7 @@ def _value_defs():
     }
 
 
-def _claim_schema(kind, spec):
+def _claim_schema(kind: Any, spec: Any) -> Any:
     properties = {"type": {"const": str(kind)}}
     properties.update((name, key.schema) for name, key in spec.keys.items())
     required = ["type"] + [name for name, key in spec.keys.items() if key.required]
@@ -529,10 +537,11 @@ def json_schema() -> dict[str, Any]:
     defs.update((f"claim_{kind}", _claim_schema(kind, spec)) for kind, spec in CLAIMS.items())
     schema = {"$schema": "https://json-schema.org/draft/2020-12/schema", "$id": "urn:exactinv:certificate-schema",
               "title": _TITLE, "description": _DESCRIPTION, "$ref": "#/$defs/certificate", "$defs": defs}
-    return json.loads(json.dumps(schema))  # plain JSON data: str for every tag, fresh lists and dicts
+    plain: dict[str, Any] = json.loads(json.dumps(schema))  # plain JSON data: str for every tag, fresh lists and dicts
+    return plain
 
 
-def _dump(value, indent, width):
+def _dump(value: Any, indent: int, width: int) -> str:
     flat = json.dumps(value, ensure_ascii=False)
     if len(flat) + indent <= width or not isinstance(value, (dict, list)) or not value:
         return flat

@@ -35,8 +35,18 @@ from . import (
 )
 from .cones import integer_rank
 from .failure import OverBudget, Record
-from .format import (BOOLEAN_KEYS, ENVELOPE_KEYS, FORMAT, MAX_METHOD_DEGREE, METHOD_KEYS, PROBLEM_KEYS, VERSIONS,
-                     ClaimType, Verdict, keys_since)
+from .format import (
+    BOOLEAN_KEYS,
+    ENVELOPE_KEYS,
+    FORMAT,
+    MAX_METHOD_DEGREE,
+    METHOD_KEYS,
+    PROBLEM_KEYS,
+    VERSIONS,
+    ClaimType,
+    Verdict,
+    keys_since,
+)
 from .format import CLAIMS as SPECS
 from .rationals import CheckFailure, integer_rows, matrix, require, vector
 
@@ -75,7 +85,7 @@ class BadInput(Exception):
 class Method:
     """r = g/h from the problem, normalised to h(0) > 0 (and h = 1 for polynomials)."""
 
-    def __init__(self, record):
+    def __init__(self, record: Any) -> None:
         require(isinstance(record, dict) and set(record) <= set(METHOD_KEYS)
                 and set(METHOD_KEYS[1:]) <= set(record), "method has the keys name, numerator, denominator")
         num = polys.trim(vector(record["numerator"], "method numerator"))
@@ -176,7 +186,7 @@ class CheckReport:
     exception inside the kernel: a kernel bug, reported and never accepted) or ``"bad-input"``
     (not a certificate at all)."""
 
-    def __init__(self, verdicts, bad_input=False, work=0, kind=None):
+    def __init__(self, verdicts: Any, bad_input: Any=False, work: Any=0, kind: Any=None) -> None:
         self.verdicts = verdicts  # list of (claim type, ok, message)
         self.bad_input = bad_input
         self.work = work  # the certificate's charged work, in word operations (exactinv_check.budget)
@@ -268,7 +278,7 @@ def check(certificate: Any, progress: Any = None, time_limit: Any = budget.TIME_
     return CheckReport(verdicts, work=account.spent, kind=kind)
 
 
-def _outcome(exc):
+def _outcome(exc: Any) -> Any:
     """(verdict kind, message) of the exception that ended a claim's check."""
     if isinstance(exc, OverBudget):
         return Verdict.OVER_BUDGET, str(exc)
@@ -279,7 +289,7 @@ def _outcome(exc):
     return Verdict.KERNEL_FAULT, f"kernel fault (a bug in the kernel, please report it): {type(exc).__name__}: {exc}"
 
 
-def _check_claims(cert, progress):
+def _check_claims(cert: Any, progress: Any) -> Any:
     """The verdicts and the certificate's verdict kind: the problem, then the claims in order, stopping at
     the first rejected one."""
     try:
@@ -292,7 +302,8 @@ def _check_claims(cert, progress):
     except Exception as exc:  # noqa: BLE001 -- every exception is a verdict: rejected, over budget or a kernel fault
         kind, message = _outcome(exc)
         return [("problem", False, message if kind == Verdict.KERNEL_FAULT else f"{type(exc).__name__}: {exc}")], kind
-    context, verdicts = {}, []
+    context: dict[str, Any] = {}
+    verdicts: list[Any] = []
     claims = cert["claims"]
     for k, claim in enumerate(claims):
         kind = claim.get("type", "?") if isinstance(claim, dict) else "?"
@@ -308,7 +319,7 @@ def _check_claims(cert, progress):
                 require(problem.hull is not None, "a robust_threshold claim needs hull, G and b in the problem")
             elif kind != ClaimType.ABSOLUTE_MONOTONICITY_RADIUS:
                 require(problem.A is not None and problem.G is not None, f"a {kind} claim needs A, G and b in the problem")
-            verdicts.append((kind, True, CLAIMS[kind][0](problem, Record(claim), context)))
+            verdicts.append((kind, True, CLAIMS[kind][0](problem, Record(claim), context)))  # type: ignore[index]
         except Exception as exc:  # noqa: BLE001 -- as above
             outcome, message = _outcome(exc)
             verdicts.append((kind, False, message))

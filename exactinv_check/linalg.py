@@ -103,7 +103,7 @@ def integer_solve(M: Sequence[list[int]], B: Sequence[list[int]]) -> tuple[int, 
     return d, [[sign * x for x in r] for r in X]
 
 
-def largest_real_root(p):
+def largest_real_root(p: Any) -> Any:
     """The largest real root of p as a Real, or None if p has none.
 
     Isolated on each side of 0 without shifting p: the positive roots of p's squarefree part
@@ -123,7 +123,7 @@ def largest_real_root(p):
     return _root(q, negative[0], -1) if negative else None
 
 
-def _root(q, interval, sign):
+def _root(q: Any, interval: Any, sign: Any) -> Any:
     """The root of q isolated by ``interval`` (found for q(sign x))."""
     lo, hi = interval
     if sign < 0:
@@ -133,7 +133,7 @@ def _root(q, interval, sign):
     return Real.algebraic(q, lo, hi, "largest eigenvalue")
 
 
-def strongly_connected_blocks(rows):
+def strongly_connected_blocks(rows: Any) -> Any:
     """The strongly connected components of the graph i -> k for every off-diagonal entry
     (i, k) != 0 of a square matrix in sparse rows, as sorted index lists (Tarjan, iterative).
 
@@ -142,7 +142,8 @@ def strongly_connected_blocks(rows):
     polynomials: M's eigenvalues are the union of its blocks'."""
     n = len(rows)
     succ = [[k for k, x in row if k != i and x != 0] for i, row in enumerate(rows)]
-    index, low, on_stack, stack, blocks, counter = [None] * n, [0] * n, [False] * n, [], [], 0
+    index: list[int | None] = [None] * n
+    low, on_stack, stack, blocks, counter = [0] * n, [False] * n, [], [], 0
     for root in range(n):
         if index[root] is not None:
             continue

@@ -39,10 +39,28 @@ from math import ceil, comb, isqrt
 from math import gcd as igcd
 from typing import Any, Sequence
 
-from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, fraction_products_cost, sturm_cost, within_sturm_budget
+from .budget import (
+    STURM_BUDGET,
+    STURM_WORDS,
+    affordable,
+    charge,
+    fraction_products_cost,
+    sturm_cost,
+    within_sturm_budget,
+)
 from .format import MAX_LINE_EXPONENT  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
-from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
-    sign_right_of, strip_zero_roots, trim
+from .polys import (
+    affordable_gcd,
+    count_roots,
+    evaluate,
+    integer_coefficients,
+    mul,
+    positive_roots,
+    sign_at,
+    sign_right_of,
+    strip_zero_roots,
+    trim,
+)
 from .rationals import describe, require
 from .tail import squarefree_decomposition
 
@@ -191,7 +209,7 @@ def line_density(g: Sequence[Fraction], h: Sequence[Fraction], p: Fraction) -> A
     return _density_of(g, h, p, ys)
 
 
-def _density_of(g, h, p, ys):
+def _density_of(g: Any, h: Any, p: Any, ys: Any) -> Any:
     """(Q, description) for the simple poles p + i y (y in ys, rational) of h: Q(x) = (1 + x^2)^N T(2 atan x),
     T(theta) = sum_y b_y e^(-i n_y theta), b_y = -g(z)/h'(z) (h' of the whole h); None when N > MAX_LINE_EXPONENT
     or some p + iy is not a simple root of h."""
@@ -223,7 +241,7 @@ def _density_of(g, h, p, ys):
     return trim([c[0] for c in Q]), f"all poles on Re z = {describe(p)} at heights {[describe(y) for y in ys]}"
 
 
-def line_part(g, h, p):
+def line_part(g: Any, h: Any, p: Any) -> Any:
     """B(t) = sum over the poles z on the line Re z = p (p = p*, rational) of b_z e^(-i Im(z) t) is proved >= 0 on
     R, exactly: a description, or None when the line part is not of a kind decided here.  Then
     e^(p t) f(t) = B(t) + R(t) with R the part of the poles off the line (exactinv_check.bernstein: the far piece
@@ -267,7 +285,7 @@ def line_part(g, h, p):
     return f"the line part B(t) = T(t/L) >= 0 ({where.replace('all poles', 'the line poles')}; Q >= 0 on R, Sturm)"
 
 
-def _even_odd_at(P, Y):
+def _even_odd_at(P: Any, Y: Any) -> Any:
     """(A, B) with P(y) = A + y B for y^2 = Y (A, B rational): the even and odd parts of P at y = sqrt(Y)."""
     A = sum((c * Y ** (k // 2) for k, c in enumerate(P) if k % 2 == 0), Fraction(0))
     B = sum((c * Y ** (k // 2) for k, c in enumerate(P) if k % 2 == 1), Fraction(0))
@@ -279,7 +297,8 @@ def _norm_at_line(P: Sequence[Fraction], p: Fraction, Y: Fraction) -> Fraction:
     U, V = line_parts(P, p) if len(P) > 1 else (list(P), [])
     A, _ = _even_odd_at(U, Y)
     _, B = _even_odd_at(V, Y)
-    return A * A + Y * B * B
+    norm: Fraction = A * A + Y * B * B
+    return norm
 
 
 def single_pair(g: Sequence[Fraction], h: Sequence[Fraction], p: Fraction) -> tuple[Fraction, Fraction] | None:

@@ -55,7 +55,7 @@ from .budget import PYTHON_OP, WORK_BUDGET, charge, descartes_node_cost, within_
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .failure import require_budget
 from .linalg import integer_solve
-from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
+from .rationals import integer, integer_matrix, integer_rows, require, vector
 from .reals import Real, separate
 from .validset import valid_set
 
@@ -63,7 +63,7 @@ MAX_PIECES = 200_000  # pieces over all facets: a bound before any parsing of th
 LP_WORK_BUDGET = 50 * WORK_BUDGET  # all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
 
 
-def parse(record, m, n):
+def parse(record: Any, m: Any, n: Any) -> Any:
     """([(ends, pieces)] per facet, point), shape-checked: a piece is a basis (a tuple of n distinct rows)
     or a ray piece (a list of n rationals, the ray d); ``point`` (a list of n rationals) is present
     exactly when some piece is a ray piece."""
@@ -367,7 +367,7 @@ def _require_nonnegative(p: Any, start: Any, end: Any, what: Any, tried: Any = F
         require(polys.sign_at(ints, q) > 0, f"{what} is negative inside its piece (at {q})")
 
 
-def _require_positive_open(p, start, end, what):
+def _require_positive_open(p: Any, start: Any, end: Any, what: Any) -> Any:
     """p > 0 on the open piece (start, end) (end may be oo), or CheckFailure: Descartes' rule on the
     enclosing (lower end of start, upper end of end), else no root of p strictly inside the piece
     (every positive root isolated and compared exactly) and p > 0 at one rational inside it."""
@@ -389,12 +389,12 @@ def _require_positive_open(p, start, end, what):
     return ints
 
 
-def _positive_at(ints, t):
+def _positive_at(ints: Any, t: Any) -> Any:
     """True if t is rational and the integer polynomial is > 0 at t (a ray piece then covers its end t)."""
     return not t.inf and t.poly is None and polys.sign_at(ints, t.q) > 0
 
 
-def _require_in(rows, x, what, cone=False):
+def _require_in(rows: Any, x: Any, what: Any, cone: Any=False) -> Any:
     """G x <= b (cone: G x <= 0 and x != 0) for the integer rows (g, beta) of G x <= b, exactly."""
     dx = 1
     for v in x:
@@ -408,7 +408,7 @@ def _require_in(rows, x, what, cone=False):
                 + (" (G d <= 0: d is not a ray of P)" if cone else ""))
 
 
-def lp_conditions(problem, record):
+def lp_conditions(problem: Any, record: Any) -> Any:
     """(generators, D, inequalities, horizon): the pieces proved (module docstring), the conditions of their
     points x_B and rays d (keyed (kind, flat piece index, facet)) and E, the least last end over the facets.
 

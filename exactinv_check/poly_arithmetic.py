@@ -15,7 +15,6 @@ from .format import MAX_DEGREE  # bound on every polynomial the kernel builds fr
 from .rationals import require
 
 
-
 def trim(p: Any) -> Any:
     p = list(p)
     while p and p[-1] == 0:

@@ -25,7 +25,8 @@ from math import gcd as _igcd
 from math import isqrt
 from typing import Any, Sequence
 
-from .budget import (  # noqa: F401
+from .budget import (  # noqa: F401  # noqa: F401
+    DESCARTES_BUDGET,
     STURM_BUDGET,
     active,
     charge,
@@ -36,7 +37,7 @@ from .budget import (  # noqa: F401
     within_sturm_budget,
 )
 from .budget import memo as _memo
-from .failure import require
+from .failure import require, require_budget
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
     MAX_DEGREE,
     add,
@@ -62,11 +63,6 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     sub,
     trim,
 )
-from .budget import DESCARTES_BUDGET, STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
-from .budget import active, within_sturm_budget
-from .budget import memo as _memo
-from .failure import require_budget
-from .rationals import require
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
 MAX_BISECTIONS = 4000

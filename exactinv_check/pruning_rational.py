@@ -35,7 +35,8 @@ from typing import Any
 from . import polys, pruning
 from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge
 from .failure import require_budget
-from .format import MAX_RATIONAL_PIECES as MAX_PIECES, PRUNING_VARIABLE as VARIABLE
+from .format import MAX_RATIONAL_PIECES as MAX_PIECES
+from .format import PRUNING_VARIABLE as VARIABLE
 from .rationals import integer, rational, require, within_budget
 
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}

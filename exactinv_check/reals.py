@@ -40,7 +40,7 @@ class Real:
 
     # -------------------------------------------------------- construction
     @classmethod
-    def parse(cls, data, what="number", infinite=True):
+    def parse(cls, data: Any, what: Any="number", infinite: Any=True) -> Any:
         if isinstance(data, str) and data in (INFINITY, NEG_INFINITY):
             require(infinite, f"{what}: infinity is not allowed here")
             return cls(inf=1 if data == INFINITY else -1)

@@ -19,7 +19,7 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 from . import kernel
 from .format import ClaimType, Verdict
@@ -32,10 +32,10 @@ def genuine() -> dict[str, dict]:
     return {p.stem: json.loads(p.read_text(encoding="utf-8")) for p in sorted(DATA.glob("*.json"))}
 
 
-def _set(*path_value):
+def _set(*path_value: Any) -> Any:
     *path, value = path_value
 
-    def mutate(cert):
+    def mutate(cert: Any) -> Any:
         node = cert
         for key in path[:-1]:
             node = node[key]
@@ -43,8 +43,8 @@ def _set(*path_value):
     return mutate
 
 
-def _delete(*path):
-    def mutate(cert):
+def _delete(*path: Any) -> Any:
+    def mutate(cert: Any) -> Any:
         node = cert
         for key in path[:-1]:
             node = node[key]
@@ -52,8 +52,8 @@ def _delete(*path):
     return mutate
 
 
-def _drop_vertex(claim):
-    def mutate(cert):
+def _drop_vertex(claim: Any) -> Any:
+    def mutate(cert: Any) -> Any:
         cert["claims"][claim]["vertices"].pop()
     return mutate
 
@@ -120,12 +120,12 @@ FORGERIES = [
 ]
 
 
-def fault_is_never_accepted(certificate):
+def fault_is_never_accepted(certificate: Any) -> Any:
     """A claim check that raises TypeError (a stand-in for a kernel bug) is a kernel-fault, not accepted."""
     kind = ClaimType.GAMMA_STAR
     handler, required, optional = kernel.CLAIMS[kind]
 
-    def broken(problem, claim, context):
+    def broken(problem: Any, claim: Any, context: Any) -> Any:
         raise TypeError("a deliberate fault (selftest)")
 
     kernel.CLAIMS[kind] = (broken, required, optional)
@@ -140,7 +140,7 @@ def run(out: TextIO = sys.stdout) -> int:
     certificates = genuine()
     failures, start = 0, time.process_time()
 
-    def line(ok, text):
+    def line(ok: Any, text: Any) -> Any:
         nonlocal failures
         failures += not ok
         print(f"  {'ok  ' if ok else 'FAIL'} {text}", file=out)

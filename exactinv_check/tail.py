@@ -45,12 +45,39 @@ from fractions import Fraction
 from math import ceil, comb
 from typing import TYPE_CHECKING, Any, Sequence
 
-from .disks import _absup, _ball, _bmul, _binv, _disks, _sqrt_bounds, _taylor_balls, _up
+from .disks import (
+    ball,
+    ball_abs_upper,
+    ball_inv,
+    ball_mul,
+    pole_disks,
+    round_up,
+    sqrt_bounds,
+    taylor_balls,
+)
 from .format import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
-from .polys import Sturm, count_roots, derivative, divmod_, evaluate, gcd, monic, mul, positive_roots, power, \
-    sign, squarefree, sub, trim
+from .poly_arithmetic import power
+from .polys import (
+    Sturm,
+    count_roots,
+    derivative,
+    divmod_,
+    evaluate,
+    gcd,
+    monic,
+    mul,
+    positive_roots,
+    sign,
+    squarefree,
+    sub,
+    trim,
+)
 from .rationals import CheckFailure, require
 from .tie import kappa_enclosure, tie_interval
+
+if TYPE_CHECKING:
+    from .reals import Real
+
 
 MAX_REFINE = 2000  # bisections when separating a real pole from other roots
 
@@ -279,11 +306,11 @@ def _dominance(g: Any, h: Any, factors: Any, f_star: Any, mu: Any, iv: Any, K: A
     return _least_index(others, star, mu, b_mu, D_hi, P_lo, first, tie is None or tied > 0)
 
 
-def star_enclosure(factors, f_star, iv, disks=None):
+def star_enclosure(factors: Any, f_star: Any, iv: Any, disks: Any=None) -> Any:
     """(disks, hits, P_lo, P_hi): the inclusion disks of every squarefree factor (by id; computed unless given),
     the index hits[0] of the disk among f_star's of the real pole in the isolating interval iv (p* by default),
     and rationals 0 < P_lo <= that pole <= P_hi."""
-    disks = {id(f): _disks(f) for f, _ in factors} if disks is None else disks
+    disks = {id(f): pole_disks(f) for f, _ in factors} if disks is None else disks
     lo, hi = iv
     for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
         hits = [i for i, (a, b, rho) in enumerate(disks[id(f_star)])

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import pytest
 from certificate_corpus import corpus
+
 from exactinv_check import format as fmt
 from exactinv_check import kernel
 from exactinv_check.claims_radius import REASONS

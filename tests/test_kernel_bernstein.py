@@ -40,13 +40,13 @@ def test_density_at_zero_by_hand():
 
 # ------------------------------------------------ issue 22: the balanced line and reason bernstein-root (kernel)
 import pytest  # noqa: E402
+from radius_reference import from_partial_fractions  # noqa: E402
 
 import exactinv as ei  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
 from exactinv.paper.monotonicity import absolute_monotonicity_radius  # noqa: E402
 from exactinv_check import check  # noqa: E402
 from exactinv_check.rationals import CheckFailure  # noqa: E402
-from radius_reference import from_partial_fractions  # noqa: E402
 
 
 def _terms(p, y, b, off):
@@ -116,8 +116,9 @@ def test_a_density_negative_near_zero_cannot_pass_as_bernstein_root():
     g_minus = [c * (-1) ** k for k, c in enumerate(method.numerator)]
     with pytest.raises(CheckFailure):
         bernstein.prove_density_nonnegative(method.numerator, method.denominator)
-    from exactinv.core.roots import real_roots
     import flint
+
+    from exactinv.core.roots import real_roots
     roots = [x for x, _ in real_roots(flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in g_minus]))
              if x > 0]
     assert roots

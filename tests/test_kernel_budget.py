@@ -227,7 +227,7 @@ def test_the_modular_squarefree_test_never_passes_a_square(data, k):
     assert not polys.is_squarefree_mod_prime(square)
     q = polys.squarefree(square)  # the squarefree part: every distinct root once
     assert polys.Sturm(q).count(F(-10 ** 6), None) == polys.Sturm(polys.squarefree(p)).count(F(-10 ** 6), None)
-    assert polys.is_squarefree_mod_prime(q) or len(polys._integer_gcd(q, polys._integer_derivative(q))) == 1
+    assert polys.is_squarefree_mod_prime(q) or len(polys.integer_gcd(q, polys.integer_derivative(q))) == 1
 
 
 @given(st.integers(2, 9), st.fractions(min_value=F(1, 50), max_value=50, max_denominator=97))

@@ -6,7 +6,9 @@ from fractions import Fraction as F
 
 import flint
 import pytest
-from hypothesis import HealthCheck, example, given, settings, strategies as st
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
+from radius_reference import admissible, coefficients_at, from_partial_fractions, product
 
 import exactinv as ei
 from exactinv.core.real_algebraic import RealAlgebraic
@@ -196,8 +198,8 @@ def test_the_slowest_decaying_pair_off_the_line_is_undecided_for_f_and_says_why(
     """Line pair balanced, and the slowest poles off the line a non-real pair 2 +- i: f's sign at B's zeros is R's,
     which oscillates -- not decided; the density verdict names the case."""
     from exactinv.paper.bernstein import density_nonnegative
-    from exactinv.paper.poles import pole_structure, precision
     from exactinv.paper.monotonicity_tail import _with_line_poles
+    from exactinv.paper.poles import precision
     terms = [((F(1), F(0)), (F(1), F(0))), ((F(1), F(2)), (F(1, 2), F(0))), ((F(1), F(-2)), (F(1, 2), F(0))),
              ((F(2), F(1)), (F(1), F(0))), ((F(2), F(-1)), (F(1), F(0)))]
     g, h = from_partial_fractions(terms)

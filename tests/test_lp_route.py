@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 import exactinv as ei
 import exactinv_check
 from exactinv.beyond.conditions import ConditionSet
-from exactinv.validset.lp import LP_ABOVE
 from exactinv.beyond.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity

@@ -8,11 +8,11 @@ import pytest
 import exactinv as ei
 from exactinv.core import tags
 from exactinv.core.tags import BisectionStep, CounterexampleKind
-from exactinv_check.format import ClaimType, RadiusReason
 from exactinv.lp.hint import LPStatus
 from exactinv.lp.solver import LPPath
 from exactinv.model.record import certificate
 from exactinv.paper.bisection import paper_bisection
+from exactinv_check.format import ClaimType, RadiusReason
 
 
 def test_tags_are_their_strings():
@@ -43,4 +43,4 @@ def test_the_moved_tags_are_deprecated_aliases_of_the_formats():
     with pytest.warns(DeprecationWarning, match="exactinv_check.format"):
         assert tags.RadiusReason is RadiusReason
     with pytest.raises(AttributeError):
-        tags.NoSuchTag
+        tags.NoSuchTag  # noqa: B018 (the attribute access is the test)

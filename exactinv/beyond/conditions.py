@@ -31,6 +31,7 @@ from functools import cached_property
 from typing import Iterable, TypeVar
 
 import flint
+
 from exactinv_check.format import GeneratorKind
 
 from ..core.flintq import fmpq_of, fraction_of

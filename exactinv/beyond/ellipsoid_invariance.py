@@ -29,7 +29,7 @@ from ..core.encode import mat, vec
 from ..core.flintq import fmpq_matrix, matrix_of
 from ..core.latex import LatexMixin, latex_column
 from ..core.psd import LDLT, psd_decision, quadratic_form
-from ..core.scalars import Matrix, Vector, fmpq_matrix, matrix_of, vector_text
+from ..core.scalars import Matrix, Vector, vector_text
 from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem
 from ..model.ellipsoid import lyapunov_matrix

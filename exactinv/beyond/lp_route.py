@@ -66,8 +66,15 @@ import numpy as np
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real, vec
 from ..core.polys import no_root_between, shift, sign_at, sign_variations
-from ..core.real_signs import (interval_signs, narrowed, next_sign_change, positive_after, rational_right_of,
-                               sign_at_real, sign_right_of_real)
+from ..core.real_signs import (
+    interval_signs,
+    narrowed,
+    next_sign_change,
+    positive_after,
+    rational_right_of,
+    sign_at_real,
+    sign_right_of_real,
+)
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
 from ..errors import ExactinvException

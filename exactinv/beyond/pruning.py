@@ -48,6 +48,7 @@ from math import comb
 
 import flint
 import numpy as np
+
 from exactinv_check.format import HORIZON_BITS  # the kernel's bound on the horizon's numerator and denominator
 
 from ..core.algebraic import upper_bound
@@ -59,7 +60,8 @@ from ..core.nonnegative import first_end as earliest_end
 from ..core.scalars import Infinity
 from .conditions import Kind
 
-__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order", "bounding_horizon", "prune", "build_survivors"]
+__all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order",
+           "bounding_horizon", "prune", "build_survivors"]
 
 _BITS = 24  # the grid: K = 2^24
 _BLOCK = 64  # vertices per block of the box test

@@ -42,6 +42,7 @@ from fractions import Fraction
 from math import comb
 
 import flint
+
 from exactinv_check.format import PRUNING_VARIABLE
 
 from ..core.flintq import fmpq_of, fraction_of

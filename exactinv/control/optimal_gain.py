@@ -15,6 +15,7 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+
 from exactinv_check.format import ClaimType
 
 from ..core.encode import encode_real, envelope, mat, vec

@@ -28,7 +28,6 @@ from typing import Any, Sequence
 
 from exactinv_check.format import ClaimType
 
-from ..validset.engine import valid_steplengths
 from ..core.algebraic import ExactKey, Real, exact_cmp
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.flintq import fraction_of

@@ -13,6 +13,7 @@ from fractions import Fraction
 from typing import Any, Iterable
 
 import flint
+
 from exactinv_check.format import FORMAT, INFINITY, NEG_INFINITY, VERSION
 
 from .algebraic import Real

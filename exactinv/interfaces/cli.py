@@ -27,7 +27,8 @@ from typing import Sequence
 
 import exactinv_check
 import exactinv_check.format
-from exactinv_check.kernel import BadInput, load as _load_certificate
+from exactinv_check.kernel import BadInput
+from exactinv_check.kernel import load as _load_certificate
 
 from ..core.encode import dumps
 from ..errors import ExactinvException, InvalidInput, Undecided, VerificationFailed

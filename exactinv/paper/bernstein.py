@@ -36,7 +36,6 @@ from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
-from ..core.scalars import fmpq_of, fraction_of
 from .line_poles import line_density, line_part, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 
@@ -133,7 +132,8 @@ def _at_infinity_witness(g, h) -> tuple[Fraction, int] | None:
 
 
 def _density_witness(g, h, ts: list, s: PoleStructure) -> tuple[Fraction, int] | None:
-    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large (not searched, None, when the caller discards it).  The least j (on a geometric scale) for which
+    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large (not searched, None, when the caller discards it).
+    The least j (on a geometric scale) for which
     some t0 works, screened in Arb and confirmed exactly; then kappa is lowered by bisection while c_j stays
     negative (a smaller K gives a shorter certified tail)."""
     if not _SEARCH.get():

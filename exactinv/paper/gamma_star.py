@@ -17,6 +17,7 @@ from typing import Callable
 
 import flint
 import numpy as np
+
 from exactinv_check.format import ClaimType
 
 from ..core.algebraic import ExactKey
@@ -25,7 +26,6 @@ from ..core.flintq import fmpq_of, fraction_of, matrix_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix, latex_real
 from ..core.scalars import INF, Infinity, Matrix, Vector
 from ..core.sparse import SparseRows
-from ..core.scalars import INF, Infinity, Matrix, Vector, fmpq_of, fraction_of, matrix_of
 from ..errors import VerificationFailed
 from ..lp import OPTIMAL, UNBOUNDED, ExactLPSolver, HighsHint, LPResult, get_hint_backend
 from ..model import LinearSystem, Polyhedron

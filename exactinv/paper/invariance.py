@@ -19,12 +19,13 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+
 from exactinv_check.format import ClaimType
 
 from ..core.encode import mat, sparse_of_dense
 from ..core.flintq import fmpq_matrix, fraction_of
 from ..core.latex import LatexMixin, latex_column, latex_matrix
-from ..core.scalars import Matrix, fmpq_matrix, fraction_of, matrix_text
+from ..core.scalars import Matrix, matrix_text
 from ..errors import EmptyPolyhedron, VerificationFailed
 from ..lp import INFEASIBLE, UNBOUNDED, ExactLPSolver
 from ..model import LinearSystem, Polyhedron

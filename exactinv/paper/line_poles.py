@@ -18,13 +18,13 @@ The kernel re-proves each (exactinv_check.line_poles, exactinv_check.bernstein).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from fractions import Fraction
 from cmath import phase
+from dataclasses import dataclass
 from fractions import Fraction
 from math import atan, gcd, pi
 
 import flint
+
 from exactinv_check.format import MAX_LINE_EXPONENT  # the kernel's bound (exactinv_check.line_poles)
 
 from ..core.flintq import fmpq_of, fraction_of

@@ -25,12 +25,13 @@ from __future__ import annotations
 from itertools import islice
 
 import flint
+
 from exactinv_check.format import RadiusReason
 
 from ..core.algebraic import ExactKey
 from ..core.flintq import fraction_of
 from ..core.roots import nonnegative_until
-from ..core.scalars import INF, fraction_of
+from ..core.scalars import INF
 from ..model.methods import Method
 from ..model.validate import check_method
 from .monotonicity_radius import AbsoluteMonotonicityRadius

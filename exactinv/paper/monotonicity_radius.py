@@ -10,7 +10,7 @@ from fractions import Fraction
 
 from exactinv_check.format import ClaimType, RadiusReason
 
-from ..core.algebraic import Real, RealAlgebraic
+from ..core.algebraic import Real
 from ..core.encode import encode_real, envelope
 from ..core.latex import latex_real, latex_text
 from ..core.real_algebraic import RealAlgebraic

@@ -61,13 +61,15 @@ from fractions import Fraction
 from math import comb
 
 import flint
+
 from exactinv_check.format import MAX_COEFFICIENTS, MAX_DEGREE, RadiusReason
 
 from ..core.algebraic import ExactKey, Real
 from ..core.flintq import dyadic_of, fmpq_of, fraction_of
 from ..core.polys import count_real_roots, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
+from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import nonnegative_until, real_roots
-from ..core.scalars import INF, dyadic_of, fmpq_of, fraction_of
+from ..core.scalars import INF
 from ..errors import Undecided
 from ..model.methods import Method
 from .balanced_tie import balanced_tie

@@ -30,6 +30,7 @@ from fractions import Fraction
 from math import comb
 
 import flint
+
 from exactinv_check.format import MAX_TAIL_INDEX
 
 from ..core.flintq import dyadic_of, fmpq_of

@@ -30,7 +30,8 @@ def main():
     octagon = ei.Polyhedron([[1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]],
                             [1, 1, 1, 1, "3/2", "3/2", "3/2", "3/2"])
     t4 = ei.methods.taylor(4)
-    certs["box-taylor4"] = certificate(S, box, t4, [ei.optimal_gamma(S, box), ei.forward_euler_threshold(S, box), ei.steplength_threshold(S, box, t4),
+    certs["box-taylor4"] = certificate(S, box, t4, [
+        ei.optimal_gamma(S, box), ei.forward_euler_threshold(S, box), ei.steplength_threshold(S, box, t4),
          ei.largest_threshold(S, box, t4, route="vertex"), ei.valid_steplengths(S, box, t4)])
     certs["box-route-rk4"] = ei.largest_threshold(S, box, ei.methods.PRESETS["rk4"](), route="box").certificate
     certs["lp-route-taylor2"] = ei.largest_threshold(S, octagon, ei.methods.taylor(2), route="lp").certificate
@@ -39,12 +40,14 @@ def main():
     E2 = ei.LinearSystem([[-1, 2], [0, 1]])
     certs["erratum-e2-backward-euler"] = certificate(E2, orthant, be, [ei.steplength_threshold(E2, orthant, be),
                                                           ei.valid_steplengths(E2, orthant, be)])
-    certs["octagon-pade22"] = certificate(S, octagon, ei.methods.pade(2, 2), [ei.steplength_threshold(S, octagon, ei.methods.pade(2, 2)),
+    certs["octagon-pade22"] = certificate(S, octagon, ei.methods.pade(2, 2), [
+        ei.steplength_threshold(S, octagon, ei.methods.pade(2, 2)),
          ei.largest_threshold(S, octagon, ei.methods.pade(2, 2))])
     for name in ("sdirk4", "radau_iia3", "ssprk33"):
         certs[f"radius-{name}"] = ei.absolute_monotonicity_radius(ei.methods.PRESETS[name]()).certificate
     E = ei.Ellipsoid([[1, 0], [0, 1]])
-    certs["ellipsoid-taylor2"] = certificate(S, E, ei.methods.taylor(2), [ei.continuous_invariance(S, E), ei.largest_threshold(S, E, ei.methods.taylor(2)),
+    certs["ellipsoid-taylor2"] = certificate(S, E, ei.methods.taylor(2), [
+        ei.continuous_invariance(S, E), ei.largest_threshold(S, E, ei.methods.taylor(2)),
          ei.valid_steplengths(S, E, ei.methods.taylor(2)), ei.forward_euler_threshold(S, E)])
     certs["gain-double-integrator"] = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], box).certificate
     hull = [ei.LinearSystem([[-1, 1], [-1, -1]]), ei.LinearSystem([[-2, 1], [0, -1]])]

@@ -36,7 +36,8 @@ def test_the_kernel_reads_its_tables_and_bounds_from_the_format():
 
 
 def test_the_engine_shares_the_kernels_constants():
-    from exactinv.beyond import pruning as engine_pruning, pruning_rational as engine_rational
+    from exactinv.beyond import pruning as engine_pruning
+    from exactinv.beyond import pruning_rational as engine_rational
     from exactinv.core import encode
     from exactinv.paper import line_poles, monotonicity_tail, poles
 
