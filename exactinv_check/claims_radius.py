@@ -34,10 +34,10 @@ from typing import Any, Sequence
 from . import polys
 from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .bernstein import prove_completely_monotone, prove_density_nonnegative
-from .budget import SCAN_BUDGET, within_sturm_budget
+from .budget import FRACTION_WEIGHT, SCAN_BUDGET, within_budget, within_sturm_budget
 from .claims_thresholds import smallest_positive_root
 from .format import MAX_COEFFICIENTS, RadiusReason
-from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
+from .rationals import describe, integer, require, vector
 from .reals import Real
 from .tail import prove_tail, reduced
 from .tie import balanced_tie

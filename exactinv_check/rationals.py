@@ -13,7 +13,6 @@ from fractions import Fraction
 from math import gcd
 from typing import Any
 
-from .budget import FRACTION_WEIGHT, WORK_BUDGET, within_budget  # noqa: F401 (re-exported: their old home)
 from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
 from .format import MAX_DIGITS, MAX_DIMENSION  # noqa: F401 (the format's bounds)
 

@@ -65,6 +65,7 @@ import numpy as np
 
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real, vec
+from ..core.flintq import fmpq_of, fraction_of
 from ..core.polys import no_root_between, shift, sign_at, sign_variations
 from ..core.real_signs import (
     interval_signs,
@@ -76,7 +77,7 @@ from ..core.real_signs import (
     sign_right_of_real,
 )
 from ..core.roots import real_roots
-from ..core.scalars import INF, Infinity, fmpq_of, fraction_of
+from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend

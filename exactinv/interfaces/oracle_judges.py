@@ -60,7 +60,11 @@ class Verdict:
 
 def exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
     """A claimed value as the exact number it denotes: a float (the one place floats are accepted: judging
-    them is the point) exactly, +-inf as +-INF, anything else through the exact input conversion."""
+    them is the point) exactly, +-inf as +-INF, anything else through the exact input conversion.
+
+    >>> exact_claim(0.5), exact_claim("1/3"), exact_claim(float("inf"))
+    (Fraction(1, 2), Fraction(1, 3), INF)
+    """
     if isinstance(claimed, float):
         if math.isnan(claimed):
             raise InvalidInput(f"{name}: NaN is not a claim")
@@ -73,7 +77,12 @@ def exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
 
 
 def exact_gap(claimed, exact) -> Fraction | None:
-    """(exact - claimed)/exact as an exact rational (bounds for algebraic exact values)."""
+    """(exact - claimed)/exact as an exact rational (bounds for algebraic exact values).
+
+    >>> from fractions import Fraction
+    >>> exact_gap(Fraction(1, 2), Fraction(1)), exact_gap(Fraction(1), Fraction(0))
+    (Fraction(1, 2), None)
+    """
     if isinstance(exact, Infinity) or isinstance(claimed, Infinity) or exact == 0:
         return None
     if isinstance(exact, RealAlgebraic):

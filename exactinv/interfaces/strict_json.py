@@ -72,27 +72,50 @@ class JsonPath:
 
 
 def expect_object(value: Any, path: str, what: str) -> dict:
-    """``value`` itself if it is a JSON object, else InvalidInput naming ``path`` and what was expected."""
+    """``value`` itself if it is a JSON object, else InvalidInput naming ``path`` and what was expected.
+
+    >>> expect_object({"A": []}, "problem", "an object")
+    {'A': []}
+    >>> expect_object([1], "problem.A", "an object")
+    Traceback (most recent call last):
+    exactinv.errors.InvalidInput: problem.A: expected an object, got a JSON list
+    """
     if not isinstance(value, dict):
         raise InvalidInput(f"{path}: expected {what}, got {json_kind(value)}")
     return value
 
 
 def json_kind(value: Any) -> str:
-    """What a parsed JSON value is, in words for a message ("a JSON list", "a string", ...)."""
+    """What a parsed JSON value is, in words for a message ("a JSON list", "a string", ...).
+
+    >>> json_kind([1]), json_kind(None), json_kind("x")
+    ('a JSON list', 'null', 'a string')
+    """
     return {dict: "a JSON object", list: "a JSON list", str: "a string", bool: "a boolean", int: "an integer",
             type(None): "null"}.get(type(value), type(value).__name__)
 
 
 def require_keys(obj: dict, keys: Iterable[str], path: str) -> None:
-    """InvalidInput naming the first of ``keys`` missing from the object at ``path``."""
+    """InvalidInput naming the first of ``keys`` missing from the object at ``path``.
+
+    >>> require_keys({"A": 1}, ["A", "G"], "problem")
+    Traceback (most recent call last):
+    exactinv.errors.InvalidInput: problem: missing key 'G'
+    """
     for key in keys:
         if key not in obj:
             raise InvalidInput(f"{path}: missing key {key!r}")
 
 
 def parse_strict_json(text: str, where: str) -> Any:
-    """JSON text parsed strictly: a float, NaN or Infinity, or a duplicate key is InvalidInput (at ``where``)."""
+    """JSON text parsed strictly: a float, NaN or Infinity, or a duplicate key is InvalidInput (at ``where``).
+
+    >>> parse_strict_json('{"b": ["1/2"]}', "p.json")
+    {'b': ['1/2']}
+    >>> parse_strict_json('{"b": NaN}', "p.json")
+    Traceback (most recent call last):
+    exactinv.errors.InvalidInput: NaN is not a number exactinv accepts
+    """
     try:
         return json.loads(text, parse_float=float_refuser(), parse_constant=constant_refuser(),
                           object_pairs_hook=_no_duplicates)
@@ -111,7 +134,13 @@ def _no_duplicates(pairs):
 
 
 def float_refuser(where: str = "") -> Callable[[str], NoReturn]:
-    """A ``json.loads(parse_float=...)`` hook refusing every float (numbers are exact strings)."""
+    """A ``json.loads(parse_float=...)`` hook refusing every float (numbers are exact strings).
+
+    >>> import json
+    >>> json.loads("[1.5]", parse_float=float_refuser("p.json"))
+    Traceback (most recent call last):
+    exactinv.errors.InvalidInput: p.json: the JSON number 1.5 is a float; write it as a string ("1.5") to mean it exactly
+    """
     prefix = f"{where}: " if where else ""
 
     def refuse(text: str) -> NoReturn:
@@ -120,7 +149,13 @@ def float_refuser(where: str = "") -> Callable[[str], NoReturn]:
 
 
 def constant_refuser(where: str = "") -> Callable[[str], NoReturn]:
-    """A ``json.loads(parse_constant=...)`` hook refusing NaN and +-Infinity."""
+    """A ``json.loads(parse_constant=...)`` hook refusing NaN and +-Infinity.
+
+    >>> import json
+    >>> json.loads("[NaN]", parse_constant=constant_refuser("p.json"))
+    Traceback (most recent call last):
+    exactinv.errors.InvalidInput: p.json: NaN is not a number exactinv accepts
+    """
     prefix = f"{where}: " if where else ""
 
     def refuse(text: str) -> NoReturn:

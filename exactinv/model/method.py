@@ -136,7 +136,12 @@ def matrix_polynomial(coeffs: Sequence[Fraction], M: flint.fmpq_mat) -> flint.fm
 
 
 def trim_zeros(c: list[Fraction]) -> list[Fraction]:
-    """The coefficient list c without its trailing zeros (at least one entry kept); c itself is shortened."""
+    """The coefficient list c without its trailing zeros (at least one entry kept); c itself is shortened.
+
+    >>> from fractions import Fraction
+    >>> trim_zeros([Fraction(1), Fraction(2), Fraction(0), Fraction(0)])
+    [Fraction(1, 1), Fraction(2, 1)]
+    """
     while len(c) > 1 and c[-1] == 0:
         c.pop()
     return c
@@ -144,7 +149,13 @@ def trim_zeros(c: list[Fraction]) -> list[Fraction]:
 
 def make_method(name: str, num: Sequence[Fraction], den: Sequence[Fraction], butcher=None) -> Method:
     """The Method r = num/den (coefficients from z^0 up), exact: g and h made coprime with h(0) = 1;
-    InvalidInput naming ``name`` when den is zero or vanishes at 0, or r(0) != 1."""
+    InvalidInput naming ``name`` when den is zero or vanishes at 0, or r(0) != 1.
+
+    >>> from fractions import Fraction
+    >>> m = make_method("backward Euler", [Fraction(2)], [Fraction(2), Fraction(-2)])
+    >>> m.numerator, m.denominator
+    ((Fraction(1, 1),), (Fraction(1, 1), Fraction(-1, 1)))
+    """
     g = flint.fmpq_poly([fmpq_of(c) for c in num])
     h = flint.fmpq_poly([fmpq_of(c) for c in den])
     if h.is_zero():

@@ -126,7 +126,12 @@ def coefficient_polynomials(method: Method):
     lists the first ones): with G, H the coefficients of g(w - kappa), h(w - kappa) in w
     (polynomials in kappa), d_j = G_j H_0^j - sum_{i=1}^{min(j, deg h)} H_i d_{j-i} H_0^(i-1):
     the coefficients of w^j in g(w - kappa) = r(w - kappa) h(w - kappa), with the c_j of
-    r(w - kappa) scaled to d_j = c_j H_0^(j+1)."""
+    r(w - kappa) scaled to d_j = c_j H_0^(j+1).
+
+    >>> import itertools, exactinv as ei
+    >>> [str(d) for d in itertools.islice(coefficient_polynomials(ei.methods.PRESETS["backward_euler"]()), 3)]
+    ['1', '1', '1']
+    """
     kappa = flint.fmpq_poly([0, 1])
 
     def shifted(coeffs):  # [w^i] p(w - kappa) as polynomials in kappa
@@ -170,7 +175,14 @@ def _first_end(d: flint.fmpq_poly) -> Real:
 
 def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
     """The exact radius of absolute monotonicity of a rational r = g/h with poles (see the module
-    docstring): 0, a positive algebraic number or oo with the reason that decides it, or Undecided."""
+    docstring): 0, a positive algebraic number or oo with the reason that decides it, or Undecided.
+
+    >>> from fractions import Fraction
+    >>> import exactinv as ei
+    >>> r = rational_radius(ei.methods.rational([Fraction(1), Fraction(1, 2)], [Fraction(1), Fraction(-1, 2)]))
+    >>> r.value, r.reason                                   # the trapezoid: c = -1, f = 4 e^(-2t) >= 0
+    (Fraction(2, 1), 'bernstein-root')
+    """
     h = method.h
     positive = [(z, m) for z, m in real_roots(h) if z > 0]
     if not positive:

@@ -32,7 +32,13 @@ def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: M
 
 def steplength_threshold_from_gamma(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
     """:func:`steplength_threshold` with gamma* already solved by
-    :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims)."""
+    :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims).
+
+    >>> import exactinv as ei
+    >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
+    >>> steplength_threshold_from_gamma(ei.methods.taylor(2), ei.optimal_gamma(S, P)).value
+    Fraction(2, 1)
+    """
     if gamma.witness is not None:
         raise NotInvariant("P is not invariant for x' = Ax (gamma* = +oo); no threshold exists", gamma.witness)
     if method.is_polynomial:
