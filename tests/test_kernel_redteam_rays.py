@@ -128,7 +128,8 @@ def lp_disagreement(cert, W):
     """A rational h where the kernel's set W and the exact LPs disagree, or None."""
     p = cert["problem"]
     method = _method_of(p)
-    for h in sample_points(W):
+    ends = [Real.parse(e) for f in cert["claims"][0]["lp"]["facets"] for e in f["ends"] if e != "oo"]
+    for h in sample_points(W, ends):
         truth = lp_valid_at(p["A"], p["G"], p["b"], method, h)
         if truth is None:
             continue
@@ -484,3 +485,43 @@ def test_every_accepted_mutation_of_a_genuine_ray_record_gives_the_true_valid_se
     accepted, rejected, bad = fuzz(seed=11, problems=6, mutations=25)
     assert not bad, json.dumps(bad[0])
     assert accepted > 10 and rejected > 30
+
+
+def _pole_certificate():
+    """Pade(1,1) on P = {-3x1 - x2 <= 1, x2 >= 0, -3 x2 <= 1}, A = [[-4, -3/4], [-3/4, 3]]: D = 1 + h/2 -
+    201 h^2/64 has the pole t = 0.6494.. (root of 201h^2 - 32h - 64); facet 0 is a basis piece up to 0.402..,
+    then the ray (1, 0) up to the pole and the ray (-1, 3) after it.  The valid set is {0}."""
+    S = ei.LinearSystem([[-4, F(-3, 4)], [F(-3, 4), 3]])
+    P = ei.Polyhedron([[-3, -1], [0, -2], [0, -3]], [1, 0, 1])
+    cert = ei.valid_steplengths(S, P, M.pade(1, 1), route="lp").certificate
+    f = cert["claims"][0]["lp"]["facets"][0]
+    assert f["bases"][1:] == [{"ray": ["1", "0"]}, {"ray": ["-1", "3"]}]
+    assert f["ends"][1]["poly"] == ["-64", "-32", "201"]
+    assert exactinv_check.check(cert).ok
+    return cert
+
+
+@pytest.mark.parametrize("end", ["3/5", "649/1000", "13/20"])
+def test_a_ray_piece_cannot_cross_a_pole(end):
+    """r = (g_i N(h) d) D(h) has the factor D, so it vanishes at the pole: moving the pole end of the two
+    ray pieces (to 3/5 or 0.649 below it, 0.65 above it) makes one of them cross the pole -- rejected, whichever
+    ray would claim the pole's other side.  (The truth: the exact LPs say h = 3/5, 0.649, 0.65 are all invalid,
+    so a wrong verdict could only have been an acceptance of a wrong set; there is none.)"""
+    cert = _pole_certificate()
+    cert["claims"][0]["lp"]["facets"][0]["ends"][1] = end
+    report = exactinv_check.check(cert)
+    assert not report.ok and "vanishes inside its piece" in str(report), report
+    p = cert["problem"]
+    assert lp_valid_at(p["A"], p["G"], p["b"], M.pade(1, 1), F(end)) is False
+
+
+def test_huge_rays_and_points_give_the_same_set_or_are_priced():
+    """A ray scaled by 10^3000 is the same ray: the kernel accepts it and derives the same valid set (the
+    condition is a positive multiple); a point with 3000-digit entries outside P is rejected by G x <= b."""
+    cert = _pole_certificate()
+    lp = cert["claims"][0]["lp"]
+    lp["facets"][0]["bases"][1]["ray"] = [str(10**3000), "0"]
+    assert exactinv_check.check(cert).ok
+    lp["point"] = [str(-10**3000), "1"]
+    report = exactinv_check.check(cert)
+    assert not report.ok and "lp point violates" in str(report), report
