@@ -28,6 +28,7 @@ from exactinv_check.validset import valid_set
 M = ei.methods
 ppl = pytest.importorskip("ppl")
 
+TALLY = {}  # (tried | accepted, mutation kind) -> count, for the fuzzer's report
 METHODS = [M.taylor(k) for k in range(1, 7)] + [M.pade(1, 1), M.backward_euler(), M.pade(0, 2), M.pade(1, 2)]
 
 
@@ -164,7 +165,11 @@ def kernel_set(cert):
 def random_problem(rng, dims=(2, 3, 4)):
     """A small unbounded pointed P (a cone, an orthant section or a slab) and A, method at random."""
     n = rng.choice(dims)
-    kind = rng.randrange(3)
+    kind = rng.randrange(4)
+    if kind == 3:  # the bare orthant with integer A: ray pieces meeting, point pieces (tests/test_lp_pieces.py)
+        G = [[-int(i == j) for j in range(n)] for i in range(n)]
+        A = [[F(rng.randint(-10, 10)) for _ in range(n)] for _ in range(n)]
+        return A, G, [0] * n, rng.choice(METHODS)
     G, b = [], []
     if kind == 0:  # a cone (b = 0) or a shifted one: every row g with g . 1 < 0, so (1, .., 1) is a ray
         while len(G) < n + rng.randint(0, 2):
@@ -263,6 +268,7 @@ def mutate(rng, cert):
     K = len(f["ends"])
     k = rng.randrange(K)
     kind = rng.randrange(22)
+    TALLY["tried", kind] = TALLY.get(("tried", kind), 0) + 1
     if kind in (0, 1, 2) and rays:  # a ray's entry changed, the ray replaced, scaled or negated
         i, k = rng.choice(rays)
         d = facets[i]["bases"][k]["ray"]
@@ -406,6 +412,7 @@ def mutate(rng, cert):
     else:
         return None
     _fix_point(c)
+    c["claims"][0]["kind"] = kind  # for the tally only (kernel_set reads the lp record)
     return c
 
 
@@ -443,6 +450,7 @@ def fuzz(seed, problems, mutations, dims=(2, 3, 4), use_lp=True, log=None, lp_ra
                 rejected += 1
                 continue
             accepted += 1
+            TALLY["accepted", c["claims"][0]["kind"]] = TALLY.get(("accepted", c["claims"][0]["kind"]), 0) + 1
             p = c["problem"]
             key = json.dumps(p)
             if key not in truths:
