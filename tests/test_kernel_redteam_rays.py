@@ -533,3 +533,27 @@ def test_huge_rays_and_points_give_the_same_set_or_are_priced():
     lp["point"] = [str(-10**3000), "1"]
     report = exactinv_check.check(cert)
     assert not report.ok and "lp point violates" in str(report), report
+
+
+def test_the_lp_truth_catches_a_forged_basis_piece_in_a_kernel_that_skips_z_b(monkeypatch):
+    """The half-strip {x1 >= 0, |x2| <= 1}, x' = -x, forward Euler: V = [0, 1] (facet 0 is a basis piece on
+    [0, 1] and the ray (1, 0) after it).  The ray piece forged into a basis piece of the vertex (0, 1) is
+    rejected by the kernel (z_B < 0 past 1); a kernel that skips z_B >= 0 derives [0, oo) from it (the
+    other facets' pieces run to oo as well), and the
+    exact LPs at the rationals around its ends say where that is false."""
+    S = ei.LinearSystem([[-1, 0], [0, -1]])
+    P = ei.Polyhedron([[-1, 0], [0, 1], [0, -1]], [0, 1, 1])
+    cert = ei.valid_steplengths(S, P, M.forward_euler(), route="lp").certificate
+    f = cert["claims"][0]["lp"]["facets"][0]
+    assert f["ends"] == ["1", "oo"] and f["bases"][1] == {"ray": ["1", "0"]}
+    f["bases"][1] = [0, 1]
+    del cert["claims"][0]["lp"]["point"]
+    for g in cert["claims"][0]["lp"]["facets"][1:]:
+        g["ends"][-1] = "oo"  # the other facets' vertices kept to oo
+    assert kernel_set(cert) is None
+    monkeypatch.setattr(lp_pieces, "_batch_positive", lambda Y, D_int, a, b: [True] * len(Y))
+    monkeypatch.setattr(lp_pieces, "_require_nonnegative", lambda *args, **kw: None)
+    W = kernel_set(cert)
+    assert W is not None and len(W) == 1 and W[0].hi.inf  # the forged record's conditions allow every h
+    h = lp_disagreement(cert, W)
+    assert h is not None and h > 1
