@@ -51,7 +51,7 @@ from . import polys
 from .budget import PYTHON_OP, charge, descartes_node_cost, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .linalg import integer_solve
-from .rationals import WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
+from .rationals import CheckFailure, WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
 from .reals import Real, separate
 from .validset import valid_set
 
@@ -455,9 +455,9 @@ def lp_conditions(problem, record):
                 e = polys.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
                 r = polys.trim(polys.mul_integers(e, D_int)) if e else []
                 ints = _require_positive_open(r, start, end, f"{what}'s (g_i N(h) d) D(h)")
-                require(not left_open or _positive_at(ints, start),  # (a pole t, D(t) = 0, is never open)
-                        f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
-                        f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
+                if left_open and not _positive_at(ints, start):  # (a pole t, D(t) = 0, is never open)
+                    _fail(f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
+                          f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
                 left_open = not end.inf and not _positive_at(ints, end) and end.sign_of(D_int) != 0
                 points.append(point)
                 rays.append(d)
@@ -468,8 +468,8 @@ def lp_conditions(problem, record):
                 Y = _components(order, det, adj, C_int)
                 if point_piece:  # z_B(t) >= 0 at t alone: the exact sign at the (rational or algebraic) end
                     for l, y in enumerate(Y):
-                        require(start.sign_of(polys.mul_integers(y, D_int)) >= 0,
-                                f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
+                        if start.sign_of(polys.mul_integers(y, D_int)) < 0:
+                            _fail(f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
                     left_open = False
                     points.append(x)
                     rays.append(zero)
@@ -491,7 +491,8 @@ def lp_conditions(problem, record):
                 is_ray.append(False)
             facet_of.append(i)
             start = end
-        require(not left_open, f"lp facet {i}: its last end {start} is a ray piece's end that nothing covers")
+        if left_open:
+            _fail(f"lp facet {i}: its last end {start} is a ray piece's end that nothing covers")
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
     count = len(points)
@@ -524,5 +525,13 @@ def require_horizon(D, inequalities, horizon, context, key):
     if key not in context:
         context[key] = valid_set(D, list(inequalities), [])
     W = context[key]
-    require(W and not W[-1].hi.inf and W[-1].hi.compare(horizon) <= 0,
-            f"the pieces stop at {horizon}, but their conditions allow steplengths beyond it")
+    if not (W and not W[-1].hi.inf and W[-1].hi.compare(horizon) <= 0):
+        _fail(f"the pieces stop at {horizon}, but their conditions allow steplengths beyond it")
+
+
+def _fail(message):
+    """Reject with ``message``.  The callers build a message naming a Real only here, on failure: printing
+    an algebraic number (:func:`exactinv_check.text.algebraic_text`: up to 400 exact bisections, its decimal
+    arithmetic uncharged) for every passing piece cost more than the checks themselves
+    (tests/test_kernel_redteam_rays.py)."""
+    raise CheckFailure(message)

@@ -557,3 +557,25 @@ def test_the_lp_truth_catches_a_forged_basis_piece_in_a_kernel_that_skips_z_b(mo
     assert W is not None and len(W) == 1 and W[0].hi.inf  # the forged record's conditions allow every h
     h = lp_disagreement(cert, W)
     assert h is not None and h > 1
+
+
+def test_a_passing_piece_formats_no_number(monkeypatch):
+    """Found (resource): the point-piece check built its failure message eagerly -- ``f"... negative at
+    {start}"`` -- for every component of every point piece, and the ray-piece coverage check for every ray
+    piece, though the check passed: each a Real printed by ``text.algebraic_text`` (up to 400 exact
+    bisections of the end and a Descartes test, the decimal arithmetic uncharged).  A 840 KB certificate of
+    8000 point pieces at the algebraic end 0.402.. of the Pade(1,1) record below took 15.5 s of CPU for
+    1.05e8 charged word operations (a fifth of the calibrated rate; ends near a power of ten need all 400
+    bisections, so the clock, not the budget, would decide).  Now a message is built only when its check
+    fails: checking the record formats no number at all."""
+    cert = _pole_certificate()
+    f = cert["claims"][0]["lp"]["facets"][0]
+    assert isinstance(f["ends"][0], dict)
+    f["ends"][:1] = [f["ends"][0]] * 6  # five point pieces [t, t] after the basis piece, t algebraic
+    f["bases"][:1] = [f["bases"][0]] * 6
+    calls = []
+    real = exactinv_check.text.algebraic_text
+    monkeypatch.setattr(exactinv_check.text, "algebraic_text", lambda *a: calls.append(a) or real(*a))
+    W = kernel_set(cert)
+    assert W is not None and len(W) == 1 and W[0].hi.compare(Real.rational(0)) == 0
+    assert not calls, f"{len(calls)} numbers printed while every check passed"
