@@ -53,6 +53,7 @@ from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .linalg import integer_solve
 from .rationals import CheckFailure, WORK_BUDGET, integer, integer_matrix, integer_rows, require, vector, within_budget
 from .reals import Real, separate
+from .text import rational_text
 from .validset import valid_set
 
 MAX_PIECES = 200_000  # pieces over all facets: a bound before any parsing of their ends
@@ -360,7 +361,8 @@ def _require_nonnegative(p, start, end, what, tried=False):
         else:
             a1, b0 = separate(u, v)
             q = (a1 + b0) / 2
-        require(polys.sign_at(ints, q) > 0, f"{what} is negative inside its piece (at {q})")
+        if polys.sign_at(ints, q) <= 0:
+            _fail(f"{what} is negative inside its piece (at {rational_text(q)})")
 
 
 def _require_positive_open(p, start, end, what):
@@ -381,7 +383,8 @@ def _require_positive_open(p, start, end, what):
     else:
         a1, b0 = separate(start, end)
         q = (a1 + b0) / 2
-    require(polys.sign_at(ints, q) > 0, f"{what} is not positive inside its piece (at {q})")
+    if polys.sign_at(ints, q) <= 0:
+        _fail(f"{what} is not positive inside its piece (at {rational_text(q)})")
     return ints
 
 
@@ -530,8 +533,9 @@ def require_horizon(D, inequalities, horizon, context, key):
 
 
 def _fail(message):
-    """Reject with ``message``.  The callers build a message naming a Real only here, on failure: printing
+    """Reject with ``message``.  The callers build a message naming a number only here, on failure: printing
     an algebraic number (:func:`exactinv_check.text.algebraic_text`: up to 400 exact bisections, its decimal
-    arithmetic uncharged) for every passing piece cost more than the checks themselves
-    (tests/test_kernel_redteam_rays.py)."""
+    arithmetic uncharged) for every passing piece cost more than the checks themselves, and str() of a
+    rational of over 4300 digits raises ValueError (tests/test_kernel_redteam_rays.py); rationals are
+    printed by :func:`exactinv_check.text.rational_text`, which abbreviates long ones."""
     raise CheckFailure(message)

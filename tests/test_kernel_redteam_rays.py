@@ -579,3 +579,16 @@ def test_a_passing_piece_formats_no_number(monkeypatch):
     W = kernel_set(cert)
     assert W is not None and len(W) == 1 and W[0].hi.compare(Real.rational(0)) == 0
     assert not calls, f"{len(calls)} numbers printed while every check passed"
+
+
+def test_a_positive_ray_piece_with_long_ends_is_not_rejected_by_printing_its_sample():
+    """Found (robustness): the fallback of the ray piece's positivity test printed its sample point q into
+    the failure message before testing it; with ends of 3000 digits q has over 4300, and Python's int -> str
+    limit raised ValueError -- a true ray piece rejected.  p = (h - 1)^2 + 10^-6 > 0 everywhere, its complex
+    roots near 1 defeat Descartes' rule on (1/3, 2), so the fallback (root isolation, one sample) runs."""
+    p = [F(1) + F(1, 10**6), F(-2), F(1)]
+    start = Real.rational(F(10**3000 + 1, 3 * 10**3000))
+    end = Real.rational(2 - F(1, 7 * 10**3000 + 1))
+    assert lp_pieces._require_positive_open(p, start, end, "r")
+    with pytest.raises(CheckFailure, match="not positive inside its piece"):
+        lp_pieces._require_positive_open([-c for c in p], start, end, "r")
