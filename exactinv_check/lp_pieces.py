@@ -403,8 +403,8 @@ def _require_in(rows, x, what, cone=False):
     if cone:
         require(any(xi), f"{what} is the zero vector")
     for k, (g, beta) in enumerate(rows):
-        require(sum(map(mul, g, xi)) <= (0 if cone else beta * dx), f"{what} violates row {k} of G x <= b"
-                + (" (G d <= 0: d is not a ray of P)" if cone else ""))
+        if sum(map(mul, g, xi)) > (0 if cone else beta * dx):
+            _fail(f"{what} violates row {k} of G x <= b" + (" (G d <= 0: d is not a ray of P)" if cone else ""))
 
 
 def lp_conditions(problem, record):
