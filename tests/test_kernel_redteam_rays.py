@@ -23,7 +23,7 @@ from exactinv_check.conditions import method_matrices, method_matrix_at
 from exactinv_check.kernel import Problem
 from exactinv_check.rationals import CheckFailure
 from exactinv_check.reals import Real
-from exactinv_check.validset import valid_set
+from exactinv_check.validset import Interval, require_intervals, valid_set
 
 M = ei.methods
 ppl = pytest.importorskip("ppl")
@@ -592,3 +592,23 @@ def test_a_positive_ray_piece_with_long_ends_is_not_rejected_by_printing_its_sam
     assert lp_pieces._require_positive_open(p, start, end, "r")
     with pytest.raises(CheckFailure, match="not positive inside its piece"):
         lp_pieces._require_positive_open([-c for c in p], start, end, "r")
+
+
+def test_a_matching_valid_set_claim_formats_no_number(monkeypatch):
+    """The same for the claim's intervals (validset.require_intervals): every interval's true ends were
+    printed into the messages of checks that passed, and the whole true set once more."""
+    calls = []
+    real = exactinv_check.text.algebraic_text
+    monkeypatch.setattr(exactinv_check.text, "algebraic_text", lambda *a: calls.append(a) or real(*a))
+    s = Real.parse({"poly": ["-2", "0", "1"], "interval": ["1", "2"]})  # sqrt 2
+    t = Real.parse({"poly": ["-3", "0", "1"], "interval": ["1", "2"]})  # sqrt 3
+    truth = [Interval(Real.rational(0), s, True, True), Interval(t, Real.parse("oo"), True, False)]
+    claim = [{"lo": "0", "hi": {"poly": ["-2", "0", "1"], "interval": ["1", "2"]}, "lo_closed": True,
+              "hi_closed": True},
+             {"lo": {"poly": ["-3", "0", "1"], "interval": ["1", "2"]}, "hi": "oo", "lo_closed": True,
+              "hi_closed": False}]
+    require_intervals(claim, truth)
+    assert not calls
+    claim[1]["lo"] = "2"
+    with pytest.raises(CheckFailure, match="interval 1 starts at 1.73205"):
+        require_intervals(claim, truth)
