@@ -16,7 +16,15 @@ certificate is checked by the trusted kernel (``--no-check`` skips it); a reject
   * balanced:  p* and tied poles on the circle |w| = R around -kappa* (Gaussian rationals: a pair, a negative
                pole and a pair, or two pairs) whose residues' moduli add up to b_* exactly.
 
-Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check] [--family ties]
+``--family line-balance`` (line-balance, issue 22): the family of tests/test_line_poles.py's random tie test, in two
+equal parts --
+  * pair:      p* and a pair p* +- iy on its line, p*, y, b_*, u, v random with denominators <= 4 (as the test
+               draws them), half of them with a farther real pole p* + 2 (b = 1);
+  * balanced:  the same with b_* = 2|b| exactly (b = m (c + is), (c, s) a rational point of the unit circle), every
+               one with the farther real pole: the line part B >= 0 touches 0 (the CI failures of line-balance).
+
+Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check]
+                                           [--family ties | line-balance]
 """
 
 from __future__ import annotations
@@ -158,6 +166,40 @@ def family_ties(count: int, seed: int) -> list:
     return out
 
 
+def family_line_balance(count: int, seed: int) -> list:
+    """count (kind, method): the random tie test's family and its exactly balanced part (module docstring)."""
+    rng = random.Random(seed)
+    out = []
+
+    def q4(lo, hi):  # a random fraction in [lo, hi] with denominator <= 4
+        d = rng.choice([1, 2, 3, 4])
+        return Fraction(rng.randint(int(lo * d), int(hi * d)), d)
+
+    while len(out) < count:
+        kind = ("pair", "balanced")[len(out) % 2]
+        p, y = q4(Fraction(1, 4), 4), q4(Fraction(1, 4), 3)
+        if p <= 0 or y <= 0:
+            continue
+        if kind == "pair":
+            b_star, u, v = q4(Fraction(1, 4), 4), q4(-2, 2), q4(-2, 2)
+            if b_star <= 0 or (u == 0 and v == 0):
+                continue
+            extra = rng.random() < 0.5
+        else:
+            m = q4(Fraction(1, 4), 2)
+            c, s_ = _UNITS[rng.randrange(len(_UNITS))]
+            sign = rng.choice([1, -1])
+            u, v, b_star, extra = m * c * sign, m * s_, 2 * m, True
+            if m <= 0:
+                continue
+        terms = [((p, Fraction(0)), (b_star, Fraction(0))), ((p, y), (u, v)), ((p, -y), (u, -v))]
+        if extra:
+            terms.append(((p + 2, Fraction(0)), (Fraction(1), Fraction(0))))
+        num, den = _from_partial_fractions(terms)
+        out.append((kind, M.rational(num, den, name=f"r{len(out)}")))
+    return out
+
+
 class _Timeout(Exception):
     pass
 
@@ -166,8 +208,10 @@ def _alarm(*_):
     raise _Timeout
 
 
-def run(count: int, seed: int, cap: float, check: bool, ties: bool = False) -> None:
-    cases = family_ties(count, seed) if ties else family(count, seed)
+def run(count: int, seed: int, cap: float, check: bool, ties: bool | str = False) -> None:
+    kinds = {"line-balance": ("pair", "balanced"), True: ("line", "balanced")}.get(ties, ("generic", "repeated", "bernstein"))
+    cases = family_line_balance(count, seed) if ties == "line-balance" else family_ties(count, seed) if ties \
+        else family(count, seed)
     signal.signal(signal.SIGALRM, _alarm)
     outcome: dict[str, Counter] = {}
     reasons: Counter = Counter()
@@ -190,22 +234,25 @@ def run(count: int, seed: int, cap: float, check: bool, ties: bool = False) -> N
             signal.setitimer(signal.ITIMER_REAL, 0)
         if r is not None and check:  # the kernel is timed apart (the cap is the engine's)
             t = time.perf_counter()
-            rejected += not ei.check(r.certificate).ok
+            ok = ei.check(r.certificate).ok
+            rejected += not ok
+            verdict = verdict if ok else "rejected"
             kernel_max = max(kernel_max, time.perf_counter() - t)
         outcome.setdefault(kind, Counter())[verdict] += 1
     total = Counter()
     for c in outcome.values():
         total.update(c)
     print(f"{count} random r = g/h, degree <= 4, seed {seed}, cap {cap:g} s, {time.perf_counter() - start:.1f} s")
-    print(f"{'family':<10} {'cases':>6} {'decided':>8} {'undecided':>10} {'timeout':>8} {'undecided rate':>15}")
-    for kind in (("line", "balanced") if ties else ("generic", "repeated", "bernstein")):
+    print(f"{'family':<10} {'cases':>6} {'decided':>8} {'undecided':>10} {'timeout':>8} {'rejected':>9} "
+          f"{'undecided rate':>15}")
+    for kind in kinds:
         c = outcome.get(kind, Counter())
         n = sum(c.values())
-        print(f"{kind:<10} {n:>6} {c['decided']:>8} {c['undecided']:>10} {c['timeout']:>8} "
+        print(f"{kind:<10} {n:>6} {c['decided']:>8} {c['undecided']:>10} {c['timeout']:>8} {c['rejected']:>9} "
               f"{(c['undecided'] + c['timeout']) / max(n, 1):>14.1%}")
     n = sum(total.values())
     print(f"{'all':<10} {n:>6} {total['decided']:>8} {total['undecided']:>10} {total['timeout']:>8} "
-          f"{(total['undecided'] + total['timeout']) / max(n, 1):>14.1%}")
+          f"{total['rejected']:>9} {(total['undecided'] + total['timeout']) / max(n, 1):>14.1%}")
     print("reasons of the decided:", dict(sorted(reasons.items())))
     print(f"slowest decided radius: engine {engine_max:.2f} s")
     if check:
@@ -218,9 +265,10 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--cap", type=float, default=20.0)
     parser.add_argument("--no-check", action="store_true")
-    parser.add_argument("--family", choices=["default", "ties"], default="default")
+    parser.add_argument("--family", choices=["default", "ties", "line-balance"], default="default")
     args = parser.parse_args()
-    run(args.count, args.seed, args.cap, not args.no_check, args.family == "ties")
+    run(args.count, args.seed, args.cap, not args.no_check,
+        args.family if args.family == "line-balance" else args.family == "ties")
 
 
 if __name__ == "__main__":

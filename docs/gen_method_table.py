@@ -31,6 +31,9 @@ columns are:
   index beyond which every c_j is proved positive on [0, rho]), `tie` (rho is the first kappa at
   which another pole is as far from -kappa as the smallest positive pole p*, and p* still wins
   there), `product` / `termwise` (rho = oo), `all-coefficients` (a polynomial with rho = oo),
+  `bernstein-root` (c = lim r < 0 while f >= 0 in r(-x) = c + int e^(-xt) f(t) dt: every c_j, j >= 1,
+  is >= 0 for every kappa and c_0 = r(-kappa) decreases, so rho is the one positive root of g(-kappa);
+  no tail),
   `no-positive-pole` / `principal-part-sign` / `dominance-at-0` (rho = 0 by Pringsheim's theorem,
   with a witness c_j(0) < 0);
 * **kernel** -- the certificate verified by the kernel;

@@ -30,19 +30,40 @@ The proof of f >= 0:
      |e^(-(z_k - p*) t)| <= n!/(delta_k t)^n for any n >= 0, delta_k <= Re z_k - p*.  With n >= M_k - mu every
      term's bound is nonincreasing in t, so the bound at T holds on [T, oo): b_{*,mu} > (sum at T) proves
      f > 0 there.
+   - far, *balanced line* (the poles proved on Re z = p*, of multiplicity mu, have sum |b_(k,mu)| >= b_(*,mu),
+     so p*'s bound above never holds; e.g. e^(p* t) f = 1 + cos(9t/4) + e^(-2t), issue 22): split
+     e^(p* t) f(t) = B(t) + R(t), B the terms of p* and of the poles on the line, R those of the poles off it.
+     (i) B >= 0 on R exactly (line_poles.line_part; p* and every line pole simple, so B = b_* + sum_k b_k
+     e^(-i y_k t): one pair, min B = b_* - 2|b| with b_*^2 >= 4|b|^2 rational; or rational heights, B(t) = T(t/L)
+     with Q >= 0 on R).  (ii) R's slowest-decaying pole is a real pole q (the second distinct positive pole, its disk
+     matched to its exact isolating interval [Q_lo, Q_hi] as p*'s), multiplicity M, b_(q,M) > 0, and every other
+     pole off the line has Re z_k - Q_hi >= delta_k > 0 (disks).  Then for t >= T
+         R(t) e^((q - p*) t) (M-1)!/t^(M-1) = b_(q,M) + sum_{m<M} b_(q,m) (M-1)!/(m-1)! t^(m-M)
+             + sum_{k} sum_m b_(k,m) (M-1)!/(m-1)! t^(m-M) e^(-(z_k - q) t),
+     with |e^(-(z_k - q) t)| <= e^(-delta_k t) <= n!/(delta_k t)^n (n >= M_k - M, so each bound is nonincreasing in
+     t): the sum of the bounds at T below the lower end of b_(q,M) proves R > 0 on [T, oo), hence
+     f = e^(-p* t)(B + R) > 0 there.  The compact piece before T is the certified march below, as before.  No pole
+     off the line (all on it): f = e^(-p* t) B >= 0 at once.  Rejected: a multiple p* or line pole, B not proved
+     >= 0, the slowest pole off the line not a single real pole (a non-real pair: R oscillates at B's zeros, open in
+     general), or b_(q,M) not proved positive (if negative, f < 0 near B's zeros for large t).
    - between: from a = t_a step by dyadic d, with disks E_k = e^(-z_k a) (exp of a disk: scaling and
      squaring of an exact Taylor sum with its remainder; e^(-z_k (a + d)) = E_k e^(-z_k d)):
      f(a + s) >= f(a) + min(0, f'(a) d) - d^2/2 max|f''| on [0, d], with
      |f^(n)(t)| <= sum_k |E_k| sum_m |b_{k,m}| sum_i C(n,i) t^(m-1-i) |z_k|^(n-i)/(m-1-i)! (Re z_k > 0).
 Every number is an exact rational; disks round outward; what is not proved within MAX_STEPS steps is rejected.
+
+:func:`prove_density_nonnegative` proves f >= 0 (every pole with Re z > 0) whatever the sign of c: f depends only
+on the principal parts, not on c.  With c < 0 (claims_radius, reason bernstein-root) every c_j, j >= 1, is still
+>= 0 for every kappa >= 0, and c_0(kappa) = c + int e^(-kappa t) f(t) dt decreases strictly from r(0) = 1 to c.
 """
 
 from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
-from .disks import ball, ball_abs_upper, ball_mul, pole_disks
-from .line_poles import disk_on_line, line_density, line_gcd, nonnegative_on_line, rational_root, single_pair
+from .disks import ball, ball_abs_upper, ball_mul
+from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, \
+    single_pair
 from .polys import MAX_DEGREE as MAX_DEGREE_OF_F, count_roots, evaluate, integer_coefficients, mul, positive_roots, \
     sign_at, sign_right_of, trim
 from .rationals import describe, require
@@ -56,7 +77,7 @@ TAYLOR_TERMS = 28
 MAX_RATIONAL_BISECTIONS = 4000  # bisections to pin a rational pole
 MAX_EXPONENT = 2000  # the largest degree of F(u) for rational poles
 
-__all__ = ["prove_completely_monotone", "density_at_zero"]
+__all__ = ["prove_completely_monotone", "prove_density_nonnegative", "density_at_zero"]
 
 
 def density_at_zero(g, h, count):
@@ -84,6 +105,22 @@ def prove_completely_monotone(numerator, denominator):
     require(len(g) <= len(h), "bernstein: deg g > deg h, so r(-x) is unbounded and not completely monotone")
     c, _ = density_at_zero(g, h, 0)
     require(c >= 0, f"bernstein: r(-x) tends to c = {describe(c)} < 0")
+    return f"{_density_nonnegative(g, h)}, c = {describe(c)} >= 0 (Bernstein: r(-x) completely monotone)"
+
+
+def prove_density_nonnegative(numerator, denominator):
+    """(c, a sentence saying why f >= 0 on (0, oo)), or CheckFailure: r(-x) = c + int_0^oo e^(-xt) f(t) dt with
+    f >= 0 and every pole Re z > 0, whatever the sign of c (f does not depend on c: r - c has the same poles
+    and principal parts).  Then c_j(kappa) = int t^j e^(-kappa t) f(t) dt/j! >= 0 for every j >= 1 and kappa >= 0,
+    and c_0(kappa) = r(-kappa) decreases from r(0) = 1 to c (claims_radius: reason bernstein-root)."""
+    g, h = reduced(numerator, denominator)
+    require(len(g) <= len(h), "bernstein: deg g > deg h, so r(-x) is unbounded and not completely monotone")
+    c, _ = density_at_zero(g, h, 0)
+    return c, _density_nonnegative(g, h)
+
+
+def _density_nonnegative(g, h):
+    """A sentence saying why f >= 0 on (0, oo) and every pole has Re z > 0 (g, h reduced, deg g <= deg h)."""
     factors = squarefree_decomposition(h)
     poles = positive_roots(h)
     require(poles, "bernstein: r has no positive real pole")
@@ -105,14 +142,14 @@ def prove_completely_monotone(numerator, denominator):
                     f"f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) with b_*^2 = {describe(b_star * b_star)} < 4|b|^2 = {describe(4 * b2)}, "
                     "negative somewhere")
             return (f"p* = {describe(p_exact)} and one pair on its line: f(t) = e^(-p* t) (b_* + 2 Re(b e^(-iyt))) >= 0, "
-                    f"b_* = {describe(b_star)} >= 2|b| (4|b|^2 = {describe(4 * b2)}), c >= 0 (Bernstein: r(-x) completely monotone)")
+                    f"b_* = {describe(b_star)} >= 2|b| (4|b|^2 = {describe(4 * b2)})")
         line = line_density(g, h, p_exact)  # every pole on Re z = p*: f = e^(-p* t) T(t/L), exact
         if line is not None and _sturm_affordable(line[0]):  # else the general proof below (dominance)
             Q, where = line
             require(nonnegative_on_line(Q), f"bernstein: {where}, and the trigonometric density "
                                             "T(theta) = Q(tan(theta/2))/(1 + x^2)^N is negative somewhere")
             return (f"{where}: f(t) = e^(-p* t) T(t/L) with T >= 0 on the circle (Q = {[describe(c) for c in Q]} >= 0 on "
-                    "R, Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+                    "R, Sturm)")
     disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, poles[0])
     terms = []  # (z disk, M, b disks, is p*, on the line Re z = p*)
     gcds = {}
@@ -134,9 +171,65 @@ def prove_completely_monotone(numerator, denominator):
             terms.append((z, M, b_disks(g, h, M, z), star, on_line))
     star_b = next(t[2] for t in terms if t[3])
     require(star_b[mu - 1][0] - star_b[mu - 1][2] > 0, "bernstein: b_{*,mu} is not proved positive")
-    steps = _positive(g, h, terms, mu, P_hi)
-    return (f"c = {describe(c)} >= 0 and f > 0 on (0, oo): Taylor at 0, {steps} certified steps, dominance of p* beyond "
-            f"(Bernstein: r(-x) completely monotone)")
+    rest, line = None, ""
+    if _line_outweighs(terms, mu):  # the line poles balance p* (sum |b| >= b_*): p*'s dominance can never hold
+        rest, line = _balanced_line(g, h, factors, poles, disks, terms, p_exact)
+        if rest is True:  # every pole on the line and B >= 0: f = e^(-p* t) B(t) >= 0
+            return f"f(t) = e^(-p* t) B(t), {line}"
+    steps = _positive(g, h, terms, mu, P_hi, rest)
+    far = (f"beyond, {line} and the rest R(t) > 0 by the dominance of the slowest-decaying pole q off the line"
+           if rest else "dominance of p* beyond")
+    return f"f > 0 on (0, oo): Taylor at 0, {steps} certified steps, {far}"
+
+
+def _line_outweighs(terms, mu):
+    """Is the sum over the line poles of multiplicity mu of |b_(k,mu)| (upper bounds) >= b_(*,mu) (lower bound)?
+    Only then is the far piece the balanced line's (p*'s own dominance bound, with |e^(-(z - p*) t)| = 1 on the
+    line, can never hold; line poles of lower multiplicity decay against t^(mu-1))."""
+    if not any(t[4] for t in terms):
+        return False
+    star_b = next(t[2] for t in terms if t[3])[mu - 1]
+    return sum(ball_abs_upper(t[2][mu - 1]) for t in terms if t[4] and t[1] == mu) >= star_b[0] - star_b[2]
+
+
+def _balanced_line(g, h, factors, poles, disks, terms, p_exact):
+    """The far piece when the line poles balance p* (module docstring, "balanced line"): e^(p* t) f = B + R with
+    B, the part of p* and of the poles on the line, proved >= 0 exactly (line_poles.line_part: p* and every line
+    pole simple; one pair, or rational heights), and R, the part of the poles off the line, dominated by its
+    slowest-decaying pole q -- a real pole (the second positive pole, its inclusion disk matched to its exact
+    isolating interval) with b_{q,M} > 0 and every other pole off the line at Re z > q (disks).  Returns
+    (True, sentence) when R is empty, else ((index of q, M_q, [delta_k]), sentence); CheckFailure otherwise."""
+    require(p_exact is not None and all(t[1] == 1 for t in terms if t[3] or t[4]),
+            "bernstein: the poles on Re z = p* balance p* (sum |b| >= b_*) and p* or a line pole is not simple (or p* "
+            "is irrational): p*'s dominance bound cannot hold and the balanced-line proof does not apply")
+    line = line_part(g, h, p_exact)
+    require(line is not None, "bernstein: the poles on Re z = p* balance p* (sum |b| >= b_*), and their part "
+                              "B(t) = b_* + sum b_k e^(-i y_k t) is not proved >= 0 (one pair, or rational heights)")
+    off = [k for k, t in enumerate(terms) if not t[3] and not t[4]]
+    if not off:
+        return True, line
+    require(len(poles) >= 2, "bernstein: the poles on Re z = p* balance p*, and the slowest-decaying pole off the line "
+                             "is not real (a non-real pair: R(t) oscillates, deciding it is open in general)")
+    f_q, M_q = factor_of(factors, poles[1])
+    _, hits, Q_lo, Q_hi = star_enclosure(factors, f_q, poles[1], disks)
+    z_q = disks[id(f_q)][hits[0]]
+    q = next((k for k in off if terms[k][0] == z_q and terms[k][1] == M_q), None)
+    require(q is not None, "bernstein: the second positive pole is not among the poles off the line (internal)")
+    exact = ((Q_lo + Q_hi) / 2, Fraction(0), (Q_hi - Q_lo) / 2)
+    terms[q] = (exact, M_q, b_disks(g, h, M_q, exact), False, False)
+    delta = {}
+    for k in off:
+        if k != q:
+            z = terms[k][0]
+            delta[k] = z[0] - z[2] - Q_hi
+            require(delta[k] > 0, "bernstein: the poles on Re z = p* balance p*, and the slowest-decaying pole off the "
+                                  "line is not proved to be the single real pole q (another pole has Re z <= q to working "
+                                  "precision: deciding R > 0 is open in general)")
+    b_q = terms[q][2][M_q - 1]
+    require(b_q[0] - b_q[2] > 0, "bernstein: the poles on Re z = p* balance p*, and the slowest-decaying term off the "
+                                 "line, b_(q,M) t^(M-1) e^(-q t), is not proved positive (f < 0 near B's zeros when it "
+                                 "is negative)")
+    return (q, M_q, delta), line
 
 
 def _sturm_affordable(Q):
@@ -166,7 +259,7 @@ def _single_pole(g, h, mu):
         require(len(odd) == 1 or count_roots(odd, Fraction(0), None) == 0,
                 "bernstein: P(t) = e^(p t) f(t) changes sign on (0, oo)")
     return (f"one pole p = {describe(p)} of multiplicity {mu}: f(t) = e^(-p t) P(t), P = {[describe(x) for x in P]} >= 0 on "
-            f"(0, oo) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+            f"(0, oo) (Sturm)")
 
 
 def _rational_simple_poles(h, factors, poles):
@@ -223,7 +316,7 @@ def _rational_exponents(g, h, ps):
     if len(odd) > 1 and inside:
         return None
     return (f"simple rational poles {[describe(p) for p in ps]}: f(t) = F(e^(-t/{L})) with the polynomial F >= 0 on "
-            f"(0, 1) (Sturm), c >= 0 (Bernstein: r(-x) completely monotone)")
+            f"(0, 1) (Sturm)")
 
 
 # ----------------------------------------------------------------- disk helpers
@@ -264,7 +357,7 @@ def _exp_of(z, t):
 
 
 # ----------------------------------------------------------------- f > 0 on (0, oo)
-def _positive(g, h, terms, mu, P_hi):
+def _positive(g, h, terms, mu, P_hi, rest=None):
     babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _, _ in terms]
     zabs = [ball_abs_upper(z) for z, _, _, _, _ in terms]
 
@@ -306,13 +399,27 @@ def _positive(g, h, terms, mu, P_hi):
                 return False
         return total < b_mu
 
+    def rest_dominated_beyond(T):  # R(t) > 0 for t >= T (balanced line): q's dominance over the poles off the line
+        q, M, delta_of = rest
+        b_q = terms[q][2][M - 1][0] - terms[q][2][M - 1][2]
+        total = sum(babs[q][m - 1] * Fraction(factorial(M - 1), factorial(m - 1)) * T ** (m - M) for m in range(1, M))
+        for k, delta_k in delta_of.items():
+            x = delta_k * T
+            n = max(terms[k][1] - M, 0, min(int(x), 60))
+            decay = Fraction(factorial(n)) / x ** n
+            total += decay * sum(babs[k][m - 1] * Fraction(factorial(M - 1), factorial(m - 1)) * T ** (m - M)
+                                 for m in range(1, terms[k][1] + 1))
+            if total >= b_q:
+                return False
+        return total < b_q
+
     a, d = t_a, t_a
     E = [_exp_of(z, a) for z, _, _, _, _ in terms]
     steps_of, trials = {}, 0
     size = sum(t[1] for t in terms)
     for step in range(MAX_STEPS):
         charge(disk_step_cost(size), "a step of the Bernstein positivity proof")  # the clock too: no charge, no limit
-        if dominated_beyond(a):
+        if (rest_dominated_beyond(a) if rest else dominated_beyond(a)):
             return step
         F0 = F1 = (Fraction(0), Fraction(0), Fraction(0))
         for k, (z, M, bs, _, _) in enumerate(terms):

@@ -54,6 +54,10 @@ DISK_STEP = 50000  # word operations per term of one step of the Bernstein posit
 CALL = 1000  # word operations of the fixed overhead of one Descartes test
 STURM_BUDGET = 5 * 10**12  # degree^4 bits^2 of one pseudo-remainder sequence (gcd, Sturm): up to about 20 s
 STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequence (measured: 880 at degree 80)
+DESCARTES_BUDGET = 40 * STURM_BUDGET  # degree^4 bits^2 of one Descartes isolation (polys.isolate): its nodes are charged
+# to the certificate's account as they run (and the clock stands behind them), so this up-front gate only keeps absurd
+# sizes out; at the Sturm gate a genuine radius certificate (binding d_39 of degree 120, 426-bit coefficients: 7.9e12)
+# was rejected though its isolation takes about 4 s
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
 CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)

@@ -13,6 +13,9 @@ c_j wherever h(-kappa) > 0, the kernel proves rho by recomputation:
   with c >= 0 and the exponential polynomial f >= 0 on (0, oo), proved by
   :func:`exactinv_check.bernstein.prove_completely_monotone` (exact Sturm count for one
   pole; Taylor at 0, disk-arithmetic steps and a dominance bound otherwise);
+* rho = the one positive root of g(-kappa) (reason "bernstein-root", attained): c = lim r < 0 and f >= 0
+  proved as for "bernstein", so every c_j, j >= 1, is >= 0 for every kappa >= 0 and c_0 = r(-kappa) decreases
+  from 1 to c (no tail, no coefficient scan: e.g. the trapezoid, rho = 2);
 * otherwise: the tail j >= N is proved positive on [0, K] (K >= the claimed
   rho, or all kappa >= 0 for rho = oo) by :func:`exactinv_check.tail.prove_tail`,
   and rho is recomputed as the least of sup{T : d_j >= 0 on [0, T]} (j < N)
@@ -29,7 +32,8 @@ from . import polys
 from .claims_thresholds import smallest_positive_root
 from .rationals import FRACTION_WEIGHT, describe, integer, require, vector, within_budget
 from .reals import Real
-from .bernstein import prove_completely_monotone
+from .bernstein import prove_completely_monotone, prove_density_nonnegative
+from .budget import within_sturm_budget
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
 from .balanced_tie import MAX_POLES, prove_balanced_tie
@@ -37,7 +41,7 @@ from .validset import first_end
 
 MAX_COEFFICIENTS = 4096
 REASONS = {"coefficient", "all-coefficients", "termwise", "product", "no-positive-pole", "principal-part-sign",
-           "dominance-at-0", "negative-at-0", "tie", "bernstein", "balanced-tie"}
+           "dominance-at-0", "negative-at-0", "tie", "bernstein", "balanced-tie", "bernstein-root"}
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 
@@ -168,6 +172,28 @@ def _tie(num, den, value, claim):
     return value, attained if first.compare(value) == 0 else True, d, N, count
 
 
+def _bernstein_root(num, den):
+    """(rho, sentence) for reason bernstein-root: c = lim r < 0, f >= 0 proved (prove_density_nonnegative; every
+    pole then has Re z > 0), so c_j(kappa) = int t^j e^(-kappa t) f(t) dt/j! >= 0 for j >= 1 and every kappa >= 0,
+    while c_0(kappa) = r(-kappa) = c + int e^(-kappa t) f(t) dt decreases strictly (f >= 0, not 0: r has a pole)
+    from r(0) = 1 to c < 0.  So c_0 has exactly one zero on (0, oo), the only positive root of g(-kappa)
+    (h(-kappa) > 0 there), and rho is that root, attained.  Cheap tests first: deg g <= deg h and c < 0 before the
+    proof of f >= 0, and that before the root of g(-kappa) is isolated (priced by its Sturm sequence)."""
+    g, h = reduced(num, den)
+    require(len(g) <= len(h), "bernstein-root: deg g > deg h, so r(-x) has no finite limit c")
+    c = g[-1] / h[-1] if len(g) == len(h) else Fraction(0)
+    require(c < 0, f"bernstein-root: c = lim r(-x) = {describe(c)} >= 0, so c_0 never ends (a bernstein claim, rho = oo)")
+    c_again, how = prove_density_nonnegative(g, h)
+    require(c_again == c, "bernstein-root: inconsistent limit at infinity (internal)")
+    g_minus = polys.trim([x * (-1) ** k for k, x in enumerate(g)])  # g(-kappa)
+    ints = polys.integer_coefficients(g_minus)
+    within_sturm_budget(len(ints) - 1, max(abs(x).bit_length() for x in ints), "bernstein-root: the root of g(-kappa)")
+    rho = smallest_positive_root(g_minus)
+    require(rho is not None, "bernstein-root: g(-kappa) has no positive root (internal: c < 0 < r(0) forces one)")
+    return rho, (f"c = {describe(c)} < 0 and {how}: c_j >= 0 for j >= 1 and every kappa, c_0 = r(-kappa) decreases, "
+                 f"so rho is the one positive root of g(-kappa)")
+
+
 def absolute_monotonicity_radius(problem, claim, context):
     method = problem.method
     require(method is not None, "a method is needed")
@@ -176,7 +202,8 @@ def absolute_monotonicity_radius(problem, claim, context):
     reason = claim["reason"]
     require(isinstance(reason, str) and reason in REASONS, f"unknown reason {reason!r}")
     require(claim.get("witness_j") is None or reason in ZERO_REASONS, "witness_j belongs to the rho = 0 reasons only")
-    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie"},
+    require(claim.get("binding") is None or reason not in ZERO_REASONS | {"product", "tie", "bernstein", "balanced-tie",
+                                                                           "bernstein-root"},
             "binding belongs to the coefficient reasons only")
     require(claim.get("poles") is None or reason == "balanced-tie", "poles belongs to the balanced-tie reason only")
     require(not method.is_polynomial or reason in ("coefficient", "all-coefficients"),
@@ -200,6 +227,10 @@ def absolute_monotonicity_radius(problem, claim, context):
         require(claim.get("tail_index") is None, "a bernstein claim has no tail index")
         how = prove_completely_monotone(num, den)
         rho, rho_attained, d = Real(inf=1), True, []
+    elif reason == "bernstein-root":
+        require(claim.get("tail_index") is None and claim.get("d") is None, "a bernstein-root claim has no tail index and no d")
+        rho, how = _bernstein_root(num, den)
+        rho_attained, d = True, []
     elif reason == "balanced-tie":
         require(claim.get("tail_index") is None, "a balanced-tie claim has no tail index")
         g, h = reduced(num, den)
@@ -234,7 +265,7 @@ def absolute_monotonicity_radius(problem, claim, context):
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
     require(value.compare(rho) == 0, f"rho is {rho}, not {value}")
-    consistent = {"coefficient": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
+    consistent = {"coefficient": not rho.inf, "bernstein-root": not rho.inf, "tie": not rho.inf, "balanced-tie": not rho.inf, "all-coefficients": method.is_polynomial and rho.inf == 1,
                   "termwise": not method.is_polynomial and rho.inf == 1}.get(reason, True)
     require(consistent, f"the reason {reason!r} does not describe rho = {rho}")
     require(attained is rho_attained, "the attained flag is wrong")

@@ -17,12 +17,12 @@ from math import comb, gcd
 from . import polys
 from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
-from .linalg import characteristic_polynomial, largest_real_root
+from .linalg import characteristic_polynomial, largest_real_root, strongly_connected_blocks
 from .polyhedra import prove_generators
 from .budget import fraction_products_cost
 from .rationals import integer, integer_matrix, integer_rows, matrix, rational, require, vector, within_budget
 from .reals import Real, quotient
-from .sparse import dense, diagonal, row_dot
+from .sparse import diagonal, row_dot
 from .validset import first_end
 
 ZERO, INF = Real.rational(0), Real(inf=1)
@@ -110,8 +110,7 @@ def rational_threshold(problem, claim, context):
         require(H is not None, "the gamma_star claim carries no H: the convergence bound of erratum E2 cannot be computed")
         alpha = None
         if claim.get("alpha") is not None or _e2_may_bind(H, problem.b, pole, candidates):
-            _price_characteristic_polynomial(H, problem.m)
-            alpha = largest_real_root(characteristic_polynomial(dense(H, problem.m)))
+            alpha = _largest_real_eigenvalue(H)
             if alpha is not None and alpha.compare(ZERO) > 0:
                 candidates.append((quotient(pole, alpha), False))  # E2: the series at -rho stops converging
         _same(claim.get("alpha"), alpha, "alpha(H)")
@@ -143,16 +142,35 @@ def _e2_may_bind(H, b, pole, candidates):
     return not any(lower.compare(bound) > 0 for bound, _ in candidates)
 
 
-def _price_characteristic_polynomial(H, m):
-    """Cheap tests before det(xI - H) is expanded (H in sparse rows, m x m): its degree m within the
-    kernel's polynomial bound (a larger one is rejected by root isolation anyway, so no verdict changes),
-    then the Hessenberg reduction priced -- about m^3 Fraction operations on H's numbers -- before the
-    dense m x m copy is built.  Version 3 makes a large m with few entries cheap to write (a
-    100 KB certificate with m = 2000), so neither the m^2 copy nor the m^3 reduction may run unpriced."""
-    require(m <= polys.MAX_DEGREE, f"the characteristic polynomial of the {m} x {m} H has degree {m}, above the "
-            f"kernel's bound {polys.MAX_DEGREE}: alpha(H) cannot be certified")
+def _largest_real_eigenvalue(H):
+    """alpha(H), the largest real eigenvalue of H (sparse rows, m x m), or None.
+
+    H is block triangular after a symmetric permutation (its strongly connected components in
+    topological order), so its eigenvalues are those of the diagonal blocks, and alpha(H) is the
+    largest of the blocks' largest real eigenvalues: one characteristic polynomial per block.
+    Each block's degree is bounded (a larger one is rejected by root isolation anyway) and its
+    Hessenberg reduction priced -- about k^3 Fraction operations on H's numbers -- before its
+    dense k x k copy is built.  Version 3 makes a large m with few entries cheap to write (a
+    100 KB certificate with m = 2000), so no m^2 copy or m^3 reduction may run unpriced."""
     bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length() for row in H for _, x in row])
-    within_budget(fraction_products_cost(m ** 3, bits), f"the characteristic polynomial of a {m} x {m} H")
+    blocks = strongly_connected_blocks(H)
+    largest = max(len(block) for block in blocks)
+    require(largest <= polys.MAX_DEGREE, f"H has a strongly connected block of size {largest}: its characteristic "
+            f"polynomial has degree {largest}, above the kernel's bound {polys.MAX_DEGREE}: alpha(H) cannot be certified")
+    within_budget(sum(fraction_products_cost(len(block) ** 3, bits) for block in blocks),
+                  f"the characteristic polynomials of H's {len(blocks)} diagonal blocks (the largest {largest} x {largest})")
+    alpha = None
+    for block in blocks:
+        where = {k: i for i, k in enumerate(block)}
+        M = [[Fraction(0)] * len(block) for _ in block]
+        for i, k in enumerate(block):
+            for c, x in H[k]:
+                if c in where:
+                    M[i][where[c]] = x
+        root = largest_real_root(characteristic_polynomial(M))
+        if root is not None and (alpha is None or root.compare(alpha) > 0):
+            alpha = root
+    return alpha
 
 
 def _same(recorded, computed, what):

@@ -101,21 +101,74 @@ def integer_solve(M, B):
 
 
 def largest_real_root(p):
-    """The largest real root of p as a Real, or None if p has none."""
+    """The largest real root of p as a Real, or None if p has none.
+
+    Isolated on each side of 0 without shifting p: the positive roots of p's squarefree part
+    decide if there is one; else 0 if p(0) = 0; else the negative root nearest 0 is -(the
+    smallest positive root of p(-x)).  (Shifting p by its root bound first would multiply the
+    coefficients' size by the degree: x^k (x + 1)^k gained thousands of bits.)"""
     p = polys.trim(p)
     if len(p) <= 1:
         return None
-    bound = polys.cauchy_bound(p)
-    shifted = [Fraction(0)] * len(p)  # p(x - bound): its positive roots are p's roots + bound
-    for k, c in enumerate(p):  # expand c (x - B)^k
-        binom = 1
-        for i in range(k + 1):
-            shifted[i] += c * binom * (-bound) ** (k - i)
-            binom = binom * (k - i) // (i + 1)
-    roots = polys.positive_roots(shifted)
-    if not roots:
-        return None
-    lo, hi = roots[-1]
+    q = polys.squarefree(p)
+    positive = polys.positive_roots(q)
+    if positive:
+        return _root(q, positive[-1], 1)
+    if q[0] == 0:
+        return Real.rational(Fraction(0))
+    negative = polys.positive_roots([c if k % 2 == 0 else -c for k, c in enumerate(q)])
+    return _root(q, negative[0], -1) if negative else None
+
+
+def _root(q, interval, sign):
+    """The root of q isolated by ``interval`` (found for q(sign x))."""
+    lo, hi = interval
+    if sign < 0:
+        lo, hi = -hi, -lo
     if lo == hi:
-        return Real.rational(lo - bound)
-    return Real.algebraic(p, lo - bound, hi - bound, "largest eigenvalue")
+        return Real.rational(lo)
+    return Real.algebraic(q, lo, hi, "largest eigenvalue")
+
+
+def strongly_connected_blocks(rows):
+    """The strongly connected components of the graph i -> k for every off-diagonal entry
+    (i, k) != 0 of a square matrix in sparse rows, as sorted index lists (Tarjan, iterative).
+
+    Ordering the components topologically makes the matrix block triangular by a symmetric
+    permutation P^T M P, so det(xI - M) is the product of the diagonal blocks' characteristic
+    polynomials: M's eigenvalues are the union of its blocks'."""
+    n = len(rows)
+    succ = [[k for k, x in row if k != i and x != 0] for i, row in enumerate(rows)]
+    index, low, on_stack, stack, blocks, counter = [None] * n, [0] * n, [False] * n, [], [], 0
+    for root in range(n):
+        if index[root] is not None:
+            continue
+        work = [(root, 0)]
+        while work:
+            v, i = work.pop()
+            if i == 0:
+                index[v] = low[v] = counter
+                counter += 1
+                stack.append(v)
+                on_stack[v] = True
+            if i < len(succ[v]):
+                work.append((v, i + 1))
+                w = succ[v][i]
+                if index[w] is None:
+                    work.append((w, 0))
+                elif on_stack[w]:
+                    low[v] = min(low[v], index[w])
+                continue
+            if low[v] == index[v]:
+                block = []
+                while True:
+                    w = stack.pop()
+                    on_stack[w] = False
+                    block.append(w)
+                    if w == v:
+                        break
+                blocks.append(sorted(block))
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[v])
+    return blocks

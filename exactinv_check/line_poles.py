@@ -22,6 +22,10 @@ Two uses (exactinv_check.bernstein):
    e^(-i n theta) = (1 - ix)^(2n)/(1 + x^2)^n, so Q(x) = (1 + x^2)^N T(theta(x)) (N = max |n_k|) is a real
    polynomial and T >= 0 on the circle iff Q >= 0 on R (theta = pi is a limit): an exact Sturm count.  This
    decides f touching 0, e.g. 1/((1 - z)(1 - z + z^2/2)): f(t) = 2 e^(-t) (1 - cos t).
+ * *the line part beside other poles* (:func:`line_part`, the balanced line): with G = gcd(U, V) of h itself, whose
+   real roots carry the multiplicities of h's roots on the line, B(t) = b_* + sum b_k e^(-i y_k t) (p* and every line
+   pole simple) is proved >= 0 for one pair (b_*^2 >= 4|b|^2, |g|^2 and |h'|^2 at p* + i sqrt(Y) rational) or for
+   rational heights (the same Q, from the line poles only, b_k = -g(z_k)/h'(z_k) with h' of the whole h).
 Order in exactinv_check.bernstein: the closed form of one pair (:func:`single_pair`) first, then the density when its
 Sturm count fits the budgets; an unaffordable density (N near MAX_LINE_EXPONENT) leaves the poles to the dominance
 proof, which decides every f that p* dominates strictly.
@@ -31,14 +35,14 @@ Standard library only; every step is priced (exactinv_check.budget) before it ru
 from fractions import Fraction
 from math import ceil, comb, gcd as igcd, isqrt
 
-from .budget import charge, fraction_products_cost, within_sturm_budget
+from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, fraction_products_cost, sturm_cost, within_sturm_budget
 from .polys import affordable_gcd, count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, \
     sign_right_of, strip_zero_roots, trim
 from .rationals import describe, require
 from .tail import squarefree_decomposition
 
-__all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "nonnegative_on_line", "single_pair",
-           "MAX_LINE_EXPONENT"]
+__all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "line_part", "nonnegative_on_line",
+           "single_pair", "MAX_LINE_EXPONENT"]
 
 MAX_PIN = 4000  # bisections to pin a rational root
 MAX_LINE_EXPONENT = 64  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
@@ -180,6 +184,13 @@ def line_density(g, h, p):
     ys = _real_rational_roots(G)
     if ys is None or len(set(ys)) != len(h) - 1:
         return None
+    return _density_of(g, h, p, ys)
+
+
+def _density_of(g, h, p, ys):
+    """(Q, description) for the simple poles p + i y (y in ys, rational) of h: Q(x) = (1 + x^2)^N T(2 atan x),
+    T(theta) = sum_y b_y e^(-i n_y theta), b_y = -g(z)/h'(z) (h' of the whole h); None when N > MAX_LINE_EXPONENT
+    or some p + iy is not a simple root of h."""
     L = 1
     for y in ys:
         L = L * y.denominator // igcd(L, y.denominator)
@@ -194,7 +205,10 @@ def line_density(g, h, p):
     one_plus = [(Fraction(1), Fraction(0)), (Fraction(0), Fraction(0)), (Fraction(1), Fraction(0))]  # 1 + x^2
     for y, n in zip(ys, ns):
         z = (p, y)
-        b = _cdiv(_ceval(g, z), _ceval(dh, z))
+        d = _ceval(dh, z)
+        if d == (0, 0):  # a multiple root: b is no residue of a simple pole
+            return None
+        b = _cdiv(_ceval(g, z), d)
         b = (-b[0], -b[1])
         base = [(Fraction(1), Fraction(0)), (Fraction(0), Fraction(-1 if n >= 0 else 1))]  # 1 -+ ix
         term = _cpoly_mul(_cpoly_pow(base, 2 * abs(n)), _cpoly_pow(one_plus, N - abs(n)))
@@ -203,6 +217,50 @@ def line_density(g, h, p):
             Q[i] = (Q[i][0] + v[0], Q[i][1] + v[1])
     require(all(c[1] == 0 for c in Q), "bernstein: the line poles' density is not real (internal)")
     return trim([c[0] for c in Q]), f"all poles on Re z = {describe(p)} at heights {[describe(y) for y in ys]}"
+
+
+def line_part(g, h, p):
+    """B(t) = sum over the poles z on the line Re z = p (p = p*, rational) of b_z e^(-i Im(z) t) is proved >= 0 on
+    R, exactly: a description, or None when the line part is not of a kind decided here.  Then
+    e^(p t) f(t) = B(t) + R(t) with R the part of the poles off the line (exactinv_check.bernstein: the far piece
+    of the balanced case).  The line poles are the real roots y of G = gcd(U, V) for h itself (not its squarefree
+    part), with their multiplicities (h(p + iy) = U(y) + iV(y) has a root of multiplicity m at y0 iff h has one at
+    p + iy0, and U, V then both do): so G squarefree with G(0) = 0 says p and every line pole are simple, and
+    B = b_* + sum b_k e^(-i y_k t) with b = -g(z)/h'(z).  Decided:
+     * one pair, G = y^3 - Y y (Y > 0): B = b_* + 2 Re(b e^(-i sqrt(Y) t)), min B = b_* - 2|b|; B >= 0 iff b_* >= 0
+       and b_*^2 >= 4 |b|^2, both rational (|g|^2, |h'|^2 at p + i sqrt(Y) are, :func:`_norm_at_line`);
+     * every real root of G rational: B(t) = T(t/L) and T >= 0 iff Q >= 0 on R (:func:`_density_of`, Sturm).
+    B >= 0 is exact; a line part that is negative somewhere is None (no claim)."""
+    G = line_gcd(h, p)
+    if len(G) < 4 or G[0] != 0 or G[1] == 0:  # p a simple root of G (p* simple) and at least one pair
+        return None
+    G_prime = [k * c for k, c in enumerate(G)][1:]
+    if len(affordable_gcd(G, G_prime)) > 1:  # a multiple line pole: B would have t^m terms
+        return None
+    dh = [k * c for k, c in enumerate(h)][1:]
+    b_star = -evaluate(g, p) / evaluate(dh, p)
+    if len(G) == 4 and G[2] == 0 and G[3] == 1 and -G[1] > 0:
+        Y = -G[1]
+        b2 = _norm_at_line(g, p, Y) / _norm_at_line(dh, p, Y)
+        if not (b_star > 0 and b_star * b_star >= 4 * b2):
+            return None
+        return (f"the line part B(t) = b_* + 2 Re(b e^(-i sqrt({describe(Y)}) t)) >= 0: b_* = {describe(b_star)}, "
+                f"b_*^2 >= 4|b|^2 = {describe(4 * b2)}")
+    ys = _real_rational_roots(G)
+    if ys is None:
+        return None
+    density = _density_of(g, h, p, ys)
+    if density is None:
+        return None
+    Q, where = density
+    ints = integer_coefficients(Q)
+    if len(ints) > 2:
+        cost = sturm_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints))
+        if cost > STURM_BUDGET or not affordable(cost // STURM_WORDS):
+            return None
+    if not nonnegative_on_line(Q):
+        return None
+    return f"the line part B(t) = T(t/L) >= 0 ({where.replace('all poles', 'the line poles')}; Q >= 0 on R, Sturm)"
 
 
 def _even_odd_at(P, Y):

@@ -47,7 +47,7 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
     sub,
     trim,
 )
-from .budget import STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
+from .budget import DESCARTES_BUDGET, STURM_BUDGET, charge, descartes_node_cost, evaluation_cost, modular_squarefree_cost, sturm_cost  # noqa: F401
 from .budget import active, within_sturm_budget
 from .budget import memo as _memo
 from .rationals import require
@@ -204,14 +204,14 @@ def isolate(q, a, b):
     """The real roots of the squarefree integer polynomial q in the open (a, b), a < b, in
     increasing order: (lo, hi) with exactly one root in the open (lo, hi) and none at lo or hi,
     or (r, r) for a rational root r -- by Descartes' rule with bisection (see the module
-    docstring).  Priced first like a Sturm sequence (degree^4 bits^2 at most STURM_BUDGET: genuine
-    isolations stay below 4e12, where Descartes costs about 10^-5 of that in word operations), then each
-    node is charged to the certificate's account as it runs; the number of nodes is bounded."""
+    docstring).  Gated first by degree^4 bits^2 <= DESCARTES_BUDGET (budget.py: 40 times the Sturm gate, as
+    Descartes costs about 10^-5 of a Sturm sequence in word operations), then each node is charged to the
+    certificate's account as it runs; the number of nodes is bounded."""
     if len(q) < 2:
         return []
     bits = max(abs(c).bit_length() for c in q)
-    require(sturm_cost(len(q) - 1, bits) <= STURM_BUDGET, f"over the kernel's work budget: root isolation of a "
-            f"polynomial of degree {len(q) - 1} with {bits}-bit coefficients (degree^4 bits^2 > {STURM_BUDGET:.0e})")
+    require(sturm_cost(len(q) - 1, bits) <= DESCARTES_BUDGET, f"over the kernel's work budget: root isolation of a "
+            f"polynomial of degree {len(q) - 1} with {bits}-bit coefficients (degree^4 bits^2 > {DESCARTES_BUDGET:.0e})")
     out, stack, nodes = [], [(Fraction(a), Fraction(b))], 0
     while stack:
         lo, hi = stack.pop()

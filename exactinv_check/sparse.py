@@ -86,14 +86,3 @@ def diagonal(rows):
 def row_dot(row, v):
     """The sparse row times a dense vector, exactly."""
     return sum((x * v[k] for k, x in row), Fraction(0))
-
-
-def dense(rows, cols):
-    """The dense list of rows (only where an algorithm needs every entry: a characteristic polynomial)."""
-    out = []
-    for row in rows:
-        full = [Fraction(0)] * cols
-        for k, x in row:
-            full[k] = x
-        out.append(full)
-    return out

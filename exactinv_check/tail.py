@@ -273,10 +273,11 @@ def _dominance(g, h, factors, f_star, mu, iv, K, first, tie=None):
     return _least_index(others, star, mu, b_mu, D_hi, P_lo, first, tie is None or tied > 0)
 
 
-def star_enclosure(factors, f_star, iv):
-    """(disks, hits, P_lo, P_hi): the inclusion disks of every squarefree factor (by id), the index
-    hits[0] of p*'s disk among f_star's, and rationals 0 < P_lo <= p* <= P_hi."""
-    disks = {id(f): _disks(f) for f, _ in factors}
+def star_enclosure(factors, f_star, iv, disks=None):
+    """(disks, hits, P_lo, P_hi): the inclusion disks of every squarefree factor (by id; computed unless given),
+    the index hits[0] of the disk among f_star's of the real pole in the isolating interval iv (p* by default),
+    and rationals 0 < P_lo <= that pole <= P_hi."""
+    disks = {id(f): _disks(f) for f, _ in factors} if disks is None else disks
     lo, hi = iv
     for step in range(MAX_REFINE):  # shrink iv until one disk of f_star meets it and lo > 0
         hits = [i for i, (a, b, rho) in enumerate(disks[id(f_star)])

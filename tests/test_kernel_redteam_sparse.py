@@ -302,20 +302,26 @@ def test_engine_gamma_with_long_denominators():
 # (MAX_DEGREE = 200) rejected it.  Dense H made a large m expensive to write (m^2 strings); version 3
 # does not: P = [-1, 1] written with k copies of each facet, backward Euler, a TRUE certificate with
 # "alpha": "0" of 89 KB (m = 2000) ran for minutes of CPU (m = 400: 8 s, 18 KB); m = 30000 (1.3 MB)
-# would build a 9 x 10^8-entry list.  Fix: claims_thresholds._price_characteristic_polynomial --
-# the degree bound first, then m^3 Fraction operations priced -- before the dense copy.
+# would build a 9 x 10^8-entry list.  Fix: the degree bound first, then the Hessenberg cost priced,
+# before any dense copy.  Since then alpha(H) is computed block by block (the strongly connected
+# components of H, claims_thresholds._largest_real_eigenvalue): the block-diagonal certificate is
+# cheap and VERIFIED at any m, and the bound and the price apply to each block, which the cyclic
+# variant (one block of size m) still meets.
 
 
-def _interval_certificate(k, alpha=True):
+def _interval_certificate(k, alpha=True, cyclic=False):
     """P = [-1, 1] as k copies of x <= 1 and k of -x <= 1 (m = 2k), A = -1, backward Euler.
 
     H pairs row i with row k + i: h_ii = -1/2, h_i,k+i = 1/2 (and symmetrically), so HG = GA = -G,
     Hb = 0, off-diagonal >= 0, gamma* = 1/2 (dual: row 0, y = 1/2, lambda = 1/2).  H is block diagonal
     with blocks [[-1/2, 1/2], [1/2, -1/2]] of eigenvalues 0 and -1: alpha(H) = 0, so no E2 bound, and
-    backward Euler has rho = oo and no singular point for A = -1: tau = oo, attained."""
+    backward Euler has rho = oo and no singular point for A = -1: tau = oo, attained.
+    ``cyclic``: row k + i points to row i + 1 (mod k) instead, so H = -I/2 + C/2 with C the permutation
+    matrix of one 2k-cycle: the same HG, Hb and gamma*, one strongly connected block of size m, and
+    eigenvalues (w - 1)/2 for the 2k-th roots of unity w: alpha(H) = 0 again."""
     m = 2 * k
     rows = ([[[i, "-1/2"], [k + i, "1/2"]] for i in range(k)]
-            + [[[i, "1/2"], [k + i, "-1/2"]] for i in range(k)])
+            + [sorted([[(i + 1) % k if cyclic else i, "1/2"], [k + i, "-1/2"]]) for i in range(k)])
     threshold = {"type": "rational_threshold", "value": "oo", "attained": True, "rho": "oo", "pole": "1"}
     if alpha:
         threshold["alpha"] = "0"
@@ -351,12 +357,41 @@ def test_the_interval_certificate_is_true():
 
 
 def test_a_large_sparse_H_does_not_reach_the_characteristic_polynomial():
-    cert = _interval_certificate(1000)  # m = 2000
+    cert = _interval_certificate(1000, cyclic=True)  # m = 2000 in one strongly connected block
     assert len(json.dumps(cert)) < 100_000
     assert _check_in_subprocess(cert, 20) == "REJECTED"
-    report = check(_interval_certificate(200))  # m = 400: the degree bound, before any dense copy
-    assert not report.ok and "degree 400" in str(report)
-    assert check(_interval_certificate(1000, alpha=False)).ok  # without alpha no E2 bound is needed (Hb = 0)
+    report = check(_interval_certificate(200, cyclic=True))  # m = 400: the degree bound, before any dense copy
+    assert not report.ok and "size 400" in str(report)
+    assert check(_interval_certificate(1000, alpha=False, cyclic=True)).ok  # without alpha no E2 bound (Hb = 0)
+
+
+def test_alpha_is_computed_block_by_block():
+    """The block-diagonal H of any size: 2 x 2 blocks, alpha(H) = 0, VERIFIED (it was rejected as a degree-m
+    polynomial); a false alpha is still rejected; the cyclic H of a size the kernel affords agrees (alpha = 0)."""
+    assert _check_in_subprocess(_interval_certificate(1000), 20) == "OK"
+    for k in (3, 40):
+        for cyclic in (False, True):
+            assert check(_interval_certificate(k, cyclic=cyclic)).ok
+            bad = _interval_certificate(k, cyclic=cyclic)
+            bad["claims"][2]["alpha"] = "-1"
+            assert not check(bad).ok
+
+
+def test_strongly_connected_blocks_are_the_components():
+    """Tarjan's components against the definition (mutual reachability by a closure) on random sparse patterns."""
+    from exactinv_check.linalg import strongly_connected_blocks
+
+    rng = random.Random(11)
+    for _ in range(200):
+        n = rng.randint(1, 12)
+        rows = [[(k, F(rng.choice([1, -2]))) for k in range(n) if rng.random() < 0.2] for _ in range(n)]
+        reach = [[i == k or any(c == k and c != i for c, _ in rows[i]) for k in range(n)] for i in range(n)]
+        for via in range(n):
+            for i in range(n):
+                if reach[i][via]:
+                    reach[i] = [a or b for a, b in zip(reach[i], reach[via])]
+        expected = sorted({tuple(k for k in range(n) if reach[i][k] and reach[k][i]) for i in range(n)})
+        assert sorted(tuple(b) for b in strongly_connected_blocks(rows)) == expected
 
 
 def _report_in_subprocess(cert, seconds, megabytes):
@@ -379,10 +414,10 @@ def _report_in_subprocess(cert, seconds, megabytes):
 def test_a_huge_m_with_a_tiny_sparse_H_is_rejected_without_a_dense_copy():
     """m = 20000 in 0.9 MB: a dense copy would be 4 x 10^8 entries (3 GB); under 1 GB of address space
     the kernel rejects the claim for its degree, not for a MemoryError."""
-    cert = _interval_certificate(10000)
+    cert = _interval_certificate(10000, cyclic=True)
     assert len(json.dumps(cert)) < 1_000_000
     report = _report_in_subprocess(cert, 20, 1024)
-    assert "REJECTED" in report and "degree 20000, above" in report and "MemoryError" not in report, report
+    assert "REJECTED" in report and "size 20000" in report and "MemoryError" not in report, report
 
 
 def test_mutation_fuzzer_of_version_3_certificates():

@@ -67,6 +67,7 @@ class RadiusReason(Tag):
     TERMWISE = "termwise"  # rho = INF: every partial-fraction term is absolutely monotonic
     BALANCED_TIE = "balanced-tie"  # two simple real poles whose residues balance exactly: rho = kappa* (closed form)
     BERNSTEIN = "bernstein"  # rho = INF: r(-x) = c + Laplace transform of f >= 0 (Bernstein's theorem)
+    BERNSTEIN_ROOT = "bernstein-root"  # c < 0, f >= 0: rho = the one positive root of g(-kappa), attained
 
 
 class BisectionStep(Tag):

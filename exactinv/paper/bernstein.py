@@ -25,6 +25,7 @@ positivity problem for linear differential equations, open in general.
 
 from __future__ import annotations
 
+from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
 from math import comb, factorial, gcd
@@ -35,26 +36,29 @@ from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
-from .line_poles import line_density, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
+from .line_poles import line_density, line_part, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 
-__all__ = ["Verdict", "completely_monotone", "density_at_zero", "coefficient_at"]
+__all__ = ["Verdict", "completely_monotone", "density_nonnegative", "density_at_zero", "coefficient_at"]
 
 _MAX_STEPS = 4000
 _MAX_WITNESS_J = 1 << 13
+_SEARCH = ContextVar("exactinv_bernstein_witness_search", default=True)  # False: f's verdict only, no witness search
 
 
 @dataclass(frozen=True)
 class Verdict:
     """``infinite``: rho = oo proved (``how`` says why).  ``finite``: r(-x) is proved not completely monotone
-    (rho < oo), with ``bound`` = K and c_``j``(K) < 0 exactly (rho < K) when a witness was found.  Neither:
-    not decided (``how`` says why)."""
+    (rho < oo), with ``bound`` = K and c_``j``(K) < 0 exactly (rho < K) when a witness was found; ``root`` (also
+    finite): c < 0 but f >= 0 is proved, so every c_j, j >= 1, is >= 0 for every kappa and c_0 = r(-kappa)
+    decreases: rho is the one positive root of g(-kappa).  None of these: not decided (``how`` says why)."""
 
     infinite: bool
     how: str
     bound: Fraction | None = None
     j: int | None = None
     finite: bool = False
+    root: bool = False  # c < 0 and f >= 0 proved: rho = the one positive root of g(-kappa) (reason bernstein-root)
 
 
 def density_at_zero(g: list, h: list, count: int) -> tuple[Fraction, list[Fraction]]:
@@ -128,9 +132,11 @@ def _at_infinity_witness(g, h) -> tuple[Fraction, int] | None:
 
 
 def _density_witness(g, h, ts: list, s: PoleStructure) -> tuple[Fraction, int] | None:
-    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large.  The least j (on a geometric scale) for which
+    """f(t0) < 0 for every t0 in ts: c_j(j/t0) < 0 for j large (not searched, None, when the caller discards it).  The least j (on a geometric scale) for which
     some t0 works, screened in Arb and confirmed exactly; then kappa is lowered by bisection while c_j stays
     negative (a smaller K gives a shorter certified tail)."""
+    if not _SEARCH.get():
+        return None
     j = 1
     while j <= _MAX_WITNESS_J:
         found = [(Fraction(j) / t0, j) for t0 in ts if _arb_coefficient(s, Fraction(j) / t0, j) < 0]
@@ -192,7 +198,9 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
     p*, decides the cases where every pole is on the line: the caller's case: no pole ever gets as close as p*).
 
     (1 - z)/(1 - 2z)^4: one pole 1/2, f(t) = e^(-t/2) (t^2/32 + t^3/192) >= 0, so rho = oo (issue 22);
-    the trapezoid: r(-x) -> c = -1 < 0, and c_0(K) < 0 bounds rho.
+    the trapezoid r = -1 + 4/(2 - z): r(-x) -> c = -1 < 0 while f(t) = 4 e^(-2t) >= 0, so rho is the root of
+    g(-kappa) = 1 - kappa/2 (``root``); 1/(1 - z)^2 - 1/2 has c = -1/2 and f(t) = t e^(-t) >= 0 too, while
+    (1 + z)/(1 - z)^2 has f(t) = (2t - 1) e^(-t) < 0 near 0 (a witness c_j(K) < 0 bounds rho).
 
     >>> from fractions import Fraction as F
     >>> from exactinv.paper.poles import pole_structure, precision
@@ -203,14 +211,33 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
     >>> g, h = [F(1), F(1, 2)], [F(1), F(-1, 2)]
     >>> with precision(256):
     ...     v = completely_monotone(g, h, pole_structure(g, h, F(2)))
-    >>> v.infinite, v.finite, v.j, v.bound > 2
-    (False, True, 0, True)
+    >>> v.infinite, v.finite, v.root
+    (False, True, True)
+    >>> g, h = [F(1), F(1)], [F(1), F(-2), F(1)]
+    >>> with precision(256):
+    ...     v = completely_monotone(g, h, pole_structure(g, h, F(1)))
+    >>> v.infinite, v.finite, v.root, v.j is not None
+    (False, True, False, True)
     """
     if len(g) > len(h):
         return _finite(g, h, _at_infinity_witness(g, h), "deg g > deg h: r(-x) is unbounded")
     c, _ = density_at_zero(g, h, 0)
+    token = _SEARCH.set(c >= 0)  # c < 0: only f >= 0 matters (a witness for f < 0 would be discarded)
+    try:
+        density = density_nonnegative(g, h, s, bits, p_star)
+    finally:
+        _SEARCH.reset(token)
     if c < 0:
+        if density.infinite and g[0] > 0:  # r(0) > 0 > c: c_0 = r(-kappa) has its one zero on (0, oo)
+            return Verdict(False, f"r(-x) tends to c = {c} < 0 while {density.how}", finite=True, root=True)
         return _finite(g, h, _at_infinity_witness(g, h), f"r(-x) tends to c = {c} < 0")
+    return density
+
+
+def density_nonnegative(g: list, h: list, s: PoleStructure, bits: int = 256, p_star=None) -> Verdict:
+    """Is f >= 0 on (0, oo) (whatever the sign of c; f does not depend on c)?  ``infinite`` says it is proved,
+    ``finite`` that f < 0 somewhere (with a witness c_j(K) < 0 when found), neither: not decided.
+    deg g <= deg h; s as for :func:`completely_monotone`."""
     if len(s.balls) == 1:
         return _single_pole(g, h, s)
     rational = _rational_exponents(g, h)
@@ -220,7 +247,7 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
         on_line = _line_verdict(g, h, p_star, s)
         if on_line is not None:
             return on_line
-    return _general(g, h, s, bits)
+    return _general(g, h, s, bits, p_star)
 
 
 def _line_verdict(g, h, p_star: Fraction, s: PoleStructure) -> Verdict | None:
@@ -290,13 +317,18 @@ def _single_pole(g, h, s: PoleStructure) -> Verdict:
     return _finite(g, h, _density_witness(g, h, ts, s) if ts else None, how)
 
 
-def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
+def _general(g, h, s: PoleStructure, bits: int, p_star=None) -> Verdict:
     with _precision(bits):
         star_z = s.balls[s.star][0]
         p = star_z.real
         for k, (z, _, _) in enumerate(s.balls):
             if k != s.star and k not in s.on_line and not z.real > p:
                 return Verdict(False, "a pole's real part is not separated from p*'s at working precision")
+        far = None
+        if s.on_line and _line_outweighs(s):
+            far = _balanced_far(g, h, s, p_star)
+            if isinstance(far, Verdict):
+                return far
         _, fs = density_at_zero(g, h, len(h))
         n0 = next((n for n, v in enumerate(fs) if v != 0), None)
         if n0 is None:
@@ -305,9 +337,11 @@ def _general(g, h, s: PoleStructure, bits: int) -> Verdict:
             t0 = _negative_near_zero(s, fs, n0)
             return _finite(g, h, None if t0 is None else _density_witness(g, h, [t0, t0 / 2], s),
                            f"f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near 0")
-        outcome = _march(s, fs, n0)
+        outcome = _march(s, fs, n0, far)
         if outcome is True:
-            return Verdict(True, "c >= 0 and f > 0 on (0, oo) (Taylor at 0, certified Arb steps, dominance of p*)")
+            beyond = ("the line part B >= 0 exactly and the rest R > 0 by the dominance of the slowest-decaying real "
+                      "pole off the line" if far else "dominance of p*")
+            return Verdict(True, f"f > 0 on (0, oo) (Taylor at 0, certified Arb steps, {beyond})")
         if isinstance(outcome, Fraction):
             return _finite(g, h, _density_witness(g, h, [outcome], s), f"f({outcome}) < 0")
         return Verdict(False, outcome)
@@ -372,6 +406,76 @@ def _dominated_beyond(s: PoleStructure, T: flint.arb) -> bool:
     return bool(total < b_star[mu - 1].real)
 
 
+def _line_outweighs(s: PoleStructure) -> bool:
+    """The line poles' |b| add up to b_* or more (not separated below it): p*'s dominance bound can never hold."""
+    z, mu, b = s.balls[s.star]
+    total = sum((abs(s.balls[k][2][mu - 1]) for k in s.on_line if s.balls[k][1] == mu), flint.arb(0))
+    return bool(s.on_line) and not total < b[mu - 1].real
+
+
+def _balanced_far(g, h, s: PoleStructure, p_star):
+    """The far piece when the line poles balance p* (e^(p* t) f = B + R, B the part of p* and the line poles):
+    B >= 0 exactly (:func:`exactinv.paper.line_poles.line_part`) and R dominated by its slowest-decaying pole q,
+    real with b_(q,M) > 0 -- a function T -> bool proving f > 0 on [T, oo); or a Verdict: f >= 0 (no pole off the
+    line), f < 0 somewhere (B negative somewhere, or b_(q,M) < 0 with B touching 0: R < 0 at B's zeros for
+    large t), or not decided (the case named)."""
+    open_case = "deciding f >= 0 there is the continuous positivity problem (open in general)"
+    if not isinstance(p_star, Fraction) or s.mu != 1 or any(s.balls[k][1] != 1 for k in s.on_line):
+        return Verdict(False, "the poles on Re z = p* balance p* and p* or a line pole is multiple (or p* is irrational): "
+                              f"the line part B(t) then has polynomial terms; {open_case}")
+    part = line_part(g, h, p_star)
+    if part is None:
+        return Verdict(False, "the poles on Re z = p* balance p*, and their part B(t) = b_* + sum b_k e^(-i y_k t) is "
+                              "neither one pair nor at rational heights (B >= 0 is then not decided exactly); " + open_case)
+    if not part.nonnegative:
+        return _finite(g, h, _density_witness(g, h, list(part.points), s),
+                       f"the line part B(t) is negative somewhere ({part.how}), so f < 0 there for large t")
+    off = [k for k in range(len(s.balls)) if k != s.star and k not in s.on_line]
+    if not off:
+        return Verdict(True, f"every pole on the line Re z = p* and B >= 0 ({part.how})")
+    q = min(off, key=lambda k: float_hint(_mid(s.balls[k][0].real)))
+    z_q, M, b = s.balls[q]
+    slow = [k for k in off if k != q and not s.balls[k][0].real > z_q.real]
+    if slow or not z_q.imag.contains(0):
+        return Verdict(False, f"the poles on Re z = p* balance p* exactly (B >= 0 touches 0: {part.how}), and the "
+                              "slowest-decaying poles off the line are a non-real pair (or not separated from another "
+                              "pole): the rest R(t) oscillates at B's zeros; " + open_case)
+    lead = b[M - 1].real
+    if lead > 0:
+        return lambda T: _rest_dominated_beyond(s, q, off, T)
+    if lead < 0:
+        return _finite(g, h, _density_witness(g, h, list(part.points), s),
+                       f"B >= 0 touches 0 ({part.how}) and the slowest-decaying term off the line, b_(q,M) t^(M-1) "
+                       "e^(-q t), is negative: f < 0 near B's zeros for large t")
+    return Verdict(False, "the sign of the slowest-decaying term off the line is not decided at working precision")
+
+
+def _rest_dominated_beyond(s: PoleStructure, q: int, off: list, T: flint.arb) -> bool:
+    """R(t) > 0 on [T, oo): R e^((q - p*) t) (M-1)!/t^(M-1) = b_(q,M) + lower terms + the other off-line poles'
+    terms times e^(-(z_k - q) t), each bounded at T and nonincreasing beyond (as :func:`_dominated_beyond`)."""
+    z_q, M, b_q = s.balls[q]
+    x0 = z_q.real
+    total = sum((abs(b_q[m - 1]) * fmpq_of(Fraction(factorial(M - 1), factorial(m - 1))) * T ** (m - M)
+                 for m in range(1, M)), flint.arb(0))
+    for k in off:
+        if k == q:
+            continue
+        z, Mk, b = s.balls[k]
+        x = (z.real - x0) * T
+        n = max(Mk - M, 0, min(int(x.lower().floor().unique_fmpz()) if x.lower() > 0 else 0, 60))
+        decay = factorial(n) / x ** n if n else flint.arb(1)
+        total += decay * sum((abs(b[m - 1]) * fmpq_of(Fraction(factorial(M - 1), factorial(m - 1))) * T ** (m - M)
+                              for m in range(1, Mk + 1)), flint.arb(0))
+    return bool(total < b_q[M - 1].real)
+
+
+def _mid(x: flint.arb) -> Fraction:
+    """The midpoint of an Arb ball as an exact Fraction (a hint for ordering only)."""
+    m, e = x.mid().man_exp()
+    m, e = int(m), int(e)
+    return Fraction(m * 2 ** e) if e >= 0 else Fraction(m, 2 ** -e)
+
+
 def _probes(a: Fraction, f: flint.arb, df: flint.arb) -> list[Fraction]:
     """Points just beyond a where f may already be negative: Newton's guesses past the root, then a + 2^-k."""
     out = []
@@ -382,8 +486,9 @@ def _probes(a: Fraction, f: flint.arb, df: flint.arb) -> list[Fraction]:
     return [t for t in out if t > a]
 
 
-def _march(s: PoleStructure, fs, n0):
-    """True (f > 0 on (0, oo) certified), a Fraction t0 with f(t0) < 0 (certified), or a reason string."""
+def _march(s: PoleStructure, fs, n0, far=None):
+    """True (f > 0 on (0, oo) certified), a Fraction t0 with f(t0) < 0 (certified), or a reason string.  ``far(T)``
+    proves f > 0 on [T, oo) (default: p*'s dominance bound)."""
     B = _bound(s, n0 + 1, flint.arb(0), flint.arb(1))
     t_a = Fraction(1)
     while not flint.arb(fmpq_of(t_a)) * B < (n0 + 1) * fmpq_of(fs[n0]) / 2:
@@ -393,7 +498,7 @@ def _march(s: PoleStructure, fs, n0):
     a, d = t_a, t_a
     for _ in range(_MAX_STEPS):
         A = flint.arb(fmpq_of(a))
-        if _dominated_beyond(s, A):
+        if far(A) if far is not None else _dominated_beyond(s, A):
             return True
         f, df = _f_and_derivative(s, A)
         if f < 0:

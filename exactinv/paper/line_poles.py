@@ -18,6 +18,7 @@ The kernel re-proves each (exactinv_check.line_poles, exactinv_check.bernstein).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from fractions import Fraction
 from cmath import phase
 from math import atan, gcd, pi
@@ -29,8 +30,8 @@ from ..core.polys import integer_part, sign_right_of
 from ..core.roots import real_roots
 from ..core.scalars import fmpq_of, fraction_of
 
-__all__ = ["line_gcd", "on_line_indices", "line_density", "nonnegative", "single_pair", "trig_minimum_points",
-           "pair_minimum_points"]
+__all__ = ["line_gcd", "on_line_indices", "line_density", "LinePart", "line_part", "nonnegative", "single_pair",
+           "trig_minimum_points", "trig_zero_points", "pair_minimum_points"]
 
 MAX_LINE_EXPONENT = 64  # as the kernel's (exactinv_check.line_poles)
 
@@ -172,6 +173,12 @@ def line_density(g: list, h: list, p: Fraction):
     ys = _real_rational_roots(G)
     if ys is None or len(ys) != hq.degree():
         return None
+    return _density_of(g, h, p, ys)
+
+
+def _density_of(g: list, h: list, p: Fraction, ys: list[Fraction]):
+    """(Q, L, [(y, b)]) for the simple roots p + iy (y in ys) of h, b = -g(z)/h'(z) with h' of the whole h:
+    Q(x) = (1 + x^2)^N T(2 atan x), T(theta) = sum b_y e^(-i n_y theta); None beyond MAX_LINE_EXPONENT."""
     L = 1
     for y in ys:
         L = L * y.denominator // gcd(L, y.denominator)
@@ -185,7 +192,10 @@ def line_density(g: list, h: list, p: Fraction):
     pairs = []
     for y, n in zip(ys, ns):
         z = (p, y)
-        b = _cdiv(_ceval(g, z), _ceval(dh, z))
+        d = _ceval(dh, z)
+        if d == (0, 0):
+            return None
+        b = _cdiv(_ceval(g, z), d)
         b = (-b[0], -b[1])
         pairs.append((y, b))
         base = [_c(Fraction(1)), _c(Fraction(0), Fraction(-1 if n >= 0 else 1))]
@@ -197,6 +207,78 @@ def line_density(g: list, h: list, p: Fraction):
     while Qr and Qr[-1] == 0:
         Qr.pop()
     return Qr, L, pairs
+
+
+@dataclass(frozen=True)
+class LinePart:
+    """The part B(t) = b_* + sum_k b_k e^(-i y_k t) of e^(p* t) f(t) that belongs to p* and the poles on its line,
+    decided exactly: ``nonnegative`` (B >= 0 on R), ``how`` (which proof), ``points``: rational t > 0 near B's
+    zeros (B >= 0) or near its negative values (else) -- float hints for a witness search, never raising."""
+
+    nonnegative: bool
+    how: str
+    points: tuple
+
+
+def line_part(g: list, h: list, p: Fraction) -> LinePart | None:
+    """B >= 0 decided exactly for p* = p rational and simple with simple line poles (G = gcd(U, V) of h itself
+    squarefree, G(0) = 0): one pair (G = y^3 - Y y: B >= 0 iff b_* >= 0 and b_*^2 >= 4|b|^2, rational), or every
+    line pole at a rational height (the density polynomial Q >= 0 on R, Sturm).  None for any other line part.
+    The other poles of h may be anywhere (their part R is the caller's: exactinv.paper.bernstein).
+
+    1/((1 - z)(1 - z + z^2/2)(1 - z/3)): poles 1, 1 +- i and 3 off the line; B = b_* + 2 Re(b e^(-it)):
+
+    >>> from fractions import Fraction as F
+    >>> h = [F(1), F(-7, 3), F(13, 6), F(-1), F(1, 6)]     # (1 - z)(1 - z + z^2/2)(1 - z/3)
+    >>> part = line_part([F(1)], h, F(1))
+    >>> part.nonnegative, part.how.startswith("one pair")
+    (True, True)
+    """
+    hq = flint.fmpq_poly([fmpq_of(c) for c in h])
+    G = line_gcd(hq, p)
+    c = [fraction_of(x) for x in G.coeffs()]
+    if len(c) < 4 or c[0] != 0 or c[1] == 0 or G.gcd(G.derivative()).degree() > 0:
+        return None
+    if len(c) == 4 and c[2] == 0 and -c[1] > 0:
+        Y = -c[1]
+        b_star, b2 = _pair_residues(g, h, p, Y)
+        ok = b_star > 0 and b_star * b_star >= 4 * b2
+        return LinePart(ok, f"one pair p* +- i sqrt({Y}): B = b_* + 2 Re(b e^(-iyt)), b_*^2 = {b_star * b_star}, "
+                            f"4|b|^2 = {4 * b2}", tuple(pair_minimum_points(g, h, p, Y)))
+    ys = _real_rational_roots(G)
+    if ys is None:
+        return None
+    density = _density_of(g, h, p, ys)
+    if density is None:
+        return None
+    Q, L, _ = density
+    ok = nonnegative(Q)
+    points = trig_zero_points(Q, L) if ok else trig_minimum_points(Q, L)
+    return LinePart(ok, f"line poles at rational heights {[str(y) for y in ys]}: B(t) = T(t/{L}), Q "
+                        f"{'>=' if ok else 'not >='} 0 on R", tuple(points))
+
+
+def trig_zero_points(Q: list, L: int, periods: int = 6) -> list[Fraction]:
+    """Rational t > 0 near the zeros of T(t/L) (Q(tan(theta/2)) = 0 at the real roots x of Q), over a few periods
+    2 pi L: float hints for a witness search (never raising; theta = pi, a zero when deg Q < 2N, is not listed).
+
+    >>> from exactinv.core.float_hint import float_hint
+    >>> [round(float_hint(t), 4) for t in trig_zero_points([0, 0, 4], 1, 2)]    # T = 2(1 - cos theta): theta = 2 pi n
+    [6.2832, 12.5664]
+    """
+    out = []
+    try:
+        q = flint.fmpq_poly([fmpq_of(c) for c in Q])
+        thetas = [2 * atan(float_hint(x.lower if hasattr(x, "lower") else x)) for x, _ in real_roots(q)] \
+            if q.degree() > 0 else []
+        for k in range(periods + 1):
+            for theta in thetas:
+                t = (theta % (2 * pi) + 2 * pi * k) * L
+                if t > 0:
+                    out.append(Fraction(t).limit_denominator(1 << 24))
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return out
+    return sorted(set(out))[: 4 * (periods + 1)]
 
 
 def nonnegative(Q: list) -> bool:
@@ -276,6 +358,12 @@ def single_pair(g: list, h: list, p: Fraction):
     if len(c) != 4 or c[0] != 0 or c[2] != 0 or not -c[1] > 0:
         return None
     Y = -c[1]
+    b_star, b2 = _pair_residues(g, h, p, Y)
+    return b_star, b2, Y
+
+
+def _pair_residues(g: list, h: list, p: Fraction, Y: Fraction) -> tuple[Fraction, Fraction]:
+    """(b_*, |b|^2) exactly: b = -g(z)/h'(z) at p* and at z = p + i sqrt(Y) (h' of the whole h)."""
     dh = [k * x for k, x in enumerate(h)][1:]
 
     def norm(P):
@@ -286,4 +374,4 @@ def single_pair(g: list, h: list, p: Fraction):
         return A * A + Y * B * B
 
     b_star = -sum(x * p ** k for k, x in enumerate(g)) / sum(x * p ** k for k, x in enumerate(dh))
-    return b_star, norm(g) / norm(dh), Y
+    return b_star, norm(g) / norm(dh)

@@ -31,8 +31,11 @@ the engine argues in four exact or certified steps:
 
 6. No tie (every other pole has Re z > p*, so no tail index is uniform in
    kappa): rho = oo iff r(-x) is completely monotone (Bernstein's theorem,
-   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); otherwise an
-   exact witness c_j(K) < 0 gives the bound K for step 4.
+   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); when f >= 0 but
+   c = lim r < 0, every c_j with j >= 1 is >= 0 for every kappa and c_0 =
+   r(-kappa) decreases, so rho is the one positive root of g(-kappa) (reason
+   ``"bernstein-root"``, no tail: the trapezoid); otherwise an exact witness
+   c_j(K) < 0 gives the bound K for step 4.
 7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
    is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
@@ -256,6 +259,9 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
         verdict = completely_monotone(method.numerator, method.denominator, s, _BITS, p_star)
         if verdict.infinite:
             return AbsoluteMonotonicityRadius(INF, True, RadiusReason.BERNSTEIN, method, pole=p_star)
+        if verdict.root:  # c < 0, f >= 0: c_j >= 0 for j >= 1 and every kappa, c_0 = r(-kappa) decreases
+            return AbsoluteMonotonicityRadius(_first_end(g_minus(method)), True, RadiusReason.BERNSTEIN_ROOT, method,
+                                              pole=p_star)
         if verdict.finite and verdict.bound is None:
             raise Undecided(f"absolute monotonicity of {method.name}: rho < oo is proved (r(-x) is not completely "
                             f"monotone: {verdict.how}), but no exact witness c_j(K) < 0 bounds it for the certified "
@@ -295,6 +301,11 @@ def _decide(method, s, tie, p_star) -> AbsoluteMonotonicityRadius:
             bound, tied = _short_upper(end), ()
             N = tail_index(s, bound, first)
     return _finish(method, exact_bound, p_star, value, binding, ds, N, tie, balanced is not None, listed)
+
+
+def g_minus(method: Method) -> flint.fmpq_poly:
+    """g(-kappa) = d_0(kappa): its one positive root is rho for reason ``bernstein-root``."""
+    return flint.fmpq_poly([fmpq_of(c * (-1) ** k) for k, c in enumerate(method.numerator)])
 
 
 def _ambiguous(end, ball: flint.arb) -> bool:
