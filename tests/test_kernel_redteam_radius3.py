@@ -1,0 +1,71 @@
+"""Red team, round radius3 (branch rt-radius3 = main + line-balance + kernel-alpha): the kernel's balanced line,
+reason bernstein-root, and alpha(H) block by block.
+
+Finding 1 (kernel-alpha, a genuine certificate REJECTED): linalg.largest_real_root isolated the positive roots of
+the squarefree q without its root at 0 (polys.positive_roots strips it) and then built the Real from q itself on
+that interval, which starts at 0: "an end of the interval is a root".  Every H with a strongly connected block
+whose characteristic polynomial has roots 0 and > 0 (e.g. the path graph 0 - 1 - 2: x^3 - 2x) was rejected.  Fix:
+the Real is made from q with its root at 0 stripped.
+"""
+
+import copy
+import random
+from fractions import Fraction as F
+
+import sympy
+
+from exactinv_check import check
+from exactinv_check.linalg import largest_real_root
+
+
+def _path_certificate(alpha=None):
+    """x' = Ax with A the adjacency matrix of the path 0 - 1 - 2 on P = {x <= -1} (G = I, b = -1), backward Euler:
+    H = A (HG = GA, Hb = (-1, -2, -1) <= 0, off-diagonal >= 0), gamma* = 0 (the dual of row 0), rho = oo, z_p = 1,
+    alpha(H) = sqrt 2 (x^3 - 2x, one strongly connected block), and the threshold min(z_p/alpha, the singular point
+    of I - hA) = 1/sqrt 2, not attained (the engine's certificate, as written)."""
+    return {"format": "exactinv-certificate", "version": 3,
+            "problem": {"A": [["0", "1", "0"], ["1", "0", "1"], ["0", "1", "0"]],
+                        "G": [["1", "0", "0"], ["0", "1", "0"], ["0", "0", "1"]], "b": ["-1", "-1", "-1"],
+                        "method": {"name": "backward_euler", "numerator": ["1"], "denominator": ["1", "-1"]}},
+            "claims": [{"type": "gamma_star", "value": "0", "H": {"sparse": [[[1, "1"]], [[0, "1"], [2, "1"]], [[1, "1"]]]},
+                        "binding_row": 0, "dual": {"y": ["1", "0", "0"], "lambda": "0"}},
+                       {"type": "absolute_monotonicity_radius", "value": "oo", "reason": "product", "attained": True,
+                        "pole": "1"},
+                       {"type": "rational_threshold", "attained": False, "rho": "oo", "pole": "1", "alpha": alpha,
+                        "value": {"poly": ["-1", "0", "2"],
+                                  "interval": ["353553390593/500000000000", "707106781187/1000000000000"]}}]}
+
+
+def test_path_graph_truth():
+    """Independently: the characteristic polynomial of A is x^3 - 2x (sympy), its largest real root sqrt 2, so
+    z_p/alpha = 1/sqrt 2; I - hA is singular first at h = 1/sqrt 2 too (eigenvalue sqrt 2)."""
+    x = sympy.Symbol("x")
+    A = sympy.Matrix([[0, 1, 0], [1, 0, 1], [0, 1, 0]])
+    assert sympy.expand(A.charpoly(x).as_expr() - (x ** 3 - 2 * x)) == 0
+    assert max(sympy.Poly(x ** 3 - 2 * x).real_roots()) == sympy.sqrt(2)
+    lo, hi = F(353553390593, 500000000000), F(707106781187, 1000000000000)
+    assert lo * lo * 2 < 1 < hi * hi * 2  # the recorded threshold interval holds 1/sqrt 2
+
+
+def test_a_block_with_eigenvalues_zero_and_positive_is_certified():
+    """Finding 1: was '[REJECTED] rational_threshold: largest eigenvalue: an end of the interval is a root'."""
+    report = check(_path_certificate())
+    assert report.ok, str(report)
+    assert check(_path_certificate(alpha={"poly": ["-2", "0", "1"], "interval": ["1", "2"]})).ok
+    for wrong in ("1", "2", {"poly": ["-3", "0", "1"], "interval": ["1", "2"]}, "0"):
+        assert not check(_path_certificate(alpha=wrong)).ok, wrong
+    bad = _path_certificate()
+    bad["claims"][2]["value"] = {"poly": ["-1", "0", "3"], "interval": ["1/2", "1"]}  # 1/sqrt 3: not the threshold
+    assert not check(bad).ok
+
+
+def test_largest_real_root_with_a_root_at_zero():
+    """x^k (x^2 - 2)(x + 3) and friends: the largest real root by sympy, the kernel's enclosure holds it."""
+    x = sympy.Symbol("x")
+    for expr in (x * (x ** 2 - 2), x ** 2 * (x ** 2 - 2) * (x + 3), x * (x - F(1, 3)) * (x ** 2 + 1), -x * (x ** 2 - 5),
+                 x * (x + 1), x ** 3 * (x ** 2 + 2), x * (x - 7) ** 2):
+        p = [F(int(c.p), int(c.q)) for c in reversed(sympy.Poly(expr, x).all_coeffs())]
+        root = largest_real_root(p)
+        truth = max(sympy.Poly(expr, x).real_roots())
+        lo, hi = root.bounds()
+        assert sympy.Rational(lo.numerator, lo.denominator) <= truth <= sympy.Rational(hi.numerator, hi.denominator)
