@@ -69,3 +69,17 @@ def test_largest_real_root_with_a_root_at_zero():
         truth = max(sympy.Poly(expr, x).real_roots())
         lo, hi = root.bounds()
         assert sympy.Rational(lo.numerator, lo.denominator) <= truth <= sympy.Rational(hi.numerator, hi.denominator)
+
+
+# ------------------------------------------------ the mutation fuzzer (tests/fuzz_radius3.py), a small seeded slice
+def test_seeded_mutation_fuzz_of_the_balanced_line_and_bernstein_root():
+    """Genuine balanced-line structures (B >= 0 touching 0, real poles off the line, pairs further right), one field
+    mutated by 10^-60 or a little more; every proof of f >= 0 the kernel accepts is checked by mpmath at 200 digits
+    (f at B's zeros out to t ~ 10^7), every accepted radius claim by the exact c_j.  The budget is deterministic
+    (no clock), so the slice is the same on every run; it must both accept and reject something."""
+    import fuzz_radius3
+
+    stats, per = fuzz_radius3.run(float("inf"), seed=5, log=lambda *_: None, cases=6, limit=2 * 10 ** 8,
+                                  claims_share=1.0)
+    assert stats["cases"] == 6 and stats["accepted"] == stats["verified"]
+    assert stats["accepted"] > 0 and stats["rejected"] > 0 and stats["claims_accepted"] > 0
