@@ -223,21 +223,30 @@ def check_claims(terms, stats):
         roots = sorted(mpmath.re(r) for r in mpmath.polyroots([_mp(x) for x in reversed(gm)], maxsteps=200,
                                                              extraprec=200)
                        if abs(mpmath.im(r)) < mpmath.mpf(10) ** -40 and mpmath.re(r) > 0)
+        roots = [F(int(mpmath.floor(x * 10 ** 70)), 10 ** 70) for x in roots]  # at 80 digits
     claims = [("oo", "bernstein", True), ("oo", "bernstein-root", True), ("oo", "bernstein", False)]
-    for x in roots:
-        q = F(int(mpmath.floor(x * 10 ** 70)), 10 ** 70)
+    for q in roots:
         for v in (q, q + TINY, q - TINY):
             claims.append((str(v), "bernstein-root", True))
             claims.append((str(v), "bernstein", True))
+        exact = {"poly": [str(c) for c in gm], "interval": [str(q - F(1, 10 ** 40)), str(q + F(1, 10 ** 40))]}
+        claims += [(exact, "bernstein-root", True), (exact, "bernstein-root", False), (exact, "coefficient", True)]
     for value, reason, attained in claims:
         report = check(_certificate(g, h, value, reason, attained))
         stats["claims"] = stats.get("claims", 0) + 1
         if not report.ok:
             continue
         stats["claims_accepted"] = stats.get("claims_accepted", 0) + 1
+        if isinstance(value, dict):
+            stats["roots_accepted"] = stats.get("roots_accepted", 0) + 1
         if value == "oo":  # rho = oo: c_j >= 0 at several kappa, and f >= 0 (the density oracle)
             bad = density_negative_somewhere(terms) or not all(
                 all(x >= 0 for x in coefficients_at(g, h, k, 40)) for k in (F(0), F(1), F(10), F(1000)))
+        elif isinstance(value, dict):  # the algebraic root accepted: c_j >= 0 at its lower end, c_0 < 0 above it
+            lo, hi = (F(x) for x in value["interval"])
+            below, above = coefficients_at(g, h, lo, 40), coefficients_at(g, h, hi, 1)
+            bad = (below is None or any(x < 0 for x in below) or above is None or above[0] >= 0 or not attained
+                   or density_negative_somewhere(terms))
         else:  # a rational rho accepted: it must be the exact root, c_0 = 0 there, c_j >= 0
             cs = coefficients_at(g, h, F(value), 40)
             bad = cs is None or cs[0] != 0 or any(x < 0 for x in cs) or density_negative_somewhere(terms)
@@ -246,7 +255,7 @@ def check_claims(terms, stats):
 
 
 def run(seconds, seed=0, log=print, cases=None, limit=budget.CERTIFICATE_BUDGET,
-        claims_share=0.3):
+        claims_share=0.3, progress=False):
     rng = random.Random(seed)
     stats = {"cases": 0, "accepted": 0, "rejected": 0, "verified": 0}
     per = {}
@@ -270,6 +279,8 @@ def run(seconds, seed=0, log=print, cases=None, limit=budget.CERTIFICATE_BUDGET,
         per[which][1] += stats["accepted"] - before["accepted"]
         if dt > 20:
             log(f"SLOW {dt:.1f}s: {terms!r}")
+        if progress:
+            log(f"{which}: {stats}")
     log(f"{stats} per mutation [cases, accepted]: {per}")
     return stats, per
 

@@ -83,3 +83,18 @@ def test_seeded_mutation_fuzz_of_the_balanced_line_and_bernstein_root():
                                   claims_share=1.0)
     assert stats["cases"] == 6 and stats["accepted"] == stats["verified"]
     assert stats["accepted"] > 0 and stats["rejected"] > 0 and stats["claims_accepted"] > 0
+
+
+def test_bernstein_root_claims_and_their_mutants_on_hand_structures():
+    """c < 0 beside a balanced line (p* = 1, 3/4 with a pair at height 2, 1/2 touching B = 1 + cos 2t, a real pole at
+    2 or 7/4): the genuine algebraic root is accepted (and checked by the exact c_j at its enclosure's ends); the
+    rational 10^-70 approximations, +-10^-60, oo, attained false, reason bernstein: rejected (reason coefficient may
+    prove the same rho; every accept is checked by the exact c_j and would raise if false)."""
+    import fuzz_radius3
+
+    stats = {}
+    for p, q in ((F(1), F(2)), (F(3, 4), F(7, 4))):
+        terms = [((p, F(0)), (F(1), F(0))), ((p, F(2)), (F(1, 2), F(0))), ((p, F(-2)), (F(1, 2), F(0))),
+                 ((q, F(0)), (F(1), F(0)))]
+        fuzz_radius3.check_claims(terms, stats)
+    assert stats["roots_accepted"] == stats["claims_accepted"] >= 2  # bernstein-root (and coefficient: also true)
