@@ -203,9 +203,9 @@ def check_density(terms, stats, limit=budget.CERTIFICATE_BUDGET):
 
 
 def _certificate(g, h, value, reason, attained=True):
-    return {"format": "exactinv-certificate", "version": 3,
-            "problem": {"method": {"name": "fuzz", "numerator": [str(c) for c in g], "denominator": [str(c) for c in h]}},
-            "claims": [{"type": "absolute_monotonicity_radius", "value": value, "attained": attained, "reason": reason}]}
+    method = {"name": "fuzz", "numerator": [str(c) for c in g], "denominator": [str(c) for c in h]}
+    claim = {"type": "absolute_monotonicity_radius", "value": value, "attained": attained, "reason": reason}
+    return {"format": "exactinv-certificate", "version": 3, "problem": {"method": method}, "claims": [claim]}
 
 
 def check_claims(terms, stats):

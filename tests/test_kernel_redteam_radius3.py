@@ -8,8 +8,6 @@ whose characteristic polynomial has roots 0 and > 0 (e.g. the path graph 0 - 1 -
 the Real is made from q with its root at 0 stripped.
 """
 
-import copy
-import random
 from fractions import Fraction as F
 
 import sympy
@@ -27,7 +25,8 @@ def _path_certificate(alpha=None):
             "problem": {"A": [["0", "1", "0"], ["1", "0", "1"], ["0", "1", "0"]],
                         "G": [["1", "0", "0"], ["0", "1", "0"], ["0", "0", "1"]], "b": ["-1", "-1", "-1"],
                         "method": {"name": "backward_euler", "numerator": ["1"], "denominator": ["1", "-1"]}},
-            "claims": [{"type": "gamma_star", "value": "0", "H": {"sparse": [[[1, "1"]], [[0, "1"], [2, "1"]], [[1, "1"]]]},
+            "claims": [{"type": "gamma_star", "value": "0",
+                        "H": {"sparse": [[[1, "1"]], [[0, "1"], [2, "1"]], [[1, "1"]]]},
                         "binding_row": 0, "dual": {"y": ["1", "0", "0"], "lambda": "0"}},
                        {"type": "absolute_monotonicity_radius", "value": "oo", "reason": "product", "attained": True,
                         "pole": "1"},
