@@ -115,8 +115,8 @@ def largest_real_root(p: Any) -> Any:
         return None
     q = polys.squarefree(p)
     positive = polys.positive_roots(q)
-    if positive:
-        return _root(q, positive[-1], 1)
+    if positive:  # isolated for q without its root at 0 (an interval (0, hi) must not end at a root of the Real)
+        return _root(polys.strip_zero_roots(q), positive[-1], 1)
     if q[0] == 0:
         return Real.rational(Fraction(0))
     negative = polys.positive_roots([c if k % 2 == 0 else -c for k, c in enumerate(q)])

@@ -48,15 +48,16 @@ from fractions import Fraction
 from math import gcd
 from operator import mul
 from types import SimpleNamespace
-from typing import Any
+from typing import Any, NoReturn
 
 from . import polys
 from .budget import PYTHON_OP, WORK_BUDGET, charge, descartes_node_cost, within_budget, words
 from .conditions import condition_polynomials, method_matrices, rebuild_size
-from .failure import require_budget
+from .failure import CheckFailure, require_budget
 from .linalg import integer_solve
 from .rationals import integer, integer_matrix, integer_rows, require, vector
 from .reals import Real, separate
+from .text import rational_text
 from .validset import valid_set
 
 MAX_PIECES = 200_000  # pieces over all facets: a bound before any parsing of their ends
@@ -364,7 +365,8 @@ def _require_nonnegative(p: Any, start: Any, end: Any, what: Any, tried: Any = F
         else:
             a1, b0 = separate(u, v)
             q = (a1 + b0) / 2
-        require(polys.sign_at(ints, q) > 0, f"{what} is negative inside its piece (at {q})")
+        if polys.sign_at(ints, q) <= 0:
+            _fail(f"{what} is negative inside its piece (at {rational_text(q)})")
 
 
 def _require_positive_open(p: Any, start: Any, end: Any, what: Any) -> Any:
@@ -385,7 +387,8 @@ def _require_positive_open(p: Any, start: Any, end: Any, what: Any) -> Any:
     else:
         a1, b0 = separate(start, end)
         q = (a1 + b0) / 2
-    require(polys.sign_at(ints, q) > 0, f"{what} is not positive inside its piece (at {q})")
+    if polys.sign_at(ints, q) <= 0:
+        _fail(f"{what} is not positive inside its piece (at {rational_text(q)})")
     return ints
 
 
@@ -404,8 +407,8 @@ def _require_in(rows: Any, x: Any, what: Any, cone: Any=False) -> Any:
     if cone:
         require(any(xi), f"{what} is the zero vector")
     for k, (g, beta) in enumerate(rows):
-        require(sum(map(mul, g, xi)) <= (0 if cone else beta * dx), f"{what} violates row {k} of G x <= b"
-                + (" (G d <= 0: d is not a ray of P)" if cone else ""))
+        if sum(map(mul, g, xi)) > (0 if cone else beta * dx):
+            _fail(f"{what} violates row {k} of G x <= b" + (" (G d <= 0: d is not a ray of P)" if cone else ""))
 
 
 def lp_conditions(problem: Any, record: Any) -> Any:
@@ -459,9 +462,9 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 e = polys.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
                 r = polys.trim(polys.mul_integers(e, D_int)) if e else []
                 ints = _require_positive_open(r, start, end, f"{what}'s (g_i N(h) d) D(h)")
-                require(not left_open or _positive_at(ints, start),  # (a pole t, D(t) = 0, is never open)
-                        f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
-                        f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
+                if left_open and not _positive_at(ints, start):  # (a pole t, D(t) = 0, is never open)
+                    _fail(f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
+                          f"(a rational end where a ray's (g_i N d) D > 0 is needed)")
                 left_open = not end.inf and not _positive_at(ints, end) and end.sign_of(D_int) != 0
                 points.append(point)
                 rays.append(d)
@@ -472,8 +475,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 Y = _components(order, det, adj, C_int)
                 if point_piece:  # z_B(t) >= 0 at t alone: the exact sign at the (rational or algebraic) end
                     for l, y in enumerate(Y):
-                        require(start.sign_of(polys.mul_integers(y, D_int)) >= 0,
-                                f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
+                        if start.sign_of(polys.mul_integers(y, D_int)) < 0:
+                            _fail(f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
                     left_open = False
                     points.append(x)
                     rays.append(zero)
@@ -495,7 +498,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 is_ray.append(False)
             facet_of.append(i)
             start = end
-        require(not left_open, f"lp facet {i}: its last end {start} is a ray piece's end that nothing covers")
+        if left_open:
+            _fail(f"lp facet {i}: its last end {start} is a ray piece's end that nothing covers")
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
     count = len(points)
@@ -528,5 +532,14 @@ def require_horizon(D: Any, inequalities: Any, horizon: Any, context: Any, key: 
     if key not in context:
         context[key] = valid_set(D, list(inequalities), [])
     W = context[key]
-    require(W and not W[-1].hi.inf and W[-1].hi.compare(horizon) <= 0,
-            f"the pieces stop at {horizon}, but their conditions allow steplengths beyond it")
+    if not (W and not W[-1].hi.inf and W[-1].hi.compare(horizon) <= 0):
+        _fail(f"the pieces stop at {horizon}, but their conditions allow steplengths beyond it")
+
+
+def _fail(message: str) -> NoReturn:
+    """Reject with ``message``.  The callers build a message naming a number only here, on failure: printing
+    an algebraic number (:func:`exactinv_check.text.algebraic_text`: up to 400 exact bisections, its decimal
+    arithmetic uncharged) for every passing piece cost more than the checks themselves, and str() of a
+    rational of over 4300 digits raises ValueError (tests/test_kernel_redteam_rays.py); rationals are
+    printed by :func:`exactinv_check.text.rational_text`, which abbreviates long ones."""
+    raise CheckFailure(message)
