@@ -62,7 +62,7 @@ def exact_claim(claimed: Any, name: str = "claimed") -> Fraction | Infinity:
     """A claimed value as the exact number it denotes: a float (the one place floats are accepted: judging
     them is the point) exactly, +-inf as +-INF, anything else through the exact input conversion.
 
-    >>> exact_claim(0.5), exact_claim("1/3"), exact_claim(float("inf"))
+    >>> exact_claim(0.5), exact_claim("1/3"), exact_claim(1e999)  # 1e999: the float +inf
     (Fraction(1, 2), Fraction(1, 3), INF)
     """
     if isinstance(claimed, float):
