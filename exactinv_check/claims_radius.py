@@ -34,7 +34,7 @@ from typing import Any, Sequence
 from . import polys
 from .balanced_tie import MAX_POLES, prove_balanced_tie
 from .bernstein import prove_completely_monotone, prove_density_nonnegative
-from .budget import FRACTION_WEIGHT, SCAN_BUDGET, within_budget, within_sturm_budget
+from .budget import FRACTION_WEIGHT, PYTHON_OP, SCAN_BUDGET, charge, within_budget, within_sturm_budget, words
 from .claims_thresholds import smallest_positive_root
 from .format import MAX_COEFFICIENTS, RadiusReason
 from .rationals import describe, integer, require, vector
@@ -44,6 +44,8 @@ from .tie import balanced_tie
 from .validset import first_end
 
 REASONS = frozenset(RadiusReason)  # the format's radius reasons (exactinv_check.format)
+SERIES_DISCOUNT = 8  # step_cost counts schoolbook word products; measured 2.4e8 to 3.4e8 of them a second (CPython
+# multiplies large numbers by Karatsuba): / 8 gives the budget's 3e7 to 4e7 word operations a second
 ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "negative-at-0"}
 
 
@@ -103,13 +105,32 @@ def sign_at_zero(num: Any, den: Any, j: Any) -> Any:
     within_budget((j + 1) ** 2 * len(H) * bits // 128 * (4096 + terms * bits) // 4096,
                   f"the series coefficients c_0(0) .. c_{j}(0)")
     H0 = [H[0] ** i for i in range(len(H))]
+    h_words = [words(abs(x).bit_length()) for x in H]
+    p_words = [words(abs(x).bit_length()) for x in H0]
     u: list[Any] = []
+    u_words: list[int] = []
+    power = 1  # power = H_0^k, kept (not recomputed at every k)
     for k in range(j + 1):
-        v = G[k] * H[0] ** k if k < len(G) else 0
+        # charged as it runs (the up-front price was 4 to 5 times low: 1e8 ran 10 s of CPU, deg h = 3 with
+        # 1660-digit coefficients, j = 369; no charge inside the loop, so the clock could not stop it either)
+        charge(step_cost(k, h_words, p_words, u_words, words(power.bit_length())), "a series coefficient c_k(0)")
+        v = G[k] * power if k < len(G) else 0
         for i in range(1, min(k, len(H) - 1) + 1):
             v -= H[i] * u[k - i] * H0[i - 1]
         u.append(v)
+        u_words.append(words(abs(v).bit_length()))
+        power *= H[0]
     return polys.sign(u[j]) * polys.sign(H[0]) ** (j + 1)
+
+
+def step_cost(k: int, h_words: list[int], p_words: list[int], u_words: list[int], power_words: int) -> int:
+    """Word operations of step k of :func:`sign_at_zero`: the products H_i u_(k-i) and their products by
+    H_0^(i-1) (schoolbook, the words of both factors; CPython's Karatsuba does less on large numbers, so an
+    upper estimate), G_k H_0^k and H_0^(k+1)."""
+    cost = PYTHON_OP + 2 * power_words * h_words[0]
+    for i in range(1, min(k, len(h_words) - 1) + 1):
+        cost += PYTHON_OP + h_words[i] * u_words[k - i] + (h_words[i] + u_words[k - i]) * p_words[i - 1]
+    return cost // SERIES_DISCOUNT
 
 
 def _all_roots_real_positive(h: Any) -> Any:

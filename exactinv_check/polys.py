@@ -70,14 +70,18 @@ MAX_BISECTIONS = 4000
 _PRIMES = (2**61 - 1, 2**31 - 1, 1000000007)  # for the modular squarefree test
 
 
-def sign_at(ints: Sequence[int], x: Any) -> Any:
+def sign_at(ints: Sequence[int], x: Any, bits: int | None = None) -> Any:
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
-    (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0)."""
+    (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0).  Charged by ``bits``, the largest
+    coefficient's bits when the caller knows them (a certificate's algebraic number, :class:`reals.Real`), else
+    by the leading coefficient's: a degree-200 polynomial with 4000-digit middle coefficients and ends 1 was
+    charged 15 times low (9e3 word operations for 4.4 ms), 63 bisections between two readings of the clock."""
     n, d = x.numerator, x.denominator
     if not ints:  # the zero polynomial
         return 0
     if active():
-        charge(evaluation_cost(len(ints) - 1, abs(ints[-1]).bit_length(), max(abs(n).bit_length(), d.bit_length())),
+        bits = abs(ints[-1]).bit_length() if bits is None else bits
+        charge(evaluation_cost(len(ints) - 1, bits, max(abs(n).bit_length(), d.bit_length())),
                "a sign of a polynomial at a rational")
     acc, power = 0, 1
     for c in ints:  # low to high: acc = sum_{k<=i} c_k n^k d^(i-k), rescaled as i grows

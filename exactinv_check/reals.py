@@ -35,8 +35,8 @@ class Real:
         self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
         if poly is not None:
             self._ints = polys.integer_coefficients(poly)
-            self._sign_lo = polys.sign_at(self._ints, lo)
             self._bits = max(abs(c).bit_length() for c in self._ints)
+            self._sign_lo = polys.sign_at(self._ints, lo, self._bits)
 
     # -------------------------------------------------------- construction
     @classmethod
@@ -111,7 +111,7 @@ class Real:
 
     def bisect(self) -> None:
         mid = (self.lo + self.hi) / 2  # type: ignore[operator]
-        s = polys.sign_at(self._ints, mid)
+        s = polys.sign_at(self._ints, mid, self._bits)  # charged by the largest coefficient
         if s == 0:
             self.q, self.poly = mid, None
         elif s == self._sign_lo:
