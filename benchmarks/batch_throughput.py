@@ -23,11 +23,12 @@ Each batch configuration is measured twice:
 
 The plain loop runs in this process (no Dask, no isolation, no limits).
 CPU is user + system: the loop's is this process's; a batch's is this
-process's (the client, the results file) plus its worker processes' (Dask,
-the sandbox's parent side: end to end, this process's reaped children; on a
-running cluster, the workers' own) plus the CPU the records report for the
-problems (the sandbox children, which their workers kill, not reap, when the
-cluster closes).  CPU depends far less on the machine's load than wall time.
+process's (the client, the results file) plus, end to end, this process's
+reaped children (the worker processes, and the sandboxes they reap when
+their threads end), or, on a running cluster, the workers' own CPU (Dask,
+the sandbox's parent side) plus the CPU the records report for the problems
+(the sandbox children).  The parts are printed per problem.  CPU depends far
+less on the machine's load than wall time.
 Ratios against the targets: batch / loop (1 worker; target <= 1.2) and
 1 worker / 2 workers (target >= 1.7), in wall time and in CPU (the CPU
 "speed-up" is 2 x CPU(1) / CPU(2): what two free cores would give).  The load
@@ -130,15 +131,20 @@ def _warm() -> str:
     return exactinv.__version__
 
 
-def batch(corpus: str, work: str, label: str, client: Client | None = None, **where) -> tuple[float, float, int]:
-    """(wall s, CPU s, verified) of one batch (CPU: see the module docstring)."""
+def batch(corpus: str, work: str, label: str, client: Client | None = None,
+          **where) -> tuple[float, dict[str, float], int]:
+    """(wall s, CPU s by part, verified) of one batch (CPU: see the module docstring)."""
     out = os.path.join(work, f"{label}.jsonl")
     workers0 = sum(client.run(_cpu).values()) if client is not None else _children_cpu()
     start, cpu = time.perf_counter(), _cpu()
     summary = run_batch([corpus], out, progress=False, **where)
     seconds, cpu = time.perf_counter() - start, _cpu() - cpu
     workers = (sum(client.run(_cpu).values()) if client is not None else _children_cpu()) - workers0
-    return seconds, cpu + workers + _records_cpu(out), summary.count("ok")
+    if client is None:  # the workers' reaped children are the sandboxes: in ``workers`` already
+        parts = {"client": cpu, "workers and sandboxes": workers}
+    else:
+        parts = {"client": cpu, "workers": workers, "sandboxes": _records_cpu(out)}
+    return seconds, parts, summary.count("ok")
 
 
 def main() -> None:
@@ -165,8 +171,8 @@ def main() -> None:
         rows = []
         load0 = os.getloadavg()[0]
         loop, loop_cpu, ok = plain_loop(problems)
-        rows.append(("plain loop", loop, loop_cpu, ok, load0))
-        walls: dict[tuple[str, int], tuple[float, float]] = {}
+        rows.append(("plain loop", loop, {"loop": loop_cpu}, ok, load0))
+        walls: dict[tuple[str, int], tuple[float, dict[str, float]]] = {}
         for k in (1, 2):
             if "e2e" in modes:
                 load = os.getloadavg()[0]
@@ -185,14 +191,19 @@ def main() -> None:
             walls[("run", k)] = seconds, cpu
         print("\n| run | wall s | problems/s | ms / problem | wall x loop | CPU s | CPU x loop | verified | load |")
         print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-        for label, seconds, cpu, ok, load in rows:
+        for label, seconds, parts, ok, load in rows:
+            cpu = sum(parts.values())
             print(f"| {label} | {seconds:.2f} | {args.n / seconds:.0f} | {1000 * seconds / args.n:.2f} | "
                   f"{seconds / loop:.2f} | {cpu:.2f} | {cpu / loop_cpu:.2f} | {ok} | {load:.1f} |")
+        print("\nCPU by part, ms per problem: " + "; ".join(
+            f"{label}: " + ", ".join(f"{part} {1000 * value / args.n:.2f}" for part, value in parts.items())
+            for label, _, parts, _, _ in rows))
         print(f"\nloop: {1000 * loop_cpu / args.n:.1f} ms of CPU per problem; load average now "
               f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}")
         for mode, name in (("e2e", "end to end"), ("run", "running cluster")):
             if (mode, 1) in walls and (mode, 2) in walls:
-                (w1, c1), (w2, c2) = walls[mode, 1], walls[mode, 2]
+                (w1, p1), (w2, p2) = walls[mode, 1], walls[mode, 2]
+                c1, c2 = sum(p1.values()), sum(p2.values())
                 print(f"{name}: 1 worker / loop = {w1 / loop:.2f} wall, {c1 / loop_cpu:.2f} CPU (target <= 1.2); "
                       f"2 workers over 1 = {w1 / w2:.2f} wall, {2 * c1 / c2:.2f} CPU (target >= 1.7)")
         sys.stdout.flush()
