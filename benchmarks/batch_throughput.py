@@ -18,8 +18,9 @@ Each batch configuration is measured twice:
   of k single-threaded workers started (and warmed: exactinv imported)
   before the clock starts, with the settings `exactinv batch` gives its own
   (``engine.LOCAL_CONFIG``: no statistical profiler, forked workers) -- the
-  steady-state cost per problem.  ``--profiler`` turns Dask's profiler back
-  on there (Dask's default, and what this benchmark's cluster ran with before).
+  steady-state cost per problem.  ``--dask-defaults``: that cluster with
+  Dask's own defaults instead (spawned workers, the statistical profiler,
+  the 20 ms tick...: what this benchmark's cluster ran with before).
 
 The plain loop runs in this process (no Dask, no isolation, no limits).
 CPU is user + system: the loop's is this process's; a batch's is this
@@ -40,7 +41,7 @@ The script uses only `run_batch`, `certify` and `load_problem` (and
 `PYTHONPATH=/path/to/old python benchmarks/batch_throughput.py`.
 
 Run:  python benchmarks/batch_throughput.py [--n 1000] [--corpus issue|mixed] [--repeat 1]
-      [--modes e2e,running] [--profiler]
+      [--modes e2e,running] [--dask-defaults]
 """
 
 from __future__ import annotations
@@ -154,7 +155,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=1, help="repeat the whole comparison")
     parser.add_argument("--modes", default="e2e,running",
                         help="which batch runs: e2e (end to end), running (on a running cluster), or both")
-    parser.add_argument("--profiler", action="store_true", help="the running cluster with Dask's profiler on")
+    parser.add_argument("--dask-defaults", action="store_true",
+                        help="the running cluster with Dask's default settings, not the batch's")
     args = parser.parse_args()
     modes = set(args.modes.split(","))
     problems = generate(args.n, corpus=args.corpus)
@@ -162,9 +164,7 @@ def main() -> None:
     corpus = os.path.join(work, "corpus.jsonl")
     with open(corpus, "w") as fh:
         fh.write("".join(json.dumps(p) + "\n" for p in problems))
-    settings = dict(getattr(batch_engine, "LOCAL_CONFIG", {}))
-    if args.profiler:
-        settings["distributed.worker.profile.enabled"] = True
+    settings = {} if args.dask_defaults else dict(getattr(batch_engine, "LOCAL_CONFIG", {}))
     print(f"exactinv {exactinv.__version__} from {os.path.dirname(exactinv.__file__)}; {args.n} problems "
           f"({args.corpus} corpus); {os.cpu_count()} cores; running cluster's settings {settings}")
     for rep in range(args.repeat):
