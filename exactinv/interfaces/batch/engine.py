@@ -359,7 +359,7 @@ profiler (a sample of every worker thread every 10 ms, for a dashboard nobody op
 processes forked from the batch's process, not spawned; the event loops' tick (which only
 watches for a blocked loop), the nannies' memory monitor and the system monitor woken every
 second or two instead of every 20, 100 and 500 ms.  Idle, a LocalCluster of one worker with
-its client then costs 1.0 % of a core instead of 7.1 % (4.5 % this process: scheduler, nanny,
+its client then costs 1.5 % of a core instead of 7.1 % (4.5 % this process: scheduler, nanny,
 client; 2.6 % the worker), which a batch pays for every second it runs."""
 
 _WORKER_PRELOAD = """\
