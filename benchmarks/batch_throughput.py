@@ -2,35 +2,46 @@
 `interfaces.pipeline.certify` against `exactinv batch` with 1 and 2 local
 workers, in the same run, on the same corpus.
 
-Corpus: N (default 1000) seeded 2-D problems of a few milliseconds each --
-x' = Ax with A a small integer matrix (diagonally dominant for 85% of them, so
-most sets are invariant), on boxes and on small integer polygons; methods
-Taylor 1-6, backward Euler, Pade(1,2), RK4.  Every run certifies and
-kernel-checks every problem.
+Corpus (``--corpus``): N (default 1000) seeded 2-D problems, each certified
+and kernel-checked, methods Taylor 1-6, backward Euler, Pade(1,2), RK4 in turn.
+* ``issue`` (default): issue 24's small problems -- x' = Ax, A a 2x2 integer
+  matrix, off-diagonal entries in {-1, 0, 1}, diagonally dominant negative
+  diagonal, on the box |x_k| <= b_k, b_k in {1, 2};
+* ``mixed``: the earlier corpus -- A in [-2, 2]^(2x2), diagonally dominant for
+  85% of them (most sets invariant), on boxes and on small integer polygons.
 
 Each batch configuration is measured twice:
 * "end to end": `run_batch(..., workers=k)` as `exactinv batch --workers k`
   runs it, starting (and closing) its LocalCluster -- the seconds include the
-  cluster's start, about 2-4 s here;
+  cluster's start;
 * "on a running cluster": `run_batch(..., scheduler=...)` on a LocalCluster
   of k single-threaded workers started (and warmed: exactinv imported)
-  before the clock starts -- the steady-state cost per problem.
+  before the clock starts, with the settings `exactinv batch` gives its own
+  (``engine.LOCAL_CONFIG``: no statistical profiler, forked workers) -- the
+  steady-state cost per problem.  ``--dask-defaults``: that cluster with
+  Dask's own defaults instead (spawned workers, the statistical profiler,
+  the 20 ms tick...: what this benchmark's cluster ran with before).
 
 The plain loop runs in this process (no Dask, no isolation, no limits).
-CPU (user + system), which depends far less on the machine's load than wall
-time: the loop's is this process's; a batch's on a running cluster is the
-workers' own CPU (Dask, the sandbox's parent side) plus the CPU its records
-report for the problems (the sandbox children) plus this process's (the
-client, the results file).
-Ratios: batch wall / loop wall (1 worker; target <= 1.2 on a running
-cluster) and 1-worker wall / 2-worker wall (target >= 1.7).  The load
-average is printed with each row: on a shared machine the 2-worker speed-up
-is bounded by the free cores.
+CPU is user + system: the loop's is this process's; a batch's is this
+process's (the client, the results file) plus, end to end, this process's
+reaped children (the worker processes, and the sandboxes they reap when
+their threads end), or, on a running cluster, the workers' own CPU (Dask,
+the sandbox's parent side) plus the CPU the records report for the problems
+(the sandbox children).  The parts are printed per problem.  CPU depends far
+less on the machine's load than wall time.
+Ratios against the targets: batch / loop (1 worker; target <= 1.2) and
+1 worker / 2 workers (target >= 1.7), in wall time and in CPU (the CPU
+"speed-up" is 2 x CPU(1) / CPU(2): what two free cores would give).  The load
+average is printed with each row: on a shared machine the 2-worker speed-up is
+bounded by the free cores.
 
-The script uses only `run_batch`, `certify` and `load_problem`, so the same
-file measures an older checkout: `PYTHONPATH=/path/to/old python benchmarks/batch_throughput.py`.
+The script uses only `run_batch`, `certify` and `load_problem` (and
+``LOCAL_CONFIG`` when present), so the same file measures an older checkout:
+`PYTHONPATH=/path/to/old python benchmarks/batch_throughput.py`.
 
-Run:  python benchmarks/batch_throughput.py [--n 1000] [--repeat 1] [--modes e2e,running]
+Run:  python benchmarks/batch_throughput.py [--n 1000] [--corpus issue|mixed] [--repeat 1]
+      [--modes e2e,running] [--dask-defaults]
 """
 
 from __future__ import annotations
@@ -44,9 +55,11 @@ import sys
 import tempfile
 import time
 
+import dask
 from dask.distributed import Client, LocalCluster
 
 import exactinv
+from exactinv.interfaces.batch import engine as batch_engine
 from exactinv.interfaces.batch import run_batch
 from exactinv.interfaces.pipeline import certify
 from exactinv.interfaces.problem import load_problem
@@ -54,28 +67,52 @@ from exactinv.interfaces.problem import load_problem
 METHODS = [{"taylor": k} for k in range(1, 7)] + ["backward_euler", {"pade": [1, 2]}, "rk4"]
 
 
-def generate(count: int, seed: int = 24) -> list[dict]:
-    """``count`` seeded 2-D problems (see the module docstring)."""
+def generate(count: int, seed: int = 24, corpus: str = "issue") -> list[dict]:
+    """``count`` seeded 2-D problems of ``corpus`` (see the module docstring)."""
+    if corpus not in CORPORA:
+        raise SystemExit(f"--corpus: expected one of {', '.join(CORPORA)}, got {corpus!r}")
     rng = random.Random(seed)
-    problems = []
-    for i in range(count):
-        A = [[rng.randint(-2, 2) for _ in range(2)] for _ in range(2)]
-        if rng.random() < 0.85:
-            for r in range(2):
-                A[r][r] = -(abs(A[r][1 - r]) + rng.randint(1, 3))
-        if rng.random() < 0.5:
-            poly = {"G": [[1, 0], [-1, 0], [0, 1], [0, -1]], "b": [rng.randint(1, 4) for _ in range(4)]}
-        else:
-            poly = {"vertices": [[4, 4], [-4, -4], [4, -4], [-4, 4]] + [[rng.randint(-5, 5), rng.randint(-5, 5)]
-                                                                      for _ in range(2)]}
-        problems.append({"name": f"t{i:05d}", "system": {"A": A}, "polyhedron": poly,
-                         "method": METHODS[i % len(METHODS)]})
-    return problems
+    return [CORPORA[corpus](rng, i) for i in range(count)]
+
+
+def _issue(rng: random.Random, i: int) -> dict:
+    """Issue 24's corpus: x' = Ax, A a 2x2 integer matrix with off-diagonal entries in {-1, 0, 1}
+    and a diagonally dominant negative diagonal, on the box |x_k| <= b_k with b_k in {1, 2}."""
+    A = [[0, rng.randint(-1, 1)], [rng.randint(-1, 1), 0]]
+    for r in range(2):
+        A[r][r] = -(abs(A[r][1 - r]) + rng.randint(0, 1)) or -1
+    b = [rng.randint(1, 2), rng.randint(1, 2)]
+    return {"name": f"t{i:05d}", "system": {"A": A},
+            "polyhedron": {"G": [[1, 0], [-1, 0], [0, 1], [0, -1]], "b": [b[0], b[0], b[1], b[1]]},
+            "method": METHODS[i % len(METHODS)]}
+
+
+def _mixed(rng: random.Random, i: int) -> dict:
+    """The earlier corpus: A in [-2, 2]^(2x2), diagonally dominant for 85% of the problems, on
+    boxes with b in [1, 4]^4 and on polygons (a square of side 8 and two random integer points)."""
+    A = [[rng.randint(-2, 2) for _ in range(2)] for _ in range(2)]
+    if rng.random() < 0.85:
+        for r in range(2):
+            A[r][r] = -(abs(A[r][1 - r]) + rng.randint(1, 3))
+    if rng.random() < 0.5:
+        poly = {"G": [[1, 0], [-1, 0], [0, 1], [0, -1]], "b": [rng.randint(1, 4) for _ in range(4)]}
+    else:
+        poly = {"vertices": [[4, 4], [-4, -4], [4, -4], [-4, 4]] + [[rng.randint(-5, 5), rng.randint(-5, 5)]
+                                                                  for _ in range(2)]}
+    return {"name": f"t{i:05d}", "system": {"A": A}, "polyhedron": poly, "method": METHODS[i % len(METHODS)]}
+
+
+CORPORA = {"issue": _issue, "mixed": _mixed}
 
 
 def _cpu() -> float:
     t = os.times()
     return t.user + t.system
+
+
+def _children_cpu() -> float:
+    t = os.times()
+    return t.children_user + t.children_system
 
 
 def plain_loop(problems: list[dict]) -> tuple[float, float, int]:
@@ -95,65 +132,80 @@ def _warm() -> str:
     return exactinv.__version__
 
 
-def batch(corpus: str, work: str, label: str, client: Client | None = None, **where) -> tuple[float, float, int]:
-    """(wall s, CPU s or nan, verified) of one batch; CPU only on a running cluster (``client``)."""
+def batch(corpus: str, work: str, label: str, client: Client | None = None,
+          **where) -> tuple[float, dict[str, float], int]:
+    """(wall s, CPU s by part, verified) of one batch (CPU: see the module docstring)."""
     out = os.path.join(work, f"{label}.jsonl")
-    workers0 = sum(client.run(_cpu).values()) if client is not None else 0.0
+    workers0 = sum(client.run(_cpu).values()) if client is not None else _children_cpu()
     start, cpu = time.perf_counter(), _cpu()
     summary = run_batch([corpus], out, progress=False, **where)
     seconds, cpu = time.perf_counter() - start, _cpu() - cpu
-    if client is None:
-        return seconds, float("nan"), summary.count("ok")
-    workers = sum(client.run(_cpu).values()) - workers0
-    return seconds, cpu + workers + _records_cpu(out), summary.count("ok")
+    workers = (sum(client.run(_cpu).values()) if client is not None else _children_cpu()) - workers0
+    if client is None:  # the workers' reaped children are the sandboxes: in ``workers`` already
+        parts = {"client": cpu, "workers and sandboxes": workers}
+    else:
+        parts = {"client": cpu, "workers": workers, "sandboxes": _records_cpu(out)}
+    return seconds, parts, summary.count("ok")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--n", type=int, default=1000)
+    parser.add_argument("--corpus", default="issue", choices=sorted(CORPORA), help="which problems (see above)")
     parser.add_argument("--repeat", type=int, default=1, help="repeat the whole comparison")
     parser.add_argument("--modes", default="e2e,running",
                         help="which batch runs: e2e (end to end), running (on a running cluster), or both")
+    parser.add_argument("--dask-defaults", action="store_true",
+                        help="the running cluster with Dask's default settings, not the batch's")
     args = parser.parse_args()
     modes = set(args.modes.split(","))
-    problems = generate(args.n)
+    problems = generate(args.n, corpus=args.corpus)
     work = tempfile.mkdtemp(prefix="exactinv-throughput-")
     corpus = os.path.join(work, "corpus.jsonl")
     with open(corpus, "w") as fh:
         fh.write("".join(json.dumps(p) + "\n" for p in problems))
-    print(f"exactinv {exactinv.__version__} from {os.path.dirname(exactinv.__file__)}; {args.n} problems; "
-          f"{os.cpu_count()} cores")
+    settings = {} if args.dask_defaults else dict(getattr(batch_engine, "LOCAL_CONFIG", {}))
+    print(f"exactinv {exactinv.__version__} from {os.path.dirname(exactinv.__file__)}; {args.n} problems "
+          f"({args.corpus} corpus); {os.cpu_count()} cores; running cluster's settings {settings}")
     for rep in range(args.repeat):
         rows = []
         load0 = os.getloadavg()[0]
         loop, loop_cpu, ok = plain_loop(problems)
-        rows.append(("plain loop", loop, loop_cpu, ok, load0))
-        walls = {}
+        rows.append(("plain loop", loop, {"loop": loop_cpu}, ok, load0))
+        walls: dict[tuple[str, int], tuple[float, dict[str, float]]] = {}
         for k in (1, 2):
             if "e2e" in modes:
                 load = os.getloadavg()[0]
                 seconds, cpu, ok = batch(corpus, work, f"e2e-{k}-{rep}", workers=k)
                 rows.append((f"batch --workers {k} (end to end)", seconds, cpu, ok, load))
-                walls[("e2e", k)] = seconds
+                walls[("e2e", k)] = seconds, cpu
             if "running" not in modes:
                 continue
-            with LocalCluster(n_workers=k, threads_per_worker=1, processes=True, dashboard_address=None,
-                              silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+            with dask.config.set(settings), LocalCluster(n_workers=k, threads_per_worker=1, processes=True,
+                                                         dashboard_address=None, silence_logs=logging.CRITICAL
+                                                         ) as cluster, Client(cluster) as client:
                 client.run(_warm)
                 load = os.getloadavg()[0]
                 seconds, cpu, ok = batch(corpus, work, f"run-{k}-{rep}", client, scheduler=cluster.scheduler_address)
             rows.append((f"batch, {k} worker{'s' * (k > 1)} (running cluster)", seconds, cpu, ok, load))
-            walls[("run", k)] = seconds
+            walls[("run", k)] = seconds, cpu
         print("\n| run | wall s | problems/s | ms / problem | wall x loop | CPU s | CPU x loop | verified | load |")
         print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-        for label, seconds, cpu, ok, load in rows:
-            cpus = "-" if cpu != cpu else f"{cpu:.2f} | {cpu / loop_cpu:.2f}"
+        for label, seconds, parts, ok, load in rows:
+            cpu = sum(parts.values())
             print(f"| {label} | {seconds:.2f} | {args.n / seconds:.0f} | {1000 * seconds / args.n:.2f} | "
-                  f"{seconds / loop:.2f} | {cpus if cpu == cpu else '- | -'} | {ok} | {load:.1f} |")
-        for mode, name in (("run", "running cluster"), ("e2e", "end to end")):
-            if (mode, 1) in walls:
-                print(f"{name}: 1 worker / loop {walls[mode, 1] / loop:.2f}; "
-                      f"2 workers speed-up over 1 {walls[mode, 1] / walls[mode, 2]:.2f}")
+                  f"{seconds / loop:.2f} | {cpu:.2f} | {cpu / loop_cpu:.2f} | {ok} | {load:.1f} |")
+        print("\nCPU by part, ms per problem: " + "; ".join(
+            f"{label}: " + ", ".join(f"{part} {1000 * value / args.n:.2f}" for part, value in parts.items())
+            for label, _, parts, _, _ in rows))
+        print(f"\nloop: {1000 * loop_cpu / args.n:.1f} ms of CPU per problem; load average now "
+              f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}")
+        for mode, name in (("e2e", "end to end"), ("run", "running cluster")):
+            if (mode, 1) in walls and (mode, 2) in walls:
+                (w1, p1), (w2, p2) = walls[mode, 1], walls[mode, 2]
+                c1, c2 = sum(p1.values()), sum(p2.values())
+                print(f"{name}: 1 worker / loop = {w1 / loop:.2f} wall, {c1 / loop_cpu:.2f} CPU (target <= 1.2); "
+                      f"2 workers over 1 = {w1 / w2:.2f} wall, {2 * c1 / c2:.2f} CPU (target >= 1.7)")
         sys.stdout.flush()
 
 

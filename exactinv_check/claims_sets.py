@@ -183,7 +183,7 @@ def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     gens, D, inequalities, equalities, start = _conditions(problem, claim, context, first_end_claim=True)
     tau, attained = first_end(D, inequalities, equalities, _first_vertex(inequalities, claim, problem.n), start)
     value = Real.parse(claim["value"], "tau")
-    require(value.compare(tau) == 0, f"the largest threshold is {tau}, not {value}")
+    require(value.compare(tau) == 0, lambda: f"the largest threshold is {tau}, not {value}")
     require(boolean(claim["attained"], "attained") == attained, "the attained flag is wrong")
     binding = claim.get("binding")
     if binding is not None:

@@ -50,7 +50,7 @@ def polynomial_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     value = Real.parse(claim["value"], "tau")
     if gamma.inf == -1 or (not gamma.inf and gamma.q <= 0):
         expected = INF if all(s >= 0 for s in sigmas) else ZERO
-        require(value.compare(expected) == 0, f"gamma* <= 0 gives tau = {expected}")
+        require(value.compare(expected) == 0, lambda: f"gamma* <= 0 gives tau = {expected}")
         require(claim.get("f") in (None, []), "no f_i table belongs to gamma* <= 0")
         return f"tau = {expected}: gamma* <= 0 and {'every sigma_k >= 0' if expected.inf else 'a sigma_k < 0 (erratum E6)'}"
     require(gamma.inf == 0, "gamma* = oo: P is not invariant, no threshold exists")
@@ -64,10 +64,11 @@ def polynomial_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         f = f_i(sigmas, gamma.q, i)
         require(polys.trim(vector(row["coefficients"], f"f_{i}")) == f, f"f_{i} does not match sigma and gamma*")
         tau_i, _ = first_end([Fraction(1)], [f] if f else [], [])
-        require(Real.parse(row["tau"], f"tau_{i}").compare(tau_i) == 0, f"tau_{i} is wrong (it is {tau_i})")
+        require(Real.parse(row["tau"], f"tau_{i}").compare(tau_i) == 0,
+                lambda i=i, tau_i=tau_i: f"tau_{i} is wrong (it is {tau_i})")
         if best is None or tau_i.compare(best) < 0:
             best = tau_i
-    require(value.compare(best) == 0, f"tau is not min_i tau_i = {best}")
+    require(value.compare(best) == 0, lambda: f"tau is not min_i tau_i = {best}")
     if claim.get("binding") is not None:
         j = integer(claim["binding"], "binding", 0, p + 1)
         tau_j, _ = first_end([Fraction(1)], [f_i(sigmas, gamma.q, j)], [])
@@ -125,7 +126,7 @@ def rational_threshold(problem: Any, claim: Any, context: Any) -> str | None:
             expected, expected_attained = bound, at
         elif c == 0:
             expected_attained = expected_attained and at
-    require(value.compare(expected) == 0, f"tau is not min(rho/gamma*, z_p/alpha(H), first singular point) = {expected}")
+    require(value.compare(expected) == 0, lambda: f"tau is not min(rho/gamma*, z_p/alpha(H), first singular point) = {expected}")
     require(attained == expected_attained, "the attained flag is wrong")
     return ("tau = min(rho/gamma*, z_p/alpha(H), first singular h) recomputed "
             "(Theorem 3.12 with the corrections of errata E2 and E2')")
@@ -241,8 +242,8 @@ def forward_euler_threshold(problem: Any, claim: Any, context: Any) -> str | Non
     else:
         by_gamma = Real.rational(1 / gamma.q)
     value = Real.parse(claim["value"], "tau")
-    require(by_vertices.compare(by_gamma) == 0, f"the ratio tests give {by_vertices} but 1/gamma* is {by_gamma}")
-    require(value.compare(by_gamma) == 0, f"the largest forward-Euler step is {by_gamma}, not {value}")
+    require(by_vertices.compare(by_gamma) == 0, lambda: f"the ratio tests give {by_vertices} but 1/gamma* is {by_gamma}")
+    require(value.compare(by_gamma) == 0, lambda: f"the largest forward-Euler step is {by_gamma}, not {value}")
     if "attained" in claim:
         require(claim["attained"] is True, "the largest forward-Euler step is attained")
     return (f"largest forward-Euler step {value}: the ratio tests over the {len(gens.vertices)} proved vertices "

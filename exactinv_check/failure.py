@@ -30,9 +30,11 @@ class Record(dict):
 
 
 def require(condition: Any, message: Any) -> Any:
-    """Raise :class:`CheckFailure` with ``message`` unless ``condition``."""
+    """Raise :class:`CheckFailure` with ``message`` unless ``condition``.  ``message`` may be a
+    function of no arguments returning the text: it is called only on failure (a message that
+    prints an algebraic number refines it to many digits -- work a passing check never needs)."""
     if not condition:
-        raise CheckFailure(message)
+        raise CheckFailure(message() if callable(message) else message)
 
 
 def require_budget(condition: Any, message: Any) -> Any:

@@ -243,8 +243,15 @@ class Polyhedron(LatexMixin):
 
     @cached_property
     def is_empty(self) -> bool:
-        """Exact emptiness test by a verified LP (a Farkas certificate when
-        empty); unlike PPL's own test it never enumerates generators."""
+        """Exact emptiness test: b >= 0 puts the origin in P (G 0 = 0 <= b), so P is
+        nonempty without an LP; otherwise a verified LP (a Farkas certificate when
+        empty).  Unlike PPL's own test it never enumerates generators.
+
+        >>> Polyhedron.box([-1], [1]).is_empty, Polyhedron([[1], [-1]], [-1, -1]).is_empty
+        (False, True)
+        """
+        if all(beta >= 0 for beta in self.b):
+            return False
         res = ExactLPSolver(self.G_flint, [False] * self.m).solve([0] * self.n, self.b, [False] * self.n)
         return res.status == INFEASIBLE
 

@@ -2,8 +2,8 @@
 
 Appends are safe: the file is opened with ``O_APPEND`` and locked
 (``flock``, so a second batch on the same file is refused instead of
-interleaving); each record is one complete line handed to the operating
-system in one ``write`` (the engine holds Ctrl-C back meanwhile:
+interleaving); each record is one complete line, and the records of a chunk are
+handed to the operating system together in one ``write`` (the engine holds Ctrl-C back meanwhile:
 :class:`.signals.CtrlC`), so an interruption never tears a line; a crash of the machine can tear at most
 the last line, which a reader ignores (and a re-run redoes: it starts on a
 fresh line).  The file is fsync'ed when the batch ends.  Existing lines are
@@ -65,6 +65,20 @@ class ResultsFile:
         '{"id": "a", "status": "ok"}\\n'
         """
         self._write((json.dumps(record) + "\n").encode())
+
+    def extend(self, records: list[dict]) -> None:
+        """Several records, each one whole line, handed to the operating system in one ``write``
+        (a chunk's records: one system call per chunk, not per record).
+
+        >>> import os, tempfile
+        >>> out = os.path.join(tempfile.mkdtemp(), "r.jsonl")
+        >>> with ResultsFile(out) as sink:
+        ...     sink.extend([{"id": "a"}, {"id": "b"}]); sink.extend([])
+        >>> open(out).read()
+        '{"id": "a"}\\n{"id": "b"}\\n'
+        """
+        if records:
+            self._write("".join(json.dumps(record) + "\n" for record in records).encode())
 
     def close(self) -> None:
         """Flush to disk (fsync) and close, releasing the lock; a second close does nothing.

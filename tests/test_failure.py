@@ -1,0 +1,56 @@
+"""exactinv_check.failure: a check's failure message is built only when the check fails.
+
+The kernel's messages that print an algebraic number refine it to many digits; a claim
+that verifies must not pay for them, and a claim that fails must still say which numbers
+disagree."""
+
+import copy
+import json
+
+import pytest
+from certificate_corpus import corpus
+
+from exactinv_check import check
+from exactinv_check.failure import CheckFailure, require
+
+
+def test_a_passing_requirement_never_builds_its_message():
+    def message():
+        raise AssertionError("built although the condition holds")
+
+    require(True, message)
+    require(1 == 1, message)
+
+
+@pytest.mark.parametrize("message", ["plain text", lambda: "plain text"])
+def test_a_failing_requirement_says_its_message(message):
+    with pytest.raises(CheckFailure, match="^plain text$"):
+        require(False, message)
+
+
+def _claim(cert, kind):
+    return next(c for c in cert["claims"] if c["type"] == kind)
+
+
+def test_a_wrong_forward_euler_step_is_rejected_with_both_numbers():
+    """Box, Taylor-4: the largest forward-Euler step is 1 (= 1/gamma*); claimed 2, the message names both."""
+    cert = copy.deepcopy(corpus()["box-taylor4-listed"])
+    assert check(cert).ok
+    claim = _claim(cert, "forward_euler_threshold")
+    assert claim["value"] == "1"
+    claim["value"] = "2"
+    text = str(check(json.loads(json.dumps(cert))))
+    assert "[REJECTED] forward_euler_threshold: the largest forward-Euler step is 1, not 2" in text, text
+
+
+def test_a_wrong_largest_threshold_is_rejected_with_both_numbers():
+    """Box, Taylor-4: the genuine largest threshold is the root of x^4 - 6x^2 + 12x - 12 in
+    [1.749685831459, 1.74968583146] (an algebraic number: p(1.7) < 0 < p(1.8)); claimed 2, the
+    message prints the true value to its certified digits."""
+    cert = copy.deepcopy(corpus()["box-taylor4-listed"])
+    claim = _claim(cert, "largest_threshold")
+    assert claim["value"]["poly"] == ["-12", "12", "-6", "0", "1"]
+    claim["value"], claim["binding"] = "2", None
+    text = str(check(json.loads(json.dumps(cert))))
+    assert "[REJECTED] largest_threshold: the largest threshold is 1.749685831459" in text, text
+    assert "x^4 - 6x^2 + 12x - 12" in text and text.count("not 2") == 1, text
