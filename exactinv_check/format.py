@@ -491,7 +491,8 @@ def _value_defs() -> dict[str, Any]:
             required=["facets"], description=(
                 "The LP route's pieces (no vertex list): per facet i of G (one entry each, in order), consecutive "
                 "closed pieces [0, e_0], [e_0, e_1], ... with strictly increasing exact ends (the last may be oo) and "
-                "one basis per piece (n rows of G, or of G with the lines appended), or a ray piece {ray: d} (P unbounded). The kernel proves each "
+                "one basis per piece (n rows of G, or of G with the lines appended), or a ray piece {ray: d} "
+                "(P unbounded). The kernel proves each "
                 "basis nonsingular with x_B = B^-1 b_B in P and z_B(h) = D(h) B^-T N(h)^T g_i >= 0 on its piece, "
                 "builds the vertex-facet condition of x_B and facet i (of a ray piece: d a ray of P, (g_i N d) D > 0 "
                 "on the open piece, the ray-facet condition; each finite end t > 0 decided by a basis piece or by a "

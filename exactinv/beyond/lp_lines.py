@@ -87,8 +87,9 @@ class LPLinesRoute(LPRoute):
         >>> cs = ConditionSet(ei.LinearSystem([[-1, 0], [0, -1]]), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1]),
         ...                   ei.methods.taylor(1))
         >>> _, _, route = lp_lines(cs)
-        >>> route.record()   # basis [0, 2]: x_1 <= 1 and the line row (0, 1) x <= 0: x_B = (1, 0)
-        {'facets': [{'ends': ['1', 'oo'], 'bases': [[0, 2], [1, 2]]}, {'ends': ['1', '2'], 'bases': [[1, 2], [0, 2]]}], 'lines': [['0', '1']]}
+        >>> record = route.record()   # basis [0, 2]: x_1 <= 1 and the line row (0, 1) x <= 0: x_B = (1, 0)
+        >>> record["lines"], record["facets"][0]
+        ([['0', '1']], {'ends': ['1', 'oo'], 'bases': [[0, 2], [1, 2]]})
         """
         out = super().record()
         out["lines"] = [vec(line) for line in self.lines]

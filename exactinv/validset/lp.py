@@ -14,7 +14,7 @@ solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
 from __future__ import annotations
 
 from ..beyond.lp_lines import lp_lines
-from ..beyond.lp_route import LPRouteDeclined, lp_route
+from ..beyond.lp_route import LPRoute, LPRouteDeclined, lp_route
 from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions, RouteDeclined
@@ -54,6 +54,7 @@ class ParametricLPRoute(PolyhedralRoute):
         ([(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))], 4)
         """
         cs = problem.conditions
+        pieces: LPRoute
         try:
             if cs.G.rank() < problem.invariant_set.n:
                 inequalities, equalities, pieces = lp_lines(cs)
