@@ -47,7 +47,7 @@ not a pole) is decided by the next piece: a basis piece, a point piece [t, t]
 moved to a rational just left when irrational).  docs/design.md, "Unbounded
 P: rays and lines", has the proofs and the degenerate cases.
 
-The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n) and
+The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n: :mod:`exactinv.beyond.lp_lines` takes it) and
 the rare irrational point where all of a facet's ray conditions vanish: the
 vertex route handles those.  The cost is (facets) x (pieces) LPs and basis
 solves, independent of the number of vertices.
