@@ -164,6 +164,12 @@ def test_auto_may_take_the_lp_route_on_p_with_lines():
         lp_lines(ConditionSet(S, ei.Polyhedron.box([-1, -1], [1, 1]), M.taylor(1)))
     cs = ConditionSet(S, P, M.taylor(1))
     assert lp_lines(cs) is lp_lines(cs)  # cached on the condition set
+    from exactinv.validset.engine import choose_route
+    n, m = 8, 40  # a cylinder over a random polytope in R^6 (two lines): McMullen's bound makes auto take the LP route
+    G = [[(7 * i + 3 * j) % 11 - 5 for j in range(n - 2)] + [0, 0] for i in range(m)]
+    big = ValidSetProblem(ei.LinearSystem([[-int(i == j) for j in range(n)] for i in range(n)]),
+                          ei.Polyhedron(G, [1] * m), M.taylor(2))
+    assert [r.name for r in choose_route(big)][0] == "lp"
 
 
 # ------------------------------------------------------------------ route against route, and PPL
