@@ -106,16 +106,23 @@ def parse(record: Any, m: Any, n: Any) -> Any:
     return out, point, lines
 
 
-def _require_lines(G: Any, lines: Any) -> None:
-    """Each line l is a nonzero vector with G l = 0 exactly (so l and -l are directions of P: a line of P).
-    Nothing more is needed (docs/design.md, "P with lines"): a basis holding rows l_j is nonsingular only
-    if those l_j are independent, and then c^T l_j = 0 for all of them forces their multipliers to 0; a
-    line missing from a basis of ker G leaves every basis singular, and is rejected there."""
+def _require_lines(rows: Any, lines: Any) -> None:
+    """Each line l is a nonzero vector with G l = 0 exactly (so l and -l are directions of P: a line of P),
+    for the integer rows (g, beta) of G.  Nothing more is needed (docs/design.md, "P with lines"): a basis
+    holding rows l_j is nonsingular only if those l_j are independent, and then c^T l_j = 0 for all of them
+    forces their multipliers to 0; a line missing from a basis of ker G leaves every basis singular, and is
+    rejected there."""
     for j, line in enumerate(lines):
         require(any(line), f"lp line {j} is the zero vector")
-        charge(len(G) * len(line) * PYTHON_OP, "the lines in ker G")
-        for k, g in enumerate(G):
-            if sum(a * v for a, v in zip(g, line) if a and v) != 0:
+        dl = 1
+        for v in line:
+            dl = dl * v.denominator // gcd(dl, v.denominator)
+        li = [int(v * dl) for v in line]
+        gbits = max(abs(x).bit_length() for g, _ in rows for x in g)
+        charge(len(rows) * len(li) * (PYTHON_OP + words(max(abs(v).bit_length() for v in li) + gbits) ** 2),
+               "the lines in ker G")
+        for k, (g, _) in enumerate(rows):
+            if sum(map(mul, g, li)) != 0:
                 _fail(f"lp line {j} is not in ker G: row {k} of G times it is not 0 (not a line of P)")
 
 
@@ -447,12 +454,12 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     n, m = problem.n, problem.m
     facets, point, lines = parse(record, m, n)
     _price(problem, sum(len(ends) for ends, _ in facets))
-    _require_lines(problem.G, lines)
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = polys.integer_coefficients(D)
     # P' = P with the rows l^T x <= 0 appended: its bases' points x_B are points of P, its rays rays of P
     bases = _Bases(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines))
+    _require_lines(bases.rows[:m], lines)
     if point is not None:
         _require_in(bases.rows, point, "lp point")
     dN, N_int = integer_matrix([row for Nk in N for row in Nk])  # N_k = N_int[k n .. k n + n - 1] / dN
