@@ -352,3 +352,9 @@ def test_lines_on_a_pointed_p_are_rejected():
     assert exactinv_check.check(cert).ok
     cert["claims"][0]["lp"]["lines"] = [["0", "1"]]
     _rejected(cert, "not in ker G")
+
+
+def test_explain_names_the_lines():
+    from exactinv.interfaces.explain import explain
+    text = explain(_slab_certificate([[-1, 1], [0, -1]], M.taylor(2)))
+    assert "P has 1 line" in text and "g_i N(dt) l = 0" in text
