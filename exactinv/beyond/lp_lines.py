@@ -42,7 +42,7 @@ from ..model.polyhedron import Polyhedron
 from .conditions import Condition, ConditionSet, Kind
 from .lp_route import LPRoute, LPRouteDeclined, walk_facets
 
-__all__ = ["lineality_basis", "LPLinesRoute", "LPLinesCache", "lp_lines"]
+__all__ = ["lineality_basis", "LPLinesRoute", "LPLinesCache", "line_conditions", "lp_lines"]
 
 
 def lineality_basis(G: flint.fmpq_mat) -> tuple[tuple[Fraction, ...], ...]:
@@ -106,7 +106,16 @@ class LPLinesCache:
 
 def line_conditions(cs: ConditionSet, lines: tuple[tuple[Fraction, ...], ...]) -> list[Condition]:
     """The line-facet equalities e_ij(h) = g_i N(h) l_j = 0 that are not identically zero (from G N_k;
-    ``generator`` j indexes ``lines``), facet by facet."""
+    ``generator`` j indexes ``lines``), facet by facet.
+
+    The slab |x_1| <= 1 under A = [[-1, 1], [0, -1]], Taylor(2): r(hA)_12 = h - h^2 for both facets (+-).
+
+    >>> import exactinv as ei
+    >>> cs = ConditionSet(ei.LinearSystem([[-1, 1], [0, -1]]), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1]),
+    ...                   ei.methods.taylor(2))
+    >>> [(c.facet, c.poly) for c in line_conditions(cs, lineality_basis(cs.G))]
+    [(0, (Fraction(0, 1), Fraction(1, 1), Fraction(-1, 1))), (1, (Fraction(0, 1), Fraction(-1, 1), Fraction(1, 1)))]
+    """
     out = []
     GN = cs.GN
     for i in range(cs.polyhedron.m):

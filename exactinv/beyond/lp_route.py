@@ -634,7 +634,16 @@ def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
 def walk_facets(cs: ConditionSet, facets: int) -> tuple[list[Condition], LPRoute]:
     """:func:`lp_route`'s work, uncached, on the first ``facets`` rows of G only: the other rows bound
     the LP's feasible set but are not facets whose validity is asked (the P with lines of
-    :mod:`exactinv.beyond.lp_lines`: the rows l^T x <= 0 of a basis of ker G)."""
+    :mod:`exactinv.beyond.lp_lines`: the rows l^T x <= 0 of a basis of ker G).
+
+    The interval [-1, 1] with the row x <= 2 appended but not walked: only facets 0 and 1 get pieces.
+
+    >>> import exactinv as ei
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1], [1]], [1, 1, 2]), ei.methods.taylor(1))
+    >>> _, route = walk_facets(cs, 2)
+    >>> [f.facet for f in route.facets]
+    [0, 1]
+    """
     return _build(cs, facets)
 
 
