@@ -23,7 +23,21 @@ threshold (relative difference; absolute when that is 0).  Times are CPU seconds
 (``time.process_time``, HiGHS' threads included): the project machine is
 shared, and wall-clock times there move with the other jobs' load.
 
-Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200] [--unbounded]
+Two unbounded families whose valid sets are not trivial (``--family``):
+
+* ``cone``  -- P = {x >= -1, g x <= 1} with g's entries uniform integers in
+              [-5, 0] (m - n such rows): P is pointed with recession cone the
+              orthant, and A = -I + N/(10 n) with N's off-diagonal entries in
+              [0, 3] (Metzler) keeps the orthant for small h, so the facets have
+              ray pieces only where r(hA) stops being nonnegative;
+* ``lines`` -- P = Q x R^2 sheared: G = [G_Q, G_Q M] with G_Q the bounded family
+              in R^(n-2) and M an integer (n-2) x 2 shear, so ker G (two lines)
+              is {(-M z, z)}; A = T^-1 [[A_Q, 0], [C, A_L]] T (T = [[I, M], [0, I]])
+              maps ker G into itself, so the facets see the quotient A_Q on Q
+              (the LP route on P with lines, exactinv/beyond/lp_lines.py).
+
+Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200]
+      [--unbounded | --family cone | --family lines]
       (methods: taylor1 ... taylor8, pade11, pade22, backward_euler)
 """
 
@@ -70,6 +84,48 @@ def family(n: int, m: int, seed: int = 1, unbounded: bool = False) -> tuple[ei.L
     D = 10 * n
     A = [[Fraction(-1 if i == j else 0) + Fraction(rng.randint(-3, 3), D) for j in range(n)] for i in range(n)]
     return ei.LinearSystem(A), ei.Polyhedron(G, [1] * m)
+
+
+def cone_family(n: int, m: int, seed: int = 1) -> tuple[ei.LinearSystem, ei.Polyhedron]:
+    """P = {x >= -1, g x <= 1 (g <= 0)}: pointed, recession cone the orthant; A = -I + N/(10 n) Metzler."""
+    rng = random.Random(seed * 1000 + n * 7 + m)
+    G = [[-int(i == j) for j in range(n)] for i in range(n)]
+    while len(G) < m:
+        row = [rng.randint(-5, 0) for _ in range(n)]
+        if any(row):
+            G.append(row)
+    D = 10 * n
+    A = [[Fraction(-1 if i == j else 0) + Fraction(rng.randint(-3 if i == j else 0, 3), D) for j in range(n)]
+         for i in range(n)]
+    return ei.LinearSystem(A), ei.Polyhedron(G, [1] * m)
+
+
+def lines_family(n: int, m: int, seed: int = 1) -> tuple[ei.LinearSystem, ei.Polyhedron]:
+    """P = Q x R^2 sheared (two lines), A keeping ker G: the module docstring's ``lines`` family."""
+    k = 2
+    q = n - k
+    SQ, Q = family(q, m, seed)
+    rng = random.Random(seed * 2000 + n * 7 + m)
+    M = [[rng.randint(-1, 1) for _ in range(k)] for _ in range(q)]
+    G = [list(g) + [sum(g[i] * M[i][j] for i in range(q)) for j in range(k)] for g in Q.G]
+    T = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
+    Tinv = [row[:] for row in T]
+    for i in range(q):
+        for j in range(k):
+            T[i][q + j], Tinv[i][q + j] = Fraction(M[i][j]), Fraction(-M[i][j])
+    Ay = [[Fraction(0)] * n for _ in range(n)]
+    for i in range(q):
+        for j in range(q):
+            Ay[i][j] = SQ.A[i][j]
+    for i in range(q, n):
+        for j in range(n):
+            Ay[i][j] = Fraction(-1 if i == j else 0) + Fraction(rng.randint(-3, 3), 10 * n)
+    A = [[sum(Tinv[i][a] * Ay[a][c] * T[c][j] for a in range(n) for c in range(n)) for j in range(n)]
+         for i in range(n)]
+    return ei.LinearSystem(A), ei.Polyhedron(G, list(Q.b))
+
+
+FAMILIES = {"cone": cone_family, "lines": lines_family}
 
 
 # ------------------------------------------------------------------ the float anchor
@@ -143,8 +199,8 @@ def float_bisection(S: ei.LinearSystem, P: ei.Polyhedron, method: ei.Method) -> 
 # ------------------------------------------------------------------ the run
 
 
-def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False) -> dict:
-    S, P = family(n, m, unbounded=unbounded)
+def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False, kind: str | None = None) -> dict:
+    S, P = FAMILIES[kind](n, m) if kind else family(n, m, unbounded=unbounded)
     t0 = time.process_time()
     cs = ConditionSet(S, P, method)
     L = ei.largest_threshold(S, P, method, conditions=cs, route="lp")
@@ -173,22 +229,24 @@ def main(argv=None) -> int:
     parser.add_argument("--methods", default="taylor4")
     parser.add_argument("--sizes", default=None, help="e.g. 10x40,20x200")
     parser.add_argument("--unbounded", action="store_true", help="the unbounded variant of the family (ray pieces)")
+    parser.add_argument("--family", choices=sorted(FAMILIES), default=None,
+                        help="an unbounded family with a non-trivial valid set (module docstring)")
     args = parser.parse_args(argv)
     sizes = QUICK if args.quick else SIZES
     if args.sizes:
         sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     print("| n | facets | method | pieces | engine LPs | engine s | kernel s | float s (LPs) | engine/float | "
-          "kernel/engine | kernel | tau (exact) | float vs exact |")
-    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|")
+          "kernel/engine | kernel | tau (exact) | float vs exact |" + (" valid set |" if args.family else ""))
+    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|" + ("---|" if args.family else ""))
     for name in args.methods.split(","):
         for n, m in sizes:
-            r = row(n, m, name, METHODS[name], args.unbounded)
-            pieces = f"{r['pieces']} ({r['rays']} rays)" if args.unbounded else r["pieces"]
+            r = row(n, m, name, METHODS[name], args.unbounded, args.family)
+            pieces = f"{r['pieces']} ({r['rays']} rays)" if args.unbounded or args.family else r["pieces"]
             print(f"| {r['n']} | {r['m']} | {r['method']} | {pieces} | {r['lps']} | {r['engine']:.2f} | "
                   f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
                   f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
                   f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "
-                  f"{r['agree']:.1e} |", flush=True)
+                  f"{r['agree']:.1e} |" + (f" {r['set']} |" if args.family else ""), flush=True)
     return 0
 
 

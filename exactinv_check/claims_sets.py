@@ -86,9 +86,9 @@ def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = F
     if "lp" in claim:
         key = ("lp", repr(claim["lp"]))
         if key not in context:
-            gens, D, inequalities, horizon = lp_pieces.lp_conditions(problem, claim["lp"])
-            lp_pieces.require_horizon(D, inequalities, horizon, context, key + ("set",))
-            context[key] = (gens, D, inequalities, {})
+            gens, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(problem, claim["lp"])
+            lp_pieces.require_horizon(D, inequalities, equalities, horizon, context, key + ("set",))
+            context[key] = (gens, D, inequalities, equalities)
         gens, D, inequalities, equalities = context[key]
         start = None
     elif box is not None:

@@ -475,6 +475,11 @@ def _value_defs() -> dict[str, Any]:
             "point": {"$ref": "#/$defs/vector", "description": (
                 "A point of P (G x <= b, proved by the kernel): present exactly when some piece is a ray piece; it "
                 "makes P nonempty, so every ray condition is necessary.")},
+            "lines": {**_array({"$ref": "#/$defs/vector"}, 1), "description": (
+                "P with lines (rank G < n): l_1, ..., l_k with G l_j = 0 (proved by the kernel; a basis of ker G). "
+                "A basis row m + j (m = the rows of G) is the row l_j^T x <= 0: the pieces are those of "
+                "P' = P with these rows appended (pointed), and the kernel adds the line-facet equalities "
+                "g_i N(h) l_j = 0 of every facet i and line j.")},
             "facets": _array(_object({
                 "ends": _array(_REAL, 1),
                 "bases": _array({"oneOf": [
@@ -486,7 +491,8 @@ def _value_defs() -> dict[str, Any]:
             required=["facets"], description=(
                 "The LP route's pieces (no vertex list): per facet i of G (one entry each, in order), consecutive "
                 "closed pieces [0, e_0], [e_0, e_1], ... with strictly increasing exact ends (the last may be oo) and "
-                "one basis per piece (n rows of G), or a ray piece {ray: d} (P unbounded). The kernel proves each "
+                "one basis per piece (n rows of G, or of G with the lines appended), or a ray piece {ray: d} "
+                "(P unbounded). The kernel proves each "
                 "basis nonsingular with x_B = B^-1 b_B in P and z_B(h) = D(h) B^-T N(h)^T g_i >= 0 on its piece, "
                 "builds the vertex-facet condition of x_B and facet i (of a ray piece: d a ray of P, (g_i N d) D > 0 "
                 "on the open piece, the ray-facet condition; each finite end t > 0 decided by a basis piece or by a "

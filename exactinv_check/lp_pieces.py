@@ -65,11 +65,18 @@ LP_WORK_BUDGET = 50 * WORK_BUDGET  # all pieces of one record together (measured
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:
-    """([(ends, pieces)] per facet, point), shape-checked: a piece is a basis (a tuple of n distinct rows)
-    or a ray piece (a list of n rationals, the ray d); ``point`` (a list of n rationals) is present
-    exactly when some piece is a ray piece."""
-    require(isinstance(record, dict) and set(record) in ({"facets"}, {"facets", "point"}),
-            "lp has the key facets (and point, with ray pieces)")
+    """([(ends, pieces)] per facet, point, lines), shape-checked: a piece is a basis (a tuple of n distinct
+    rows of G' = G with the ``lines`` appended as rows m, m + 1, ...) or a ray piece (a list of n rationals,
+    the ray d); ``point`` (a list of n rationals) is present exactly when some piece is a ray piece;
+    ``lines`` (a nonempty list of vectors, P with lines) may be absent (then [])."""
+    require(isinstance(record, dict) and {"facets"} <= set(record) <= {"facets", "point", "lines"},
+            "lp has the key facets (and point, with ray pieces; lines, for a P with lines)")
+    lines = []
+    if "lines" in record:
+        require(isinstance(record["lines"], list) and 1 <= len(record["lines"]) < n,
+                f"lp lines: a list of 1 to {n - 1} vectors")
+        lines = [vector(v, f"lp line {j}", n) for j, v in enumerate(record["lines"])]
+    rows_of_G = m + len(lines)
     facets = record["facets"]
     require(isinstance(facets, list) and len(facets) == m, f"lp: one entry per facet ({m})")
     total = 0
@@ -90,13 +97,33 @@ def parse(record: Any, m: Any, n: Any) -> Any:
                 rays = True
                 continue
             require(isinstance(basis, list) and len(basis) == n, f"lp facet {i}: a basis is a list of {n} rows")
-            r = tuple(integer(x, f"lp facet {i} basis row", 0, m) for x in basis)
+            r = tuple(integer(x, f"lp facet {i} basis row", 0, rows_of_G) for x in basis)
             require(len(set(r)) == n, f"lp facet {i}: a basis repeats a row")
             rows.append(r)
         out.append((ends, rows))
     require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
     point = vector(record["point"], "lp point", n) if rays else None
-    return out, point
+    return out, point, lines
+
+
+def _require_lines(rows: Any, lines: Any) -> None:
+    """Each line l is a nonzero vector with G l = 0 exactly (so l and -l are directions of P: a line of P),
+    for the integer rows (g, beta) of G.  Nothing more is needed (docs/design.md, "P with lines"): a basis
+    holding rows l_j is nonsingular only if those l_j are independent, and then c^T l_j = 0 for all of them
+    forces their multipliers to 0; a line missing from a basis of ker G leaves every basis singular, and is
+    rejected there."""
+    for j, line in enumerate(lines):
+        require(any(line), f"lp line {j} is the zero vector")
+        dl = 1
+        for v in line:
+            dl = dl * v.denominator // gcd(dl, v.denominator)
+        li = [int(v * dl) for v in line]
+        gbits = max(abs(x).bit_length() for g, _ in rows for x in g)
+        charge(len(rows) * len(li) * (PYTHON_OP + words(max(abs(v).bit_length() for v in li) + gbits) ** 2),
+               "the lines in ker G")
+        for k, (g, _) in enumerate(rows):
+            if sum(map(mul, g, li)) != 0:
+                _fail(f"lp line {j} is not in ker G: row {k} of G times it is not 0 (not a line of P)")
 
 
 def _price(problem: Any, pieces: Any) -> None:
@@ -425,12 +452,14 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     piece positive at its rational end.  With ray pieces the record's ``point``,
     proved in P, makes P nonempty, so every ray condition is necessary."""
     n, m = problem.n, problem.m
-    facets, point = parse(record, m, n)
+    facets, point, lines = parse(record, m, n)
     _price(problem, sum(len(ends) for ends, _ in facets))
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = polys.integer_coefficients(D)
-    bases = _Bases(problem.G, problem.b)
+    # P' = P with the rows l^T x <= 0 appended: its bases' points x_B are points of P, its rays rays of P
+    bases = _Bases(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines))
+    _require_lines(bases.rows[:m], lines)
     if point is not None:
         _require_in(bases.rows, point, "lp point")
     dN, N_int = integer_matrix([row for Nk in N for row in Nk])  # N_k = N_int[k n .. k n + n - 1] / dN
@@ -503,11 +532,11 @@ def lp_conditions(problem: Any, record: Any) -> Any:
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
     count = len(points)
-    generators = SimpleNamespace(vertices=points, rays=rays, lines=[], counts=(count, count, 0))
-    D2, inequalities, _ = condition_polynomials(
+    generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)))
+    D2, inequalities, equalities = condition_polynomials(
         problem.A, problem.G, problem.b, method.numerator, method.denominator, generators,
-        lambda kind, k: [facet_of[k]] if kind != "line" and (kind == "ray") == is_ray[k] else [])
-    return generators, D2, inequalities, horizon
+        lambda kind, k: None if kind == "line" else [facet_of[k]] if (kind == "ray") == is_ray[k] else [])
+    return generators, D2, inequalities, equalities, horizon
 
 
 def _negative_beyond(p: Any, E: Any) -> Any:
@@ -523,14 +552,15 @@ def _negative_beyond(p: Any, E: Any) -> Any:
     return _positive_around(neg, E.hi, None) and _sliver(neg, neg, E, E.hi)  # -p > 0 on (E, hi] and beyond
 
 
-def require_horizon(D: Any, inequalities: Any, horizon: Any, context: Any, key: Any) -> None:
-    """When the pieces stop at E < oo: the set of the conditions lies in [0, E] (then it is the valid set)."""
+def require_horizon(D: Any, inequalities: Any, equalities: Any, horizon: Any, context: Any, key: Any) -> None:
+    """When the pieces stop at E < oo: the set of the conditions (inequalities >= 0, equalities = 0) lies
+    in [0, E] (then it is the valid set)."""
     if horizon.inf:
         return
     if any(_negative_beyond(p, horizon) for p in inequalities):
         return  # at every h > E some condition is < 0
     if key not in context:
-        context[key] = valid_set(D, list(inequalities), [])
+        context[key] = valid_set(D, list(inequalities), list(equalities))
     W = context[key]
     if not (W and not W[-1].hi.inf and W[-1].hi.compare(horizon) <= 0):
         _fail(f"the pieces stop at {horizon}, but their conditions allow steplengths beyond it")

@@ -111,8 +111,8 @@ def _problem(seed, method, bounded=True):
 def _truth(cert, record):
     """The kernel's own set from an lp record (CheckFailure when the record is rejected)."""
     problem = Problem(cert["problem"])
-    gens, D, inequalities, horizon = lp_pieces.lp_conditions(problem, record)
-    lp_pieces.require_horizon(D, inequalities, horizon, {}, "key")
+    gens, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(problem, record)
+    lp_pieces.require_horizon(D, inequalities, equalities, horizon, {}, "key")
     return [(str(i.lo), str(i.hi), i.lo_closed, i.hi_closed) for i in valid_set(D, list(inequalities), [])]
 
 

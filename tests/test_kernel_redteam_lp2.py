@@ -89,8 +89,8 @@ def _kernel_set(cert):
     claim), or None when it rejects the record."""
     try:
         problem = Problem(cert["problem"])
-        _, D, inequalities, horizon = lp_pieces.lp_conditions(problem, cert["claims"][0]["lp"])
-        lp_pieces.require_horizon(D, inequalities, horizon, {}, "set")
+        _, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(problem, cert["claims"][0]["lp"])
+        lp_pieces.require_horizon(D, inequalities, equalities, horizon, {}, "set")
         return valid_set(D, list(inequalities), [])
     except CheckFailure:
         return None

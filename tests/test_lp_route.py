@@ -112,15 +112,16 @@ def test_auto_takes_the_lp_route_only_when_the_vertex_bound_is_large():
     assert _ends(V) == _ends(ei.valid_steplengths(S, P, M.taylor(2), route="vertex"))
 
 
-def test_non_pointed_polyhedra_are_declined_and_unbounded_ones_are_not():
-    """The LP route declines P with lines (no basis): route="lp" says so, route="auto" falls back to
-    the vertex route.  An unbounded pointed P is the LP route's own (ray pieces): the orthant cut by
+def test_non_pointed_polyhedra_go_through_lp_lines_and_unbounded_ones_are_not_declined():
+    """A P with lines (rank G < n) is the LP route's too (tests/test_lp_lines.py): lp_route itself, which
+    needs a basis of G, declines it, and the route hands it to exactinv.beyond.lp_lines.  An unbounded
+    pointed P is the LP route's own (ray pieces): the orthant cut by
     x - y <= 1 under x' = diag(1, -1) x, where x grows along the ray (1, 1) -- for every h > 0 the
     facet x - y <= 1 sees (1 + h) - (1 - h) > 0 on it, so V = {0}."""
     S = ei.LinearSystem([[-1, 0], [0, -1]])
     strip = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])  # a line along y
-    with pytest.raises(InvalidInput, match="lines"):
-        ei.valid_steplengths(S, strip, M.taylor(1), route="lp")
+    V = ei.valid_steplengths(S, strip, M.taylor(1), route="lp")
+    assert V.route == "lp" and _ends(V) == [(0, 2, True, True)] and V.lp.lines == ((0, 1),)
     with pytest.raises(LPRouteDeclined):
         lp_route(ConditionSet(S, strip, M.taylor(1)))
     orthant = ei.Polyhedron([[-1, 0], [0, -1], [1, -1]], [0, 0, 1])  # unbounded, pointed

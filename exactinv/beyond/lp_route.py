@@ -47,7 +47,7 @@ not a pole) is decided by the next piece: a basis piece, a point piece [t, t]
 moved to a rational just left when irrational).  docs/design.md, "Unbounded
 P: rays and lines", has the proofs and the degenerate cases.
 
-The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n) and
+The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n: :mod:`exactinv.beyond.lp_lines` takes it) and
 the rare irrational point where all of a facet's ray conditions vanish: the
 vertex route handles those.  The cost is (facets) x (pieces) LPs and basis
 solves, independent of the number of vertices.
@@ -631,11 +631,28 @@ def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     return cache.found
 
 
-def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
+def walk_facets(cs: ConditionSet, facets: int) -> tuple[list[Condition], LPRoute]:
+    """:func:`lp_route`'s work, uncached, on the first ``facets`` rows of G only: the other rows bound
+    the LP's feasible set but are not facets whose validity is asked (the P with lines of
+    :mod:`exactinv.beyond.lp_lines`: the rows l^T x <= 0 of a basis of ker G).
+
+    The interval [-1, 1] with the row x <= 2 appended but not walked: only facets 0 and 1 get pieces.
+
+    >>> import exactinv as ei
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1], [1]], [1, 1, 2]), ei.methods.taylor(1))
+    >>> _, route = walk_facets(cs, 2)
+    >>> [f.facet for f in route.facets]
+    [0, 1]
+    """
+    return _build(cs, facets)
+
+
+def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition], LPRoute]:
     t0 = time.perf_counter()
     if cs.G.rank() < cs.polyhedron.n:
         raise LPRouteDeclined("P has lines (rank G < n): no basis exists; the vertex route handles it")
     P = _Problem(cs)
+    asked = range(P.m if walked is None else walked)
     T: Real = INF
     objectives = [P.objective(i) for i in range(P.m)]
     walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
@@ -691,15 +708,15 @@ def _build(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
             T = bound
         walks[i].append((found.piece, c, point))
 
-    for i in range(P.m):  # the first piece of every facet: an early horizon
+    for i in asked:  # the first piece of every facet: an early horizon
         step(i, Fraction(0))
-    for i in range(P.m):  # on to the horizon, and past a ray piece's end that it leaves undecided
+    for i in asked:  # on to the horizon, and past a ray piece's end that it leaves undecided
         while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
     rays = any(piece.basis is None for walk in walks for piece, _, _ in walk)
     conditions, vertices, facets = [], [], []
-    for i, walk in enumerate(walks):
+    for i, walk in enumerate(walks[:len(asked)]):
         facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
         for piece, c, x in walk:
             vertices.append(x if x is not None else P.point)

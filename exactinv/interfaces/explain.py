@@ -93,9 +93,12 @@ def _generators(c: dict) -> str:
         rays = sum(isinstance(b, dict) for f in c["lp"]["facets"] for b in f["bases"])
         unbounded = (f"; on {_count(rays, 'ray piece')} the LP is unbounded along a ray of P, whose ray-facet "
                      f"condition fails there" if rays else "")
+        lines = c["lp"].get("lines", [])
+        lined = (f"; P has {_count(len(lines), 'line')} (a basis of ker G), each basis holds their rows l^T x <= 0 "
+                 f"and every facet must satisfy g_i N(dt) l = 0 (the line equalities)" if lines else "")
         return (f"never listed: the LP route takes, per facet, the pieces of [0, oo) on which one basis of "
                 f"max g_i A_d(dt) x over P is optimal ({pieces} pieces in all, each proved by weak duality), and the "
-                f"vertex of each piece, which together decide every vertex{unbounded}")
+                f"vertex of each piece, which together decide every vertex{unbounded}{lined}")
     if "box" in c:
         lo, hi = c["box"]["lo"], c["box"]["hi"]
         count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"

@@ -4,14 +4,17 @@ max g_i A_d(h) x over P is optimal (docs/design.md, "The LP route" and "The rout
 Wraps :func:`exactinv.beyond.lp_route.lp_route` (weak duality proves each
 piece's vertex a maximizer, a ray of P each ray piece's unboundedness; the
 vertex-facet and ray-facet conditions of the pieces give the valid set
-exactly, with no vertex list).  It accepts P with rank G = n (no lines; a
-cheap rank of G), bounded or not; the rare degenerate point it cannot decide
-is found while solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
+exactly, with no vertex list).  It accepts every P, bounded or not; a P with
+lines (rank G < n) goes through :func:`exactinv.beyond.lp_lines.lp_lines`
+(the pieces on P' = P with the rows of a basis of ker G appended, and the
+line equalities).  The rare degenerate point it cannot decide is found while
+solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
 """
 
 from __future__ import annotations
 
-from ..beyond.lp_route import LPRouteDeclined, lp_route
+from ..beyond.lp_lines import lp_lines
+from ..beyond.lp_route import LPRoute, LPRouteDeclined, lp_route
 from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions, RouteDeclined
@@ -27,12 +30,6 @@ class ParametricLPRoute(PolyhedralRoute):
     """The LP route."""
 
     name = "lp"
-
-    def _accepts_polyhedron(self, problem: ValidSetProblem) -> bool:
-        return problem.conditions.G.rank() == problem.invariant_set.n
-
-    def _polyhedron_refusal(self, problem: ValidSetProblem) -> str:
-        return "P has lines (rank G < n): no basis exists; the vertex route handles it"
 
     def estimate(self, problem: ValidSetProblem) -> float:
         """Facets times :data:`LP_ABOVE` (+1: a tie goes to the vertex route).
@@ -56,8 +53,14 @@ class ParametricLPRoute(PolyhedralRoute):
         >>> [c.poly for c in found.inequalities], found.details["lp"].pieces
         ([(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))], 4)
         """
+        cs = problem.conditions
+        pieces: LPRoute
         try:
-            inequalities, pieces = lp_route(problem.conditions)
+            if cs.G.rank() < problem.invariant_set.n:
+                inequalities, equalities, pieces = lp_lines(cs)
+            else:
+                (inequalities, pieces), equalities = lp_route(cs), []
         except LPRouteDeclined as exc:
             raise RouteDeclined(str(exc)) from None
-        return RouteConditions(self.name, tuple(inequalities), (), vertex_zero(inequalities), None, {"lp": pieces})
+        return RouteConditions(self.name, tuple(inequalities), tuple(equalities), vertex_zero(inequalities), None,
+                               {"lp": pieces})

@@ -35,6 +35,10 @@ def main():
          ei.largest_threshold(S, box, t4, route="vertex"), ei.valid_steplengths(S, box, t4)])
     certs["box-route-rk4"] = ei.largest_threshold(S, box, ei.methods.PRESETS["rk4"](), route="box").certificate
     certs["lp-route-taylor2"] = ei.largest_threshold(S, octagon, ei.methods.taylor(2), route="lp").certificate
+    slab, feed = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1]), ei.LinearSystem([[-1, 1], [0, -1]])  # P with a line
+    certs["lp-lines-taylor2"] = certificate(feed, slab, ei.methods.taylor(2), [
+        ei.largest_threshold(feed, slab, ei.methods.taylor(2), route="lp"),
+        ei.valid_steplengths(feed, slab, ei.methods.taylor(2), route="lp")])
     orthant = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
     be = ei.methods.PRESETS["backward_euler"]()
     E2 = ei.LinearSystem([[-1, 2], [0, 1]])
