@@ -74,6 +74,7 @@ from ..errors import Undecided
 from ..model.methods import Method
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
+from .line_algebraic import on_line_indices_algebraic
 from .line_poles import on_line_indices
 from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
@@ -204,7 +205,7 @@ def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
 def _with_line_poles(method: Method, p_star) -> PoleStructure:
     """The pole structure, with every non-real pole whose real part Arb cannot separate from p*'s proved to be
     p* + iy exactly (exactinv.paper.line_poles); the precision is raised (to 4096 bits) for a pole that is not
-    on the line.  Undecided for p* irrational with such a pole (the exact proof needs p* rational)."""
+    on the line (p* rational: exactinv.paper.line_poles; p* irrational: exactinv.paper.line_algebraic, in Q(p*))."""
     bits = _BITS
     while True:
         with precision(bits):
@@ -214,18 +215,22 @@ def _with_line_poles(method: Method, p_star) -> PoleStructure:
                 return s
             if isinstance(p_star, Fraction):
                 proved = on_line_indices(method.h, p_star, s.balls, left)
-                s = PoleStructure(s.balls, s.star, s.mu, proved)
-                if len(proved) == len(left):
-                    break
+            else:  # p* irrational: the line is proved in Q(p*) (exactinv.paper.line_algebraic)
+                boxes = {k: _box(s.balls[k][0]) for k in left}
+                proved = on_line_indices_algebraic(method.h, p_star, boxes, left)
+            s = PoleStructure(s.balls, s.star, s.mu, proved)
+            if len(proved) == len(left):
+                break
         if bits >= 4096:
-            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part equals the "
-                            f"irrational p* = {p_star} to {bits} bits; the exact proof that Re z = p* is implemented "
-                            "for rational p* only (not an open problem: a gap of this implementation)"
-                            if not isinstance(p_star, Fraction) else
-                            f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
+            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
                             f"equal to p* = {p_star} nor separated from it at {bits} bits")
         bits *= 4
     return s  # balls from a higher precision stay valid enclosures at _BITS
+
+
+def _box(z: flint.acb) -> tuple[Fraction, Fraction, Fraction, Fraction]:
+    """Rationals (re_lo, re_hi, im_lo, im_hi) bounding an Arb box exactly (Arb's ends are dyadic)."""
+    return (dyadic_of(z.real.lower()), dyadic_of(z.real.upper()), dyadic_of(z.imag.lower()), dyadic_of(z.imag.upper()))
 
 
 def _tie_positive(s, tie) -> bool | None:

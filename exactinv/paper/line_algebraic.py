@@ -1,0 +1,157 @@
+"""Non-real poles on the line Re z = p* for an IRRATIONAL algebraic p*, proved exactly (issue 22, item 4).
+
+:mod:`exactinv.paper.line_poles` proves a pole z = p* + iy to lie on the vertical line through the smallest
+positive pole p* when p* is rational.  Here p* = alpha is a :class:`~exactinv.core.real_algebraic.RealAlgebraic`,
+the root of an irreducible integer polynomial m in an isolating interval, so Q(alpha) = Q[x]/(m) is a field:
+an element a(x) mod m is zero at alpha iff it is zero mod m, its inverse comes from the extended Euclid algorithm,
+and its sign is exact (alpha's interval is refined until Descartes' rule proves a root-free).
+
+With h(x + iy) = U(x, y) + i V(x, y) (the Taylor shift h(x + w) = sum_k s_k(x) w^k, w^k = (iy)^k), the line
+poles alpha + iy (y real) are exactly the real roots of G = gcd(U(alpha, .), V(alpha, .)) in Q(alpha)[y], a
+polynomial with real coefficients.  A pole's Arb box [a, b] x [c, d] holds one root of h; when a <= alpha <= b,
+0 is not in [c, d] and G(alpha, c), G(alpha, d) differ in sign (or one is 0), G has a real root y in [c, d]
+(intermediate value theorem), alpha + iy is a root of h in the box, hence the box's pole: proved on the line.
+(If the box's pole is on the line it is a simple root of G -- h squarefree -- so the test succeeds once the box
+is narrow enough.)  The kernel re-proves this from inclusion disks (exactinv_check.line_algebraic).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from math import comb
+
+import flint
+
+from ..core.flintq import fmpq_of
+from ..core.polys import integer_part, no_root_between, sign_at
+from ..core.real_algebraic import RealAlgebraic
+
+__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic"]
+
+_MAX_REFINE = 4000  # bisections of alpha's interval for one sign (each halves the width)
+
+
+def algebraic_sign(a: flint.fmpq_poly, alpha: RealAlgebraic) -> int:
+    """The exact sign of a(alpha) (alpha's interval is refined in place; the number is unchanged).
+
+    >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)          # sqrt 2
+    >>> [algebraic_sign(flint.fmpq_poly(c), r2) for c in ([-7, 5], [-2, 0, 1], [3, -2])]   # 5r2 - 7, r2^2 - 2, 3 - 2r2
+    [1, 0, -1]
+    """
+    a = a % flint.fmpq_poly(alpha.poly)
+    if a.is_zero():
+        return 0
+    q = integer_part(a)
+    for _ in range(_MAX_REFINE):
+        lo, hi = alpha.lower, alpha.upper
+        s = sign_at(q, lo)
+        if s != 0 and no_root_between(q, lo, hi):
+            return s
+        alpha.refine(max(1, (hi - lo).denominator.bit_length() - (hi - lo).numerator.bit_length() + 1))
+    raise ArithmeticError("algebraic_sign: no root-free interval after many bisections (internal)")
+
+
+def _parts(f: flint.fmpq_poly, m: flint.fmpq_poly) -> tuple[list, list]:
+    """(U, V) with f(alpha + iy) = U(y) + i V(y), coefficients fmpq_poly in x reduced mod m."""
+    c = [f[k] for k in range(f.degree() + 1)]
+    x = flint.fmpq_poly([0, 1])
+    s = []
+    for i in range(len(c)):
+        term = flint.fmpq_poly([0])
+        for k in range(i, len(c)):
+            term += flint.fmpq_poly([c[k] * comb(k, i)]) * x ** (k - i)
+        s.append(term % m)
+    zero = flint.fmpq_poly([0])
+    U = [s[k] * (-1) ** (k // 2) if k % 2 == 0 else zero for k in range(len(s))]
+    V = [s[k] * (-1) ** ((k - 1) // 2) if k % 2 else zero for k in range(len(s))]
+    return _trim(U), _trim(V)
+
+
+def _trim(P: list) -> list:
+    while P and P[-1].is_zero():
+        P = P[:-1]
+    return P
+
+
+def _monic(P: list, m: flint.fmpq_poly) -> list:
+    g, s, _ = P[-1].xgcd(m)  # s P[-1] + t m = g, a nonzero constant (m irreducible, P[-1] != 0 mod m)
+    inv = s / g
+    return [(c * inv) % m for c in P[:-1]] + [flint.fmpq_poly([1])]
+
+
+def _remainder(A: list, B: list, m: flint.fmpq_poly) -> list:
+    A = list(A)
+    while A and len(A) >= len(B):
+        shift, c = len(A) - len(B), A[-1]
+        for k, bk in enumerate(B):
+            A[k + shift] = (A[k + shift] - c * bk) % m
+        A = _trim(A[:-1] + [flint.fmpq_poly([0])])
+    return A
+
+
+def algebraic_line_gcd(h: flint.fmpq_poly, alpha: RealAlgebraic) -> list:
+    """The monic G = gcd(U(alpha, .), V(alpha, .)) in Q(alpha)[y] as a list of fmpq_poly in x (mod alpha's
+    polynomial), low degree first: its real roots y are exactly the roots alpha + iy of h.
+
+    (z^2 - 2)(z^4 - 2z^2 + 9), roots +-sqrt 2 and +-sqrt 2 +- i: on Re z = sqrt 2, G = y^3 - y.
+
+    >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> [str(c) for c in algebraic_line_gcd(flint.fmpq_poly([-18, 0, 13, 0, -4, 0, 1]), r2)]
+    ['0', '-1', '0', '1']
+    """
+    m = flint.fmpq_poly(alpha.poly)
+    U, V = _parts(h, m)
+    if not U or not V:
+        G = U or V
+        return _monic(G, m) if G else [flint.fmpq_poly([1])]
+    A, B = U, V
+    while B:
+        B = _monic(B, m)
+        A, B = B, _remainder(A, B, m)
+    return _monic(A, m)
+
+
+def _value_sign(G: list, y: Fraction, alpha: RealAlgebraic) -> int:
+    acc = flint.fmpq_poly([0])
+    for c in reversed(G):
+        acc = acc * fmpq_of(y) + c
+    return algebraic_sign(acc, alpha)
+
+
+def _inside(alpha: RealAlgebraic, lo: Fraction, hi: Fraction) -> bool | None:
+    """lo <= alpha <= hi: True, False, or None (not decided after refinement)."""
+    for bits in (0, 32, 64, 128, 256, 512, 1024):
+        if bits:
+            alpha.refine(bits)
+        if lo <= alpha.lower and alpha.upper <= hi:
+            return True
+        if alpha.upper < lo or alpha.lower > hi:
+            return False
+    return None
+
+
+def on_line_indices_algebraic(h: flint.fmpq_poly, alpha: RealAlgebraic, boxes: list, candidates) -> frozenset:
+    """The indices k in ``candidates`` whose pole (the one root of h in the box boxes[k] = (re_lo, re_hi, im_lo,
+    im_hi), rationals) is proved to be alpha + iy, y != 0 real (module docstring).
+
+    >>> from fractions import Fraction as F
+    >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> h = flint.fmpq_poly([-18, 0, 13, 0, -4, 0, 1])                        # +-sqrt 2, +-sqrt 2 +- i
+    >>> boxes = [(F(7, 5), F(3, 2), F(9, 10), F(11, 10)), (F(7, 5), F(3, 2), F(-11, 10), F(-9, 10)),
+    ...          (F(-3, 2), F(-7, 5), F(9, 10), F(11, 10))]
+    >>> sorted(on_line_indices_algebraic(h, r2, boxes, [0, 1, 2]))
+    [0, 1]
+    """
+    sq = integer_part(h)
+    sq = flint.fmpq_poly(sq // sq.gcd(sq.derivative()))
+    G = algebraic_line_gcd(sq, alpha)
+    if len(G) <= 1:
+        return frozenset()
+    out = set()
+    for k in candidates:
+        re_lo, re_hi, im_lo, im_hi = boxes[k]
+        if im_lo <= 0 <= im_hi or not _inside(alpha, re_lo, re_hi):
+            continue
+        if _value_sign(G, im_lo, alpha) * _value_sign(G, im_hi, alpha) <= 0:
+            out.add(k)
+    return frozenset(out)
