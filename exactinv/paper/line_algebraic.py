@@ -23,10 +23,11 @@ from math import comb
 import flint
 
 from ..core.flintq import fmpq_of
+from ..core.float_hint import float_hint
 from ..core.polys import integer_part, no_root_between, sign_at
 from ..core.real_algebraic import RealAlgebraic
 
-__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic"]
+__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic", "algebraic_pair_balance"]
 
 _MAX_REFINE = 4000  # bisections of alpha's interval for one sign (each halves the width)
 
@@ -35,7 +36,7 @@ def algebraic_sign(a: flint.fmpq_poly, alpha: RealAlgebraic) -> int:
     """The exact sign of a(alpha) (alpha's interval is refined in place; the number is unchanged).
 
     >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)          # sqrt 2
-    >>> [algebraic_sign(flint.fmpq_poly(c), r2) for c in ([-7, 5], [-2, 0, 1], [3, -2])]   # 5r2 - 7, r2^2 - 2, 3 - 2r2
+    >>> [algebraic_sign(flint.fmpq_poly(c), r2) for c in ([-7, 5], [-2, 0, 1], [3, -3])]   # 5r2 - 7, r2^2 - 2, 3 - 3r2
     [1, 0, -1]
     """
     a = a % flint.fmpq_poly(alpha.poly)
@@ -97,7 +98,7 @@ def algebraic_line_gcd(h: flint.fmpq_poly, alpha: RealAlgebraic) -> list:
 
     >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
     >>> [str(c) for c in algebraic_line_gcd(flint.fmpq_poly([-18, 0, 13, 0, -4, 0, 1]), r2)]
-    ['0', '-1', '0', '1']
+    ['0', '(-1)', '0', '1']
     """
     m = flint.fmpq_poly(alpha.poly)
     U, V = _parts(h, m)
@@ -155,3 +156,60 @@ def on_line_indices_algebraic(h: flint.fmpq_poly, alpha: RealAlgebraic, boxes: l
         if _value_sign(G, im_lo, alpha) * _value_sign(G, im_hi, alpha) <= 0:
             out.add(k)
     return frozenset(out)
+
+
+def _norm_at_pair(P: flint.fmpq_poly, m: flint.fmpq_poly, Y: flint.fmpq_poly) -> flint.fmpq_poly:
+    """|P(alpha + iy)|^2 for y^2 = Y (Y in Q(alpha)) as an element of Q(alpha): P(alpha + iy) = A + i y B with
+    A, B polynomials in Y (U even, V odd in y), so |P|^2 = A^2 + Y B^2."""
+    U, V = _parts(P, m)
+    A, B = flint.fmpq_poly([0]), flint.fmpq_poly([0])
+    for k in reversed(range(len(U))):
+        if k % 2 == 0:
+            A = (A * Y + U[k]) % m
+    for k in reversed(range(len(V))):
+        if k % 2 == 1:
+            B = (B * Y + V[k]) % m
+    return (A * A + Y * B * B) % m
+
+
+def algebraic_pair_balance(g: list, h: list, alpha: RealAlgebraic) -> tuple[int, float] | None:
+    """For p* = alpha simple with exactly one pair alpha +- iy of simple poles on its line (G = gcd(U, V) of h itself
+    is y^3 - Y y, Y(alpha) > 0): (sign of b_*^2 - 4|b|^2, a float hint of y), exact in Q(alpha); None otherwise.
+    The line part of e^(p* t) f(t) is B(t) = b_* + 2 Re(b e^(-iyt)), whose minimum is b_* - 2|b| (b_* > 0):
+    sign -1 means B < 0 somewhere (so f < 0 for large t when every other pole has Re z > p*), 0 that B touches 0.
+
+    (z^2 - 2)(z^4 - 2z^2 + 9) (shifted by 2 so that p* = 2 - sqrt 2 is the smallest positive pole) with g = 1 + z:
+
+    >>> from fractions import Fraction as F
+    >>> a = RealAlgebraic.from_isolating_interval([2, -4, 1], 0, 1)                         # 2 - sqrt 2
+    >>> w = flint.fmpq_poly([-2, 1]); h = (w**2 - 2) * (w**4 - 2 * w**2 + 9); h = h / h(0)
+    >>> sign, y = algebraic_pair_balance([F(1), F(1)], [F(int(c.p), int(c.q)) for c in h.coeffs()], a)
+    >>> sign, round(y, 6)
+    (-1, 1.0)
+    """
+    m = flint.fmpq_poly(alpha.poly)
+    hq = flint.fmpq_poly([fmpq_of(c) for c in h])
+    gq = flint.fmpq_poly([fmpq_of(c) for c in g])
+    G = algebraic_line_gcd(hq, alpha)
+    if len(G) != 4 or not G[0].is_zero() or not G[2].is_zero() or G[1].is_zero():
+        return None
+    Y = (-G[1]) % m
+    if algebraic_sign(Y, alpha) <= 0:
+        return None
+    dh = hq.derivative()
+    n_star, d_star = gq % m, dh % m  # b_* = -g(alpha)/h'(alpha)
+    if d_star.is_zero():
+        return None
+    nh = _norm_at_pair(dh, m, Y)  # |h'(z)|^2 > 0 (z a simple pole)
+    E = (n_star * n_star * nh - 4 * _norm_at_pair(gq, m, Y) * d_star * d_star) % m
+    sign = algebraic_sign(E, alpha)  # b_*^2 - 4|b|^2 = E / (h'(alpha)^2 |h'(z)|^2)
+    return sign, max(_float_at(Y, alpha), 0.0) ** 0.5
+
+
+def _float_at(a: flint.fmpq_poly, alpha: RealAlgebraic) -> float:
+    """A float hint of a(alpha) (never raising: 0.0 when it cannot be formed)."""
+    try:
+        x = (alpha.lower + alpha.upper) / 2
+        return float_hint(sum(Fraction(int(c.p), int(c.q)) * x ** k for k, c in enumerate(a.coeffs())))
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return 0.0
