@@ -25,10 +25,10 @@ positivity problem for linear differential equations, open in general.
 
 from __future__ import annotations
 
+from cmath import phase
 from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
-from cmath import phase
 from math import comb, factorial, gcd, pi
 
 import flint
