@@ -14,7 +14,6 @@ and |c| <= 1, rho is the positive root of r(-kappa) (c_j >= 0 for j >= 1, c_0 = 
 from fractions import Fraction as F
 
 import flint
-import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
