@@ -65,7 +65,7 @@ from typing import Any, Sequence
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
 from .disks import ball, ball_abs_upper, ball_mul
-from .line_algebraic import AlgebraicLine
+from .line_algebraic import AlgebraicLine, lines_nonnegative
 from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, single_pair
 from .polys import MAX_DEGREE as MAX_DEGREE_OF_F
 from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
@@ -185,6 +185,12 @@ def _density_nonnegative(g: Any, h: Any) -> Any:
     star_b = next(t[2] for t in terms if t[3])
     require(star_b[mu - 1][0] - star_b[mu - 1][2] > 0, "bernstein: b_{*,mu} is not proved positive")
     rest, line = None, ""
+    if _line_outweighs(terms, mu) and p_exact is None:  # p* irrational: the balance is decided line by line
+        lines = lines_nonnegative(g, h, len(factors) == 1 and factors[0][1] == 1)
+        require(lines is not None, "bernstein: the poles on Re z = p* (irrational) balance p* (sum |b| >= b_*), and f is "
+                                   "not proved >= 0 line by line (every pole simple, on a line through a positive real "
+                                   "pole with at most one pair, b_j^2 >= 4|beta_j|^2 exactly in Q(x_j))")
+        return f"f(t) = sum_j e^(-x_j t) B_j(t) >= 0: {lines}"
     if _line_outweighs(terms, mu):  # the line poles balance p* (sum |b| >= b_*): p*'s dominance can never hold
         rest, line = _balanced_line(g, h, factors, poles, disks, terms, p_exact)
         if rest is True:  # every pole on the line and B >= 0: f = e^(-p* t) B(t) >= 0

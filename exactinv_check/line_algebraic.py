@@ -30,11 +30,11 @@ from typing import Sequence
 
 from .budget import charge, fraction_products_cost
 from .disks import sqrt_bounds
-from .polys import divmod_, gcd, monic, mul, sub, trim
+from .polys import derivative, divmod_, gcd, monic, mul, positive_roots, sub, trim
 from .rationals import require
 from .reals import Real
 
-__all__ = ["AlgebraicLine", "MAX_LINE_DEGREE"]
+__all__ = ["AlgebraicLine", "MAX_LINE_DEGREE", "lines_nonnegative"]
 
 MAX_LINE_DEGREE = 16  # the largest deg f (in y) and deg m handled here: the kernel's bound on deg h (bernstein)
 
@@ -48,7 +48,7 @@ class AlgebraicLine:
     and the squarefree rational polynomial m with m(alpha) = 0 (module docstring)."""
 
     def __init__(self, alpha: Real, m: Sequence[Fraction]) -> None:
-        require(alpha.poly is not None, "line: alpha must be an isolated algebraic number")
+        require(not alpha.inf, "line: alpha must be a finite real")
         require(2 <= len(trim(m)) <= MAX_LINE_DEGREE + 1, "line: the polynomial of p* has an unsupported degree")
         require(alpha.sign_of(list(m)) == 0, "line: p* is not a root of its polynomial (internal)")
         self.alpha = alpha
@@ -56,10 +56,10 @@ class AlgebraicLine:
 
     # ------------------------------------------------------------- Q(alpha)
     def _reduce(self, a: Sequence[Fraction]) -> list[Fraction]:
-        a = trim(list(a))
-        if len(a) < len(self.m):
-            return a
-        return list(divmod_(a, self.m)[1])
+        b: list[Fraction] = trim(list(a))
+        if len(b) < len(self.m):
+            return b
+        return list(divmod_(b, self.m)[1])
 
     def _mul(self, a: Sequence[Fraction], b: Sequence[Fraction]) -> list[Fraction]:
         if not a or not b:
@@ -90,7 +90,8 @@ class AlgebraicLine:
             q, r = divmod_(r0, r1)
             r0, r1, s0, s1 = r1, list(r), s1, trim(sub(s0, mul(q, s1)))
         require(len(r1) == 1 and r1[0] != 0, "line: an element of Q(p*) is not invertible (internal)")
-        return self._reduce([c / r1[0] for c in s1])
+        inverse: list[Fraction] = self._reduce([c / r1[0] for c in s1])
+        return inverse
 
     # ------------------------------------------------------------- Q(alpha)[y]
     def _trim(self, P: list[list[Fraction]]) -> list[list[Fraction]]:
@@ -170,5 +171,68 @@ def _shift_coefficient(f: Sequence[Fraction], i: int) -> list[Fraction]:
     out = [Fraction(0)] * max(len(f) - i, 1)
     for k in range(i, len(f)):
         out[k - i] += f[k] * comb(k, i)
-    return trim(out)
+    shifted: list[Fraction] = trim(out)
+    return shifted
 
+
+
+def _norm_at_pair(line: AlgebraicLine, P: Sequence[Fraction], Y: list[Fraction]) -> list[Fraction]:
+    """|P(x + iy)|^2 at x = alpha, y^2 = Y (Y in Q(alpha)): P(x + iy) = A + i y B with A, B polynomials in Y
+    (U is even, V odd in y), so |P|^2 = A^2 + Y B^2, an element of Q(alpha)."""
+    U, V = line.parts(P)
+    A: list[Fraction] = []
+    B: list[Fraction] = []
+    for k in reversed(range(len(U))):
+        if k % 2 == 0:
+            A = line._reduce(_add(line._mul(A, Y), U[k]))
+    for k in reversed(range(len(V))):
+        if k % 2 == 1:
+            B = line._reduce(_add(line._mul(B, Y), V[k]))
+    return line._reduce(_add(line._mul(A, A), line._mul(Y, line._mul(B, B))))
+
+
+def _add(a: Sequence[Fraction], b: Sequence[Fraction]) -> list[Fraction]:
+    n = max(len(a), len(b))
+    out: list[Fraction] = trim([(a[i] if i < len(a) else Fraction(0)) + (b[i] if i < len(b) else Fraction(0)) for i in range(n)])
+    return out
+
+
+def lines_nonnegative(g: Sequence[Fraction], h: Sequence[Fraction], squarefree_h: bool) -> str | None:
+    """A sentence proving f >= 0 on (0, oo) line by line, or None (no claim).  Requires h squarefree (every pole
+    simple; the caller says so from its squarefree decomposition) and, for every positive real root x_j of h
+    (rational or algebraic: a Real isolated by positive_roots, m = h), G_j = gcd(U, V) of h on Re z = x_j equal
+    to y (x_j alone on its line) or to y^3 - Y_j y with Y_j(x_j) > 0 (one pair x_j +- i sqrt(Y_j)), the counts
+    1 or 3 adding up to deg h (so every pole lies on one of these lines, all with Re z > 0), and every line part
+    B_j(t) = b_j + 2 Re(beta_j e^(-i y_j t)) >= 0: b_j = -g(x_j)/h'(x_j) > 0 and b_j^2 >= 4|beta_j|^2, i.e.
+    E = g^2 |h'(z)|^2 - 4 |g(z)|^2 h'^2 >= 0 at x_j (exact signs in Q(x_j)).  Then
+    f(t) = sum_j e^(-x_j t) B_j(t) >= 0, also where f touches 0."""
+    if not squarefree_h or len(h) - 1 > MAX_LINE_DEGREE:
+        return None
+    dh = derivative(list(h))
+    count, parts = 0, []
+    for lo, hi in positive_roots(list(h)):
+        x = Real.root_in(list(h), lo, hi)
+        line = AlgebraicLine(x, list(h))
+        G = line.line_gcd(h)
+        signs = line.sign(list(g)) * line.sign(dh)
+        if signs >= 0:  # b_j = -g(x_j)/h'(x_j) <= 0
+            return None
+        if len(G) == 2 and line.is_zero(G[0]):  # G = y
+            count += 1
+            parts.append(f"{x}: b > 0")
+            continue
+        if len(G) != 4 or not line.is_zero(G[0]) or not line.is_zero(G[2]) or G[3] != [Fraction(1)]:
+            return None
+        Y = line._reduce([-c for c in G[1]])
+        if line.sign(Y) <= 0:
+            return None
+        n, d = line._reduce(list(g)), line._reduce(dh)
+        E = _add(line._mul(line._mul(n, n), _norm_at_pair(line, dh, Y)),
+                 [-4 * c for c in line._mul(_norm_at_pair(line, g, Y), line._mul(d, d))])
+        if line.sign(E) < 0:
+            return None
+        count += 3
+        parts.append(f"{x} +- i y: b^2 >= 4|beta|^2")
+    if count != len(h) - 1:
+        return None
+    return "every pole on a line Re z = x_j through a positive real pole, each line part B_j >= 0 (" + "; ".join(parts) + ")"

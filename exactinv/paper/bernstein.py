@@ -37,7 +37,7 @@ from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
-from .line_algebraic import algebraic_pair_balance
+from .line_algebraic import algebraic_pair_balance, lines_nonnegative
 from .line_poles import line_density, line_part, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 
@@ -472,6 +472,10 @@ def _balanced_far_algebraic(g, h, s: PoleStructure, p_star, open_case: str) -> V
     searched near B's minima (the witness alone is the proof).  Zero: B touches 0 and the sign of f near its zeros
     is the rest's (open in general); positive: p* dominates, not separated at working precision."""
     pair = algebraic_pair_balance(g, h, p_star)
+    if pair is None or pair[0] == 0:
+        lines = lines_nonnegative(g, h)
+        if lines is not None:
+            return Verdict(True, f"f >= 0 on (0, oo): {lines}")
     if pair is None:
         return Verdict(False, f"the poles on Re z = p* = {p_star} (irrational) balance p*, and they are not one pair "
                               "p* +- iy (several pairs: B >= 0 is decided for rational p* only); " + open_case)

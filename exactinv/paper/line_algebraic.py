@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 from math import comb
+from typing import Any
 
 import flint
 
@@ -26,8 +27,9 @@ from ..core.flintq import fmpq_of
 from ..core.float_hint import float_hint
 from ..core.polys import integer_part, no_root_between, sign_at
 from ..core.real_algebraic import RealAlgebraic
+from ..core.roots import real_roots
 
-__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic", "algebraic_pair_balance"]
+__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic", "algebraic_pair_balance", "lines_nonnegative"]
 
 _MAX_REFINE = 4000  # bisections of alpha's interval for one sign (each halves the width)
 
@@ -40,8 +42,8 @@ def algebraic_sign(a: flint.fmpq_poly, alpha: RealAlgebraic) -> int:
     [1, 0, -1]
     """
     a = a % flint.fmpq_poly(alpha.poly)
-    if a.is_zero():
-        return 0
+    if a.degree() <= 0:  # a constant (always, when alpha is rational: a linear polynomial)
+        return 0 if a.is_zero() else (1 if a[0] > 0 else -1)
     q = integer_part(a)
     for _ in range(_MAX_REFINE):
         lo, hi = alpha.lower, alpha.upper
@@ -143,8 +145,8 @@ def on_line_indices_algebraic(h: flint.fmpq_poly, alpha: RealAlgebraic, boxes: l
     >>> sorted(on_line_indices_algebraic(h, r2, boxes, [0, 1, 2]))
     [0, 1]
     """
-    sq = integer_part(h)
-    sq = flint.fmpq_poly(sq // sq.gcd(sq.derivative()))
+    ints = integer_part(h)
+    sq = flint.fmpq_poly(ints // ints.gcd(ints.derivative()))
     G = algebraic_line_gcd(sq, alpha)
     if len(G) <= 1:
         return frozenset()
@@ -213,3 +215,69 @@ def _float_at(a: flint.fmpq_poly, alpha: RealAlgebraic) -> float:
         return float_hint(sum(Fraction(int(c.p), int(c.q)) * x ** k for k, c in enumerate(a.coeffs())))
     except (OverflowError, ValueError, ZeroDivisionError):
         return 0.0
+
+
+def lines_nonnegative(g: list, h: list) -> str | None:
+    """f >= 0 on (0, oo) proved line by line, or None: every pole of h is simple and lies on a vertical line
+    Re z = x_j through a positive real pole x_j (rational or algebraic), each line holding x_j and at most one pair
+    x_j +- iy_j, and every line part B_j(t) = b_j + 2 Re(beta_j e^(-i y_j t)) is >= 0, i.e. b_j > 0 and
+    b_j^2 >= 4|beta_j|^2 (exact in Q(x_j)).  Then f(t) = sum_j e^(-x_j t) B_j(t) >= 0 even where it touches 0, e.g.
+    f = (e^(-(2 - sqrt 2) t) + e^(-(2 + sqrt 2) t))(1 + cos t).  The kernel re-proves it
+    (exactinv_check.line_algebraic.lines_nonnegative).
+
+    1/((1 - z)(1 - z + z^2/2)): f = 2 e^(-t) (1 - cos t), b = 2 = 2|beta|; 1/h with h = (w^2 - 2)(w^4 - 2w^2 + 9),
+    w = z - 2: f > 0 (rho = oo by dominance), but the line through 2 + sqrt 2 has b_q < 2|beta_q|, so not line by line:
+
+    >>> from fractions import Fraction as F
+    >>> lines_nonnegative([F(1)], [F(1), F(-2), F(3, 2), F(-1, 2)])
+    'every pole on a line Re z = x_j through a real pole, each line part B_j >= 0 (1 +- i y: b^2 = 4|beta|^2)'
+    >>> w = flint.fmpq_poly([-2, 1]); h = (w**2 - 2) * (w**4 - 2 * w**2 + 9); h = h / h(0)
+    >>> lines_nonnegative([F(1)], [F(int(c.p), int(c.q)) for c in h.coeffs()]) is None
+    True
+    """
+    hq = flint.fmpq_poly([fmpq_of(c) for c in h])
+    gq = flint.fmpq_poly([fmpq_of(c) for c in g])
+    if hq.degree() < 1 or hq.gcd(hq.derivative()).degree() > 0 or not hq.gcd(gq).degree() == 0:
+        return None
+    dh = hq.derivative()
+    count, parts = 0, []
+    for root, _ in real_roots(hq):
+        if not root > 0:
+            return None
+        x: Any = _Rational(root) if isinstance(root, Fraction) else root
+        m = flint.fmpq_poly(x.poly)
+        G = algebraic_line_gcd(hq, x)
+        if len(G) == 2 and G[0].is_zero():  # y: x_j alone on its line
+            count += 1
+            if algebraic_sign(gq % m, x) * algebraic_sign(dh % m, x) >= 0:  # b_j = -g/h' <= 0
+                return None
+            parts.append(f"{x}: b > 0")
+            continue
+        if len(G) != 4 or not G[0].is_zero() or not G[2].is_zero() or G[1].is_zero():
+            return None
+        Y = (-G[1]) % m
+        if algebraic_sign(Y, x) <= 0 or algebraic_sign(gq % m, x) * algebraic_sign(dh % m, x) >= 0:
+            return None
+        E = ((gq % m) ** 2 * _norm_at_pair(dh, m, Y) - 4 * _norm_at_pair(gq, m, Y) * (dh % m) ** 2) % m
+        if algebraic_sign(E, x) < 0:
+            return None
+        count += 3
+        parts.append(f"{x} +- i y: b^2 {'=' if E.is_zero() else '>'} 4|beta|^2")
+    if count != hq.degree():
+        return None
+    return "every pole on a line Re z = x_j through a real pole, each line part B_j >= 0 (" + "; ".join(parts) + ")"
+
+
+class _Rational:
+    """A rational x as the root of the linear x - q, with the interface algebraic_sign and algebraic_line_gcd use."""
+
+    def __init__(self, q: Fraction) -> None:
+        self.q = q
+        self.poly = flint.fmpz_poly([-q.numerator, q.denominator])
+        self.lower = self.upper = q
+
+    def refine(self, bits: int = 0) -> "_Rational":
+        return self
+
+    def __str__(self) -> str:
+        return str(self.q)
