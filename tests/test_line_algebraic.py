@@ -14,6 +14,7 @@ and |c| <= 1, rho is the positive root of r(-kappa) (c_j >= 0 for j >= 1, c_0 = 
 from fractions import Fraction as F
 
 import flint
+import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -31,12 +32,14 @@ from exactinv_check.reals import Real
 _z = sp.symbols("z")
 
 
-def conjugate_lines(a, d, y, c, C=0):
-    """(g, h), h(0) = 1, of the module docstring's r (sympy, exact)."""
+def conjugate_lines(a, d, y, c, C=0, v=0):
+    """(g, h), h(0) = 1, of the module docstring's r (sympy, exact); v != 0 gives the pair the residue
+    beta = (c + 2iv)/2: B(t) = 1 + 2 Re(beta e^(-iyt)) >= 0 iff c^2 + 4v^2 <= 1 (the pair's two partial fractions
+    add up to (2u (p - z) + 2 v y)/((p - z)^2 + y^2) for beta = u + iv)."""
     S = 0
     for s in (1, -1):
         p = a - s * sp.sqrt(d)
-        S += 1 / (p - _z) + c * (p - _z) / ((p - _z) ** 2 + y ** 2)
+        S += 1 / (p - _z) + (c * (p - _z) + 2 * sp.Rational(v) * y) / ((p - _z) ** 2 + y ** 2)
     S = sp.together(sp.expand(S))
     r = sp.Rational(C) + (1 - sp.Rational(C)) * S / sp.nsimplify(S.subs(_z, 0))
     num, den = sp.fraction(sp.cancel(sp.together(r)))
@@ -174,27 +177,68 @@ def test_the_kernel_rejects_a_forged_oo_for_an_unbalanced_pair():
     assert not check(flipped).ok
 
 
+@pytest.mark.parametrize("c, v", [(F(1), F(0)), (F(-1), F(0)), (F(3, 5), F(2, 5))])
+def test_lines_touching_zero_are_oo(c, v):
+    """c^2 + 4v^2 = 1: B(t) = 1 + c cos(yt) + 2v sin(yt) >= 0 touches 0 (at t = pi for c = 1), so
+    f = (e^(-pt) + e^(-qt)) B(t) >= 0 touches 0 too: no march can certify it, the line-by-line proof does (exact in
+    Q(sqrt 2)): rho = oo, kernel-checked, and the reference agrees."""
+    g, h = conjugate_lines(2, 2, 1, c, 0, v)
+    r = _radius(g, h)
+    assert r.value == INF and r.reason == "bernstein"
+    for kappa in (F(0), F(2), F(30)):
+        assert admissible(g, h, kappa, 300)
+
+
+def test_the_kernel_line_by_line_proof_accepts_exactly_the_nonnegative_lines():
+    """exactinv_check.line_algebraic.lines_nonnegative: B >= 0 touching 0 (c = 1) accepted, B < 0 somewhere (c = 3/2,
+    or 4v^2 + c^2 = 1 + 1/100) rejected, and 1/h (f > 0, but the line through 2 + sqrt 2 has b_q < 2|beta_q|) not
+    claimed line by line."""
+    from exactinv_check.line_algebraic import lines_nonnegative
+    assert lines_nonnegative(*conjugate_lines(2, 2, 1, F(1)), True) is not None
+    assert lines_nonnegative(*conjugate_lines(2, 2, 1, F(3, 5), 0, F(2, 5)), True) is not None
+    assert lines_nonnegative(*conjugate_lines(2, 2, 1, F(3, 2)), True) is None
+    assert lines_nonnegative(*conjugate_lines(2, 2, 1, F(3, 5), 0, F(2, 5) + F(1, 80)), True) is None
+    w = flint.fmpq_poly([-2, 1])
+    hq = (w ** 2 - 2) * (w ** 4 - 2 * w ** 2 + 9)
+    h = [F(int(c.p), int(c.q)) / F(int(hq(0).p), int(hq(0).q)) for c in hq.coeffs()]
+    assert lines_nonnegative([F(1)], h, True) is None
+
+
+def test_the_kernel_rejects_oo_for_touching_lines_with_a_negative_constant():
+    """c = 1, C = -1/2: f >= 0 (line by line) but r(-x) -> -1/2 < 0, so rho < oo: the engine says bernstein-root,
+    and the good certificate's claim re-labelled as rho = oo is rejected."""
+    g, h = conjugate_lines(2, 2, 1, F(1), F(-1, 2))
+    r = _radius(g, h)
+    assert r.reason == "bernstein-root"
+    forged = r.certificate
+    forged["claims"][0].update({"value": "oo", "reason": "bernstein", "attained": True})
+    assert not check(forged).ok
+
+
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(a=st.integers(min_value=2, max_value=4), d=st.sampled_from([2, 3, 5]),
        y=st.fractions(min_value=F(1, 2), max_value=2, max_denominator=2),
        c=st.fractions(min_value=F(-2), max_value=F(2), max_denominator=4),
-       C=st.sampled_from([F(0), F(1, 4), F(-1, 2)]))
-def test_random_conjugate_lines_are_decided_checked_and_confirmed(a, d, y, c, C):
-    """p* = a - sqrt d (a^2 > d: both conjugates positive) with a pair on its line: decided or a named Undecided,
-    the kernel re-proves every certificate, and the reference agrees: by hand rho = oo iff |c| <= 1 and C >= 0."""
-    if a * a <= d or c == 0:
+       C=st.sampled_from([F(0), F(1, 4), F(-1, 2)]),
+       circle=st.sampled_from([None, (F(3, 5), F(2, 5)), (F(-5, 13), F(6, 13)), (F(0), F(1, 2))]))
+def test_random_conjugate_lines_are_decided_checked_and_confirmed(a, d, y, c, C, circle):
+    """p* = a - sqrt d (a^2 > d: both conjugates positive) with a pair on its line (residue (c + 2iv)/2; ``circle``
+    puts it exactly on c^2 + 4v^2 = 1, B touching 0): decided or a named resource limit, the kernel re-proves every
+    certificate, and the reference agrees: by hand rho = oo iff c^2 + 4v^2 <= 1 and C >= 0."""
+    v = F(0)
+    if circle is not None:
+        c, v = circle
+    if a * a <= d or (c == 0 and v == 0):
         return
-    g, h = conjugate_lines(a, d, y, c, C)
+    g, h = conjugate_lines(a, d, y, c, C, v)
+    nonnegative = c * c + 4 * v * v <= 1
     try:
         r = _radius(g, h)
-    except ei.Undecided as e:
-        assert abs(c) == 1 or "kernel's polynomial bound" in str(e) or "j <= 8192" in str(e) \
-            or "coefficients" in str(e), str(e)
+    except ei.Undecided as e:  # resource limits only, named
+        assert "kernel's polynomial bound" in str(e) or "j <= 8192" in str(e) or "coefficients" in str(e), str(e)
         return
-    if abs(c) <= 1 and C >= 0:
-        assert r.value == INF
+    assert (r.value == INF) == (nonnegative and C >= 0)
     if r.value == INF:
-        assert abs(c) <= 1 and C >= 0
         for kappa in (F(0), F(1), F(10)):
             assert admissible(g, h, kappa, 200)
         return
