@@ -40,16 +40,19 @@ the engine argues in four exact or certified steps:
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
    is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
    :mod:`exactinv.paper.balanced_tie` (the poles go into the claim).
-8. Non-real poles with exactly p*'s real part (p* rational) are proved on the line
-   (:mod:`exactinv.paper.line_poles`) and never tie; Bernstein then decides.
+8. Non-real poles with exactly p*'s real part are proved on the line (p* rational:
+   :mod:`exactinv.paper.line_poles`; p* irrational: :mod:`exactinv.paper.line_algebraic`, in Q(p*)) and never
+   tie; Bernstein then decides (for p* irrational with a balancing pair: the exact sign of b_*^2 - 4|b|^2 in Q(p*),
+   or f >= 0 line by line).
 
 Undecided (documented, never a guess; docs/design.md): (a) an exact balance
 with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
 negative below kappa_A -- the positivity problem of linear recurrences with
 several dominant characteristic roots, open in general; (c) f touching 0 with
 exponents not all rational -- the continuous positivity problem, open in
-general; (d) a non-real pole with exactly p*'s real part when p* is irrational (proved on the line for p*
-rational: :mod:`exactinv.paper.line_poles`); an exact balance of several poles that are not all Gaussian
+general; (d) p* irrational with line poles that balance it and neither one pair with b_*^2 < 4|b|^2 nor the
+line-by-line proof (several pairs on the line, a multiple pole, a conjugate line negative somewhere: f touches 0,
+the continuous positivity problem); an exact balance of several poles that are not all Gaussian
 rationals (:mod:`exactinv.paper.balanced_tie` decides the rest).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
