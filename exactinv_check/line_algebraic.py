@@ -85,6 +85,9 @@ class AlgebraicLine:
             self.m = monic(divmod_(self.m, g)[0])
             require(self.alpha.sign_of(self.m) == 0, "line: the factor of p*'s polynomial lost p* (internal)")
         a = self._reduce(a)
+        n = len(self.m)
+        charge(fraction_products_cost(4 * n * n * n, 4 * (_bits(a) + _bits(self.m)) + n),
+               "an inversion in Q(p*) (the extended Euclid algorithm)")
         r0, r1, s0, s1 = list(self.m), a, [], [Fraction(1)]  # invariant: r_i = s_i a (mod m)
         while len(r1) > 1:
             q, r = divmod_(r0, r1)
@@ -142,6 +145,8 @@ class AlgebraicLine:
     def value_sign(self, G: list[list[Fraction]], y: Fraction) -> int:
         """The exact sign of G(alpha, y) for rational y."""
         value: list[Fraction] = []
+        charge(fraction_products_cost(len(G) * len(self.m), sum(_bits(c) for c in G) + len(G) * _bits([y])),
+               "a value of the line polynomial G(p*, y)")
         for c in reversed(G):
             value = trim([v * y for v in value])
             value = trim([(value[i] if i < len(value) else Fraction(0)) + (c[i] if i < len(c) else Fraction(0))
