@@ -118,7 +118,8 @@ def test_strict_dominance_gives_oo():
 
 
 def test_the_first_example_with_g_one_is_oo():
-    """1/h, h = (w^2 - 2)(w^4 - 2w^2 + 9), w = z - 2 (p* = 2 - sqrt 2, pair p* +- i): rho = oo, kernel-checked."""
+    """1/h, h = (w^2 - 2)(w^4 - 2w^2 + 9), w = z - 2 (p* = 2 - sqrt 2, pair p* +- i): rho = oo, kernel-checked.
+    (The kernel's march takes ~3000 certified steps here: 2|b| is close to b_*, so p*'s dominance starts late.)"""
     w = flint.fmpq_poly([-2, 1])
     hq = (w ** 2 - 2) * (w ** 4 - 2 * w ** 2 + 9)
     h = [F(int(c.p), int(c.q)) / F(int(hq(0).p), int(hq(0).q)) for c in hq.coeffs()]
@@ -245,3 +246,23 @@ def test_random_conjugate_lines_are_decided_checked_and_confirmed(a, d, y, c, C,
     assert r.value > 0 or not r.attained
     if r.value > 0:
         assert admissible(g, h, _lower(r.value) * F(127, 128), 200)
+
+
+def test_the_kernel_rejects_oo_when_the_pair_is_just_left_of_the_line():
+    """The pair moved left by 10^-6 (poles 2 -+ sqrt 2 - 10^-6 +- i): for large kappa it comes closer to -kappa
+    than p*, so rho < oo.  The genuine rho = oo claim of the on-line method, re-attached to this method (the
+    same p*), is rejected: the pair is neither proved on Re z = p* nor to the right of it."""
+    import dataclasses
+
+    g = [F(1), F(-199, 86), F(229, 86), F(-263, 172), F(35, 86), F(-7, 172)]  # conjugate_lines(2, 2, 1, 3/4)
+
+    def method(e):
+        u = _z - 2
+        poly = sp.Poly(sp.expand((u ** 2 - 2) * ((u + sp.sqrt(2) + e) ** 2 + 1) * ((u - sp.sqrt(2) + e) ** 2 + 1)), _z)
+        h = [F(str(c)) for c in reversed(poly.all_coeffs())]
+        return ei.methods.rational(g, [c / h[0] for c in h])
+
+    good = absolute_monotonicity_radius(method(0))
+    assert good.value == INF and check(good.certificate).ok
+    forged = dataclasses.replace(good, method=method(sp.Rational(1, 10 ** 6)))
+    assert not check(forged.certificate).ok

@@ -101,9 +101,11 @@ def test_an_irrational_p_star_with_a_line_pair_is_decided():
     q = [a - 2 * b + (9 if i == 0 else 0) for i, (a, b) in enumerate(zip(quartic, [F(4), F(-4), F(1), 0, 0]))]
     h = product(u2, q)  # (u^2 - 2)(u^4 - 2u^2 + 9), u = z - 2
     h = [c / h[0] for c in h]
-    r = _radius([F(1)], h)
+    g = [F(1), F(-199, 86), F(229, 86), F(-263, 172), F(35, 86), F(-7, 172)]  # f = (e^(-p* t) + e^(-q t))(1 + 3/4 cos t)
+    assert g[:1] + h[1:] == [F(1), F(-58, 17), F(157, 34), F(-64, 17), F(28, 17), F(-6, 17), F(1, 34)]
+    r = _radius(g, h)
     assert r.value == INF and r.reason == "bernstein"
-    assert admissible([F(1)], h, F(7), 200)
+    assert admissible(g, h, F(7), 200)
 
 
 def _balanced_terms(p, y, extra_pole, extra_b):
