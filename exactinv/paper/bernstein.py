@@ -477,8 +477,9 @@ def _balanced_far_algebraic(g, h, s: PoleStructure, p_star, open_case: str) -> V
         if lines is not None:
             return Verdict(True, f"f >= 0 on (0, oo): {lines}")
     if pair is None:
-        return Verdict(False, f"the poles on Re z = p* = {p_star} (irrational) balance p*, and they are not one pair "
-                              "p* +- iy (several pairs: B >= 0 is decided for rational p* only); " + open_case)
+        return Verdict(False, f"the poles on Re z = p* = {p_star} (irrational) balance p*, they are not one pair "
+                              "p* +- iy, and f is not >= 0 line by line (several pairs or a multiple pole on a line, a "
+                              "pole off every line through a real pole, or a line part negative somewhere); " + open_case)
     sign, y = pair
     if sign < 0:
         points = _pair_points(s, y)
