@@ -488,8 +488,8 @@ def _balanced_far_algebraic(g, h, s: PoleStructure, p_star, open_case: str) -> V
                        "B(t) = b_* + 2 Re(b e^(-iyt)) < 0 somewhere, so f < 0 for large t")
     if sign == 0:
         return Verdict(False, f"p* = {p_star} (irrational) and one pair on its line with b_*^2 = 4|b|^2 exactly "
-                              "(in "
-                              "Q(p*)): B(t) >= 0 touches 0 periodically and f's sign there is the rest's (not >= 0 line by line: a "
+                              "(in Q(p*)): B(t) >= 0 touches 0 periodically and f's sign there is the rest's (not >= 0 "
+                              "line by line: a "
                               "conjugate line's part is negative somewhere, or a pole off every line through a real "
                               "pole); " + open_case)
     return Verdict(False, f"p* = {p_star} (irrational) dominates its line pair (b_*^2 > 4|b|^2, exact), but not "
