@@ -20,9 +20,12 @@ from exactinv.interfaces.exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_
 ROOT = Path(__file__).parent.parent
 BOX = json.loads((ROOT / "examples" / "paper_box_taylor4.json").read_text())
 SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
-# r = 1/h, h = (u^2 - 2)(u^4 - 2u^2 + 9)/34, u = z - 2: p* = 2 - sqrt 2 and the pair p* +- i on its line --
-# the line proof needs p* rational, so the radius stays undecided (docs/design.md, what stays undecided)
-UNDECIDED = {"rational": {"num": ["1"], "den": ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"]}}
+# h = (u^2 - 2)(u^4 - 2u^2 + 9)/34, u = z - 2: p* = 2 - sqrt 2 and the pair p* +- i on its line, with a numerator
+# making f = (1 + cos t)((1 + sqrt 2) e^(-p* t) + (1 - sqrt 2) e^(-q t)): p*'s line part touches 0 and the conjugate
+# line's is negative, so the radius stays undecided (docs/design.md, what stays undecided; 1/h itself is decided
+# since line-irrational)
+UNDECIDED = {"rational": {"num": ["1", "-61/28", "53/21", "-107/84", "2/7", "-1/42"],
+                          "den": ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"]}}
 
 
 def test_the_rule_reads_the_same_everywhere():

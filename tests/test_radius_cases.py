@@ -22,8 +22,13 @@ CASES.update({f"ssp_sdirk({s})": (lambda s=s: M.ssp_sdirk(s)) for s in range(1, 
 CASES["1/(1-z+z^2/4-z^3/40)"] = lambda: M.rational([1], [1, -1, "1/4", "-1/40"])  # rho = oo by Bernstein
 CASES["1/(1-2z/3-z^2/4)"] = lambda: M.rational([1], [1, "-2/3", "-1/4"])  # balanced tie: rho = 4/3
 CASES["1/((1-z)(1-z+z^2/2))"] = lambda: M.rational([1], [1, -2, "3/2", "-1/2"])  # poles 1, 1 +- i on one line: rho = oo
-UNDECIDED = {"p* = 2 - sqrt 2 with p* +- i":
-             lambda: M.rational([1], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"])}
+# p* = 2 - sqrt 2 and p* +- i on its line (issue 22 item 4, once Undecided): f = (e^(-p* t) + e^(-q t))(1 + 3/4 cos t)
+CASES["p* = 2 - sqrt 2 with p* +- i"] = lambda: M.rational(
+    ["1", "-199/86", "229/86", "-263/172", "35/86", "-7/172"], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"])
+# the same poles with f = (1 + cos t)((1 + sqrt 2) e^(-p* t) + (1 - sqrt 2) e^(-q t)): p*'s line touches 0, the
+# conjugate line is negative somewhere -- the continuous positivity problem, named
+UNDECIDED = {"p* = 2 - sqrt 2, its line touching 0": lambda: M.rational(
+    ["1", "-61/28", "53/21", "-107/84", "2/7", "-1/42"], ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"])}
 J = 120  # coefficients in the slow check
 
 
@@ -59,9 +64,10 @@ def test_case_is_decided_and_certified(name):
 
 @pytest.mark.parametrize("name", sorted(UNDECIDED))
 def test_documented_undecided_case(name):
-    """p* = 2 - sqrt 2 and poles p* +- i: proved on the line only for rational p* (docs/design.md), and the
-    message says it is a gap of the implementation, not precision."""
-    with pytest.raises(ei.Undecided, match="rational p\\* only"):
+    """p* = 2 - sqrt 2 and poles p* +- i, proved on the line in Q(p*); the line part touches 0 and the conjugate
+    line's is negative somewhere, so neither the march nor the line-by-line proof applies (docs/design.md): the
+    message names the open problem, not precision."""
+    with pytest.raises(ei.Undecided, match="continuous positivity problem"):
         ei.absolute_monotonicity_radius(UNDECIDED[name]())
 
 
