@@ -23,8 +23,16 @@ equal parts --
   * balanced:  the same with b_* = 2|b| exactly (b = m (c + is), (c, s) a rational point of the unit circle), every
                one with the farther real pole: the line part B >= 0 touches 0 (the CI failures of line-balance).
 
+``--family line-irrational`` (issue 22 item 4): an IRRATIONAL p* = a - sqrt d (a^2 > d) with a pair p* +- iy on its
+line (the Galois conjugates a + sqrt d +- iy are poles too), in three equal parts --
+  * pair:      r = C + (1 - C) S/S(0), S = sum over both conjugates p of 1/(p - z) + beta/(p + iy - z) + conj,
+               beta = u + iv random (f = sum_p e^(-pt)(1 + 2 Re(beta e^(-iyt))): rho = oo iff 4|beta|^2 <= 1, C >= 0);
+  * touching:  the same with 4|beta|^2 = 1 exactly (a rational point of the circle): f >= 0 touches 0;
+  * numerator: h = (u^2 - d)((u^2 + d + y^2)^2 - 4 d u^2), u = z - a, and a random numerator g (g(0) = 1, deg <= 4).
+It is built with sympy (exact).
+
 Run:  python benchmarks/radius_undecided.py [--count 300] [--seed 1] [--cap 20] [--no-check]
-                                           [--family ties | line-balance]
+                                           [--family ties | line-balance | line-irrational]
 """
 
 from __future__ import annotations
@@ -200,6 +208,55 @@ def family_line_balance(count: int, seed: int) -> list:
     return out
 
 
+def family_line_irrational(count: int, seed: int) -> list:
+    """count (kind, method): p* = a - sqrt d irrational with a pair on its line (module docstring)."""
+    import sympy as sp
+
+    rng = random.Random(seed)
+    z = sp.symbols("z")
+    circle = [(Fraction(3, 10), Fraction(2, 5)), (Fraction(-5, 26), Fraction(6, 13)), (Fraction(1, 2), Fraction(0)),
+              (Fraction(-1, 2), Fraction(0)), (Fraction(0), Fraction(1, 2)), (Fraction(-4, 10), Fraction(3, 10))]
+    out: list = []
+
+    def exact(e):
+        num, den = sp.fraction(sp.cancel(sp.together(e)))
+        g = [Fraction(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(num), z).all_coeffs())]
+        h = [Fraction(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(den), z).all_coeffs())]
+        return [x / h[0] for x in g], [x / h[0] for x in h]
+
+    while len(out) < count:
+        kind = ("pair", "touching", "numerator")[len(out) % 3]
+        a, d = rng.randint(2, 5), rng.choice([2, 3, 5, 6, 7])
+        y = sp.Rational(rng.randint(1, 8), rng.choice([1, 2, 4]))
+        if a * a <= d:
+            continue
+        if kind == "numerator":
+            u = z - a
+            h = sp.expand((u ** 2 - d) * ((u ** 2 + d + y ** 2) ** 2 - 4 * d * u ** 2))
+            g = 1 + sum(sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4, 8])) * z ** k
+                        for k in range(1, rng.randint(1, 4) + 1))
+            num, den = exact(g / (h / h.subs(z, 0)))
+        else:
+            if kind == "pair":
+                bu, bv = Fraction(rng.randint(-4, 4), 4), Fraction(rng.randint(-4, 4), 4)
+                if bu == 0 and bv == 0:
+                    continue
+            else:
+                bu, bv = circle[rng.randrange(len(circle))]
+            C = sp.Rational(str(rng.choice([Fraction(0), Fraction(1, 4), Fraction(-1, 2)])))
+            S = 0
+            for sgn in (1, -1):
+                p = a - sgn * sp.sqrt(d)
+                S += 1 / (p - z) + (2 * sp.Rational(str(bu)) * (p - z) + 2 * sp.Rational(str(bv)) * y) / ((p - z) ** 2 + y ** 2)
+            S = sp.together(sp.expand(S))
+            num, den = exact(C + (1 - C) * S / sp.nsimplify(S.subs(z, 0)))
+        try:
+            out.append((kind, M.rational(num, den, name=f"r{len(out)}")))
+        except ei.ExactinvError:
+            continue
+    return out
+
+
 class _Timeout(Exception):
     pass
 
@@ -209,8 +266,10 @@ def _alarm(*_):
 
 
 def run(count: int, seed: int, cap: float, check: bool, ties: bool | str = False) -> None:
-    kinds = {"line-balance": ("pair", "balanced"), True: ("line", "balanced")}.get(ties, ("generic", "repeated", "bernstein"))
-    cases = family_line_balance(count, seed) if ties == "line-balance" else family_ties(count, seed) if ties \
+    kinds = {"line-balance": ("pair", "balanced"), "line-irrational": ("pair", "touching", "numerator"),
+             True: ("line", "balanced")}.get(ties, ("generic", "repeated", "bernstein"))
+    cases = family_line_balance(count, seed) if ties == "line-balance" else \
+        family_line_irrational(count, seed) if ties == "line-irrational" else family_ties(count, seed) if ties \
         else family(count, seed)
     signal.signal(signal.SIGALRM, _alarm)
     outcome: dict[str, Counter] = {}
@@ -265,10 +324,10 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--cap", type=float, default=20.0)
     parser.add_argument("--no-check", action="store_true")
-    parser.add_argument("--family", choices=["default", "ties", "line-balance"], default="default")
+    parser.add_argument("--family", choices=["default", "ties", "line-balance", "line-irrational"], default="default")
     args = parser.parse_args()
     run(args.count, args.seed, args.cap, not args.no_check,
-        args.family if args.family == "line-balance" else args.family == "ties")
+        args.family if args.family in ("line-balance", "line-irrational") else args.family == "ties")
 
 
 if __name__ == "__main__":

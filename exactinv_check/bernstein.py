@@ -65,10 +65,12 @@ from typing import Any, Sequence
 
 from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
 from .disks import ball, ball_abs_upper, ball_mul
+from .line_algebraic import AlgebraicLine, lines_nonnegative
 from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, single_pair
 from .polys import MAX_DEGREE as MAX_DEGREE_OF_F
 from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
 from .rationals import describe, require
+from .reals import Real
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
 MAX_STEPS = 8000  # steps of the compact piece (the engine gives up after 4000)
@@ -154,8 +156,10 @@ def _density_nonnegative(g: Any, h: Any) -> Any:
             return (f"{where}: f(t) = e^(-p* t) T(t/L) with T >= 0 on the circle (Q = {[describe(c) for c in Q]} >= 0 on "
                     "R, Sturm)")
     disks, hits, P_lo, P_hi = star_enclosure(factors, f_star, poles[0])
+    # p* irrational: its line is proved in Q(p*) (exactinv_check.line_algebraic), built only when a pole needs it
+    algebraic: list[AlgebraicLine] = []
     terms = []  # (z disk, M, b disks, is p*, on the line Re z = p*)
-    gcds = {}
+    gcds: dict[int, Any] = {}
     for f, M in factors:
         for k, z in enumerate(disks[id(f)]):
             star = f is f_star and k == hits[0]
@@ -167,6 +171,12 @@ def _density_nonnegative(g: Any, h: Any) -> Any:
                     if id(f) not in gcds:
                         gcds[id(f)] = line_gcd(f, p_exact)
                     on_line = disk_on_line(gcds[id(f)], z, p_exact)
+                elif p_exact is None and z[0] - z[2] <= P_hi and P_lo <= z[0] + z[2]:
+                    if not algebraic:
+                        algebraic.append(AlgebraicLine(Real.root_in(f_star, *poles[0]), f_star))
+                    if id(f) not in gcds:
+                        gcds[id(f)] = algebraic[0].line_gcd(f)
+                    on_line = algebraic[0].disk_on_line(gcds[id(f)], z)
                 require(on_line, "bernstein: a pole is not proved to have Re z > p* or Re z = p* (then it may "
                                  "be as close to -kappa as p* for large kappa, or f is not proved dominated)")
                 require(M <= mu, "bernstein: a pole on Re z = p* has a higher multiplicity than p*, so p* does not "
@@ -175,6 +185,12 @@ def _density_nonnegative(g: Any, h: Any) -> Any:
     star_b = next(t[2] for t in terms if t[3])
     require(star_b[mu - 1][0] - star_b[mu - 1][2] > 0, "bernstein: b_{*,mu} is not proved positive")
     rest, line = None, ""
+    if _line_outweighs(terms, mu) and p_exact is None:  # p* irrational: the balance is decided line by line
+        lines = lines_nonnegative(g, h, len(factors) == 1 and factors[0][1] == 1)
+        require(lines is not None, "bernstein: the poles on Re z = p* (irrational) balance p* (sum |b| >= b_*), and f is "
+                                   "not proved >= 0 line by line (every pole simple, on a line through a positive real "
+                                   "pole with at most one pair, b_j^2 >= 4|beta_j|^2 exactly in Q(x_j))")
+        return f"f(t) = sum_j e^(-x_j t) B_j(t) >= 0: {lines}"
     if _line_outweighs(terms, mu):  # the line poles balance p* (sum |b| >= b_*): p*'s dominance can never hold
         rest, line = _balanced_line(g, h, factors, poles, disks, terms, p_exact)
         if rest is True:  # every pole on the line and B >= 0: f = e^(-p* t) B(t) >= 0

@@ -29,6 +29,8 @@ Two uses (exactinv_check.bernstein):
 Order in exactinv_check.bernstein: the closed form of one pair (:func:`single_pair`) first, then the density when its
 Sturm count fits the budgets; an unaffordable density (N near MAX_LINE_EXPONENT) leaves the poles to the dominance
 proof, which decides every f that p* dominates strictly.
+For an IRRATIONAL p* the same proof runs in Q(p*)[y] (exactinv_check.line_algebraic), with the line-by-line proof
+of f >= 0 for balanced lines.
 Standard library only; every step is priced (exactinv_check.budget) before it runs or as it runs.
 """
 

@@ -92,15 +92,18 @@ def test_a_line_pole_with_a_tie_elsewhere_gives_the_tie():
     assert admissible([F(1)], h, F(1, 2), 300)
 
 
-def test_an_irrational_p_star_with_a_line_pair_is_undecided_and_says_why():
-    """p* = 2 - sqrt 2 and poles p* +- i (their conjugates 2 + sqrt 2 +- i): the line proof needs p* rational."""
+def test_an_irrational_p_star_with_a_line_pair_is_decided():
+    """p* = 2 - sqrt 2 and poles p* +- i (their conjugates 2 + sqrt 2 +- i): once Undecided (the line proof needed p*
+    rational), now proved on the line in Q(p*) (exactinv.paper.line_algebraic) and decided: rho = oo, kernel-checked
+    (tests/test_line_algebraic.py has the family)."""
     u2 = [F(2), F(-4), F(1)]  # (z - 2)^2 - 2 = z^2 - 4z + 2
     quartic = product([F(4), F(-4), F(1)], [F(4), F(-4), F(1)])  # (z - 2)^4 ...
     q = [a - 2 * b + (9 if i == 0 else 0) for i, (a, b) in enumerate(zip(quartic, [F(4), F(-4), F(1), 0, 0]))]
     h = product(u2, q)  # (u^2 - 2)(u^4 - 2u^2 + 9), u = z - 2
     h = [c / h[0] for c in h]
-    with pytest.raises(ei.Undecided, match="rational p\\* only"):
-        absolute_monotonicity_radius(ei.methods.rational([F(1)], h))
+    r = _radius([F(1)], h)
+    assert r.value == INF and r.reason == "bernstein"
+    assert admissible([F(1)], h, F(7), 200)
 
 
 def _balanced_terms(p, y, extra_pole, extra_b):

@@ -25,10 +25,11 @@ positivity problem for linear differential equations, open in general.
 
 from __future__ import annotations
 
+from cmath import phase
 from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
-from math import comb, factorial, gcd
+from math import comb, factorial, gcd, pi
 
 import flint
 
@@ -36,6 +37,7 @@ from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import float_hint
 from ..core.polys import sign_at
 from ..core.roots import real_roots
+from .line_algebraic import algebraic_pair_balance, lines_nonnegative
 from .line_poles import line_density, line_part, nonnegative, pair_minimum_points, single_pair, trig_minimum_points
 from .poles import PoleStructure
 
@@ -431,9 +433,11 @@ def _balanced_far(g, h, s: PoleStructure, p_star):
     line), f < 0 somewhere (B negative somewhere, or b_(q,M) < 0 with B touching 0: R < 0 at B's zeros for
     large t), or not decided (the case named)."""
     open_case = "deciding f >= 0 there is the continuous positivity problem (open in general)"
-    if not isinstance(p_star, Fraction) or s.mu != 1 or any(s.balls[k][1] != 1 for k in s.on_line):
-        return Verdict(False, "the poles on Re z = p* balance p* and p* or a line pole is multiple (or p* is irrational): "
+    if s.mu != 1 or any(s.balls[k][1] != 1 for k in s.on_line):
+        return Verdict(False, "the poles on Re z = p* balance p* and p* or a line pole is multiple: "
                               f"the line part B(t) then has polynomial terms; {open_case}")
+    if not isinstance(p_star, Fraction):
+        return _balanced_far_algebraic(g, h, s, p_star, open_case)
     part = line_part(g, h, p_star)
     if part is None:
         return Verdict(False, "the poles on Re z = p* balance p*, and their part B(t) = b_* + sum b_k e^(-i y_k t) is "
@@ -459,6 +463,48 @@ def _balanced_far(g, h, s: PoleStructure, p_star):
                        f"B >= 0 touches 0 ({part.how}) and the slowest-decaying term off the line, b_(q,M) t^(M-1) "
                        "e^(-q t), is negative: f < 0 near B's zeros for large t")
     return Verdict(False, "the sign of the slowest-decaying term off the line is not decided at working precision")
+
+
+def _balanced_far_algebraic(g, h, s: PoleStructure, p_star, open_case: str) -> Verdict:
+    """The balanced line for an irrational p* (exactinv.paper.line_algebraic): one pair p* +- iy, b_*^2 - 4|b|^2 in
+    Q(p*) decided exactly.  Negative: B(t) = b_* + 2 Re(b e^(-iyt)) < 0 somewhere, and every pole off the line has
+    Re z > p* (a conjugate of p* is never on its line), so f < 0 for large t: rho < oo, with a witness c_j(K) < 0
+    searched near B's minima (the witness alone is the proof).  Zero: B touches 0 and the sign of f near its zeros
+    is the rest's (open in general); positive: p* dominates, not separated at working precision."""
+    pair = algebraic_pair_balance(g, h, p_star)
+    if pair is None or pair[0] == 0:
+        lines = lines_nonnegative(g, h)
+        if lines is not None:
+            return Verdict(True, f"f >= 0 on (0, oo): {lines}")
+    if pair is None:
+        return Verdict(False, f"the poles on Re z = p* = {p_star} (irrational) balance p*, and they are not one pair "
+                              "p* +- iy (several pairs: B >= 0 is decided for rational p* only); " + open_case)
+    sign, y = pair
+    if sign < 0:
+        points = _pair_points(s, y)
+        return _finite(g, h, _density_witness(g, h, points, s),
+                       f"p* = {p_star} (irrational) and one pair on its line with b_*^2 < 4|b|^2 (exact in Q(p*)): "
+                       "B(t) = b_* + 2 Re(b e^(-iyt)) < 0 somewhere, so f < 0 for large t")
+    if sign == 0:
+        return Verdict(False, f"p* = {p_star} (irrational) and one pair on its line with b_*^2 = 4|b|^2 exactly (in "
+                              "Q(p*)): B(t) >= 0 touches 0 periodically and f's sign there is the rest's; " + open_case)
+    return Verdict(False, f"p* = {p_star} (irrational) dominates its line pair (b_*^2 > 4|b|^2, exact), but not "
+                          "separated at working precision")
+
+
+def _pair_points(s: PoleStructure, y: float) -> list[Fraction]:
+    """Rational t > 0 near the minima of B(t) = b_* + 2 Re(b e^(-iyt)) (float hints only, never raising):
+    arg b - y t = pi mod 2 pi, b the residue of the line pole with Im z > 0, several periods out."""
+    try:
+        k = next(k for k in s.on_line if s.balls[k][0].imag > 0)
+        b = s.balls[k][2][0]
+        b_c = complex(float_hint(_mid(b.real)), float_hint(_mid(b.imag)))
+        arg = phase(b_c)
+        period = 2 * pi / y
+        t0 = (arg - pi) / y
+        return [Fraction(t0 + n * period).limit_denominator(1 << 24) for n in range(64) if t0 + n * period > 0][:24]
+    except (OverflowError, ValueError, ZeroDivisionError, StopIteration):
+        return []
 
 
 def _rest_dominated_beyond(s: PoleStructure, q: int, off: list, T: flint.arb) -> bool:

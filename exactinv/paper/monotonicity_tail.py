@@ -40,16 +40,19 @@ the engine argues in four exact or certified steps:
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
    is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
    :mod:`exactinv.paper.balanced_tie` (the poles go into the claim).
-8. Non-real poles with exactly p*'s real part (p* rational) are proved on the line
-   (:mod:`exactinv.paper.line_poles`) and never tie; Bernstein then decides.
+8. Non-real poles with exactly p*'s real part are proved on the line (p* rational:
+   :mod:`exactinv.paper.line_poles`; p* irrational: :mod:`exactinv.paper.line_algebraic`, in Q(p*)) and never
+   tie; Bernstein then decides (for p* irrational with a balancing pair: the exact sign of b_*^2 - 4|b|^2 in Q(p*),
+   or f >= 0 line by line).
 
 Undecided (documented, never a guess; docs/design.md): (a) an exact balance
 with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
 negative below kappa_A -- the positivity problem of linear recurrences with
 several dominant characteristic roots, open in general; (c) f touching 0 with
 exponents not all rational -- the continuous positivity problem, open in
-general; (d) a non-real pole with exactly p*'s real part when p* is irrational (proved on the line for p*
-rational: :mod:`exactinv.paper.line_poles`); an exact balance of several poles that are not all Gaussian
+general; (d) p* irrational with line poles that balance it and neither one pair with b_*^2 < 4|b|^2 nor the
+line-by-line proof (several pairs on the line, a multiple pole, a conjugate line negative somewhere: f touches 0,
+the continuous positivity problem); an exact balance of several poles that are not all Gaussian
 rationals (:mod:`exactinv.paper.balanced_tie` decides the rest).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
@@ -74,6 +77,7 @@ from ..errors import Undecided
 from ..model.methods import Method
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
+from .line_algebraic import on_line_indices_algebraic
 from .line_poles import on_line_indices
 from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
@@ -204,7 +208,7 @@ def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
 def _with_line_poles(method: Method, p_star) -> PoleStructure:
     """The pole structure, with every non-real pole whose real part Arb cannot separate from p*'s proved to be
     p* + iy exactly (exactinv.paper.line_poles); the precision is raised (to 4096 bits) for a pole that is not
-    on the line.  Undecided for p* irrational with such a pole (the exact proof needs p* rational)."""
+    on the line (p* rational: exactinv.paper.line_poles; p* irrational: exactinv.paper.line_algebraic, in Q(p*))."""
     bits = _BITS
     while True:
         with precision(bits):
@@ -214,18 +218,22 @@ def _with_line_poles(method: Method, p_star) -> PoleStructure:
                 return s
             if isinstance(p_star, Fraction):
                 proved = on_line_indices(method.h, p_star, s.balls, left)
-                s = PoleStructure(s.balls, s.star, s.mu, proved)
-                if len(proved) == len(left):
-                    break
+            else:  # p* irrational: the line is proved in Q(p*) (exactinv.paper.line_algebraic)
+                boxes = {k: _box(s.balls[k][0]) for k in left}
+                proved = on_line_indices_algebraic(method.h, p_star, boxes, left)
+            s = PoleStructure(s.balls, s.star, s.mu, proved)
+            if len(proved) == len(left):
+                break
         if bits >= 4096:
-            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part equals the "
-                            f"irrational p* = {p_star} to {bits} bits; the exact proof that Re z = p* is implemented "
-                            "for rational p* only (not an open problem: a gap of this implementation)"
-                            if not isinstance(p_star, Fraction) else
-                            f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
+            raise Undecided(f"absolute monotonicity of {method.name}: a non-real pole's real part is neither proved "
                             f"equal to p* = {p_star} nor separated from it at {bits} bits")
         bits *= 4
     return s  # balls from a higher precision stay valid enclosures at _BITS
+
+
+def _box(z: flint.acb) -> tuple[Fraction, Fraction, Fraction, Fraction]:
+    """Rationals (re_lo, re_hi, im_lo, im_hi) bounding an Arb box exactly (Arb's ends are dyadic)."""
+    return (dyadic_of(z.real.lower()), dyadic_of(z.real.upper()), dyadic_of(z.imag.lower()), dyadic_of(z.imag.upper()))
 
 
 def _tie_positive(s, tie) -> bool | None:
