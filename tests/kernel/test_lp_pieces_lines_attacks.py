@@ -156,3 +156,28 @@ def test_a_line_not_in_ker_g_or_zero_is_rejected_first():
         forged["lines"] = [line]
         with pytest.raises(CheckFailure, match=words):
             _kernel_set(problem, forged)
+
+
+def test_largest_threshold_forgeries_on_lines_records():
+    """The slab whose line feeds the facet (V = {0, 1} for Taylor(2): the largest threshold is 0, attained, bound by
+    the line's equality h (1 - h) = 0) and the invariant-line slab (V = [0, 2]): every other (value, attained) and a
+    forged line binding are rejected; only the true claim (= the vertex route's) passes."""
+    for A, method in (([[-1, 1], [0, -1]], M.taylor(2)), ([[-1, 0], [0, -1]], M.taylor(2))):
+        S, P = ei.LinearSystem(A), ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])
+        L = ei.largest_threshold(S, P, method, route="lp")
+        W = ei.largest_threshold(S, P, method, route="vertex")
+        assert (L.value, L.attained) == (W.value, W.attained)
+        cert = L.certificate
+        assert exactinv_check.check(cert).ok and "lines" in cert["claims"][0]["lp"]
+        accepted = []
+        for value in ("0", "1", "2", "1/2", "oo"):
+            for attained in (True, False):
+                forged = copy.deepcopy(cert)
+                forged["claims"][0].update(value=value, attained=attained)
+                forged["claims"][0].pop("binding", None)
+                if exactinv_check.check(forged).ok:
+                    accepted.append((F(value), attained))
+        assert accepted == [(L.value, L.attained)]
+        forged = copy.deepcopy(cert)
+        forged["claims"][0]["binding"] = {"kind": "line", "generator": 0, "facet": 1, "poly": ["1", "-1"]}
+        assert not exactinv_check.check(forged).ok
