@@ -36,7 +36,7 @@ from exactinv_check.rationals import rational
 from exactinv_check.reals import Real, quotient, scaled
 
 F = Fraction
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 FULL = bool(os.environ.get("EXACTINV_FUZZ"))
 
 
