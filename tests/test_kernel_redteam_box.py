@@ -21,6 +21,8 @@ from exactinv_check.kernel import Method
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.validset import first_end, valid_set
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 M = ei.methods
 
 

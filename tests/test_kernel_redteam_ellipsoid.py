@@ -32,6 +32,8 @@ from exactinv_check.kernel import Method
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 ROT = [["-1", "-2"], ["2", "-1"]]  # A = [[-a, -b], [b, -a]], a = 1, b = 2
 I2 = [["1", "0"], ["0", "1"]]
 TAYLOR2 = (["1", "1", "1/2"], ["1"])

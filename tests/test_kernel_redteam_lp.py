@@ -17,6 +17,8 @@ from exactinv_check.kernel import Problem
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 M = ei.methods
 
 

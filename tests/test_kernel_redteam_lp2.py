@@ -18,6 +18,9 @@ from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
+import pytest
+
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
 M = ei.methods
 

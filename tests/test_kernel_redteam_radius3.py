@@ -14,6 +14,9 @@ import sympy
 
 from exactinv_check import check
 from exactinv_check.linalg import largest_real_root
+import pytest
+
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
 
 def _path_certificate(alpha=None):

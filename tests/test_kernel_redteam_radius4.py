@@ -31,6 +31,8 @@ from exactinv_check.budget import WORK_BUDGET
 from exactinv_check.claims_radius import short_above, sign_at_zero
 from exactinv_check.rationals import CheckFailure
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 ROOT = Path(__file__).resolve().parents[1]
 
 

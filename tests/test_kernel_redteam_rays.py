@@ -25,6 +25,8 @@ from exactinv_check.rationals import CheckFailure
 from exactinv_check.reals import Real
 from exactinv_check.validset import Interval, require_intervals, valid_set
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 M = ei.methods
 ppl = pytest.importorskip("ppl")
 

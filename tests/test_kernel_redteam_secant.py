@@ -36,6 +36,8 @@ import exactinv as ei
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 # ------------------------------------------------------------------ soundness that held
 
 

@@ -75,6 +75,8 @@ from exactinv_check.conditions import method_matrices
 from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Method
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 class _Deadline:
     """Raise TooSlow in the block after ``seconds`` of this process's CPU time

@@ -21,6 +21,8 @@ from exactinv_check import check, conditions, polygon, pruning
 from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import prove_generators
 
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 def _parabola_polygon(m):
     """A convex m-gon: (i, i^2) for i < m - 1 and an apex far above; its rows, counter-clockwise."""

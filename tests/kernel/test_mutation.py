@@ -16,6 +16,9 @@ from certificate_corpus import corpus
 
 import exactinv as ei
 from exactinv_check import check
+import pytest
+
+pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
 PER_CERTIFICATE = 160  # mutants sampled per certificate (deterministic)
 
