@@ -24,7 +24,7 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
 from . import claims_invariance
-from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
+from .budget import GAIN_WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
 from .failure import Record
 from .rationals import describe, dot, matrix, matvec, rational, require, vector
@@ -34,8 +34,6 @@ from .sparse import diagonal, row_dot
 if TYPE_CHECKING:
     from .kernel import Problem
 
-
-GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 
 
 def _bits(*arrays: Any) -> int:

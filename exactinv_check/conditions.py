@@ -21,12 +21,10 @@ from math import gcd
 from typing import Any, Iterator, Sequence
 
 from . import polys
-from .budget import charge, condition_cost, within_budget
+from .budget import MAX_CONDITIONS, charge, condition_cost, within_budget
 from .failure import require
 from .linalg import integer_solve
 from .rationals import integer_matrix
-
-MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
 
 
 def rebuild_size(A: Sequence[list[Fraction]], numerator: Sequence[Fraction],

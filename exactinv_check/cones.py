@@ -15,11 +15,8 @@ from fractions import Fraction
 from math import gcd, lcm
 from typing import Any, Sequence
 
-from .budget import PYTHON_OP, charge, words
+from .budget import MAX_CONE_PAIRS, MAX_CONE_RAYS, PYTHON_OP, charge, words
 from .failure import CheckFailure, require
-
-MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
-MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once
 
 
 def scaled_integers(v: Sequence[Fraction]) -> tuple[list[int], int]:

@@ -40,6 +40,7 @@ from math import gcd as igcd
 from typing import Any, Sequence
 
 from .budget import (
+    MAX_PIN,
     STURM_BUDGET,
     STURM_WORDS,
     affordable,
@@ -66,8 +67,6 @@ from .tail import squarefree_decomposition
 
 __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "line_part", "nonnegative_on_line",
            "single_pair", "MAX_LINE_EXPONENT"]
-
-MAX_PIN = 4000  # bisections to pin a rational root
 
 
 def _bits(p: Sequence[Fraction]) -> int:

@@ -51,7 +51,8 @@ from types import SimpleNamespace
 from typing import Any, NoReturn
 
 from . import polys
-from .budget import PYTHON_OP, WORK_BUDGET, charge, descartes_node_cost, within_budget, words
+from .budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
+from .budget import MAX_LP_PIECES as MAX_PIECES
 from .conditions import condition_polynomials, method_matrices, rebuild_size
 from .failure import CheckFailure, require_budget
 from .linalg import integer_solve
@@ -59,9 +60,6 @@ from .rationals import integer, integer_matrix, integer_rows, require, vector
 from .reals import Real, separate
 from .text import rational_text
 from .validset import valid_set
-
-MAX_PIECES = 200_000  # pieces over all facets: a bound before any parsing of their ends
-LP_WORK_BUDGET = 50 * WORK_BUDGET  # all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:

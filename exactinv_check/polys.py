@@ -36,6 +36,7 @@ from .budget import (  # noqa: F401  # noqa: F401
     sturm_cost,
     within_sturm_budget,
 )
+from .budget import MAX_ROOT_BISECTIONS as MAX_BISECTIONS
 from .budget import memo as _memo
 from .failure import require, require_budget
 from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
@@ -65,7 +66,6 @@ from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its o
 )
 from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
-MAX_BISECTIONS = 4000
 # STURM_BUDGET (degree^4 bits^2 of one pseudo-remainder sequence) lives in exactinv_check.budget (re-exported)
 _PRIMES = (2**61 - 1, 2**31 - 1, 1000000007)  # for the modular squarefree test
 

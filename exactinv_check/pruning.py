@@ -44,7 +44,7 @@ from math import gcd, isqrt
 from typing import Any
 
 from . import conditions
-from .budget import FRACTION_WEIGHT, charge, within_budget
+from .budget import FRACTION_WEIGHT, MAX_PACKED_BYTES, MAX_SLOT_TESTS, charge, within_budget
 from .failure import require_budget
 from .format import HORIZON_BITS  # the horizon's numerator and denominator: the pieces' powers t^i stay short
 from .rationals import integer, integer_rows, rational, require
@@ -54,8 +54,6 @@ K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row tabl
 MATRIX_BITS = 48  # X and Z rounded down, M up, to the grid 2^-48
 VERTEX_BITS = 48  # vertex coordinates rounded outwards to the grid 2^-48
 SHIFT = MATRIX_BITS + VERTEX_BITS + 1 - K_BITS  # from the scale 2^(s + w + 1) of (1) in _Ends to the grid 1/K
-MAX_PACKED_BYTES = 1 << 27  # the packed rows' table: every slot as wide as the widest row needs
-MAX_SLOT_TESTS = 4 * 10**8  # vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
 
 
 def parse(record: Any, vertex_count: Any) -> Any:

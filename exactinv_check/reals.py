@@ -18,11 +18,10 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from . import polys, text
+from .budget import MAX_REFINEMENTS
 from .format import INFINITY, NEG_INFINITY
 from .polys import evaluate, sign
 from .rationals import CheckFailure, rational, require
-
-MAX_REFINEMENTS = 20000
 
 
 class Real:

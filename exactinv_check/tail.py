@@ -45,6 +45,7 @@ from fractions import Fraction
 from math import ceil, comb
 from typing import TYPE_CHECKING, Any, Sequence
 
+from .budget import MAX_TAIL_REFINE as MAX_REFINE
 from .disks import (
     ball,
     ball_abs_upper,
@@ -78,8 +79,6 @@ from .tie import kappa_enclosure, tie_interval
 if TYPE_CHECKING:
     from .reals import Real
 
-
-MAX_REFINE = 2000  # bisections when separating a real pole from other roots
 
 
 def prove_tail(numerator: Any, denominator: Any, K: Any, N_hint: Any = 0, tie: Any = None) -> Any:

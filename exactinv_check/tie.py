@@ -24,12 +24,10 @@ from fractions import Fraction
 from typing import Any, Callable, Sequence
 
 from . import polys
-from .budget import FRACTION_WEIGHT, within_budget
+from .budget import FRACTION_WEIGHT, MAX_TIE_DEGREE, within_budget
+from .budget import MAX_TIE_ISOLATE as MAX_ISOLATE
 from .failure import require
 from .reals import Real
-
-MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate
-MAX_ISOLATE = 4000
 
 
 def _power_sums(monic: Sequence[Fraction], count: int) -> list[Fraction]:

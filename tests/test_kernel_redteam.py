@@ -13,8 +13,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from exactinv_check import check
 import pytest
+
+from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

@@ -8,8 +8,8 @@ These tests fail until the kernel is fixed.
 
 import random
 
-from test_kernel_redteam import _cert, _check_in_subprocess  # shared with round 1
 import pytest
+from test_kernel_redteam import _cert, _check_in_subprocess  # shared with round 1
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

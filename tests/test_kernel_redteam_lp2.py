@@ -10,6 +10,8 @@ import random
 from fractions import Fraction as F
 from math import factorial
 
+import pytest
+
 import exactinv as ei
 import exactinv_check
 from exactinv_check import lp_pieces, polys
@@ -18,7 +20,6 @@ from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
 from exactinv_check.reals import Real
 from exactinv_check.validset import valid_set
-import pytest
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

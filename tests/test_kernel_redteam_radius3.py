@@ -10,11 +10,11 @@ the Real is made from q with its root at 0 stripped.
 
 from fractions import Fraction as F
 
+import pytest
 import sympy
 
 from exactinv_check import check
 from exactinv_check.linalg import largest_real_root
-import pytest
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

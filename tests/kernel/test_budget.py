@@ -15,6 +15,7 @@ items 2, 5 and 6).
   ``EXACTINV_FUZZ=1`` runs the full families (more heights and seeds).
 """
 
+import ast
 import json
 import os
 import random
@@ -342,3 +343,33 @@ def test_box_route_certificates_of_cubes_verify(n, name):
 def test_fuzz_box_route_certificates_of_cubes(n, name, seed):
     report = check(_cube_certificate(n, CUBE_METHODS[name](), seed))
     assert report.ok, str(report)
+
+
+# ------------------------------------------------------------------ every limit is defined in budget.py (issue 26)
+def _limits_defined(source: str) -> set[str]:
+    """The upper-case MAX_* and *_BUDGET names a module's source assigns at its top level (imports are not
+    definitions; an enum member such as format.Verdict.OVER_BUDGET is not a module constant)."""
+    found = set()
+    for node in ast.parse(source).body:
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
+        for target in targets:
+            for name in ast.walk(target):
+                if isinstance(name, ast.Name) and name.id.isupper() and (
+                        name.id.startswith("MAX_") or name.id.endswith("_BUDGET")):
+                    found.add(name.id)
+    return found
+
+
+def test_the_limit_scan_sees_definitions_and_not_imports():
+    assert _limits_defined("MAX_X = 3\nY_BUDGET: int = 4\nA, MAX_Z = 1, 2\nmax_w = 5\n") == {"MAX_X", "Y_BUDGET", "MAX_Z"}
+    assert _limits_defined("from .budget import MAX_X\nfrom .budget import WORK_BUDGET as Y_BUDGET\n") == set()
+    assert _limits_defined("class Reason:\n    OVER_BUDGET = 'over budget'\n") == set()
+
+
+def test_every_budget_and_limit_constant_is_defined_in_budget_py():
+    package = ROOT / "exactinv_check"
+    assert {"WORK_BUDGET", "CERTIFICATE_BUDGET", "MAX_DIGITS", "MAX_DEGREE"} <= _limits_defined(
+        (package / "budget.py").read_text())
+    outside = {str(path.relative_to(package)): sorted(names) for path in sorted(package.rglob("*.py"))
+               if path.name != "budget.py" and (names := _limits_defined(path.read_text()))}
+    assert outside == {}, f"limits defined outside exactinv_check/budget.py: {outside}"

@@ -4,12 +4,12 @@ accept every certificate the engine writes (0 rejections)."""
 import random
 from fractions import Fraction
 
+import pytest
 from test_certificate_schema import assert_valid
 
 import exactinv as ei
 from exactinv.certificates import certificate
 from exactinv_check import check
-import pytest
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

@@ -12,11 +12,11 @@ import json
 import random
 from fractions import Fraction
 
+import pytest
 from certificate_corpus import corpus
 
 import exactinv as ei
 from exactinv_check import check
-import pytest
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
