@@ -21,13 +21,14 @@ from fractions import Fraction
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any, Sequence
 
-from . import boxes, lp_pieces, polys, pruning, pruning_rational
+from . import polys
 from .conditions import condition_polynomials, method_matrices
 from .failure import require
 from .format import GeneratorKind
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, vector
 from .reals import Real
+from .routes import boxes, lp_pieces, pruning, pruning_rational
 from .validset import first_end, require_intervals, valid_set
 
 if TYPE_CHECKING:

@@ -43,8 +43,8 @@ from typing import Any, NamedTuple, Sequence
 from .cones import integer_rank, primitive, scaled_integers
 from .edge_walk import EdgeWalk, IntegerPolyhedron
 from .failure import require
-from .polygon import prove_polygon
 from .rationals import MAX_DIMENSION
+from .routes.polygon import prove_polygon
 
 __all__ = ["Generators", "prove_generators"]
 

@@ -6,8 +6,8 @@ from fractions import Fraction
 
 from kernel_deadline import TooSlow
 
-from exactinv_check import pruning
 from exactinv_check.failure import CheckFailure
+from exactinv_check.routes import pruning
 
 
 def fractions_of(S, P):

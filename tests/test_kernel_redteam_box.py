@@ -15,10 +15,11 @@ from kernel_deadline import check_within
 
 import exactinv as ei
 from exactinv.certificates import certificate
-from exactinv_check import boxes, check
+from exactinv_check import check
 from exactinv_check.conditions import condition_polynomials
 from exactinv_check.kernel import Method
 from exactinv_check.polyhedra import prove_generators
+from exactinv_check.routes import boxes
 from exactinv_check.validset import first_end, valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)

@@ -18,11 +18,12 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import lp_pieces, polys
+from exactinv_check import polys
 from exactinv_check.conditions import method_matrices, method_matrix_at
 from exactinv_check.kernel import Problem
 from exactinv_check.rationals import CheckFailure
 from exactinv_check.reals import Real
+from exactinv_check.routes import lp_pieces
 from exactinv_check.validset import Interval, require_intervals, valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)

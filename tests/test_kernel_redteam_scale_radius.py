@@ -345,8 +345,8 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
     import random
     from types import SimpleNamespace
 
-    from exactinv_check import pruning
     from exactinv_check.conditions import condition_polynomials, method_matrices
+    from exactinv_check.routes import pruning
     from exactinv_check.validset import first_end, valid_set
 
     def same(x, y):

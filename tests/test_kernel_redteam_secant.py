@@ -33,8 +33,9 @@ from kernel_deadline import check_within
 from pruning_helpers import count_slot_tests, polygon_rows
 
 import exactinv as ei
-from exactinv_check import check, pruning
+from exactinv_check import check
 from exactinv_check.conditions import method_matrices
+from exactinv_check.routes import pruning
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

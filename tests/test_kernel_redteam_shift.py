@@ -68,12 +68,13 @@ from pruning_helpers import count_slot_tests, polygon_rows
 from test_kernel_redteam_secant import _circle_polygon
 
 import exactinv as ei
-from exactinv_check import check, pruning
-from exactinv_check import pruning_rational as kernel_rational
+from exactinv_check import check
 from exactinv_check.budget import WORK_BUDGET
 from exactinv_check.conditions import method_matrices
 from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Method
+from exactinv_check.routes import pruning
+from exactinv_check.routes import pruning_rational as kernel_rational
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

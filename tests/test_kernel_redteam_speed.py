@@ -17,9 +17,10 @@ from fractions import Fraction as F
 import pytest
 from pruning_helpers import polygon_rows
 
-from exactinv_check import check, conditions, polygon, pruning
+from exactinv_check import check, conditions
 from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import prove_generators
+from exactinv_check.routes import polygon, pruning
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

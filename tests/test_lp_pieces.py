@@ -11,8 +11,9 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import lp_pieces, polys
+from exactinv_check import polys
 from exactinv_check.reals import Real, separate
+from exactinv_check.routes import lp_pieces
 
 M = ei.methods
 F = Fraction

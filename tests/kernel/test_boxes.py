@@ -13,11 +13,11 @@ from hypothesis import strategies as st
 import exactinv as ei
 from exactinv.certificates import certificate
 from exactinv_check import check
-from exactinv_check.boxes import prove_box, vertex_of
 from exactinv_check.conditions import method_matrices, method_matrix_at
 from exactinv_check.failure import CheckFailure
 from exactinv_check.linalg import integer_solve
 from exactinv_check.rationals import determinant, solve
+from exactinv_check.routes.boxes import prove_box, vertex_of
 
 M = ei.methods
 F = Fraction

@@ -62,7 +62,8 @@ def _random_poly(rng, degree, bits):
 # ------------------------------------------------------------------ the budget of a whole certificate
 
 def test_budget_constants_live_in_one_module_and_agree_with_the_docs():
-    from exactinv_check import pruning_rational, rationals, reals
+    from exactinv_check import rationals, reals
+    from exactinv_check.routes import pruning_rational
 
     assert not hasattr(rationals, "WORK_BUDGET") and polys.STURM_BUDGET is budget.STURM_BUDGET  # no second home
     assert pruning_rational.PIECES_BUDGET == budget.PIECES_BUDGET and not hasattr(reals, "STURM_BUDGET")

@@ -13,8 +13,8 @@ from pruning_helpers import polygon_rows
 import exactinv as ei
 from exactinv_check import check, polyhedra
 from exactinv_check.failure import CheckFailure
-from exactinv_check.polygon import prove_polygon
 from exactinv_check.polyhedra import prove_generators
+from exactinv_check.routes.polygon import prove_polygon
 
 
 def hull(points):

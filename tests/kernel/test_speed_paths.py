@@ -11,11 +11,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv_check import check, claims_thresholds, polys, pruning, validset
+from exactinv_check import check, claims_thresholds, polys, validset
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
 from exactinv_check.failure import CheckFailure
 from exactinv_check.rationals import integer_rows
+from exactinv_check.routes import pruning
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

@@ -50,16 +50,16 @@ from operator import mul
 from types import SimpleNamespace
 from typing import Any, NoReturn
 
-from . import polys
-from .budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
-from .budget import MAX_LP_PIECES as MAX_PIECES
-from .conditions import condition_polynomials, method_matrices, rebuild_size
-from .failure import CheckFailure, require_budget
-from .linalg import integer_solve
-from .rationals import integer, integer_matrix, integer_rows, require, vector
-from .reals import Real, separate
-from .text import rational_text
-from .validset import valid_set
+from .. import polys
+from ..budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
+from ..budget import MAX_LP_PIECES as MAX_PIECES
+from ..conditions import condition_polynomials, method_matrices, rebuild_size
+from ..failure import CheckFailure, require_budget
+from ..linalg import integer_solve
+from ..rationals import integer, integer_matrix, integer_rows, require, vector
+from ..reals import Real, separate
+from ..text import rational_text
+from ..validset import valid_set
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:

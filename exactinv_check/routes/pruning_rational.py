@@ -32,12 +32,13 @@ from fractions import Fraction
 from math import comb, gcd
 from typing import Any
 
-from . import polys, pruning
-from .budget import PIECES_BUDGET, PIECES_PER_WORD, charge, within_budget
-from .failure import require_budget
-from .format import MAX_RATIONAL_PIECES as MAX_PIECES
-from .format import PRUNING_VARIABLE as VARIABLE
-from .rationals import integer, rational, require
+from .. import polys
+from ..budget import PIECES_BUDGET, PIECES_PER_WORD, charge, within_budget
+from ..failure import require_budget
+from ..format import MAX_RATIONAL_PIECES as MAX_PIECES
+from ..format import PRUNING_VARIABLE as VARIABLE
+from ..rationals import integer, rational, require
+from . import pruning
 
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
 _BITS = 44  # piece ends rounded to multiples of 2^-44 after normalisation (the box grid is 2^-40)

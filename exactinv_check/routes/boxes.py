@@ -50,13 +50,13 @@ from fractions import Fraction
 from math import gcd
 from typing import Any, Sequence
 
-from . import polys
-from .budget import affordable, descartes_node_cost, within_budget
-from .conditions import method_matrices, rebuild_size
-from .failure import require_budget
-from .rationals import require, vector
-from .reals import Real, separate
-from .validset import breakpoints
+from .. import polys
+from ..budget import affordable, descartes_node_cost, within_budget
+from ..conditions import method_matrices, rebuild_size
+from ..failure import require_budget
+from ..rationals import require, vector
+from ..reals import Real, separate
+from ..validset import breakpoints
 
 
 def prove_box(G: Sequence[list[Fraction]], b: Sequence[Fraction]) -> Any:

@@ -43,11 +43,11 @@ from fractions import Fraction
 from math import gcd, isqrt
 from typing import Any
 
-from . import conditions
-from .budget import FRACTION_WEIGHT, MAX_PACKED_BYTES, MAX_SLOT_TESTS, charge, within_budget
-from .failure import require_budget
-from .format import HORIZON_BITS  # the horizon's numerator and denominator: the pieces' powers t^i stay short
-from .rationals import integer, integer_rows, rational, require
+from .. import conditions
+from ..budget import FRACTION_WEIGHT, MAX_PACKED_BYTES, MAX_SLOT_TESTS, charge, within_budget
+from ..failure import require_budget
+from ..format import HORIZON_BITS  # the horizon's numerator and denominator: the pieces' powers t^i stay short
+from ..rationals import integer, integer_rows, rational, require
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)

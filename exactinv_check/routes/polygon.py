@@ -43,8 +43,8 @@ from functools import cmp_to_key
 from math import gcd
 from typing import Any, Sequence
 
-from .budget import within_budget
-from .failure import CheckFailure
+from ..budget import within_budget
+from ..failure import CheckFailure
 
 __all__ = ["prove_polygon"]
 
