@@ -7,10 +7,10 @@ rebuilds every condition polynomial (:mod:`exactinv_check.conditions`) and
 recomputes the valid set or its first interval (:mod:`exactinv_check.validset`);
 the claim must equal the recomputation, end by end and flag by flag.  A claim
 with a ``box`` record instead of generator lists is about a box; its conditions
-come from :mod:`exactinv_check.boxes` (P proved to be that box from G and b, no
+come from :mod:`exactinv_check.routes.boxes` (P proved to be that box from G and b, no
 vertex list: the sign patterns of the rows of N(h) on the cells between their
 entries' roots, each one vertex-facet condition, together exact).  A claim with
-an ``lp`` record is decided on the LP route's pieces (:mod:`exactinv_check.lp_pieces`:
+an ``lp`` record is decided on the LP route's pieces (:mod:`exactinv_check.routes.lp_pieces`:
 per facet, the pieces of [0, oo) with a basis each, proved optimal by weak
 duality; the pieces' vertices give the conditions, no vertex enumeration).
 """
@@ -76,11 +76,11 @@ def _pruning_variable(method: Any, record: dict[str, list[int] | int | str] | No
 def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = False) -> Any:
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
-    With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
+    With a pruning record only the pairs that :mod:`exactinv_check.routes.pruning` cannot
     rule out are built, after proving that the record's vertex bounds the set by T;
     ``start`` is then that vertex's own set (first end) with its conditions, for
     :func:`valid_set` (:func:`first_end`) to start from (None otherwise).
-    A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
+    A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.routes.boxes`."""
     require(problem.method is not None, "a method is needed")
     _pruning_variable(problem.method, claim.get("pruning"))
     box, lists = _generators(problem, claim)

@@ -1,4 +1,4 @@
-"""Red team against the kernel's new pruning check (exactinv_check/pruning.py, claims_sets._pruned) and the
+"""Red team against the kernel's new pruning check (exactinv_check/routes/pruning.py, claims_sets._pruned) and the
 radius 'tie' reason (exactinv_check/tie.py, tail.prove_tail(tie=...), claims_radius 'tie' branch).
 
 The HOLE sections documented holes (first as ``xfail(strict=True)``); they are fixed and the tests now guard the

@@ -1,4 +1,4 @@
-"""The kernel's lp record (exactinv_check/lp_pieces.py): genuine LP-route certificates verify;
+"""The kernel's lp record (exactinv_check/routes/lp_pieces.py): genuine LP-route certificates verify;
 forged pieces -- a wrong basis, a piece that skips a breakpoint, a z_B that dips negative inside a
 piece, a singular or infeasible basis, ends out of order, pieces stopping short of the valid set --
 are rejected."""

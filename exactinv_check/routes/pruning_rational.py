@@ -19,7 +19,7 @@ The kernel proves, trusting nothing in the record:
    M = max_k |B_k - (1 - k/E) B_0 - (k/E) B_E| (entrywise; the Bernstein basis
    is nonnegative and sums to 1).  The kernel divides each piece by a power of
    two (the test g' y < 0 is a cone test) and rounds its ends to a grid,
-   widening M by the rounding; the box test of :mod:`exactinv_check.pruning`
+   widening M by the rounding; the box test of :mod:`exactinv_check.routes.pruning`
    with rows g' and right-hand side 0 then leaves a pair out only when
    g' P(u) w < 0 on all of [0, U]: q > 0, and with 2. c = q D > 0, on [0, T].
 4. Every other pair is built; a vertex pair other than vertex k's (any vertex

@@ -1,4 +1,4 @@
-"""The kernel's box route (exactinv_check/boxes.py): genuine box certificates verify, and a
+"""The kernel's box route (exactinv_check/routes/boxes.py): genuine box certificates verify, and a
 forged or unprovable one -- wrong intervals, a box claimed for a non-box, a missing bound,
 tampered numbers, an input too large to rebuild -- is rejected with a reason."""
 

@@ -1,4 +1,4 @@
-"""The kernel's O(m log m) proof of a bounded convex polygon (exactinv_check.polygon),
+"""The kernel's O(m log m) proof of a bounded convex polygon (exactinv_check.routes.polygon),
 against the general edge walk and against forged generator lists."""
 
 import copy

@@ -205,7 +205,7 @@ def test_missing_vertex():
 
 
 def test_vertices_of_a_smaller_polytope_inside():
-    G, b, V = box(3)  # the general proof (a polygon is proved by exactinv_check.polygon)
+    G, b, V = box(3)  # the general proof (a polygon is proved by exactinv_check.routes.polygon)
     inner = [[x / 2 for x in v] for v in V]
     msg = rejects(G, b, inner)
     assert "no listed point is a vertex" in msg
