@@ -26,10 +26,10 @@ from fractions import Fraction
 from math import isqrt
 from typing import Any, Sequence
 
+from .budget import MAX_POLES, charge, fraction_products_cost
 from .budget import MAX_TIE_POLE_BITS as MAX_BITS
-from .budget import charge, fraction_products_cost
-from .format import MAX_POLES
-from .rationals import describe, require
+from .failure import require
+from .rationals import describe
 
 __all__ = ["prove_balanced_tie", "MAX_POLES"]
 

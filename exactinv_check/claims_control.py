@@ -26,8 +26,8 @@ from typing import TYPE_CHECKING, Any, Sequence
 from . import claims_invariance
 from .budget import GAIN_WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
-from .failure import Record
-from .rationals import describe, dot, matrix, matvec, rational, require, vector
+from .failure import Record, require
+from .rationals import describe, dot, matrix, matvec, rational, vector
 from .reals import Real, quotient
 from .sparse import diagonal, row_dot
 

@@ -21,7 +21,8 @@ from fractions import Fraction
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any, Sequence
 
-from . import polys
+from . import format as fmt
+from . import poly_arithmetic
 from .conditions import condition_polynomials, method_matrices
 from .failure import require
 from .format import GeneratorKind
@@ -68,8 +69,8 @@ def _pruning_variable(method: Any, record: dict[str, list[int] | int | str] | No
         return
     rational = pruning_rational.is_rational_record(record)
     require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
-            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
-    require(not (rational and method.is_polynomial), f"pruning in u = {pruning_rational.VARIABLE} is written "
+            f"(a rational method's record names the variable {fmt.PRUNING_VARIABLE!r})")
+    require(not (rational and method.is_polynomial), f"pruning in u = {fmt.PRUNING_VARIABLE} is written "
             "for rational methods only: a polynomial method's record is in h (no variable)")
 
 
@@ -104,8 +105,8 @@ def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = F
     else:
         gens, D, inequalities, equalities, start = _listed(problem, claim, context, lists, first_end_claim)
     if claim.get("determinant") is not None:
-        claimed = polys.trim(vector(claim["determinant"], "determinant"))
-        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+        claimed = poly_arithmetic.trim(vector(claim["determinant"], "determinant"))
+        require(poly_arithmetic.primitive(claimed) == poly_arithmetic.primitive(D), "det h(dt A) does not match")
     return gens, D, inequalities, equalities, start
 
 
@@ -201,7 +202,7 @@ def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         _, single, single_eq = condition_polynomials(problem.A, [problem.G[j]], [problem.b[j]],
                                                      problem.method.numerator, problem.method.denominator, one)
         own = list(single) + list(single_eq)
-        require(len(own) == 1 and polys.primitive(vector(binding["poly"], "binding poly")) == list(own[0]),
+        require(len(own) == 1 and poly_arithmetic.primitive(vector(binding["poly"], "binding poly")) == list(own[0]),
                 "the binding polynomial is not the recomputed condition of that generator and facet")
         end, _ = first_end(D, single, single_eq)
         require(end.compare(tau) == 0, "the binding condition does not end the first interval")

@@ -40,10 +40,10 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, NamedTuple, Sequence
 
+from .budget import MAX_DIMENSION
 from .cones import integer_rank, primitive, scaled_integers
 from .edge_walk import EdgeWalk, IntegerPolyhedron
 from .failure import require
-from .rationals import MAX_DIMENSION
 from .routes.polygon import prove_polygon
 
 __all__ = ["Generators", "prove_generators"]

@@ -45,6 +45,7 @@ from fractions import Fraction
 from math import ceil, comb
 from typing import TYPE_CHECKING, Any, Sequence
 
+from .budget import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
 from .budget import MAX_TAIL_REFINE as MAX_REFINE
 from .disks import (
     ball,
@@ -56,24 +57,9 @@ from .disks import (
     sqrt_bounds,
     taylor_balls,
 )
-from .format import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
-from .poly_arithmetic import power
-from .polys import (
-    Sturm,
-    count_roots,
-    derivative,
-    divmod_,
-    evaluate,
-    gcd,
-    monic,
-    mul,
-    positive_roots,
-    sign,
-    squarefree,
-    sub,
-    trim,
-)
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
+from .poly_arithmetic import derivative, divmod_, evaluate, gcd, monic, mul, power, sign, sub, trim
+from .polys import Sturm, count_roots, positive_roots, squarefree
 from .tie import kappa_enclosure, tie_interval
 
 if TYPE_CHECKING:

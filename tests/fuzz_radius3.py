@@ -23,7 +23,7 @@ import mpmath
 from radius_reference import coefficients_at, from_partial_fractions
 
 from exactinv_check import bernstein, budget
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 TINY = F(1, 10 ** 60)
 

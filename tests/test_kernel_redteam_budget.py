@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from exactinv_check import budget, check
+from exactinv_check import budget, check, resultants
 from exactinv_check.bernstein import prove_completely_monotone
 from exactinv_check.failure import CheckFailure
 
@@ -167,18 +167,17 @@ def test_tie_polynomial_priced_by_the_square_of_its_numbers():
 
 # ------------------------------------------------------------------ Goal B: quotients of algebraic numbers
 def test_quotient_polynomial_resultants_and_interpolation_are_charged():
-    """polys.quotient_polynomial (rho/gamma*, z_p/alpha(H) with both algebraic) ran its 201 resultants and its
+    """resultants.quotient_polynomial (rho/gamma*, z_p/alpha(H) with both algebraic) ran its 201 resultants and its
     Newton interpolation uncharged: for deg 40 and deg 5 with 300-bit coefficients 54 s of CPU passed before a
     charge (of the final products) overdrew the account.  Now every resultant step and interpolation level is
     charged: an account of 2e8 stops it within seconds."""
     import random
 
-    from exactinv_check import polys
     rng = random.Random(3)
     p = [F(rng.randint(1, 2**300) * rng.choice((-1, 1))) for _ in range(41)]
     q = [F(rng.randint(1, 2**300) * rng.choice((-1, 1))) for _ in range(6)]
     start = time.process_time()
     with budget.account(limit=2 * 10**8, time_limit=None):
         with pytest.raises(CheckFailure, match="work budget"):
-            polys.quotient_polynomial(p, q)
+            resultants.quotient_polynomial(p, q)
     assert time.process_time() - start < 10

@@ -29,7 +29,7 @@ from radius_reference import coefficients_at
 from exactinv_check import budget, check
 from exactinv_check.budget import WORK_BUDGET
 from exactinv_check.claims_radius import short_above, sign_at_zero
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

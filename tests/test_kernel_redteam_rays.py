@@ -18,10 +18,10 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import polys
+from exactinv_check import poly_arithmetic, polys
 from exactinv_check.conditions import method_matrices, method_matrix_at
+from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
-from exactinv_check.rationals import CheckFailure
 from exactinv_check.reals import Real
 from exactinv_check.routes import lp_pieces
 from exactinv_check.validset import Interval, require_intervals, valid_set
@@ -246,15 +246,15 @@ def _roots_for(c, i, rng, pole):
         d = [F(x) for x in rng.choice(rays)]
         g = [F(x) for x in p["G"][i]]
         e = [sum(g[a] * Nk[a][b] * d[b] for a in range(len(d)) for b in range(len(d))) for Nk in N]
-        q = polys.mul(polys.trim(e), D)
+        q = poly_arithmetic.mul(poly_arithmetic.trim(e), D)
     out = []
-    if len(polys.trim(q)) < 2:
+    if len(poly_arithmetic.trim(q)) < 2:
         return out
     for lo, hi in polys.positive_roots(q):
         if lo == hi:
             out.append(str(lo))
         else:
-            sq = polys.integer_coefficients(polys.squarefree(polys.strip_zero_roots(q)))
+            sq = poly_arithmetic.integer_coefficients(polys.squarefree(poly_arithmetic.strip_zero_roots(q)))
             out.append({"poly": [str(x) for x in sq], "interval": [str(lo), str(hi)]})
     return out
 

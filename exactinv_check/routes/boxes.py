@@ -50,11 +50,11 @@ from fractions import Fraction
 from math import gcd
 from typing import Any, Sequence
 
-from .. import polys
+from .. import poly_arithmetic, polys
 from ..budget import affordable, descartes_node_cost, within_budget
 from ..conditions import method_matrices, rebuild_size
-from ..failure import require_budget
-from ..rationals import require, vector
+from ..failure import require, require_budget
+from ..rationals import vector
 from ..reals import Real, separate
 from ..validset import breakpoints
 
@@ -105,7 +105,7 @@ def _price_roots(polynomials: Any, what: str) -> None:
     sequence) is then charged node by node as it runs (:func:`exactinv_check.polys.isolate`)."""
     least = 0
     for p in {tuple(p) for p in polynomials if len(p) > 1}:
-        ints = polys.integer_coefficients(list(p))
+        ints = poly_arithmetic.integer_coefficients(list(p))
         if len({c > 0 for c in ints if c}) > 1:  # no sign variation: no positive root, no isolation (Descartes)
             least += descartes_node_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints))
     require_budget(affordable(least), f"over the certificate's work budget: root isolation of {what} "
@@ -120,8 +120,8 @@ def _entries(D: Sequence[Fraction], N: Sequence[list[list[Any]]], lo: Sequence[F
     w = [(b - a) / 2 for a, b in zip(lo, hi)]
     rows = []
     for j in range(n):
-        v0 = polys.sub([sum(Nk[j][l] * c[l] for l in range(n)) for Nk in N], [d * c[j] for d in D])
-        rows.append([v0] + [polys.trim([Nk[j][l] * w[l] for Nk in N]) for l in range(n)])
+        v0 = poly_arithmetic.sub([sum(Nk[j][l] * c[l] for l in range(n)) for Nk in N], [d * c[j] for d in D])
+        rows.append([v0] + [poly_arithmetic.trim([Nk[j][l] * w[l] for Nk in N]) for l in range(n)])
     return rows, w
 
 
@@ -139,7 +139,7 @@ def _samples(row: Sequence[list[Fraction]]) -> list[Fraction]:
 def _patterns(row: Sequence[list[Fraction]], negate: bool) -> Any:
     """The sign patterns of the row at its cell samples (and their negations)."""
     out = set()
-    ints = [polys.integer_coefficients(p) for p in row]  # positive multiples: the same signs
+    ints = [poly_arithmetic.integer_coefficients(p) for p in row]  # positive multiples: the same signs
     for t in _samples(row):
         s = tuple(-1 if polys.sign_at(q, t) < 0 else 1 for q in ints)
         out.add(s)
@@ -171,19 +171,20 @@ def box_conditions(A: Any, G: Any, b: Any, numerator: Any, denominator: Any, cla
     rows, w = _entries(D, N, lo, hi)
     _price_roots([p for row in rows for p in row], "the box route's entry polynomials")
     negate = not all(c >= 0 for c in D) and not all(c <= 0 for c in D)  # D may change sign on (0, oo)
-    D_int = polys.integer_coefficients(D)  # a positive multiple of D: the same signs
+    D_int = poly_arithmetic.integer_coefficients(D)  # a positive multiple of D: the same signs
     inequalities: dict[Any, Any] = {}
     for j, row in enumerate(rows):
-        scale, ints = _integer_row([polys.scale(D, w[j])] + row)  # scale * (w_j D, v_j0, .., v_jn), scale > 0
+        scale, ints = _integer_row([poly_arithmetic.scale(D, w[j])] + row)  # scale * (w_j D, v_j0, .., v_jn), scale > 0
         for s in sorted(_patterns(row, negate)):
             q = list(ints[0])
             for sign, p in zip(s, ints[1:]):
                 for k, x in enumerate(p):
                     q[k] -= sign * x
-            c = polys.trim(polys.mul_integers(q, D_int) if len(D_int) > 1 else q)  # a positive multiple of (w_j D - s.v_j) D
+            # a positive multiple of (w_j D - s.v_j) D
+            c = poly_arithmetic.trim(poly_arithmetic.mul_integers(q, D_int) if len(D_int) > 1 else q)
             if c:
                 facet = facets[j][0 if s[0] > 0 else 1][0]
                 index = int("".join("1" if s[0] * x > 0 else "0" for x in s[1:]), 2)
-                inequalities.setdefault(tuple(polys.integer_coefficients(c)), ("vertex", index, facet))
+                inequalities.setdefault(tuple(poly_arithmetic.integer_coefficients(c)), ("vertex", index, facet))
     _price_roots(inequalities, "the box route's conditions")
     return D, inequalities, (lo, hi)

@@ -50,13 +50,13 @@ from operator import mul
 from types import SimpleNamespace
 from typing import Any, NoReturn
 
-from .. import polys
+from .. import poly_arithmetic, polys
 from ..budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
 from ..budget import MAX_LP_PIECES as MAX_PIECES
 from ..conditions import condition_polynomials, method_matrices, rebuild_size
-from ..failure import CheckFailure, require_budget
+from ..failure import CheckFailure, require, require_budget
 from ..linalg import integer_solve
-from ..rationals import integer, integer_matrix, integer_rows, require, vector
+from ..rationals import integer, integer_matrix, integer_rows, vector
 from ..reals import Real, separate
 from ..text import rational_text
 from ..validset import valid_set
@@ -305,9 +305,9 @@ def _positive_around(ints: Any, a: Any, b: Any) -> Any:
 def _vanishes_at(p: Any, r: Any) -> Any:
     """True if p(r) = 0 for an algebraic r (its squarefree polynomial has the one root r in (lo, hi)):
     gcd(p, r's polynomial) changes sign on (lo, hi).  False says nothing."""
-    g = polys.gcd(p, r.poly)
-    return len(g) > 1 and polys.sign_at(polys.integer_coefficients(g), r.lo) * \
-        polys.sign_at(polys.integer_coefficients(g), r.hi) < 0
+    g = poly_arithmetic.gcd(p, r.poly)
+    return len(g) > 1 and polys.sign_at(poly_arithmetic.integer_coefficients(g), r.lo) * \
+        polys.sign_at(poly_arithmetic.integer_coefficients(g), r.hi) < 0
 
 
 def _sliver(p: Any, ints: Any, r: Any, inner: Any) -> Any:
@@ -318,7 +318,7 @@ def _sliver(p: Any, ints: Any, r: Any, inner: Any) -> Any:
     proved when r was read."""
     if polys.sign_at(ints, inner) <= 0:
         return False
-    own = polys.integer_coefficients(r.poly)
+    own = poly_arithmetic.integer_coefficients(r.poly)
     k = next(j for j, c in enumerate(ints) if c)  # p = h^k q, q(0) != 0; h^k > 0 on (lo, hi) when lo >= 0
     q = ints[k:]
     if (k == 0 or r.lo >= 0) and (own == q or own == [-c for c in q]):
@@ -346,7 +346,7 @@ def _require_nonnegative(p: Any, start: Any, end: Any, what: Any, tried: Any = F
     rule on the enclosing (lower end of start, upper end of end) already failed (:func:`_batch_positive`)."""
     if not p:
         return
-    ints = polys.integer_coefficients(p)
+    ints = poly_arithmetic.integer_coefficients(p)
     a = start.bounds()[0]
     b = None if end.inf else end.bounds()[1]
     if (not tried and _positive_around(ints, a, b)) or _fast(p, ints, start, end):
@@ -371,7 +371,7 @@ def _require_positive_open(p: Any, start: Any, end: Any, what: Any) -> Any:
     """p > 0 on the open piece (start, end) (end may be oo), or CheckFailure: Descartes' rule on the
     enclosing (lower end of start, upper end of end), else no root of p strictly inside the piece
     (every positive root isolated and compared exactly) and p > 0 at one rational inside it."""
-    ints = polys.integer_coefficients(p) if p else []
+    ints = poly_arithmetic.integer_coefficients(p) if p else []
     require(ints, f"{what} is identically zero")
     a = start.bounds()[0]
     b = None if end.inf else end.bounds()[1]
@@ -427,7 +427,7 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     _price(problem, sum(len(ends) for ends, _ in facets))
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
-    D_int = polys.integer_coefficients(D)
+    D_int = poly_arithmetic.integer_coefficients(D)
     bases = _Bases(problem.G, problem.b)
     if point is not None:
         _require_in(bases.rows, point, "lp point")
@@ -457,8 +457,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 for v in d:
                     dd = dd * v.denominator // gcd(dd, v.denominator)
                 di = [int(v * dd) for v in d]
-                e = polys.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
-                r = polys.trim(polys.mul_integers(e, D_int)) if e else []
+                e = poly_arithmetic.trim([sum(C_int[l][c] * di[l] for l in range(n) if di[l]) for c in range(len(C_int[0]))])
+                r = poly_arithmetic.trim(poly_arithmetic.mul_integers(e, D_int)) if e else []
                 ints = _require_positive_open(r, start, end, f"{what}'s (g_i N(h) d) D(h)")
                 if left_open and not _positive_at(ints, start):  # (a pole t, D(t) = 0, is never open)
                     _fail(f"lp facet {i}: the end {start} between two ray pieces is covered by neither "
@@ -473,7 +473,7 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 Y = _components(order, det, adj, C_int)
                 if point_piece:  # z_B(t) >= 0 at t alone: the exact sign at the (rational or algebraic) end
                     for l, y in enumerate(Y):
-                        if start.sign_of(polys.mul_integers(y, D_int)) < 0:
+                        if start.sign_of(poly_arithmetic.mul_integers(y, D_int)) < 0:
                             _fail(f"lp facet {i} piece {k}: component {l} of z_B is negative at {start}")
                     left_open = False
                     points.append(x)
@@ -487,7 +487,7 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                 flags = _batch_positive(Y, D_int, a, b) if batch else [False] * len(Y)
                 for l, ok in enumerate(flags):
                     if not ok:
-                        p = polys.trim(polys.mul_integers(Y[l], D_int))
+                        p = poly_arithmetic.trim(poly_arithmetic.mul_integers(Y[l], D_int))
                         _require_nonnegative(p, start, end, f"lp facet {i} piece {k}: component {l} of z_B",
                                              tried=batch)
                 left_open = False
@@ -512,7 +512,7 @@ def _negative_beyond(p: Any, E: Any) -> Any:
     """True proves p < 0 on the open (E, oo) (E finite); False says nothing.  A rational E: the Taylor
     shift at E (:func:`_positive_around` of -p); an algebraic E: the same at its upper end, and
     -p > 0 on (E, hi] (:func:`_sliver`: p may vanish at E itself)."""
-    ints = polys.integer_coefficients(p)
+    ints = poly_arithmetic.integer_coefficients(p)
     if not ints or ints[-1] >= 0:
         return False
     neg = [-c for c in ints]

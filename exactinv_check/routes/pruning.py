@@ -43,11 +43,17 @@ from fractions import Fraction
 from math import gcd, isqrt
 from typing import Any
 
-from .. import conditions
-from ..budget import FRACTION_WEIGHT, MAX_PACKED_BYTES, MAX_SLOT_TESTS, charge, within_budget
-from ..failure import require_budget
-from ..format import HORIZON_BITS  # the horizon's numerator and denominator: the pieces' powers t^i stay short
-from ..rationals import integer, integer_rows, rational, require
+from .. import budget
+from ..budget import (
+    FRACTION_WEIGHT,
+    HORIZON_BITS,  # the horizon's numerator and denominator: the pieces' powers t^i stay short
+    MAX_PACKED_BYTES,
+    MAX_SLOT_TESTS,
+    charge,
+    within_budget,
+)
+from ..failure import require, require_budget
+from ..rationals import integer, integer_rows, rational
 
 K_BITS = 40
 K = 1 << K_BITS  # the grid of the blocks' coordinate boxes (the packed row table)
@@ -381,6 +387,6 @@ def survivors_of_pieces(G: Any, b: Any, vertices: Any, pieces: Any) -> Any:
             for e, rows_e in hits:
                 out[i].update(rows_e.outside(mine[e]))
             total += len(out[i]) - before
-            require(total <= conditions.MAX_CONDITIONS,
-                    f"more than {conditions.MAX_CONDITIONS} pairs survive the pruning test: they exceed the kernel's bound")
+            require(total <= budget.MAX_CONDITIONS,
+                    f"more than {budget.MAX_CONDITIONS} pairs survive the pruning test: they exceed the kernel's bound")
     return {i: sorted(f) for i, f in out.items()}

@@ -32,12 +32,12 @@ from fractions import Fraction
 from math import comb, gcd
 from typing import Any
 
-from .. import polys
+from .. import budget, poly_arithmetic, polys
+from ..budget import MAX_RATIONAL_PIECES as MAX_PIECES
 from ..budget import PIECES_BUDGET, PIECES_PER_WORD, charge, within_budget
-from ..failure import require_budget
-from ..format import MAX_RATIONAL_PIECES as MAX_PIECES
+from ..failure import require, require_budget
 from ..format import PRUNING_VARIABLE as VARIABLE
-from ..rationals import integer, rational, require
+from ..rationals import integer, rational
 from . import pruning
 
 KEYS = {"horizon", "vertex", "order", "variable", "scale", "pieces"}
@@ -56,7 +56,7 @@ def parse(record: Any, vertex_count: Any, n: Any) -> Any:
     require(isinstance(record, dict) and set(record) == KEYS, f"pruning in u has the keys {', '.join(sorted(KEYS))}")
     require(record["variable"] == VARIABLE, f"pruning variable must be {VARIABLE!r}")
     s = rational(record["scale"], "pruning scale")
-    require(s > 0 and max(s.numerator.bit_length(), s.denominator.bit_length()) <= pruning.HORIZON_BITS,
+    require(s > 0 and max(s.numerator.bit_length(), s.denominator.bit_length()) <= budget.HORIZON_BITS,
             "the pruning scale is a positive rational of at most 64-bit numerator and denominator")
     count = integer(record["pieces"], "pruning pieces", 1, MAX_PIECES + 1)
     U, k, order = pruning.parse({key: record[key] for key in ("horizon", "vertex", "order")}, vertex_count)
@@ -72,7 +72,7 @@ def horizon(s: Any, U: Any) -> Any:
 
 def require_positive_determinant(D: Any, T: Any) -> None:
     """D > 0 on [0, T] (T None: on [0, oo)): else q > 0 would not give c = q D > 0."""
-    require(polys.evaluate(D, Fraction(0)) > 0 and polys.count_roots(D, Fraction(0), T) == 0,
+    require(poly_arithmetic.evaluate(D, Fraction(0)) > 0 and polys.count_roots(D, Fraction(0), T) == 0,
             f"det h(hA) vanishes in the pruning range [0, {'oo' if T is None else T}]")
 
 

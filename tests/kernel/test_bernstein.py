@@ -46,7 +46,7 @@ import exactinv as ei  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
 from exactinv.paper.monotonicity import absolute_monotonicity_radius  # noqa: E402
 from exactinv_check import check  # noqa: E402
-from exactinv_check.rationals import CheckFailure  # noqa: E402
+from exactinv_check.failure import CheckFailure  # noqa: E402
 
 
 def _terms(p, y, b, off):

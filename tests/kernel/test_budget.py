@@ -31,7 +31,7 @@ from versions import as_version
 
 import exactinv as ei
 from exactinv.certificates import certificate
-from exactinv_check import budget, check, polys
+from exactinv_check import budget, check, poly_arithmetic, polys
 from exactinv_check.failure import CheckFailure
 from exactinv_check.rationals import rational
 from exactinv_check.reals import Real, quotient, scaled
@@ -66,6 +66,7 @@ def test_budget_constants_live_in_one_module_and_agree_with_the_docs():
     from exactinv_check.routes import pruning_rational
 
     assert not hasattr(rationals, "WORK_BUDGET") and polys.STURM_BUDGET is budget.STURM_BUDGET  # no second home
+    assert not any(hasattr(polys, name) for name in ("add", "interpolate", "resultant", "quotient_polynomial"))
     assert pruning_rational.PIECES_BUDGET == budget.PIECES_BUDGET and not hasattr(reals, "STURM_BUDGET")
     doc = (ROOT / "docs" / "certificate-format.md").read_text()
     for number in ("5 x 10^12", "2 x 10^9", "10^8", f"{budget.TIME_LIMIT} s"):
@@ -189,10 +190,10 @@ def integer_polynomials(draw):
         a, b, k = draw(st.integers(-12, 12)), draw(st.integers(1, 4)), draw(st.integers(1, 3))
         roots.append(F(a, b))
         for _ in range(k):
-            p = polys.mul_integers(p, [-a, b])
+            p = poly_arithmetic.mul_integers(p, [-a, b])
     extra = [draw(st.integers(-30, 30)) for _ in range(draw(st.integers(0, 6)))]
     if extra and any(extra):
-        p = polys.mul_integers(p, polys.trim(extra) or [1])
+        p = poly_arithmetic.mul_integers(p, poly_arithmetic.trim(extra) or [1])
     return [int(c) for c in p], roots
 
 
@@ -201,7 +202,7 @@ def integer_polynomials(draw):
 @settings(max_examples=150, deadline=None)
 def test_descartes_counts_equal_sturm_counts(data, ends):
     p, roots = data
-    if len(polys.trim(p)) < 2:
+    if len(poly_arithmetic.trim(p)) < 2:
         return
     sturm = polys.Sturm(polys.squarefree(p))
     a, b = sorted(ends)
@@ -210,7 +211,7 @@ def test_descartes_counts_equal_sturm_counts(data, ends):
     assert polys.count_roots(p, a, None) == sturm.count(a, None)
     positive = polys.positive_roots([F(c) for c in p])
     assert len(positive) == sturm.count(F(0), None)
-    q = polys.squarefree(polys.strip_zero_roots(p))  # the isolating data refer to p without its roots at 0
+    q = polys.squarefree(poly_arithmetic.strip_zero_roots(p))  # the isolating data refer to p without its roots at 0
     for lo, hi in positive:  # each piece isolates exactly one root, and no end is a root
         if lo == hi:
             assert polys.sign_at(q, lo) == 0
@@ -223,13 +224,13 @@ def test_descartes_counts_equal_sturm_counts(data, ends):
 @settings(max_examples=80, deadline=None)
 def test_the_modular_squarefree_test_never_passes_a_square(data, k):
     p, _ = data
-    if len(polys.trim(p)) < 2:
+    if len(poly_arithmetic.trim(p)) < 2:
         return
-    square = polys.mul_integers(p, p)
+    square = poly_arithmetic.mul_integers(p, p)
     assert not polys.is_squarefree_mod_prime(square)
     q = polys.squarefree(square)  # the squarefree part: every distinct root once
     assert polys.Sturm(q).count(F(-10 ** 6), None) == polys.Sturm(polys.squarefree(p)).count(F(-10 ** 6), None)
-    assert polys.is_squarefree_mod_prime(q) or len(polys.integer_gcd(q, polys.integer_derivative(q))) == 1
+    assert polys.is_squarefree_mod_prime(q) or len(poly_arithmetic.integer_gcd(q, poly_arithmetic.integer_derivative(q))) == 1
 
 
 @given(st.integers(2, 9), st.fractions(min_value=F(1, 50), max_value=50, max_denominator=97))

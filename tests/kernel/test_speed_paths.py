@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv_check import check, claims_thresholds, polys, validset
+from exactinv_check import check, claims_thresholds, poly_arithmetic, validset
 from exactinv_check.claims_invariance import check_H
 from exactinv_check.conditions import method_matrices
 from exactinv_check.failure import CheckFailure
@@ -172,7 +172,7 @@ def test_a_pair_that_leaves_its_half_space_survives(seed, n, degree, T, xs):
 def _mul(*ps):
     out = [F(1)]
     for p in ps:
-        out = polys.mul(out, [F(c) for c in p])
+        out = poly_arithmetic.mul(out, [F(c) for c in p])
     return out
 
 
@@ -202,7 +202,7 @@ condition = st.tuples(st.sampled_from([1, -1]), st.lists(factor, min_size=1, max
 def test_condition_by_condition_is_the_plain_sweep(ineq, k, D):
     """Products of (h - r), (h - r)^2 and positive quadratics: sign changes, tangencies
     (isolated valid points, touching zeros), shared roots; any first subset."""
-    ineq = [polys.integer_coefficients(p) for p in ineq]
+    ineq = [poly_arithmetic.integer_coefficients(p) for p in ineq]
     ineq = list(dict.fromkeys(map(tuple, ineq)))
     truth = _plain(D, [list(p) for p in ineq], [])
     assert _same(validset.valid_set(D, ineq, [], ineq[:k]), truth)
@@ -215,7 +215,7 @@ def test_starting_from_a_subsets_set_is_the_plain_sweep(ineq, k, D, eq):
     """valid_set started from the set of the first k conditions (and D) alone -- how the
     kernel reuses the pruning vertex's own set -- is the valid set of all of them, with
     or without equalities."""
-    ineq = list(dict.fromkeys(map(tuple, (polys.integer_coefficients(p) for p in ineq))))
+    ineq = list(dict.fromkeys(map(tuple, (poly_arithmetic.integer_coefficients(p) for p in ineq))))
     done = ineq[:k]
     V0 = validset.valid_set(D, [], [], done)
     truth = _plain(D, [list(p) for p in ineq], [list(e) for e in eq])
@@ -227,7 +227,7 @@ def test_starting_from_a_subsets_set_is_the_plain_sweep(ineq, k, D, eq):
 def test_first_end_started_from_a_subsets_end_is_the_plain_first_end(ineq, k, D):
     """first_end started from the first end of the first k conditions (and D) alone is the
     first end of all of them: the same end, the same attained flag (a pole of D included)."""
-    ineq = list(dict.fromkeys(map(tuple, (polys.integer_coefficients(p) for p in ineq))))
+    ineq = list(dict.fromkeys(map(tuple, (poly_arithmetic.integer_coefficients(p) for p in ineq))))
     done = ineq[:k]
     tau0, _ = validset.first_end(D, done, [])
     tau, attained = validset.first_end(D, ineq, [])
