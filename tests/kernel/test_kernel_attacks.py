@@ -19,7 +19,7 @@ from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _cert(claims, method=None, A=None, G=None, b=None, version=2):

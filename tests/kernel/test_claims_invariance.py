@@ -37,8 +37,8 @@ from fractions import Fraction as F
 from types import SimpleNamespace
 
 import pytest
-from test_kernel_redteam import _check_in_subprocess
-from test_kernel_speed_paths import _ratio_reference
+from test_kernel_attacks import _check_in_subprocess
+from test_speed_paths import _ratio_reference
 from versions import as_version
 
 import exactinv as ei

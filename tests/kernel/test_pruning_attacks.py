@@ -64,8 +64,7 @@ from math import comb
 
 import pytest
 from kernel_deadline import TooSlow
-from pruning_helpers import count_slot_tests, polygon_rows
-from test_kernel_redteam_secant import _circle_polygon
+from pruning_helpers import circle_polygon, count_slot_tests, polygon_rows
 
 import exactinv as ei
 from exactinv_check import check
@@ -379,7 +378,7 @@ def _hull(points):
 def _outlier_polygon():
     """Rational points of the unit circle (rt-secant's 5000-gon) and one far vertex (1e5, -1e5):
     1,467 vertices, all but the far one in one Morton cell of the kernel's 12-bit grid."""
-    pts, _, _ = _circle_polygon(5000)
+    pts, _, _ = circle_polygon(5000)
     P = _hull(list(pts) + [(F(10**5), F(-10**5))])
     return P, *polygon_rows(P)
 

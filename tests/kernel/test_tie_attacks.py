@@ -16,7 +16,7 @@ from math import factorial
 
 import pytest
 import sympy as sp
-from test_kernel_redteam import _cert, _check_in_subprocess
+from test_kernel_attacks import _cert, _check_in_subprocess
 
 from exactinv_check import check
 

@@ -24,7 +24,7 @@ import random
 from fractions import Fraction
 
 import pytest
-from test_kernel_redteam import _check_in_subprocess
+from test_kernel_attacks import _check_in_subprocess
 
 from exactinv_check import check
 from exactinv_check.ellipsoids import condition_polynomials

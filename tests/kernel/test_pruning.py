@@ -30,7 +30,7 @@ from fractions import Fraction as F
 
 import pytest
 from kernel_deadline import check_within
-from pruning_helpers import count_slot_tests, polygon_rows
+from pruning_helpers import circle_polygon, count_slot_tests
 
 import exactinv as ei
 from exactinv_check import check
@@ -153,18 +153,8 @@ def test_the_chord_pieces_of_a_high_degree_method_are_priced():
     assert not report.ok and "pieces of the pruning test" in str(report)
 
 
-def _circle_polygon(m):
-    """m rational points on the unit circle, counter-clockwise from (-1, 0), and their rows."""
-    pts = []
-    for a in range(m):
-        s = F(int((2 * a + 1 - m) * 10**6 // m), 10**6) if a else None  # tan(theta/2) in (-1, 1), increasing
-        pts.append((F(-1), F(0)) if s is None else ((1 - s * s) / (1 + s * s), 2 * s / (1 + s * s)))
-    pts = [pts[0]] + sorted(set(pts[1:]), key=lambda p: (p[1] >= 0, p[0] if p[1] < 0 else -p[0]))
-    return pts, *polygon_rows(pts)
-
-
 def _polygon_certificate(m, order):
-    pts, G, b = _circle_polygon(m)
+    pts, G, b = circle_polygon(m)
     s = str
     claim = {"type": "valid_steplengths", "vertices": [[s(x) for x in p] for p in pts], "rays": [], "lines": [],
              "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}],
@@ -183,7 +173,7 @@ def _scattered(V):
 
 def _slot_tests(monkeypatch, m, order, limit):
     """The packed slot tests of pruning.survivors on the m-gon, its vertices listed in the given order."""
-    pts, G, b = _circle_polygon(m)
+    pts, G, b = circle_polygon(m)
     _, N = method_matrices([[F(-1), F(1, 2)], [F(-1, 2), F(-1)]], [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)], [F(1)])
     return count_slot_tests(monkeypatch, G, b, [list(pts[i]) for i in order(len(pts))], N, F(167127, 65536), limit)
 

@@ -9,7 +9,7 @@ These tests fail until the kernel is fixed.
 import random
 
 import pytest
-from test_kernel_redteam import _cert, _check_in_subprocess  # shared with round 1
+from test_kernel_attacks import _cert, _check_in_subprocess  # shared with round 1
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
