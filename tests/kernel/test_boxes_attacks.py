@@ -1,4 +1,4 @@
-"""Red team rt-box: the kernel's box route (exactinv_check/routes/boxes.py) and the integer
+"""Attacks on the kernel's box route (exactinv_check/routes/boxes.py) and the integer
 method matrices (conditions.method_matrices, linalg.integer_solve).
 
 The two resource holes it found (rational method matrices rebuilt unpriced, by a discrete-invariance

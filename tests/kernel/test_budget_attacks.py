@@ -1,4 +1,4 @@
-"""Red team (rt-budget): the certificate-wide work budget and the new radius reasons bernstein / balanced-tie.
+"""Attacks on the certificate-wide work budget and the new radius reasons bernstein / balanced-tie.
 
 Each test is a reproduction of an attack; the ones fixed in the kernel pass, any that are not are marked
 xfail(strict=True).

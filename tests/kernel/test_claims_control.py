@@ -1,4 +1,4 @@
-"""Red team on the kernel's control claims (issue 25): optimal_gain and robust_threshold.
+"""exactinv_check.claims_control, attacked: the control claims (issue 25): optimal_gain and robust_threshold.
 
 Findings (each a test that failed before its fix):
 
@@ -519,7 +519,7 @@ def test_the_independent_checks_accept_genuine_and_refuse_forged_claims():
 
 
 def test_fuzzer_every_accepted_mutant_is_true():
-    """Seeded and small (the long runs are reported in the red-team notes): each accepted mutant verified."""
+    """Seeded and small (the long runs: CHANGELOG.md, Security): each accepted mutant verified."""
     stats = fuzz(seed=2026, problems=2, mutants_per_cert=40)
     assert stats["mutants"] >= 100
     assert stats["false"] == [], stats["false"]

@@ -1,4 +1,4 @@
-"""Red team rt-sparse: commit b4fe074 -- ``claims_invariance.check_H`` over the nonzero entries of
+"""exactinv_check.claims_invariance, attacked: ``claims_invariance.check_H`` over the nonzero entries of
 H's rows, ``claims_thresholds._ratio_tests`` (forward Euler) in integers cross-multiplied, and
 ``rationals.rational``'s fast path for the string "0"; plus the engine's ``gamma=`` keyword
 (``exactinv.paper.gamma_star.gamma_for``).
@@ -20,7 +20,7 @@ No soundness hole found.  Findings, all fixed (their tests below pass):
    num * best_den < best_num * den, numbers of L's size, for every vertex-facet pair, unpriced.
    A whose off-diagonal entries have distinct 3990-digit denominators (L ~ (n - 1)^2 * 13,000
    bits) on the cube [-1, 1]^n: a TRUE certificate (_fe_certificate) of 601 KB (n = 8) checks in
-   148 s, 147 s of it in _ratio_tests (profiled); the Fraction version before b4fe074: 16 s on
+   148 s, 147 s of it in _ratio_tests (profiled); the Fraction version before the sparse rows: 16 s on
    the same certificate (n = 6: 9.9 s against 1.4 s).  Load ~1.5-2 on 2 cores.
 2. ENGINE: optimal_gamma raises OverflowError (not an ExactinvError) when A's common denominator
    times an entry exceeds a float (gamma_batch._integers converts the scaled integers to float).
@@ -298,7 +298,7 @@ def test_engine_gamma_with_long_denominators():
 
 
 # --------------------------------------------------------------------------
-# Round 2 (branch rt-sparse, on sparse-h up to da5d957): certificate format version 3, H and H~ by rows.
+# Certificate format version 3, H and H~ by rows.
 #
 # Finding 4, RESOURCE (kernel): rational_threshold expanded the sparse H into a dense m x m list
 # (sparse.dense) and ran the unpriced Hessenberg characteristic polynomial before the degree bound
@@ -427,7 +427,7 @@ def test_mutation_fuzzer_of_version_3_certificates():
     """A small seeded run of tests/sparse_fuzz.py: genuine v3 certificates (random polygons, Taylor 1/2/4,
     trapezoid, backward Euler; continuous and discrete invariance, gamma*, thresholds, robust vertices),
     one sparse field mutated at a time; every accepted mutant is checked true by a dense Fraction check.
-    (Round 2 runs: see the report; no false accept.)"""
+    (Longer runs: no false accept.)"""
     import sparse_fuzz
 
     count, accepted, false = sparse_fuzz.run(mutants=100, seed=3)

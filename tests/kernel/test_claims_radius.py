@@ -1,4 +1,4 @@
-"""Red team (rt-radius): the kernel's new radius reasons of issue 22 -- balanced ties of several simple poles
+"""exactinv_check.claims_radius, attacked: the kernel's new radius reasons of issue 22 -- balanced ties of several simple poles
 ('poles' in Q(i)), complex poles on the line Re z = p* (bernstein: dominance, trigonometric density, one pair),
 and the Fujiwara root bound.
 
@@ -397,7 +397,7 @@ def test_seeded_mutation_fuzzer():
     """Genuine claims for the two new families (a balanced tie at kappa*, rho = oo with poles on the line), each
     with mutants: residues nudged (the function changes, the claim stays), pole lists edited, value and attained
     flipped.  Every verified claim is checked against the slow reference; a refuted one is a false accept.
-    (Run for minutes with a longer loop: 0 false accepts in the rt-radius campaign, see the report.)"""
+    (Run for minutes with a longer loop: 0 false accepts; see CHANGELOG.md, Security.)"""
     rng = random.Random(2026)
     stats = {"claims": 0, "verified": 0, "false": []}
     for _ in range(16):

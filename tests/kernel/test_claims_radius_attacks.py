@@ -1,4 +1,4 @@
-"""Red team (rt-radius4): the radius's coefficient route after line-balance (claims_radius.short_above, SCAN_BUDGET,
+"""Attacks on the radius's coefficient route after line-balance (claims_radius.short_above, SCAN_BUDGET,
 DESCARTES_BUDGET) and the rho = 0 witness (claims_radius.sign_at_zero).
 
 Found: sign_at_zero was priced once, up front, and charged nothing while it ran.  Its price was 4 to 5 times low
@@ -154,7 +154,7 @@ def _mutations(claim):
 def test_seeded_mutations_of_coefficient_claims():
     """Every mutation the kernel accepts states the genuine rho (exact comparison) and the genuine attained
     flag; every genuine claim is accepted and its rho checked against the slow reference just below it.
-    (The campaign: seeds 4 and 11, 90 s and 200 s: 0 false accepts; see the report.)"""
+    (Longer runs, seeds 4 and 11, 90 s and 200 s: 0 false accepts.)"""
     import random
 
     from radius_reference import admissible

@@ -1,4 +1,4 @@
-"""Red team against the ellipsoid claims of the trusted kernel
+"""exactinv_check.ellipsoids, attacked: the ellipsoid claims of the trusted kernel
 (exactinv_check/ellipsoids.py, claims_ellipsoid.py and their wiring in kernel.py).
 
 Soundness held: no mathematically false ellipsoid claim was accepted.  A
@@ -130,7 +130,7 @@ def test_H2_large_forward_euler_condition_is_rejected_quickly():
 # --------------------------------------------------------------------------
 # H3. The condition polynomials the kernel BUILDS are isolated (validset.
 # _breakpoints -> polys.positive_roots -> squarefree + Sturm) with no budget:
-# Real.claimed's STURM_BUDGET (red team round 2) guards only the numbers a
+# Real.claimed's STURM_BUDGET (an earlier attack) guards only the numbers a
 # certificate writes.  n = 1, A = [[-1]], Q = [[1]], a polynomial method of
 # degree 64 (the kernel's bound) with 100-digit coefficients (a 6.5 KB
 # certificate): c_1(h) = 1 - g(-h)^2 has degree 128 and ~200-digit

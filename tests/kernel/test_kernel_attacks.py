@@ -1,4 +1,4 @@
-"""Red-team findings against the trusted kernel (exactinv_check).
+"""exactinv_check.kernel, attacked: input the driver must refuse, exceptions that must not escape, a reducible g/h.
 
 Each test builds a certificate by hand that the kernel mishandles and asserts
 the CORRECT behaviour: a false claim must be rejected, and no input may make

@@ -97,7 +97,7 @@ def _dense(n, seed, diagonal):
     # forward Euler at n = 60: 61 characteristic polynomials of 60 x 60 matrices
     (_ellipsoid_cert(_dense(60, 4, -180), _identity(60), [{"type": "ellipsoid_forward_euler_threshold", "value": "1"}]),
      "characteristic polynomial of a 60 x 60 matrix at 61 points"),
-    # a degree-64 method with 100-digit coefficients (the red team's H3): c_1 of degree 127 with
+    # a degree-64 method with 100-digit coefficients (an earlier attack's H3): c_1 of degree 127 with
     # ~670-bit coefficients is far over the budget (127^4 670^2 ~ 1.2e14 > 5e12)
     (_ellipsoid_cert([["-1"]], [["1"]], [{"type": "ellipsoid_valid_steplengths", "intervals": []}],
                      (["1", "1"] + [str((-1) ** k * (10 ** 100 + 7 * k)) for k in range(63)], ["1"])),

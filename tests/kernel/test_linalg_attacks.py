@@ -1,4 +1,4 @@
-"""Red team, round radius3 (branch rt-radius3 = main + line-balance + kernel-alpha): the kernel's balanced line,
+"""Attacks on alpha(H) block by block (linalg.largest_real_root) and on the kernel's balanced line,
 reason bernstein-root, and alpha(H) block by block.
 
 Finding 1 (kernel-alpha, a genuine certificate REJECTED): linalg.largest_real_root isolated the positive roots of

@@ -32,7 +32,7 @@ def test_line_gcd_and_disks():
 
 
 def test_the_kernel_proves_the_issue_example_and_refuses_its_tipped_variant():
-    assert "one pair on its line" in prove_completely_monotone([F(1)], BOTH)  # the closed form runs first (rt-radius)
+    assert "one pair on its line" in prove_completely_monotone([F(1)], BOTH)  # the closed form runs first
     with pytest.raises(CheckFailure, match="negative somewhere"):
         prove_completely_monotone([F(1), F(1, 4)], BOTH)
     assert single_pair([F(1)], product([1, -1], [1, F(-2, 3), F(1, 3)]), F(1)) == (F(3, 2), F(9, 16))

@@ -1,4 +1,4 @@
-"""Red team of the LP route's lp record (exactinv_check/routes/lp_pieces.py) and the control claims
+"""exactinv_check.routes.lp_pieces, attacked: the LP route's lp record (exactinv_check/routes/lp_pieces.py) and the control claims
 (exactinv_check/claims_control.py): resource attacks that ran for minutes before the fix, and forgeries
 that the kernel must keep rejecting."""
 

@@ -1,4 +1,4 @@
-"""Red team (round 2) of the LP route's lp record (exactinv_check/routes/lp_pieces.py): the row exchange, the
+"""More attacks on the LP route's lp record (exactinv_check/routes/lp_pieces.py): the row exchange, the
 packed slacks, the batched Descartes test, the end-polynomial shortcut and the horizon proof.
 
 Resource attacks that ran for a minute before the fix, and a seeded mutation fuzzer of genuine lp

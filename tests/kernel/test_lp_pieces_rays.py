@@ -1,4 +1,4 @@
-"""Red team of the kernel's LP route on UNBOUNDED P (exactinv_check/routes/lp_pieces.py): ray pieces {"ray": d},
+"""Attacks on the kernel's LP route on UNBOUNDED P (exactinv_check/routes/lp_pieces.py): ray pieces {"ray": d},
 point pieces [t, t], ray pieces ending at a pole, the record's point, the coverage rule.
 
 The truth is computed here, independently of the kernel: the vertex route (route="vertex", generators of P

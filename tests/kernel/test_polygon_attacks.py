@@ -1,4 +1,4 @@
-"""Red team rt-kspeed: the kernel's fast paths of the kspeed merge (polygon.py,
+"""Attacks on the kernel's fast paths (polygon.py,
 validset.py condition by condition, polys.no_root_between / sign_right_of, the
 packed pruning test in pruning.py).
 

@@ -1,4 +1,4 @@
-"""Red team rt-secant: the secant-chord pruning test (pruning.py: _piece, _Ends, _Packed,
+"""exactinv_check.routes.pruning, attacked: the secant-chord pruning test (pruning.py: _piece, _Ends, _Packed,
 blocks along ``order``) and the valid set / first end started from the pruning
 vertex's own set (validset.valid_set / first_end ``start``, claims_sets._require_bound).
 

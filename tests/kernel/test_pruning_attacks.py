@@ -1,4 +1,4 @@
-"""Red team rt-shift: the fixes of commit 3feab33 to the pruning test (the pieces by an integer
+"""Attacks on the pruning test (the pieces by an integer
 Taylor shift per entry, ``pruning._piece`` / ``_shifted``, priced by ``pruning.pieces_cost``; the
 kernel's own ``pruning.morton_order`` of the vertices) and what they touch.
 
@@ -35,7 +35,7 @@ The findings were RESOURCE holes (no soundness hole found), all fixed; their tes
    vertex (an outlier at (R, -R), R = 1e5, on a polygon of rational points of the unit circle)
    puts every other vertex into the same Morton cell, so the kernel's order is the
    certificate's listing order again (``sorted`` is stable) and a scattered listing makes every
-   block box the whole polygon -- the hole of rt-secant, reopened.  Slot tests: 5.6x on 1,467
+   block box the whole polygon -- a hole found before, reopened.  Slot tests: 5.6x on 1,467
    vertices, 12.7x (11.3 s against 2.1 s) on 5,860 vertices, growing linearly with the size.
    With n > 4 only the first four coordinates are keyed: [0, 1]^4 x m-gon in R^6 (16 clusters
    of m vertices equal in the first four coordinates), its vertices shuffled within the
@@ -51,7 +51,7 @@ The findings were RESOURCE holes (no soundness hole found), all fixed; their tes
    180 s, condition_polynomials 191 s.
 5. ``pruning.pieces_cost`` counts (deg + 1)^2 / 2 + 4 (deg + 1) word operations per entry and
    piece, but the Python work per entry (the Taylor shift's loops, three Fractions) is about
-   100 times that for small degrees: x' = -x on the simplex of R^200 with 1 - h + h^2 (rt-secant's
+   100 times that for small degrees: x' = -x on the simplex of R^200 with 1 - h + h^2 (the earlier
    certificate, 646 KB, true, verified): pieces price 2.0e7 (0.4 s), whole check 36 s; R^100:
    price 5e6, survivors 13 s of a 17 s check (profiled, load 4).
 """
@@ -101,7 +101,7 @@ class _Deadline:
 
 
 def _reference_piece(N, t, d):
-    """(X, Z, M) straight from the definition, in Fractions (the code before 3feab33)."""
+    """(X, Z, M) straight from the definition, in Fractions (the code before the integer Taylor shift)."""
     n = len(N[0])
     D = [[[sum(comb(i, k) * t ** (i - k) * N[i][r][c] for i in range(k, len(N))) for c in range(n)] for r in range(n)]
          for k in range(len(N))]
@@ -376,7 +376,7 @@ def _hull(points):
 
 
 def _outlier_polygon():
-    """Rational points of the unit circle (rt-secant's 5000-gon) and one far vertex (1e5, -1e5):
+    """Rational points of the unit circle (the earlier 5000-gon) and one far vertex (1e5, -1e5):
     1,467 vertices, all but the far one in one Morton cell of the kernel's 12-bit grid."""
     pts, _, _ = circle_polygon(5000)
     P = _hull(list(pts) + [(F(10**5), F(-10**5))])

@@ -1,4 +1,4 @@
-"""Red team rt-rat: the kernel's pruning in u = h/(s + h) (exactinv_check/routes/pruning_rational.py),
+"""exactinv_check.routes.pruning_rational, attacked: the kernel's pruning in u = h/(s + h),
 its use in claims_sets / conditions (``without_D``) and the chord-end test of pruning.py.
 
 Soundness held on about 11,000 random (problem, record) pairs (2-D and 3-D, rational methods with

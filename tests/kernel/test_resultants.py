@@ -1,4 +1,4 @@
-"""Red-team round 2 against the optimised trusted kernel (exactinv_check).
+"""exactinv_check.resultants (quotient polynomials of algebraic numbers) and long-coefficient roots, attacked.
 
 Each test builds a certificate that the kernel mishandles and asserts the
 CORRECT behaviour: a false claim must be rejected, a genuine certificate
@@ -9,7 +9,7 @@ These tests fail until the kernel is fixed.
 import random
 
 import pytest
-from test_kernel_attacks import _cert, _check_in_subprocess  # shared with round 1
+from test_kernel_attacks import _cert, _check_in_subprocess  # shared helpers
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 

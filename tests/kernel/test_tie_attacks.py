@@ -1,4 +1,4 @@
-"""Red team against the kernel's new pruning check (exactinv_check/routes/pruning.py, claims_sets._pruned) and the
+"""Attacks on the kernel's pruning check (exactinv_check/routes/pruning.py, claims_sets._pruned) and the
 radius 'tie' reason (exactinv_check/tie.py, tail.prove_tail(tie=...), claims_radius 'tie' branch).
 
 The HOLE sections documented holes (first as ``xfail(strict=True)``); they are fixed and the tests now guard the
@@ -390,7 +390,7 @@ def test_pruned_and_full_recomputations_agree_on_random_polygons():
 
 
 # ------------------------------------------------------------------------------------------------
-# After the fixes: the engine's answers for both red-team functions, re-proved by the kernel, and the
+# After the fixes: the engine's answers for both attack functions, re-proved by the kernel, and the
 # kernel's budgets reject the DoS inputs by name (before the work, not after).
 
 @pytest.mark.parametrize("method, witness", [(NEG, 11), (ZERO, 1)])
