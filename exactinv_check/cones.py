@@ -69,7 +69,7 @@ def reduce_rows(rows: Sequence[list[int]], ncols: int, aug: Sequence[list[int]] 
             if i == rank or not f:
                 continue
             # each row operation charged by its numbers' sizes, as it runs (the entries are minors of about the
-            # pivot's size): a 400 x 200 G ran minutes uncharged here (tests/test_kernel_redteam_control.py)
+            # pivot's size): a 400 x 200 G ran minutes uncharged here (tests/kernel/test_claims_control.py)
             w = words(2 * max(abs(pv).bit_length(), abs(f).bit_length()))
             charge(width * (PYTHON_OP + 2 * w * w), "a fraction-free elimination step (a rank)")
             row = [pv * x - f * y for x, y in zip(work[i], prow)]

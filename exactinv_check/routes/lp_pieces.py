@@ -538,6 +538,6 @@ def _fail(message: str) -> NoReturn:
     """Reject with ``message``.  The callers build a message naming a number only here, on failure: printing
     an algebraic number (:func:`exactinv_check.text.algebraic_text`: up to 400 exact bisections, its decimal
     arithmetic uncharged) for every passing piece cost more than the checks themselves, and str() of a
-    rational of over 4300 digits raises ValueError (tests/test_kernel_redteam_rays.py); rationals are
+    rational of over 4300 digits raises ValueError (tests/kernel/test_lp_pieces_rays.py); rationals are
     printed by :func:`exactinv_check.text.rational_text`, which abbreviates long ones."""
     raise CheckFailure(message)

@@ -15,7 +15,7 @@ well inside the kernel's stated bounds (MAX_DIMENSION = 2000, n (2s - 1) <= 200,
 method degree <= 64, 4000-digit numbers) make it run for minutes to hours
 before it gives a verdict.  Those tests were xfail(strict=True); the kernel
 now prices such work before it runs and rejects it ("over the kernel's work
-budget", tests/test_kernel_budgets.py), and they pass.
+budget", tests/kernel/test_linalg.py), and they pass.
 """
 
 import copy
