@@ -17,7 +17,7 @@ from fractions import Fraction as F
 import pytest
 from pruning_helpers import polygon_rows
 
-from exactinv_check import check, conditions
+from exactinv_check import budget, check, conditions
 from exactinv_check.failure import CheckFailure
 from exactinv_check.polyhedra import prove_generators
 from exactinv_check.routes import polygon, pruning
@@ -87,7 +87,8 @@ def test_extra_listed_points_of_a_big_polygon_are_priced(monkeypatch):
 
 def test_survivors_stop_at_the_condition_bound(monkeypatch):
     bound = 2_000
-    monkeypatch.setattr(conditions, "MAX_CONDITIONS", bound)
+    monkeypatch.setattr(budget, "MAX_CONDITIONS", bound)  # what pruning.survivors reads
+    monkeypatch.setattr(conditions, "MAX_CONDITIONS", bound)  # conditions' own binding of it
     built = []
     original = pruning.survivors
 
