@@ -17,7 +17,7 @@ import random
 import time
 from fractions import Fraction
 
-from exactinv_check import polys
+from exactinv_check import poly_arithmetic, resultants
 from exactinv_check.ellipsoids import condition_polynomials, psd
 from exactinv_check.failure import CheckFailure
 from exactinv_check.linalg import characteristic_polynomial
@@ -50,7 +50,7 @@ def fraction_conditions(A):
         p = characteristic_polynomial(Mt)
         values.append([(-1) ** k * p[n - k] for k in range(1, n + 1)])
     points = [Fraction(t) for t in range(n + 1)]
-    return [polys.trim([Fraction(0)] + polys.interpolate(points, [row[k] for row in values])) for k in range(n)]
+    return [poly_arithmetic.trim([Fraction(0)] + resultants.interpolate(points, [row[k] for row in values])) for k in range(n)]
 
 
 def _timed(f, *args):

@@ -26,13 +26,12 @@ from fractions import Fraction
 from math import isqrt
 from typing import Any, Sequence
 
-from .budget import charge, fraction_products_cost
-from .format import MAX_POLES
-from .rationals import describe, require
+from .budget import MAX_POLES, charge, fraction_products_cost
+from .budget import MAX_TIE_POLE_BITS as MAX_BITS
+from .failure import require
+from .rationals import describe
 
 __all__ = ["prove_balanced_tie", "MAX_POLES"]
-
-MAX_BITS = 4096  # bits of a pole's coordinates
 
 
 def _mul(x: tuple[Fraction, Fraction], y: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:

@@ -63,23 +63,24 @@ from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 from typing import Any, Sequence
 
-from .budget import STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
+from .budget import MAX_BERNSTEIN_DEGREE as MAX_DEGREE
+from .budget import MAX_BERNSTEIN_STEPS as MAX_STEPS
+from .budget import MAX_BERNSTEIN_TRIALS as MAX_TRIALS
+from .budget import MAX_DEGREE as MAX_DEGREE_OF_F
+from .budget import MAX_RATIONAL_BISECTIONS, STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
+from .budget import MAX_RATIONAL_POLE_EXPONENT as MAX_EXPONENT
 from .disks import ball, ball_abs_upper, ball_mul
+from .failure import require
 from .line_algebraic import AlgebraicLine, lines_nonnegative
 from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, single_pair
-from .polys import MAX_DEGREE as MAX_DEGREE_OF_F
-from .polys import count_roots, evaluate, integer_coefficients, mul, positive_roots, sign_at, sign_right_of, trim
-from .rationals import describe, require
+from .poly_arithmetic import evaluate, integer_coefficients, mul, trim
+from .polys import count_roots, positive_roots, sign_at, sign_right_of
+from .rationals import describe
 from .reals import Real
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
-MAX_STEPS = 8000  # steps of the compact piece (the engine gives up after 4000)
-MAX_TRIALS = 40000  # step-size trials in all (a bounded verdict: each trial is a few disk operations per pole)
-MAX_DEGREE = 16  # the largest deg h the general proof takes
 MIN_STEP = Fraction(1, 2 ** 50)
 TAYLOR_TERMS = 28
-MAX_RATIONAL_BISECTIONS = 4000  # bisections to pin a rational pole
-MAX_EXPONENT = 2000  # the largest degree of F(u) for rational poles
 
 __all__ = ["prove_completely_monotone", "prove_density_nonnegative", "density_at_zero"]
 

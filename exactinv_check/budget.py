@@ -221,3 +221,51 @@ def sparse_read_cost(entries: int, longest_chars: int) -> int:
     conversion, quadratic in the words)."""
     w = words(4 * longest_chars)
     return entries * (FRACTION_WEIGHT + 2 * w * w)
+
+
+# Limits on what one certificate may ask of the kernel, each named after what it bounds (the module that
+# uses it in parentheses).  A certificate beyond one is rejected, never accepted.
+MAX_TIE_POLE_BITS = 4096  # (balanced_tie) bits of a pole's coordinates
+MAX_BERNSTEIN_STEPS = 8000  # (bernstein) steps of the compact piece (the engine gives up after 4000)
+# (bernstein) step-size trials in all (a bounded verdict: each trial is a few disk operations per pole)
+MAX_BERNSTEIN_TRIALS = 40000
+MAX_BERNSTEIN_DEGREE = 16  # (bernstein) the largest deg h the general proof takes
+MAX_RATIONAL_BISECTIONS = 4000  # (bernstein) bisections to pin a rational pole
+MAX_RATIONAL_POLE_EXPONENT = 2000  # (bernstein) the largest degree of F(u) for rational poles
+# (claims_control) the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
+GAIN_WORK_BUDGET = 10 * WORK_BUDGET
+# (conditions) about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
+MAX_CONDITIONS = 500_000
+MAX_CONE_PAIRS = 2_000_000  # (cones) bound on the adjacency tests at one degenerate vertex
+MAX_CONE_RAYS = 200_000  # (cones) bound on the rays the double description holds at once
+MAX_WEIERSTRASS = 40  # (disks) refinement steps of the root approximations
+MAX_DIGITS = 4000  # (format) characters of every number string: parsing is never the bottleneck
+MAX_DIMENSION = 2000  # (format) every vector and matrix dimension
+# (format) every polynomial the kernel builds from a certificate (an algebraic number: 201 coefficients)
+MAX_DEGREE = 200
+MAX_METHOD_DEGREE = 64  # (format) deg g and deg h of the method r = g/h after trimming
+# (format) coefficient polynomials d_j of the radius the kernel computes (a longer scan cannot be certified)
+MAX_COEFFICIENTS = 4096
+MAX_TAIL_INDEX = 1 << 20  # (format) the largest tail index of a radius claim
+MAX_POLES = 16  # (format) poles of a balanced tie (the radius claim's "poles")
+MAX_LINE_EXPONENT = 64  # (format) the largest N = max |n_k| of the line-pole trigonometric polynomial (degree 2N)
+HORIZON_BITS = 64  # (format) bits of the pruning horizon's (and scale's) numerator and denominator
+MAX_RATIONAL_PIECES = 512  # (format) pieces of a pruning record in u = h/(s + h)
+MAX_PIN = 4000  # (line_poles) bisections to pin a rational root
+MAX_LP_PIECES = 200_000  # (lp_pieces) pieces over all facets: a bound before any parsing of their ends
+# (lp_pieces) all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
+LP_WORK_BUDGET = 50 * WORK_BUDGET
+MAX_ROOT_BISECTIONS = 4000  # (polys)
+MAX_PACKED_BYTES = 1 << 27  # (pruning) the packed rows' table: every slot as wide as the widest row needs
+MAX_SLOT_TESTS = 4 * 10**8  # (pruning) vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
+MAX_REFINEMENTS = 20000  # (reals)
+MAX_TAIL_REFINE = 2000  # (tail) bisections when separating a real pole from other roots
+MAX_PRINT_BISECTIONS = 400  # (text)
+MAX_TIE_DEGREE = 400  # (tie) the largest degree of T the kernel will interpolate
+MAX_TIE_ISOLATE = 4000  # (tie)
+
+
+# Limits on what one certificate may ask of the kernel, each named after what it bounds (the module that
+# uses it in parentheses).  A certificate beyond one is rejected, never accepted.
+# (line_algebraic) the largest deg f (in y) and deg m handled here: the kernel's bound on deg h (bernstein)
+MAX_LINE_DEGREE = 16

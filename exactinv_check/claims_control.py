@@ -24,18 +24,16 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
 from . import claims_invariance
-from .budget import WORK_BUDGET, charge, fraction_products_cost, within_budget
+from .budget import GAIN_WORK_BUDGET, charge, fraction_products_cost, within_budget
 from .claims_thresholds import INF, ZERO, smallest_positive_root
-from .failure import Record
-from .rationals import describe, dot, matrix, matvec, rational, require, vector
+from .failure import Record, require
+from .rationals import describe, dot, matrix, matvec, rational, vector
 from .reals import Real, quotient
 from .sparse import diagonal, row_dot
 
 if TYPE_CHECKING:
     from .kernel import Problem
 
-
-GAIN_WORK_BUDGET = 10 * WORK_BUDGET  # the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)
 
 
 def _bits(*arrays: Any) -> int:
@@ -109,7 +107,7 @@ def optimal_gain(problem: Any, claim: Any, context: Any) -> str:
     keys = set(claim) - {"type", "holds", "value", "x"}
     # P must be nonempty, proved by a point x: on an empty P every gain keeps P invariant and "Fx in U on P" holds
     # vacuously, yet the gain LP can be infeasible (a Farkas vector) or its Lambda rows can exclude gains (a false
-    # optimum): both were accepted (tests/test_kernel_redteam_control.py).  With P nonempty, Lambda >= 0,
+    # optimum): both were accepted (tests/kernel/test_claims_control.py).  With P nonempty, Lambda >= 0,
     # Lambda G = EF, Lambda b <= e is exactly "Fx in U for every x in P" (affine Farkas lemma).
     require("x" in claim, "an optimal_gain claim carries x, a point of P (P nonempty)")
     x = vector(claim["x"], "x (a point of P)", n)
@@ -165,7 +163,7 @@ def robust_threshold(problem: Any, claim: Any, context: Any) -> str | None:
     require(rho is not None, "a verified absolute_monotonicity_radius claim must precede this one")
     require(Real.parse(claim["rho"], "rho").compare(rho) == 0, "rho differs from the verified radius")
     # forward_euler = 1/gamma is the LARGEST robust step only on a nonempty P (an empty P keeps every step, yet its
-    # gamma* LP can be finite: tests/test_kernel_redteam_control.py); a point of P proves it nonempty
+    # gamma* LP can be finite: tests/kernel/test_claims_control.py); a point of P proves it nonempty
     x = vector(claim["x"], "x (a point of P)", problem.n)
     within_budget(fraction_products_cost(problem.m * problem.n, _bits(problem.G, [problem.b], [x])), "Gx <= b")
     require(all(v <= beta for v, beta in zip(matvec(problem.G, x), problem.b)), "x is not in P (P must be nonempty)")
@@ -218,7 +216,7 @@ def robust_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         # radius of hH + kappa I >= 0 is h alpha(H) + kappa < z_p + kappa, which needs H + gamma I >= 0 for the
         # SAME H = sum lambda_i H_i (kappa = h max(gamma, 0) <= rho).  A gamma* = -oo record's H is not tied to
         # gamma: without this test an H with Re lambda <= 0 but a complex eigenvalue on a pole's ray passed
-        # (tests/test_kernel_redteam_lp.py, r(hA) singular at h = 1 under a claimed tau = oo).
+        # (tests/kernel/test_lp_pieces.py, r(hA) singular at h = 1 under a claimed tau = oo).
         floor = gamma.q if positive else 0
         require(all(h + floor >= 0 for H in Hs for h in diagonal(H)),
                 f"a vertex's H has H + {describe(floor)} I >= 0 failing: its abscissa bound beta does not "

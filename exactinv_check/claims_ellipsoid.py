@@ -18,7 +18,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
-from . import polys
+from . import poly_arithmetic
 from .budget import FRACTION_WEIGHT, within_budget
 from .claims_invariance import discrete_matrix
 from .ellipsoids import condition_polynomials, psd
@@ -109,8 +109,8 @@ def _conditions(problem: Any, claim: Any, context: Any, numerator: Any = None, d
     D, full = context[key]
     conditions = [c for c in full if c]
     if claim.get("determinant") is not None:
-        claimed = polys.trim(vector(claim["determinant"], "determinant"))
-        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+        claimed = poly_arithmetic.trim(vector(claim["determinant"], "determinant"))
+        require(poly_arithmetic.primitive(claimed) == poly_arithmetic.primitive(D), "det h(dt A) does not match")
     return D, conditions, full
 
 

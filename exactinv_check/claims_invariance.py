@@ -16,8 +16,9 @@ from typing import Any
 
 from .budget import fraction_products_cost, within_budget
 from .conditions import method_matrix_at
+from .failure import require
 from .format import INFINITY, NEG_INFINITY
-from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, require, transpose, vector
+from .rationals import describe, dot, integer, matmul, matrix, matvec, rational, transpose, vector
 from .reals import Real
 from .sparse import diagonal, read_square, row_dot
 

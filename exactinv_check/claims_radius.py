@@ -31,13 +31,24 @@ from fractions import Fraction
 from math import comb, gcd
 from typing import Any, Sequence
 
-from . import polys
-from .balanced_tie import MAX_POLES, prove_balanced_tie
+from . import poly_arithmetic, polys
+from .balanced_tie import prove_balanced_tie
 from .bernstein import prove_completely_monotone, prove_density_nonnegative
-from .budget import FRACTION_WEIGHT, PYTHON_OP, SCAN_BUDGET, charge, within_budget, within_sturm_budget, words
+from .budget import (
+    FRACTION_WEIGHT,
+    MAX_COEFFICIENTS,
+    MAX_POLES,
+    PYTHON_OP,
+    SCAN_BUDGET,
+    charge,
+    within_budget,
+    within_sturm_budget,
+    words,
+)
 from .claims_thresholds import smallest_positive_root
-from .format import MAX_COEFFICIENTS, RadiusReason
-from .rationals import describe, integer, require, vector
+from .failure import require
+from .format import RadiusReason
+from .rationals import describe, integer, vector
 from .reals import Real
 from .tail import prove_tail, reduced
 from .tie import balanced_tie
@@ -54,7 +65,7 @@ def scan_cost(num: Sequence[Fraction], den: Sequence[Fraction], count: int) -> A
     about j (deg h) (bits of g, h) bits, and costs about j (deg h)^3 Fraction products whose gcds grow with
     those numbers (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work)."""
     dh = max(len(den) - 1, len(num) - 1, 1)
-    bits = max(abs(c).bit_length() for c in polys.integer_coefficients(num) + polys.integer_coefficients(den))
+    bits = max(abs(c).bit_length() for c in poly_arithmetic.integer_coefficients(num) + poly_arithmetic.integer_coefficients(den))
     return count * count * dh ** 3 * (FRACTION_WEIGHT + count * dh * bits // 8) // 2
 
 
@@ -70,12 +81,12 @@ def d_polynomials(num: Any, den: Any, count: Any) -> Any:
     d: list[Any] = []
     for j in range(count):
         while len(powers) <= j:
-            powers.append(polys.mul(powers[-1], H[0]))
-        value = polys.mul(G[j], powers[j]) if j < len(G) else []
+            powers.append(poly_arithmetic.mul(powers[-1], H[0]))
+        value = poly_arithmetic.mul(G[j], powers[j]) if j < len(G) else []
         for i in range(1, min(j, len(H) - 1) + 1):
             if H[i] and d[j - i]:
-                value = polys.sub(value, polys.mul(polys.mul(H[i], d[j - i]), powers[i - 1]))
-        d.append(polys.trim(value))
+                value = poly_arithmetic.sub(value, poly_arithmetic.mul(poly_arithmetic.mul(H[i], d[j - i]), powers[i - 1]))
+        d.append(poly_arithmetic.trim(value))
     return d
 
 
@@ -84,7 +95,7 @@ def _shift(p: Sequence[Fraction], i: int) -> Any:
     out = [Fraction(0)] * max(len(p) - i, 0)
     for k in range(i, len(p)):
         out[k - i] += p[k] * comb(k, i) * (-1) ** (k - i)
-    return polys.trim(out)
+    return poly_arithmetic.trim(out)
 
 
 def sign_at_zero(num: Any, den: Any, j: Any) -> Any:
@@ -120,7 +131,7 @@ def sign_at_zero(num: Any, den: Any, j: Any) -> Any:
         u.append(v)
         u_words.append(words(abs(v).bit_length()))
         power *= H[0]
-    return polys.sign(u[j]) * polys.sign(H[0]) ** (j + 1)
+    return poly_arithmetic.sign(u[j]) * poly_arithmetic.sign(H[0]) ** (j + 1)
 
 
 def step_cost(k: int, h_words: list[int], p_words: list[int], u_words: list[int], power_words: int) -> int:
@@ -135,17 +146,17 @@ def step_cost(k: int, h_words: list[int], p_words: list[int], u_words: list[int]
 
 def _all_roots_real_positive(h: Any) -> Any:
     """Every root of h (with multiplicity) is real and positive."""
-    p = polys.trim(h)
+    p = poly_arithmetic.trim(h)
     total, k = 0, 1
-    a = polys.gcd(p, polys.derivative(p))
-    b = polys.divmod_(p, a)[0]
-    d = polys.sub(polys.divmod_(polys.derivative(p), a)[0], polys.derivative(b))
+    a = poly_arithmetic.gcd(p, poly_arithmetic.derivative(p))
+    b = poly_arithmetic.divmod_(p, a)[0]
+    d = poly_arithmetic.sub(poly_arithmetic.divmod_(poly_arithmetic.derivative(p), a)[0], poly_arithmetic.derivative(b))
     while len(b) > 1:
-        factor = polys.gcd(b, d)
+        factor = poly_arithmetic.gcd(b, d)
         if len(factor) > 1:
             total += k * len(polys.positive_roots(factor))
-        b = polys.divmod_(b, factor)[0]
-        d = polys.sub(polys.divmod_(d, factor)[0], polys.derivative(b))
+        b = poly_arithmetic.divmod_(b, factor)[0]
+        d = poly_arithmetic.sub(poly_arithmetic.divmod_(d, factor)[0], poly_arithmetic.derivative(b))
         k += 1
     return total == len(p) - 1
 
@@ -153,7 +164,7 @@ def _all_roots_real_positive(h: Any) -> Any:
 def _positive_up_to(p: Sequence[Fraction], K: Fraction) -> bool:
     """True proves p > 0 on (0, K] (its first end lies beyond K): positive right of 0 and at K, and no
     root in (0, K) by Descartes' rule.  False says nothing."""
-    return polys.sign_right_of(p, Fraction(0)) > 0 and polys.sign_at(polys.integer_coefficients(p), K) > 0 \
+    return polys.sign_right_of(p, Fraction(0)) > 0 and polys.sign_at(poly_arithmetic.integer_coefficients(p), K) > 0 \
         and polys.no_root_in(p, K, depth=1)
 
 
@@ -169,9 +180,9 @@ def recompute(num: Any, den: Any, count: Any, K_is_infinite: bool, K: Fraction |
     rho, _ = first_end([Fraction(1)], live, [], first=live[:1] if K is not None else ())
     attained = True
     if rho.is_zero():  # kappa = 0 is admissible iff every c_j(0) >= 0
-        attained = all(polys.evaluate(p, Fraction(0)) >= 0 for p in d)
+        attained = all(poly_arithmetic.evaluate(p, Fraction(0)) >= 0 for p in d)
     h_minus = [c * (-1) ** k for k, c in enumerate(den)]  # h(-kappa)
-    if len(polys.trim(h_minus)) > 1:
+    if len(poly_arithmetic.trim(h_minus)) > 1:
         roots = polys.positive_roots(h_minus)
         if roots:
             pole = Real.root_in(h_minus, *roots[0])
@@ -223,8 +234,8 @@ def _bernstein_root(num: Any, den: Any) -> Any:
     require(c < 0, f"bernstein-root: c = lim r(-x) = {describe(c)} >= 0, so c_0 never ends (a bernstein claim, rho = oo)")
     c_again, how = prove_density_nonnegative(g, h)
     require(c_again == c, "bernstein-root: inconsistent limit at infinity (internal)")
-    g_minus = polys.trim([x * (-1) ** k for k, x in enumerate(g)])  # g(-kappa)
-    ints = polys.integer_coefficients(g_minus)
+    g_minus = poly_arithmetic.trim([x * (-1) ** k for k, x in enumerate(g)])  # g(-kappa)
+    ints = poly_arithmetic.integer_coefficients(g_minus)
     within_sturm_budget(len(ints) - 1, max(abs(x).bit_length() for x in ints), "bernstein-root: the root of g(-kappa)")
     rho = smallest_positive_root(g_minus)
     require(rho is not None, "bernstein-root: g(-kappa) has no positive root (internal: c < 0 < r(0) forces one)")
@@ -311,7 +322,7 @@ def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
     if claim.get("d") is not None:
         require(isinstance(claim["d"], list) and len(claim["d"]) <= len(d), "more d_j listed than were needed")
         for j, dj in enumerate(claim["d"]):
-            require(polys.trim(vector(dj, f"d_{j}")) == d[j], f"d_{j} does not match r")
+            require(poly_arithmetic.trim(vector(dj, f"d_{j}")) == d[j], f"d_{j} does not match r")
     if claim.get("binding") is not None and d:
         j = integer(claim["binding"], "binding", 0, len(d))
         guard = [] if rho.inf else [[2 * rho.bounds()[1] + 1, Fraction(-1)]]  # bounds the isolation

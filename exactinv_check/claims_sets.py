@@ -7,10 +7,10 @@ rebuilds every condition polynomial (:mod:`exactinv_check.conditions`) and
 recomputes the valid set or its first interval (:mod:`exactinv_check.validset`);
 the claim must equal the recomputation, end by end and flag by flag.  A claim
 with a ``box`` record instead of generator lists is about a box; its conditions
-come from :mod:`exactinv_check.boxes` (P proved to be that box from G and b, no
+come from :mod:`exactinv_check.routes.boxes` (P proved to be that box from G and b, no
 vertex list: the sign patterns of the rows of N(h) on the cells between their
 entries' roots, each one vertex-facet condition, together exact).  A claim with
-an ``lp`` record is decided on the LP route's pieces (:mod:`exactinv_check.lp_pieces`:
+an ``lp`` record is decided on the LP route's pieces (:mod:`exactinv_check.routes.lp_pieces`:
 per facet, the pieces of [0, oo) with a basis each, proved optimal by weak
 duality; the pieces' vertices give the conditions, no vertex enumeration).
 """
@@ -21,13 +21,15 @@ from fractions import Fraction
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any, Sequence
 
-from . import boxes, lp_pieces, polys, pruning, pruning_rational
+from . import format as fmt
+from . import poly_arithmetic
 from .conditions import condition_polynomials, method_matrices
 from .failure import require
 from .format import GeneratorKind
 from .polyhedra import prove_generators
 from .rationals import boolean, integer, matrix, vector
 from .reals import Real
+from .routes import boxes, lp_pieces, pruning, pruning_rational
 from .validset import first_end, require_intervals, valid_set
 
 if TYPE_CHECKING:
@@ -67,19 +69,19 @@ def _pruning_variable(method: Any, record: dict[str, list[int] | int | str] | No
         return
     rational = pruning_rational.is_rational_record(record)
     require(rational or method.is_polynomial, "pruning in h is defined for polynomial methods only "
-            f"(a rational method's record names the variable {pruning_rational.VARIABLE!r})")
-    require(not (rational and method.is_polynomial), f"pruning in u = {pruning_rational.VARIABLE} is written "
+            f"(a rational method's record names the variable {fmt.PRUNING_VARIABLE!r})")
+    require(not (rational and method.is_polynomial), f"pruning in u = {fmt.PRUNING_VARIABLE} is written "
             "for rational methods only: a polynomial method's record is in h (no variable)")
 
 
 def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = False) -> Any:
     """The proved generators and their conditions; computed once per certificate for
     the same generator lists (a fact this kernel derived itself, kept in the context).
-    With a pruning record only the pairs that :mod:`exactinv_check.pruning` cannot
+    With a pruning record only the pairs that :mod:`exactinv_check.routes.pruning` cannot
     rule out are built, after proving that the record's vertex bounds the set by T;
     ``start`` is then that vertex's own set (first end) with its conditions, for
     :func:`valid_set` (:func:`first_end`) to start from (None otherwise).
-    A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.boxes`."""
+    A box claim: P proved to be the box, the conditions of :mod:`exactinv_check.routes.boxes`."""
     require(problem.method is not None, "a method is needed")
     _pruning_variable(problem.method, claim.get("pruning"))
     box, lists = _generators(problem, claim)
@@ -103,8 +105,8 @@ def _conditions(problem: Any, claim: Any, context: Any, first_end_claim: Any = F
     else:
         gens, D, inequalities, equalities, start = _listed(problem, claim, context, lists, first_end_claim)
     if claim.get("determinant") is not None:
-        claimed = polys.trim(vector(claim["determinant"], "determinant"))
-        require(polys.primitive(claimed) == polys.primitive(D), "det h(dt A) does not match")
+        claimed = poly_arithmetic.trim(vector(claim["determinant"], "determinant"))
+        require(poly_arithmetic.primitive(claimed) == poly_arithmetic.primitive(D), "det h(dt A) does not match")
     return gens, D, inequalities, equalities, start
 
 
@@ -200,7 +202,7 @@ def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         _, single, single_eq = condition_polynomials(problem.A, [problem.G[j]], [problem.b[j]],
                                                      problem.method.numerator, problem.method.denominator, one)
         own = list(single) + list(single_eq)
-        require(len(own) == 1 and polys.primitive(vector(binding["poly"], "binding poly")) == list(own[0]),
+        require(len(own) == 1 and poly_arithmetic.primitive(vector(binding["poly"], "binding poly")) == list(own[0]),
                 "the binding polynomial is not the recomputed condition of that generator and facet")
         end, _ = first_end(D, single, single_eq)
         require(end.compare(tau) == 0, "the binding condition does not end the first interval")

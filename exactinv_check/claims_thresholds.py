@@ -17,7 +17,7 @@ from fractions import Fraction
 from math import comb, gcd
 from typing import Any
 
-from . import polys
+from . import budget, poly_arithmetic, polys
 from .budget import fraction_products_cost, within_budget
 from .claims_invariance import check_H, read_H
 from .conditions import method_matrices
@@ -33,7 +33,7 @@ ZERO, INF = Real.rational(0), Real(inf=1)
 
 
 def f_i(sigmas: Any, gamma: Any, i: Any) -> Any:
-    return polys.trim([Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
+    return poly_arithmetic.trim([Fraction(0) if k < i else (-1) ** (k - i) * sigmas[k] * comb(k, i) * gamma ** (k - i)
                        for k in range(len(sigmas))])
 
 
@@ -62,7 +62,7 @@ def polynomial_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         require(isinstance(row, dict) and set(row) == {"i", "coefficients", "tau"}, f"row {i}: keys i, coefficients, tau")
         require(integer(row["i"], "f row index") == i, f"the f rows must be i = 0..{p} in order")
         f = f_i(sigmas, gamma.q, i)
-        require(polys.trim(vector(row["coefficients"], f"f_{i}")) == f, f"f_{i} does not match sigma and gamma*")
+        require(poly_arithmetic.trim(vector(row["coefficients"], f"f_{i}")) == f, f"f_{i} does not match sigma and gamma*")
         tau_i, _ = first_end([Fraction(1)], [f] if f else [], [])
         require(Real.parse(row["tau"], f"tau_{i}").compare(tau_i) == 0,
                 lambda i=i, tau_i=tau_i: f"tau_{i} is wrong (it is {tau_i})")
@@ -160,8 +160,8 @@ def _largest_real_eigenvalue(H: Any) -> Any:
     bits = max([1] + [x.numerator.bit_length() + x.denominator.bit_length() for row in H for _, x in row])
     blocks = strongly_connected_blocks(H)
     largest = max(len(block) for block in blocks)
-    require(largest <= polys.MAX_DEGREE, f"H has a strongly connected block of size {largest}: its characteristic "
-            f"polynomial has degree {largest}, above the kernel's bound {polys.MAX_DEGREE}: alpha(H) cannot be certified")
+    require(largest <= budget.MAX_DEGREE, f"H has a strongly connected block of size {largest}: its characteristic "
+            f"polynomial has degree {largest}, above the kernel's bound {budget.MAX_DEGREE}: alpha(H) cannot be certified")
     within_budget(sum(fraction_products_cost(len(block) ** 3, bits) for block in blocks),
                   f"the characteristic polynomials of H's {len(blocks)} diagonal blocks (the largest {largest} x {largest})")
     alpha = None

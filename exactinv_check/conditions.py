@@ -20,13 +20,11 @@ from fractions import Fraction
 from math import gcd
 from typing import Any, Iterator, Sequence
 
-from . import polys
-from .budget import charge, condition_cost, within_budget
+from . import budget, poly_arithmetic
+from .budget import MAX_CONDITIONS, charge, condition_cost, within_budget
 from .failure import require
 from .linalg import integer_solve
 from .rationals import integer_matrix
-
-MAX_CONDITIONS = 500_000  # about 20-45 s of conditions (40-90 us each, measured with degree 2, quiet and in CI)
 
 
 def rebuild_size(A: Sequence[list[Fraction]], numerator: Sequence[Fraction],
@@ -101,9 +99,9 @@ def method_matrices(A: Any, numerator: Any, denominator: Any) -> Any:
     require(len(points) == count, "internal: too few regular interpolation points")
     scale = Fraction(1, (den * L**s) ** n)  # 1 / c^n
     basis, delta = _lagrange_basis(points)
-    D = polys.trim([Fraction(x, delta) * scale for x in _interpolate_integers(basis, dets)])
+    D = poly_arithmetic.trim([Fraction(x, delta) * scale for x in _interpolate_integers(basis, dets)])
     entries = [[_interpolate_integers(basis, [X[i][j] for X in mats]) for j in range(n)] for i in range(n)]  # type: ignore[index]
-    degree = max([len(polys.trim(e)) for row in entries for e in row] + [1])
+    degree = max([len(poly_arithmetic.trim(e)) for row in entries for e in row] + [1])
     N = [[[Fraction(e[k], delta) * scale if e[k] else Fraction(0) for e in row] for row in entries] for k in range(degree)]
     return D, N
 
@@ -187,7 +185,7 @@ def condition_polynomials(A: Any, G: Any, b: Any, numerator: Any, denominator: A
     the range where the sign of that condition matters.  The conditions' degree
     2 deg N is bounded before anything is built."""
     degree = 2 * rebuild_size(A, numerator, denominator)[1]
-    require(degree <= polys.MAX_DEGREE, f"the conditions have degree {degree}, over the kernel's bound {polys.MAX_DEGREE}")
+    require(degree <= budget.MAX_DEGREE, f"the conditions have degree {degree}, over the kernel's bound {budget.MAX_DEGREE}")
     D, N = method_matrices(A, numerator, denominator)
     m = len(G)
     facet_lists = {}
@@ -219,10 +217,10 @@ def condition_polynomials(A: Any, G: Any, b: Any, numerator: Any, denominator: A
             dw = _common_denominator(w)
             w_int = [int(x * dw) for x in w]
             for j in facet_lists[kind, index]:
-                e = polys.trim([sum(a * x for a, x in zip(M[j], w_int)) for M in GN_int])  # L[j] dw (g_j N(h) w)
+                e = poly_arithmetic.trim([sum(a * x for a, x in zip(M[j], w_int)) for M in GN_int])  # L[j] dw (g_j N(h) w)
                 if kind == "line":
                     if e:
-                        equalities.setdefault(tuple(polys.integer_coefficients(e)), (kind, index, j))
+                        equalities.setdefault(tuple(poly_arithmetic.integer_coefficients(e)), (kind, index, j))
                     continue
                 if kind == "vertex":  # (b_j D - g_j N v) times the positive L[j] dw dD bd_j
                     bn, bd = b[j].numerator, b[j].denominator
@@ -232,7 +230,7 @@ def condition_polynomials(A: Any, G: Any, b: Any, numerator: Any, denominator: A
                 else:
                     q = [-c for c in e]
                 plain = len(D_int) == 1 or (without_D is not None and without_D(kind, index))
-                c = polys.trim(q if plain else polys.mul_integers(q, D_int))
+                c = poly_arithmetic.trim(q if plain else poly_arithmetic.mul_integers(q, D_int))
                 if c:
-                    inequalities.setdefault(tuple(polys.integer_coefficients(c)), (kind, index, j))
+                    inequalities.setdefault(tuple(poly_arithmetic.integer_coefficients(c)), (kind, index, j))
     return D, inequalities, equalities

@@ -15,11 +15,8 @@ from fractions import Fraction
 from math import gcd, lcm
 from typing import Any, Sequence
 
-from .budget import PYTHON_OP, charge, words
+from .budget import MAX_CONE_PAIRS, MAX_CONE_RAYS, PYTHON_OP, charge, words
 from .failure import CheckFailure, require
-
-MAX_CONE_PAIRS = 2_000_000  # bound on the adjacency tests at one degenerate vertex
-MAX_CONE_RAYS = 200_000  # bound on the rays the double description holds at once
 
 
 def scaled_integers(v: Sequence[Fraction]) -> tuple[list[int], int]:
@@ -72,7 +69,7 @@ def reduce_rows(rows: Sequence[list[int]], ncols: int, aug: Sequence[list[int]] 
             if i == rank or not f:
                 continue
             # each row operation charged by its numbers' sizes, as it runs (the entries are minors of about the
-            # pivot's size): a 400 x 200 G ran minutes uncharged here (tests/test_kernel_redteam_control.py)
+            # pivot's size): a 400 x 200 G ran minutes uncharged here (tests/kernel/test_claims_control.py)
             w = words(2 * max(abs(pv).bit_length(), abs(f).bit_length()))
             charge(width * (PYTHON_OP + 2 * w * w), "a fraction-free elimination step (a rank)")
             row = [pv * x - f * y for x, y in zip(work[i], prow)]

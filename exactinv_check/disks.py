@@ -16,11 +16,11 @@ from fractions import Fraction
 from math import ceil, comb, isqrt
 from typing import Any, Sequence
 
+from .budget import MAX_WEIERSTRASS
 from .failure import CheckFailure, require
 from .poly_arithmetic import primitive
 
 PREC = 128  # bits kept in the centres of the disk arithmetic
-MAX_WEIERSTRASS = 40  # refinement steps of the root approximations
 
 
 def sqrt_bounds(x: Fraction) -> tuple[Fraction, Fraction]:

@@ -24,7 +24,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import polys
+from . import budget, poly_arithmetic, resultants
 from .budget import within_budget
 from .failure import require
 from .linalg import integer_characteristic_polynomial, integer_determinant
@@ -139,7 +139,7 @@ def condition_polynomials(A: Any, Q: Any, numerator: Any, denominator: Any) -> A
     if s == 0:
         return [Fraction(1)], [[] for _ in range(n)]
     count = n * max(2 * s - 1, len(denominator) - 1) + 1
-    require(count - 1 <= polys.MAX_DEGREE, f"n (2s - 1) = {count - 1} exceeds the kernel's degree bound {polys.MAX_DEGREE}")
+    require(count - 1 <= budget.MAX_DEGREE, f"n (2s - 1) = {count - 1} exceeds the kernel's degree bound {budget.MAX_DEGREE}")
     coefficients = coefficient_matrices(A, Q, numerator, denominator)
     within_budget(_conditions_cost(coefficients, n, count),
                   f"the characteristic polynomial of a {n} x {n} matrix at {count} points")
@@ -149,12 +149,12 @@ def condition_polynomials(A: Any, Q: Any, numerator: Any, denominator: Any) -> A
         p = integer_characteristic_polynomial(_at(coefficients, t))  # det(x I - L M'(t)), low to high
         values.append([(-1) ** k * p[n - k] for k in range(1, n + 1)])
     points = [Fraction(t) for t in points]  # type: ignore[misc]
-    conditions = [polys.trim([Fraction(0)] + polys.interpolate(points, [Fraction(row[k]) for row in values]))
+    conditions = [poly_arithmetic.trim([Fraction(0)] + resultants.interpolate(points, [Fraction(row[k]) for row in values]))
                   for k in range(n)]
     D = [Fraction(1)]
     if len(denominator) > 1:
         B = _denominator_matrices(A, denominator)
-        D = polys.interpolate(points, [Fraction(integer_determinant(_at(B, int(t)))) for t in points])
+        D = resultants.interpolate(points, [Fraction(integer_determinant(_at(B, int(t)))) for t in points])
     return D, conditions
 
 

@@ -1,6 +1,6 @@
 """The kernel's exceptions: a claim did not verify (:class:`CheckFailure`), or did not fit the
-kernel's work budget (:class:`OverBudget`, a CheckFailure).  Re-exported by
-:mod:`exactinv_check.rationals` (its old home) and used by :mod:`exactinv_check.budget`, which
+kernel's work budget (:class:`OverBudget`, a CheckFailure).  Imported from here by every
+kernel module (none re-exports them) and used by :mod:`exactinv_check.budget`, which
 must not import the parsers.
 
 Any *other* exception raised while a claim is checked is a fault of the kernel, not of the

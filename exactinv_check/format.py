@@ -32,6 +32,19 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any
 
+from .budget import (
+    HORIZON_BITS,
+    MAX_COEFFICIENTS,
+    MAX_DEGREE,
+    MAX_DIGITS,
+    MAX_DIMENSION,
+    MAX_LINE_EXPONENT,
+    MAX_METHOD_DEGREE,
+    MAX_POLES,
+    MAX_RATIONAL_PIECES,
+    MAX_TAIL_INDEX,
+)
+
 __all__ = [
     "FORMAT", "VERSIONS", "VERSION", "SPARSE_VERSION", "ENVELOPE_KEYS", "PROBLEM_KEYS", "METHOD_KEYS",
     "BOOLEAN_KEYS", "INFINITY", "NEG_INFINITY", "PRUNING_VARIABLE",
@@ -54,16 +67,8 @@ INFINITY, NEG_INFINITY = "oo", "-oo"  # how +-infinity is written
 PRUNING_VARIABLE = "h/(s+h)"  # the pruning record's name of the substitution u = h/(s + h)
 
 # ------------------------------------------------------------------ bounds the kernel enforces (engine and kernel share them)
-MAX_DIGITS = 4000  # characters of every number string: parsing is never the bottleneck
-MAX_DIMENSION = 2000  # every vector and matrix dimension
-MAX_DEGREE = 200  # every polynomial the kernel builds from a certificate (an algebraic number: 201 coefficients)
-MAX_METHOD_DEGREE = 64  # deg g and deg h of the method r = g/h after trimming
-MAX_COEFFICIENTS = 4096  # coefficient polynomials d_j of the radius the kernel computes (a longer scan cannot be certified)
-MAX_TAIL_INDEX = 1 << 20  # the largest tail index of a radius claim
-MAX_POLES = 16  # poles of a balanced tie (the radius claim's "poles")
-MAX_LINE_EXPONENT = 64  # the largest N = max |n_k| of the line-pole trigonometric polynomial (degree 2N)
-HORIZON_BITS = 64  # bits of the pruning horizon's (and scale's) numerator and denominator
-MAX_RATIONAL_PIECES = 512  # pieces of a pruning record in u = h/(s + h)
+# MAX_DIGITS .. MAX_RATIONAL_PIECES, HORIZON_BITS: defined with every other limit in budget.py, imported above and
+# part of the format (__all__): the schema below prints them.
 
 
 # ------------------------------------------------------------------ tags

@@ -31,15 +31,16 @@ from . import (
     claims_sets,
     claims_thresholds,
     ellipsoids,
+    poly_arithmetic,
     polys,
 )
+from .budget import MAX_METHOD_DEGREE
 from .cones import integer_rank
-from .failure import OverBudget, Record
+from .failure import CheckFailure, OverBudget, Record, require
 from .format import (
     BOOLEAN_KEYS,
     ENVELOPE_KEYS,
     FORMAT,
-    MAX_METHOD_DEGREE,
     METHOD_KEYS,
     PROBLEM_KEYS,
     VERSIONS,
@@ -48,7 +49,7 @@ from .format import (
     keys_since,
 )
 from .format import CLAIMS as SPECS
-from .rationals import CheckFailure, integer_rows, matrix, require, vector
+from .rationals import integer_rows, matrix, vector
 
 V2_KEYS = keys_since(1)  # keys version 1 does not have (docs/certificate-format.md)
 # the exceptions a claim's check may end in: CheckFailure (and its OverBudget) rejects by design; the resource errors
@@ -88,8 +89,8 @@ class Method:
     def __init__(self, record: Any) -> None:
         require(isinstance(record, dict) and set(record) <= set(METHOD_KEYS)
                 and set(METHOD_KEYS[1:]) <= set(record), "method has the keys name, numerator, denominator")
-        num = polys.trim(vector(record["numerator"], "method numerator"))
-        den = polys.trim(vector(record["denominator"], "method denominator"))
+        num = poly_arithmetic.trim(vector(record["numerator"], "method numerator"))
+        den = poly_arithmetic.trim(vector(record["denominator"], "method denominator"))
         require(den and den[0] != 0, "the method's denominator vanishes at 0")
         require(num and num[0] == den[0], "r(0) != 1")
         require(len(num) - 1 <= MAX_METHOD_DEGREE and len(den) - 1 <= MAX_METHOD_DEGREE,
@@ -98,7 +99,7 @@ class Method:
             num, den = [-c for c in num], [-c for c in den]
         common = polys.affordable_gcd(num, den) if len(den) > 1 else [Fraction(1)]  # a constant h: coprime
         if len(common) > 1:  # r is the reduced function: a cancelled factor is no pole
-            num, den = polys.divmod_(num, common)[0], polys.divmod_(den, common)[0]
+            num, den = poly_arithmetic.divmod_(num, common)[0], poly_arithmetic.divmod_(den, common)[0]
             num, den = [c / den[0] for c in num], [c / den[0] for c in den]
         if len(den) == 1:
             num, den = [c / den[0] for c in num], [Fraction(1)]
@@ -129,8 +130,8 @@ class Problem:
             self.A = matrix(record["A"], "A")
             self.n = len(self.A)
             require(self.n >= 1 and all(len(r) == self.n for r in self.A), "A is not a nonempty square matrix")
-            require(self.n <= polys.MAX_DEGREE, f"an ellipsoid problem has dimension at most {polys.MAX_DEGREE} "
-                    f"(every condition claim needs n (2s - 1) <= {polys.MAX_DEGREE}), not {self.n}")
+            require(self.n <= budget.MAX_DEGREE, f"an ellipsoid problem has dimension at most {budget.MAX_DEGREE} "
+                    f"(every condition claim needs n (2s - 1) <= {budget.MAX_DEGREE}), not {self.n}")
             self.Q = matrix(record["Q"], "Q", self.n, self.n)
             require(ellipsoids.is_symmetric(self.Q), "Q is not symmetric")
             require(ellipsoids.psd(self.Q)[1], "Q is not positive definite: {x : x^T Q x <= 1} is no ellipsoid")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import polys
+from . import poly_arithmetic, polys
 from .reals import Real
 
 
@@ -31,13 +31,13 @@ def characteristic_polynomial(M: Sequence[list[Fraction]]) -> list[Fraction]:
     # p_k = det(xI - H[:k,:k]) by the recurrence on the upper Hessenberg matrix
     p = [[Fraction(1)]]
     for k in range(1, n + 1):
-        acc = polys.mul([-H[k - 1][k - 1], Fraction(1)], p[k - 1])
+        acc = poly_arithmetic.mul([-H[k - 1][k - 1], Fraction(1)], p[k - 1])
         prod = Fraction(1)
         for i in range(1, k):
             prod *= H[k - i][k - i - 1]
             if prod == 0:
                 break
-            acc = polys.sub(acc, polys.scale(p[k - i - 1], prod * H[k - i - 1][k - 1]))
+            acc = poly_arithmetic.sub(acc, poly_arithmetic.scale(p[k - i - 1], prod * H[k - i - 1][k - 1]))
         p.append(acc)
     return p[n]
 
@@ -110,13 +110,13 @@ def largest_real_root(p: Any) -> Any:
     decide if there is one; else 0 if p(0) = 0; else the negative root nearest 0 is -(the
     smallest positive root of p(-x)).  (Shifting p by its root bound first would multiply the
     coefficients' size by the degree: x^k (x + 1)^k gained thousands of bits.)"""
-    p = polys.trim(p)
+    p = poly_arithmetic.trim(p)
     if len(p) <= 1:
         return None
     q = polys.squarefree(p)
     positive = polys.positive_roots(q)
     if positive:  # isolated for q without its root at 0 (an interval (0, hi) must not end at a root of the Real)
-        return _root(polys.strip_zero_roots(q), positive[-1], 1)
+        return _root(poly_arithmetic.strip_zero_roots(q), positive[-1], 1)
     if q[0] == 0:
         return Real.rational(Fraction(0))
     negative = polys.positive_roots([c if k % 2 == 0 else -c for k, c in enumerate(q)])

@@ -28,15 +28,14 @@ from fractions import Fraction
 from math import comb
 from typing import Sequence
 
-from .budget import charge, fraction_products_cost
+from .budget import MAX_LINE_DEGREE, charge, fraction_products_cost
 from .disks import sqrt_bounds
-from .polys import derivative, divmod_, gcd, monic, mul, positive_roots, sub, trim
-from .rationals import require
+from .failure import require
+from .poly_arithmetic import derivative, divmod_, gcd, monic, mul, sub, trim
+from .polys import positive_roots
 from .reals import Real
 
 __all__ = ["AlgebraicLine", "MAX_LINE_DEGREE", "lines_nonnegative"]
-
-MAX_LINE_DEGREE = 16  # the largest deg f (in y) and deg m handled here: the kernel's bound on deg h (bernstein)
 
 
 def _bits(p: Sequence[Fraction]) -> int:

@@ -42,6 +42,8 @@ from math import gcd as igcd
 from typing import Any, Sequence
 
 from .budget import (
+    MAX_LINE_EXPONENT,  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
+    MAX_PIN,
     STURM_BUDGET,
     STURM_WORDS,
     affordable,
@@ -50,26 +52,14 @@ from .budget import (
     sturm_cost,
     within_sturm_budget,
 )
-from .format import MAX_LINE_EXPONENT  # the largest N = max |n_k| of the trigonometric polynomial (Q has degree 2N)
-from .polys import (
-    affordable_gcd,
-    count_roots,
-    evaluate,
-    integer_coefficients,
-    mul,
-    positive_roots,
-    sign_at,
-    sign_right_of,
-    strip_zero_roots,
-    trim,
-)
-from .rationals import describe, require
+from .failure import require
+from .poly_arithmetic import evaluate, integer_coefficients, mul, strip_zero_roots, trim
+from .polys import affordable_gcd, count_roots, positive_roots, sign_at, sign_right_of
+from .rationals import describe
 from .tail import squarefree_decomposition
 
 __all__ = ["rational_root", "line_parts", "line_gcd", "disk_on_line", "line_density", "line_part", "nonnegative_on_line",
            "single_pair", "MAX_LINE_EXPONENT"]
-
-MAX_PIN = 4000  # bisections to pin a rational root
 
 
 def _bits(p: Sequence[Fraction]) -> int:

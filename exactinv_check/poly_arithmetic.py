@@ -10,9 +10,14 @@ from fractions import Fraction
 from math import gcd as _igcd
 from typing import Any, Sequence
 
-from .budget import active, charge, fraction_products_cost, remainder_step_cost
-from .format import MAX_DEGREE  # bound on every polynomial the kernel builds from a certificate
-from .rationals import require
+from .budget import (
+    MAX_DEGREE,  # bound on every polynomial the kernel builds from a certificate
+    active,
+    charge,
+    fraction_products_cost,
+    remainder_step_cost,
+)
+from .failure import require
 
 
 def trim(p: Any) -> Any:

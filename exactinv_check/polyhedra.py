@@ -40,11 +40,11 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, NamedTuple, Sequence
 
+from .budget import MAX_DIMENSION
 from .cones import integer_rank, primitive, scaled_integers
 from .edge_walk import EdgeWalk, IntegerPolyhedron
 from .failure import require
-from .polygon import prove_polygon
-from .rationals import MAX_DIMENSION
+from .routes.polygon import prove_polygon
 
 __all__ = ["Generators", "prove_generators"]
 
@@ -100,11 +100,11 @@ def prove_generators(G: Any, b: Any, vertices: Any, rays: Sequence[list[Fraction
     listed vertices and rays (so the lists are complete: the graph of P/L is
     connected and every extreme ray is an unbounded edge); every listed point
     lies in P.  A bounded polygon (n = 2, no rays, no lines) is proved by
-    :func:`exactinv_check.polygon.prove_polygon` in O(m log m) instead, when that
+    :func:`exactinv_check.routes.polygon.prove_polygon` in O(m log m) instead, when that
     proof applies.
     """
     n = _check_shapes(G, b, vertices, rays, lines)
-    if n == 2 and not rays and not lines:  # a bounded polygon: O(m log m) (exactinv_check.polygon)
+    if n == 2 and not rays and not lines:  # a bounded polygon: O(m log m) (exactinv_check.routes.polygon)
         fast = prove_polygon(G, b, vertices)
         if fast is not None:
             corners, extra = fast

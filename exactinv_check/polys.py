@@ -13,9 +13,9 @@ a prime when it is the polynomial itself (the usual case), else computed by a
 priced pseudo-remainder sequence.  Sturm sequences remain for the callers that
 need exact counts on many intervals of one polynomial.  No tolerance, no float.
 
-The arithmetic (:mod:`exactinv_check.poly_arithmetic`) and the resultants
-(:mod:`exactinv_check.resultants`) are re-exported here: the kernel reaches
-every polynomial function as ``polys.<name>``.
+One concept: real roots.  The arithmetic of Q[x] is :mod:`exactinv_check.poly_arithmetic` and the
+resultants and interpolation are :mod:`exactinv_check.resultants`; every caller imports a name from the
+module that defines it (none is re-exported here).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from math import gcd as _igcd
 from math import isqrt
 from typing import Any, Sequence
 
-from .budget import (  # noqa: F401  # noqa: F401
+from .budget import (
     DESCARTES_BUDGET,
     STURM_BUDGET,
     active,
@@ -36,37 +36,23 @@ from .budget import (  # noqa: F401  # noqa: F401
     sturm_cost,
     within_sturm_budget,
 )
+from .budget import MAX_ROOT_BISECTIONS as MAX_BISECTIONS
 from .budget import memo as _memo
 from .failure import require, require_budget
-from .poly_arithmetic import (  # noqa: F401 (the arithmetic, re-exported: its old home)
-    MAX_DEGREE,
-    add,
+from .poly_arithmetic import (
     bounded,
     content_free,
-    degree,
-    derivative,
-    divmod_,
-    evaluate,
     exact_quotient,
     gcd,
     integer_coefficients,
     integer_derivative,
     integer_gcd,
-    monic,
-    mul,
-    mul_integers,
-    primitive,
     pseudo_remainder,
-    scale,
     sign,
     strip_zero_roots,
-    sub,
     trim,
 )
-from .resultants import interpolate, quotient_polynomial, resultant  # noqa: F401 (re-exported: their old home)
 
-MAX_BISECTIONS = 4000
-# STURM_BUDGET (degree^4 bits^2 of one pseudo-remainder sequence) lives in exactinv_check.budget (re-exported)
 _PRIMES = (2**61 - 1, 2**31 - 1, 1000000007)  # for the modular squarefree test
 
 

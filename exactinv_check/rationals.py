@@ -13,8 +13,8 @@ from fractions import Fraction
 from math import gcd
 from typing import Any
 
-from .failure import CheckFailure, require  # noqa: F401 (re-exported: their old home)
-from .format import MAX_DIGITS, MAX_DIMENSION  # noqa: F401 (the format's bounds)
+from .budget import MAX_DIGITS, MAX_DIMENSION
+from .failure import CheckFailure, require
 
 SHOWN_DIGITS = 60  # longer numbers are described by their size in messages
 _ZERO = Fraction(0)

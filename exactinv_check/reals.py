@@ -17,12 +17,12 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import polys, text
+from . import budget, poly_arithmetic, polys, resultants, text
+from .budget import MAX_REFINEMENTS
+from .failure import CheckFailure, require
 from .format import INFINITY, NEG_INFINITY
-from .polys import evaluate, sign
-from .rationals import CheckFailure, rational, require
-
-MAX_REFINEMENTS = 20000
+from .poly_arithmetic import evaluate, sign
+from .rationals import rational
 
 
 class Real:
@@ -34,7 +34,7 @@ class Real:
                  lo: Fraction | None = None, hi: Fraction | None = None) -> None:
         self.inf, self.q, self.poly, self.lo, self.hi = inf, q, poly, lo, hi
         if poly is not None:
-            self._ints = polys.integer_coefficients(poly)
+            self._ints = poly_arithmetic.integer_coefficients(poly)
             self._bits = max(abs(c).bit_length() for c in self._ints)
             self._sign_lo = polys.sign_at(self._ints, lo, self._bits)
 
@@ -46,9 +46,9 @@ class Real:
             return cls(inf=1 if data == INFINITY else -1)
         if isinstance(data, dict):
             require(set(data) == {"poly", "interval"}, f"{what}: an algebraic number has exactly the keys poly, interval")
-            require(isinstance(data["poly"], list) and len(data["poly"]) <= polys.MAX_DEGREE + 1,
-                    f"{what}: the polynomial must be a list of at most {polys.MAX_DEGREE + 1} coefficients")
-            poly = polys.trim([rational(c, what) for c in data["poly"]])
+            require(isinstance(data["poly"], list) and len(data["poly"]) <= budget.MAX_DEGREE + 1,
+                    f"{what}: the polynomial must be a list of at most {budget.MAX_DEGREE + 1} coefficients")
+            poly = poly_arithmetic.trim([rational(c, what) for c in data["poly"]])
             require(isinstance(data["interval"], list) and len(data["interval"]) == 2, f"{what}: interval needs two ends")
             lo, hi = (rational(x, what) for x in data["interval"])
             return cls.claimed(poly, lo, hi, what)
@@ -61,7 +61,7 @@ class Real:
     @classmethod
     def algebraic(cls, poly: Any, lo: Fraction, hi: Fraction, what: str = "number") -> Any:
         """The unique root of poly in the open (lo, hi) -- proved, or CheckFailure."""
-        require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
+        require(len(poly_arithmetic.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
         require(lo < hi, f"{what}: empty isolating interval")
         p = polys.squarefree(poly)
         require(evaluate(p, lo) != 0 and evaluate(p, hi) != 0, f"{what}: an end of the interval is a root")
@@ -76,9 +76,9 @@ class Real:
         exactly one root there, and a simple one, in O(d^2) integer operations;
         only when it is inconclusive is the squarefree part isolated on (lo, hi)
         (:meth:`algebraic`), every step charged to the certificate's account."""
-        require(len(polys.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
+        require(len(poly_arithmetic.trim(poly)) >= 2, f"{what}: the polynomial must have degree >= 1")
         require(lo < hi, f"{what}: empty isolating interval")
-        ints = polys.integer_coefficients(poly)
+        ints = poly_arithmetic.integer_coefficients(poly)
         require(polys.sign_at(ints, lo) != 0 and polys.sign_at(ints, hi) != 0, f"{what}: an end of the interval is a root")
         if polys.descartes_variations(ints, lo, hi) == 1:
             return cls._made(ints, lo, hi)
@@ -93,7 +93,7 @@ class Real:
     @classmethod
     def root_in(cls, p: Sequence[int | Fraction], lo: Fraction, hi: Fraction) -> Any:
         """From (lo, hi) data of polys.positive_roots (lo == hi: the rational root)."""
-        return cls(q=lo) if lo == hi else cls._made(polys.squarefree(polys.strip_zero_roots(p)), lo, hi)
+        return cls(q=lo) if lo == hi else cls._made(polys.squarefree(poly_arithmetic.strip_zero_roots(p)), lo, hi)
 
     # -------------------------------------------------------------- queries
     @property
@@ -129,15 +129,15 @@ class Real:
     def sign_of(self, f: Any) -> Any:
         """The exact sign of the polynomial f at this (finite) real."""
         require(not self.inf, "sign at infinity")
-        f = polys.trim(f)
+        f = poly_arithmetic.trim(f)
         if not f:
             return 0
         if self.poly is None:
             return sign(evaluate(f, self.q))
-        g = polys.gcd(f, self.poly)
+        g = poly_arithmetic.gcd(f, self.poly)
         if len(g) > 1 and sign(evaluate(g, self.lo)) * sign(evaluate(g, self.hi)) < 0:
             return 0  # g divides poly, whose root here is simple and alone in (lo, hi): g changes sign iff g(root) = 0
-        fi = polys.integer_coefficients(f)
+        fi = poly_arithmetic.integer_coefficients(f)
         for _ in range(MAX_REFINEMENTS):  # f(root) != 0: refine until Descartes proves no root of f in (lo, hi)
             if self.poly is None:
                 return polys.sign_at(fi, self.q)
@@ -206,10 +206,10 @@ class Real:
         g = gcd iff g changes sign on its own isolating interval (g divides the
         squarefree poly, so it has at most that one root there); if both are,
         they are equal iff g has a single root in the union of the intervals."""
-        g = polys.gcd(self.poly, other.poly)
+        g = poly_arithmetic.gcd(self.poly, other.poly)
         if len(g) <= 1:
             return False
-        gi = polys.integer_coefficients(g)
+        gi = poly_arithmetic.integer_coefficients(g)
         for x in (self, other):
             if polys.sign_at(gi, x.lo) * polys.sign_at(gi, x.hi) >= 0:
                 return False
@@ -271,7 +271,7 @@ def quotient(a: Any, b: Any) -> Any:
             x.bisect()
     if a.poly is None or b.poly is None:
         return quotient(a, b)
-    t = polys.squarefree(polys.quotient_polynomial(a.poly, b.poly))
+    t = polys.squarefree(resultants.quotient_polynomial(a.poly, b.poly))
     for _ in range(MAX_REFINEMENTS):  # refine a and b until their quotient's enclosure isolates one root of t
         if a.poly is None or b.poly is None:
             return quotient(a, b)

@@ -8,9 +8,9 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from .budget import active, charge, fraction_products_cost
+from .budget import MAX_DEGREE, active, charge, fraction_products_cost
 from .failure import require
-from .poly_arithmetic import MAX_DEGREE, add, divmod_, mul, strip_zero_roots, trim
+from .poly_arithmetic import add, divmod_, mul, strip_zero_roots, trim
 
 
 def _bits(p: Sequence[Fraction]) -> int:

@@ -52,6 +52,13 @@ def _delete(*path: Any) -> Any:
     return mutate
 
 
+def _claim(index: int, **fields: Any) -> Any:
+    """Set several keys of one claim at once (a forgery consistent in all but the fact it forges)."""
+    def mutate(cert: Any) -> Any:
+        cert["claims"][index].update(copy.deepcopy(fields))
+    return mutate
+
+
 def _drop_vertex(claim: Any) -> Any:
     def mutate(cert: Any) -> Any:
         cert["claims"][claim]["vertices"].pop()
@@ -107,6 +114,14 @@ FORGERIES = [
      _set("claims", 1, "value", "2"), Verdict.REJECTED),
     ("ellipsoid-forward-euler", "ellipsoid-taylor2", "forward Euler on E 3/2 instead of 1",
      _set("claims", 3, "value", "3/2"), Verdict.REJECTED),
+    ("discrete-invariance-dt", "discrete-invariance-taylor2", "invariance at dt = 3 with Ad = r(3A), where it fails",
+     _claim(0, dt="3", Ad=[["-2", "-6"], ["6", "-2"]]), Verdict.REJECTED),
+    ("ellipsoid-discrete-dt", "ellipsoid-discrete-taylor2", "invariance of E at dt = 3 with Ad = r(3A), where it fails",
+     _claim(0, dt="3", Ad=[["-2", "-6"], ["6", "-2"]]), Verdict.REJECTED),
+    ("pruning-horizon", "pruning-diamond-taylor2", "a pruning horizon 1/2 short of the bounding vertex's own set",
+     _set("claims", 0, "pruning", "horizon", "1/2"), Verdict.REJECTED),
+    ("gain-holds-F", "gain-holds", "a gain F = (0, 1) that makes P not invariant", _set("claims", 0, "F", [["0", "1"]]),
+     Verdict.REJECTED),
     ("gain-farkas", "gain-double-integrator", "the Farkas vector changed",
      _set("claims", 0, "farkas", "mu", ["0", "1", "0", "0"]), Verdict.REJECTED),
     ("robust-value", "robust-ssprk33", "the robust threshold 1 instead of 2/3", _set("claims", 1, "value", "1"),

@@ -24,9 +24,9 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from .budget import CERTIFICATE_BUDGET, sparse_read_cost, within_budget
+from .budget import CERTIFICATE_BUDGET, MAX_DIMENSION, sparse_read_cost, within_budget
 from .failure import require
-from .rationals import MAX_DIMENSION, matrix, rational
+from .rationals import matrix, rational
 
 SPARSE_VERSION = 3  # the first certificate version that writes H and H~ sparse
 

@@ -45,6 +45,8 @@ from fractions import Fraction
 from math import ceil, comb
 from typing import TYPE_CHECKING, Any, Sequence
 
+from .budget import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
+from .budget import MAX_TAIL_REFINE as MAX_REFINE
 from .disks import (
     ball,
     ball_abs_upper,
@@ -55,31 +57,14 @@ from .disks import (
     sqrt_bounds,
     taylor_balls,
 )
-from .format import MAX_TAIL_INDEX as MAX_INDEX  # the largest tail index the kernel will certify
-from .poly_arithmetic import power
-from .polys import (
-    Sturm,
-    count_roots,
-    derivative,
-    divmod_,
-    evaluate,
-    gcd,
-    monic,
-    mul,
-    positive_roots,
-    sign,
-    squarefree,
-    sub,
-    trim,
-)
-from .rationals import CheckFailure, require
+from .failure import CheckFailure, require
+from .poly_arithmetic import derivative, divmod_, evaluate, gcd, monic, mul, power, sign, sub, trim
+from .polys import Sturm, count_roots, positive_roots, squarefree
 from .tie import kappa_enclosure, tie_interval
 
 if TYPE_CHECKING:
     from .reals import Real
 
-
-MAX_REFINE = 2000  # bisections when separating a real pole from other roots
 
 
 def prove_tail(numerator: Any, denominator: Any, K: Any, N_hint: Any = 0, tie: Any = None) -> Any:

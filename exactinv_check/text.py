@@ -19,13 +19,13 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
+from .budget import MAX_PRINT_BISECTIONS
 from .polys import no_root_between, sign_at
 from .rationals import SHOWN_DIGITS
 
 __all__ = ["significant_digits", "decimal_text", "rational_text", "root_text", "poly_text", "algebraic_text"]
 
 TIDY_DIGITS = 12  # decimals of the printed isolating interval (as the engine's RealAlgebraic.tidy)
-MAX_PRINT_BISECTIONS = 400
 
 
 def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> Any:

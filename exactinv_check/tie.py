@@ -8,7 +8,7 @@ closer after it.  Every kappa_z is a root of the tie polynomial
 w_l = z_l + kappa over the distinct poles (non-real z: w w-bar = w*^2 is a root of P2 and of G; negative real z:
 w_z^2 = w*^2 is a double root of G).  T is not identically 0 (that would force two poles to coincide).
 T is computed by interpolation at integer kappa: at each point the power sums of the w_l (Newton's identities)
-give G and P2 exactly, and the resultants are Euclid's (polys.resultant).
+give G and P2 exactly, and the resultants are Euclid's (resultants.resultant).
 
 Work budget: T is priced before it is interpolated (``interpolation_cost``): deg T + 1 values, each from
 resultants whose numbers grow to about deg T (bits of h + log deg T) bits, and a Newton interpolation with
@@ -23,13 +23,11 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Callable, Sequence
 
-from . import polys
-from .budget import FRACTION_WEIGHT, within_budget
+from . import poly_arithmetic, polys, resultants
+from .budget import FRACTION_WEIGHT, MAX_TIE_DEGREE, within_budget
+from .budget import MAX_TIE_ISOLATE as MAX_ISOLATE
 from .failure import require
 from .reals import Real
-
-MAX_TIE_DEGREE = 400  # the largest degree of T the kernel will interpolate
-MAX_ISOLATE = 4000
 
 
 def _power_sums(monic: Sequence[Fraction], count: int) -> list[Fraction]:
@@ -68,7 +66,7 @@ def _value(h: Sequence[Fraction], t: Fraction) -> Any:
     s = _power_sums(c, 2 * max(n2, d))
     P2 = _from_power_sums([(s[k - 1] ** 2 - s[2 * k - 1]) / 2 for k in range(1, n2 + 1)], n2)
     G = _from_power_sums([s[2 * k - 1] for k in range(1, d + 1)], d)
-    return polys.resultant(P2, G) * polys.resultant(G, polys.derivative(G))
+    return resultants.resultant(P2, G) * resultants.resultant(G, poly_arithmetic.derivative(G))
 
 
 def interpolation_cost(degree: int, bits: int) -> int:
@@ -83,16 +81,16 @@ def interpolation_cost(degree: int, bits: int) -> int:
 
 def tie_polynomial(h: Any) -> Any:
     """T for the squarefree part of h (degree >= 2), by interpolation; priced first (work budget)."""
-    sq = polys.monic(polys.squarefree(h))
+    sq = poly_arithmetic.monic(polys.squarefree(h))
     d = len(sq) - 1
     require(d >= 2, "tie: r needs two poles for a tie")
     degree = d * d * (d - 1) + 2 * d * (d - 1)
     require(degree <= MAX_TIE_DEGREE, f"tie: the tie polynomial would exceed degree {MAX_TIE_DEGREE}")
-    bits = max(abs(c).bit_length() for c in polys.integer_coefficients(sq))
+    bits = max(abs(c).bit_length() for c in poly_arithmetic.integer_coefficients(sq))
     within_budget(interpolation_cost(degree, bits), f"the tie polynomial of degree {degree} for {d} poles "
                                                     f"with {bits}-bit coefficients")
     points = [Fraction(t) for t in range(degree + 1)]
-    T = polys.interpolate(points, [_value(sq, t) for t in points])
+    T = resultants.interpolate(points, [_value(sq, t) for t in points])
     require(len(T) > 1 or (T and T[0] != 0), "tie: the tie polynomial vanishes identically")
     return T
 
@@ -102,7 +100,7 @@ def tie_interval(h: Any, value: Any) -> Any:
     require(not value.inf, "tie: the tie value must be finite")
     T = polys.squarefree(tie_polynomial(h))
     require(value.sign_of(T) == 0, "tie: the claimed radius is not a root of the tie polynomial")
-    ints = polys.integer_coefficients(T)
+    ints = poly_arithmetic.integer_coefficients(T)
     if value.is_rational:
         q, width = value.q, Fraction(1)
         for _ in range(MAX_ISOLATE):
@@ -159,6 +157,6 @@ def balanced_tie(g: Any, h: Any) -> Any:
     require(G0 == 0 or G1 == 0, "balanced tie: the residues at the two poles do not balance exactly")
     e = 1 if h2 > 0 else -1  # the positive pole p = (-h1 + e s)/(2 h2)
     # b_p = -g(p)/h'(p), h'(p) = e s: b_p = -(G0 + e G1 s)/(e s) = -e G0/s - G1
-    b_p_sign = polys.sign(-e * G0) if G1 == 0 else polys.sign(-G1)
+    b_p_sign = poly_arithmetic.sign(-e * G0) if G1 == 0 else poly_arithmetic.sign(-G1)
     require(b_p_sign > 0, "balanced tie: the principal part at p* has the wrong sign")
     return h1 / (2 * h2)  # -(a + p)/2

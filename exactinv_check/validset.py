@@ -19,7 +19,7 @@ from fractions import Fraction
 from functools import cmp_to_key
 from typing import Any, Sequence
 
-from . import polys
+from . import poly_arithmetic, polys
 from .failure import CheckFailure, require
 from .rationals import boolean
 from .reals import Real, separate
@@ -99,7 +99,7 @@ def valid_set(D: Sequence[Fraction], inequalities: Sequence[Sequence[int | Fract
         if not V:
             break
         hull = hull or _hull(V)
-        if _nonnegative_on(polys.integer_coefficients(p), *hull):
+        if _nonnegative_on(poly_arithmetic.integer_coefficients(p), *hull):
             continue  # V n {p >= 0} = V
         V, hull = _intersect(V, _valid_set([Fraction(1)], [p], [], 1, None)), None
     return V
@@ -158,12 +158,12 @@ def _valid_set(D: Any, inequalities: Any, equalities: Any, exact_count: Any, top
     when those first ones already make every h > top invalid."""
     ineq = [("i", k, list(p)) for k, p in enumerate(inequalities)]
     eq = [("e", k, list(p)) for k, p in enumerate(equalities)]
-    D = polys.trim(D)
+    D = poly_arithmetic.trim(D)
     named = [((kind, k), p) for kind, k, p in ineq + eq]
     if len(D) > 1:
         named.append((("D", 0), D))
     polys_by_name = dict(named)
-    points = [(Real.rational(0), {name for name, p in named if polys.evaluate(p, Fraction(0)) == 0})]
+    points = [(Real.rational(0), {name for name, p in named if poly_arithmetic.evaluate(p, Fraction(0)) == 0})]
     bounds: dict[Any, Any] = {("i", k): top for k in range(exact_count, len(inequalities))} if top is not None else {}
     points += breakpoints(named, bounds)
 
@@ -176,20 +176,20 @@ def _valid_set(D: Any, inequalities: Any, equalities: Any, exact_count: Any, top
     # signs of the inequalities on the current cell; only those vanishing at a
     # breakpoint can change sign there, so only they are re-evaluated
     sample = cell_sample(0)
-    negative = {("i", k) for _, k, p in ineq if polys.evaluate(p, sample) < 0}
+    negative = {("i", k) for _, k, p in ineq if poly_arithmetic.evaluate(p, sample) < 0}
     elements = []  # (kind, index, valid): ("point", k) then ("cell", k) alternately
     eq_names = {("e", k) for _, k, _ in eq}
     for k, (_real, vanishing) in enumerate(points):
         if k == 0:  # decided by evaluation: the cell signs say nothing about h = 0 itself
             point_ok = (eq_names <= vanishing and ("D", 0) not in vanishing
-                        and all(polys.evaluate(p, Fraction(0)) >= 0 for _, _, p in ineq))
+                        and all(poly_arithmetic.evaluate(p, Fraction(0)) >= 0 for _, _, p in ineq))
         else:  # an inequality not vanishing here has the sign of the cell on the left
             point_ok = eq_names <= vanishing and ("D", 0) not in vanishing and not (negative - vanishing)
         elements.append(("point", k, point_ok))
         sample = cell_sample(k)
         for name in vanishing:
             if name[0] == "i":
-                if polys.evaluate(polys_by_name[name], sample) < 0:
+                if poly_arithmetic.evaluate(polys_by_name[name], sample) < 0:
                     negative.add(name)
                 else:
                     negative.discard(name)
@@ -227,7 +227,7 @@ def _coarse_above(x: Fraction) -> Any:
 
 def _first_sign_change(p: Any, upper: Any) -> Any:
     """The first root in (0, upper] where p (positive right of 0) changes sign, or None."""
-    ints = polys.integer_coefficients(p)
+    ints = poly_arithmetic.integer_coefficients(p)
     for lo, hi in polys.positive_roots(p, upper):
         if lo == hi:
             if polys.sign_right_of(p, lo) < 0:
@@ -268,7 +268,7 @@ def first_end(D: Any, inequalities: Any, equalities: Any, first: Any = (), start
             best = tau
             if best.poly is not None:  # a tight enclosure: later conditions are cleared by Descartes' rule
                 best.refine_below(best.hi / 2**64)
-    D = polys.trim(D)
+    D = poly_arithmetic.trim(D)
     if len(D) > 1:
         roots = polys.positive_roots(D)
         if roots:

@@ -1,6 +1,6 @@
 """Red-team mutation fuzzer for the kernel's balanced line, reason bernstein-root and alpha(H) by blocks.
 
-Not a test module (no test_ prefix): tests/test_kernel_redteam_radius3.py runs a small seeded slice of it;
+Not a test module (no test_ prefix): tests/kernel/test_linalg_attacks.py runs a small seeded slice of it;
 ``python tests/fuzz_radius3.py SECONDS [SEED]`` runs it for longer and prints the counts.
 
 Genuine structures are built from poles and residues (radius_reference.from_partial_fractions): p* with
@@ -23,7 +23,7 @@ import mpmath
 from radius_reference import coefficients_at, from_partial_fractions
 
 from exactinv_check import bernstein, budget
-from exactinv_check.rationals import CheckFailure
+from exactinv_check.failure import CheckFailure
 
 TINY = F(1, 10 ** 60)
 

@@ -6,8 +6,8 @@ from fractions import Fraction
 
 from kernel_deadline import TooSlow
 
-from exactinv_check import pruning
 from exactinv_check.failure import CheckFailure
+from exactinv_check.routes import pruning
 
 
 def fractions_of(S, P):
@@ -46,3 +46,13 @@ def count_slot_tests(monkeypatch, G, b, V, N, T, limit):
     finally:
         monkeypatch.setattr(pruning._Packed, "outside", original)
     return counted[0]
+
+
+def circle_polygon(m):
+    """m rational points on the unit circle, counter-clockwise from (-1, 0), and their rows."""
+    pts = []
+    for a in range(m):
+        s = Fraction(int((2 * a + 1 - m) * 10**6 // m), 10**6) if a else None  # tan(theta/2) in (-1, 1), increasing
+        pts.append((Fraction(-1), Fraction(0)) if s is None else ((1 - s * s) / (1 + s * s), 2 * s / (1 + s * s)))
+    pts = [pts[0]] + sorted(set(pts[1:]), key=lambda p: (p[1] >= 0, p[0] if p[1] < 0 else -p[0]))
+    return pts, *polygon_rows(pts)

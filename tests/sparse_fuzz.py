@@ -2,7 +2,7 @@
 on random polygons, one field of one sparse H / H~ mutated at a time, every accepted mutant checked true
 by an independent dense Fraction check of what the sparse matrix certifies.
 
-Used by tests/test_kernel_redteam_sparse.py (a small seeded run) and runnable alone:
+Used by tests/kernel/test_claims_invariance.py (a small seeded run) and runnable alone:
 ``python tests/sparse_fuzz.py SECONDS SEED``.
 """
 

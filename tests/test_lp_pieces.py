@@ -1,4 +1,4 @@
-"""The kernel's lp record (exactinv_check/lp_pieces.py): genuine LP-route certificates verify;
+"""The kernel's lp record (exactinv_check/routes/lp_pieces.py): genuine LP-route certificates verify;
 forged pieces -- a wrong basis, a piece that skips a breakpoint, a z_B that dips negative inside a
 piece, a singular or infeasible basis, ends out of order, pieces stopping short of the valid set --
 are rejected."""
@@ -11,8 +11,9 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import lp_pieces, polys
+from exactinv_check import poly_arithmetic, polys
 from exactinv_check.reals import Real, separate
+from exactinv_check.routes import lp_pieces
 
 M = ei.methods
 F = Fraction
@@ -247,7 +248,7 @@ def test_the_batched_descartes_test_is_sound_and_matches_the_single_one(Y, D, a,
     b = None if width is None or width == 0 else a + width
     flags = lp_pieces._batch_positive(Y, D, a, b)
     for y, ok in zip(Y, flags):
-        p = polys.trim(polys.mul_integers(y, D))
+        p = poly_arithmetic.trim(poly_arithmetic.mul_integers(y, D))
         if not p:
             assert ok
             continue
@@ -255,7 +256,7 @@ def test_the_batched_descartes_test_is_sound_and_matches_the_single_one(Y, D, a,
             top = b if b is not None else a + 10
             for k in range(1, 40):
                 assert polys.sign_at(p, a + (top - a) * F(k, 40)) >= 0
-        assert ok or not lp_pieces._positive_around(polys.integer_coefficients(p), a, b)
+        assert ok or not lp_pieces._positive_around(poly_arithmetic.integer_coefficients(p), a, b)
 
 
 def test_negative_beyond_a_rational_and_an_algebraic_horizon():

@@ -96,4 +96,4 @@ def test_kernel_reals_print_through_the_copy():
     sqrt2 = Real.parse({"poly": ["-2", "0", "1"], "interval": ["1", "2"]})
     assert str(sqrt2) == "1.4142135623730950  (the root of x^2 - 2 in [1.414213562373, 1.414213562374])"
     assert str(sqrt2) == exact_text(RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2))
-    assert exactinv_check.check  # the kernel package imports nothing from exactinv (tests/test_kernel_standalone.py)
+    assert exactinv_check.check  # the kernel package imports nothing from exactinv (tests/kernel/test_standalone.py)

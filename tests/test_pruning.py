@@ -13,8 +13,9 @@ from pruning_helpers import fractions_of
 import exactinv as ei
 import exactinv.beyond.pruning as engine_pruning
 from exactinv.beyond.conditions import ConditionSet, Kind
-from exactinv_check import check, pruning
+from exactinv_check import check
 from exactinv_check.conditions import method_matrices
+from exactinv_check.routes import pruning
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])

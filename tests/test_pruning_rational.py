@@ -16,9 +16,9 @@ import exactinv.beyond.pruning as engine_pruning
 from exactinv.beyond import pruning_rational as engine_rational
 from exactinv.beyond.conditions import ConditionSet
 from exactinv_check import check
-from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices
 from exactinv_check.failure import CheckFailure
+from exactinv_check.routes import pruning_rational as kernel_rational
 
 M = ei.methods
 SPIN = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])

@@ -24,7 +24,7 @@ set exactly.  Whether e_ij vanishes identically (facet i sees only Q: the
 current route) or at finitely many h (isolated steplengths, decided by the
 pieces of P' at those points) is not a case of the code: the equalities and
 the pieces together decide both.  The certificate is the LP route's record of
-P' with the key ``lines`` (exactinv_check.lp_pieces proves G l_j = 0 and
+P' with the key ``lines`` (exactinv_check.routes.lp_pieces proves G l_j = 0 and
 recomputes the line conditions itself).
 """
 

@@ -26,7 +26,7 @@ V = V_{S u U} with U the pairs that survive the test on [0, T]: beyond T
 both sides are empty (V is inside V_S), and on [0, T] every pruned condition
 is positive.  The same T serves the largest threshold: its value is at most
 the first end of S, hence at most T.  The kernel repeats the test exactly
-(:mod:`exactinv_check.pruning`); the certificate only names T and the vertex.
+(:mod:`exactinv_check.routes.pruning`); the certificate only names T and the vertex.
 
 The engine's test is vectorised and exact: every quantity is rounded to an
 integer grid of step 2^-24 (relative to the points' size; each gridded

@@ -32,7 +32,7 @@ D > 0 on the whole range (else q > 0 does not give c > 0), so a method whose
 det h_r(hA) has a root there is not pruned.  The scale s is a power of two
 near |D(0)/D_top|^(1/deg D), where D's growth turns over: any s > 0 is
 sound, a good one keeps P(u) of one size across [0, 1].  The kernel repeats
-all of it exactly (:mod:`exactinv_check.pruning_rational`).
+all of it exactly (:mod:`exactinv_check.routes.pruning_rational`).
 """
 
 from __future__ import annotations

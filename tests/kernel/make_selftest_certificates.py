@@ -4,8 +4,9 @@
 
 Each is made by the engine and must be accepted by the kernel; they are small (a few KB) and cover
 every family of claims: invariance and gamma*, the paper's thresholds (polynomial and rational),
-forward Euler, the radius (its tail, Bernstein, a tie), valid sets by the vertex, box and LP routes
-and with a pruning record, ellipsoids, the optimal gain and a robust threshold.  The versions 1 and
+forward Euler, discrete invariance, the radius (its tail, Bernstein, a tie), valid sets by the vertex, box and
+LP routes and with a pruning record, ellipsoids (continuous and discrete invariance), the optimal gain (holding
+and not) and a robust threshold.  The versions 1 and
 2 examples come from docs/certificate-format.md."""
 
 import json
@@ -13,6 +14,7 @@ import re
 from pathlib import Path
 
 import exactinv as ei
+import exactinv.beyond.pruning as engine_pruning
 from exactinv.certificates import certificate, dumps
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -54,6 +56,22 @@ def main():
         ei.continuous_invariance(S, E), ei.largest_threshold(S, E, ei.methods.taylor(2)),
          ei.valid_steplengths(S, E, ei.methods.taylor(2)), ei.forward_euler_threshold(S, E)])
     certs["gain-double-integrator"] = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], box).certificate
+    t2 = ei.methods.taylor(2)
+    certs["discrete-invariance-taylor2"] = certificate(S, box, t2, [ei.discrete_invariance(S, box, t2, "1/2")])
+    certs["ellipsoid-discrete-taylor2"] = certificate(S, E, t2, [ei.discrete_invariance(S, E, t2, "1/2")])
+    certs["gain-holds"] = ei.optimal_gain([[-1, 0], [0, 1]], [[0], [1]], box).certificate
+    # a pruning record: pruning forced (the engine applies it only where it pays) on a Taylor-2 valid set whose
+    # pairs mostly cannot bind (tests/test_pruning.py: 23 of 64 survive)
+    spin = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
+    diamond = ei.Polyhedron.from_vertices([[10, 0], [0, 1], [-10, 0], [0, -1], [7, "7/10"], [-7, "7/10"],
+                                           [7, "-7/10"], [-7, "-7/10"]])
+    worthwhile, engine_pruning.WORTHWHILE = engine_pruning.WORTHWHILE, 1.0
+    try:
+        pruned = ei.valid_steplengths(spin, diamond, t2)
+    finally:
+        engine_pruning.WORTHWHILE = worthwhile
+    assert pruned.pruning.applied and "pruning" in pruned.certificate["claims"][0]
+    certs["pruning-diamond-taylor2"] = pruned.certificate
     hull = [ei.LinearSystem([[-1, 1], [-1, -1]]), ei.LinearSystem([[-2, 1], [0, -1]])]
     certs["robust-ssprk33"] = ei.robust_threshold(hull, box, ei.methods.PRESETS["ssprk33"]()).certificate
     doc = (ROOT / "docs" / "certificate-format.md").read_text()

@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 from exactinv_check import format as fmt
-from exactinv_check import kernel, pruning, pruning_rational, rationals, tail
+from exactinv_check import kernel, rationals, tail
+from exactinv_check.routes import pruning, pruning_rational
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -1,4 +1,4 @@
-"""Red team of the LP route on P with lines (exactinv_check/lp_pieces.py, the ``lines`` key; issue 22/23 rule).
+"""Red team of the LP route on P with lines (exactinv_check/routes/lp_pieces.py, the ``lines`` key; issue 22/23 rule).
 
 The kernel decides an ``lp`` record on P' = P with the lines l_j appended as rows l_j^T x <= 0 and rebuilds the
 line equalities g_i N(h) l_j = 0 itself (docs/design.md, "P with lines").  Attacks: seeded mutations of genuine
@@ -17,9 +17,10 @@ import pytest
 
 import exactinv as ei
 import exactinv_check
-from exactinv_check import budget, lp_pieces
+from exactinv_check import budget
 from exactinv_check.failure import CheckFailure
 from exactinv_check.kernel import Problem
+from exactinv_check.routes import lp_pieces
 from exactinv_check.validset import valid_set
 
 M = ei.methods
