@@ -46,7 +46,7 @@ def _rss_mb() -> float:
 def _run(N: int, route: str, out, started) -> None:
     import exactinv as ei
     from exactinv.core.roots import real_roots
-    from exactinv.paper import rational
+    from exactinv.thresholds import rational
     from exactinv_check import check
     P, S, m = ellipse_polygon(N), ei.LinearSystem([[-2, 0], [0, -2]]), ei.methods.backward_euler()
     g = ei.optimal_gamma(S, P)

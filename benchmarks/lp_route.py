@@ -41,7 +41,7 @@ import numpy as np
 
 import exactinv as ei
 import exactinv_check
-from exactinv.beyond.conditions import ConditionSet
+from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.lp.highs import silent_highs
 from exactinv.model.record import certificate
 

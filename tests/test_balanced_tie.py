@@ -1,4 +1,4 @@
-"""Balanced ties of several simple poles (exactinv/paper/balanced_tie.py, issue 22): c_j(kappa) =
+"""Balanced ties of several simple poles (exactinv/monotonicity/balanced_tie.py, issue 22): c_j(kappa) =
 sum_k b_k (z_k + kappa)^-(j+1) decides the tie when the tied residues balance p*'s exactly; every certificate is
 re-proved by the kernel and every radius checked against the slow exact reference (c_j at rationals)."""
 
@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 from radius_reference import admissible, coefficients_at, from_partial_fractions
 
 import exactinv as ei
-from exactinv.paper.balanced_tie import balanced_tie, gaussian_poles
-from exactinv.paper.monotonicity import absolute_monotonicity_radius
+from exactinv.monotonicity.balanced_tie import balanced_tie, gaussian_poles
+from exactinv.monotonicity.radius import absolute_monotonicity_radius
 from exactinv_check import check
 
 UNITS = [(F(3, 5), F(4, 5)), (F(-3, 5), F(4, 5)), (F(5, 13), F(12, 13)), (F(-8, 17), F(15, 17)), (F(0), F(1)),

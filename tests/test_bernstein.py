@@ -1,4 +1,4 @@
-"""rho = oo by Bernstein's theorem (exactinv.paper.bernstein, exactinv_check.bernstein), and repeated real poles.
+"""rho = oo by Bernstein's theorem (exactinv.monotonicity.bernstein, exactinv_check.bernstein), and repeated real poles.
 
 Ground truth is independent of the engine: the closed form of issue 22 for (1 - z)/(1 - 2z)^4; functions built
 on the Laplace side from a density f that is positive by construction (so rho = oo is known); and the slow exact
@@ -302,7 +302,7 @@ def test_kernel_rejects_a_wrong_balanced_tie():
        st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=4), min_size=1, max_size=3),
        st.fractions(min_value=0, max_value=20, max_denominator=7), st.integers(0, 14))
 def test_witness_sign_in_integers_matches_the_reference(g_tail, h_tail, kappa, j):
-    from exactinv.paper.bernstein import coefficient_at
+    from exactinv.monotonicity.bernstein import coefficient_at
     g, h = [F(1)] + g_tail, [F(1)] + h_tail
     c = coefficients_at(g, h, kappa, j + 1)
     if c is None:

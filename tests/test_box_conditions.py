@@ -1,4 +1,4 @@
-"""The box route (exactinv/beyond/box_conditions.py): exact valid sets on boxes from the
+"""The box route (exactinv/conditions/box.py): exact valid sets on boxes from the
 sign patterns of the rows of N(h), equal to the general vertex-facet route, no vertex list."""
 
 from fractions import Fraction
@@ -8,8 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.beyond.box_conditions import box_route, detect_box, vertex_index
-from exactinv.beyond.conditions import ConditionSet, Kind
+from exactinv.conditions.box import box_route, detect_box, vertex_index
+from exactinv.conditions.polyhedron import ConditionSet, Kind
 from exactinv.errors import InvalidInput
 
 M = ei.methods

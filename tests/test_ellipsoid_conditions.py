@@ -1,4 +1,4 @@
-"""exactinv.beyond.ellipsoid_conditions: q_k(h) = e_k(M(h)/h), checked against the
+"""exactinv.conditions.ellipsoid: q_k(h) = e_k(M(h)/h), checked against the
 sum of the k x k principal minors of M(h) = H^T Q H - G^T Q G computed here."""
 
 from fractions import Fraction
@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
-from exactinv.beyond.ellipsoid_conditions import psd_polynomials
+from exactinv.conditions.ellipsoid import psd_polynomials
 
 rationals = st.builds(Fraction, st.integers(-4, 4), st.integers(1, 3))
 

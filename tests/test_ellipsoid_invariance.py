@@ -1,4 +1,4 @@
-"""exactinv.beyond.ellipsoid_invariance: exact invariance of ellipsoids, with
+"""exactinv.invariance.ellipsoids: exact invariance of ellipsoids, with
 the witness checked by the test's own arithmetic and the certificate by the kernel."""
 
 from fractions import Fraction

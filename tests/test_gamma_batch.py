@@ -12,10 +12,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
+from exactinv.invariance import gamma_star
+from exactinv.invariance.gamma_batch import IntegerData, batch_rows, integer_G, is_sparse, verify_rows
+from exactinv.invariance.gamma_dense import _verify, dense_rows
 from exactinv.lp.block import block_hints
-from exactinv.paper import gamma_star
-from exactinv.paper.gamma_batch import IntegerData, batch_rows, integer_G, is_sparse, verify_rows
-from exactinv.paper.gamma_dense import _verify, dense_rows
 from exactinv_check import check
 
 

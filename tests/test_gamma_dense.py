@@ -1,4 +1,4 @@
-"""gamma* on long rationals (issue 24, item 4): exactinv/paper/gamma_dense.py.
+"""gamma* on long rationals (issue 24, item 4): exactinv/invariance/gamma_dense.py.
 
 * property: on polygons with 20-40-bit rational vertices (so G and b have long entries), the
   certified gamma* and every row's gamma_j equal the old route's (every row LP through the general
@@ -19,9 +19,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
+from exactinv.invariance import gamma_batch, gamma_dense, gamma_star
+from exactinv.invariance.gamma_batch import IntegerData, fits_doubles
 from exactinv.lp.solver import LPPath
-from exactinv.paper import gamma_batch, gamma_dense, gamma_star
-from exactinv.paper.gamma_batch import IntegerData, fits_doubles
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 from largest import polygon  # noqa: E402

@@ -74,7 +74,7 @@ def test_a_negative_tie_radius_is_rejected():
 # (a root of T).  The Q = 1 tail bound proves c_j(0) > 0 for j >= 2, and recompute(..., K = 0) proves nothing
 # about j < 2 (first_end >= 0 always holds), then the branch sets rho_attained = True unconditionally (the
 # attained flag that recompute derives for rho = 0 is discarded).  Truth: c_1(0) = -99/100 < 0, so kappa = 0
-# is not admissible: rho = 0 NOT attained.  The engine (exactinv/paper/monotonicity_tail.py) writes exactly this
+# is not admissible: rho = 0 NOT attained.  The engine (exactinv/monotonicity/tail.py) writes exactly this
 # false certificate, and the kernel REJECTS the true claim {value 0, reason tie, attained false}.
 # Fix: in the 'tie' branch take attained from recompute (all c_j(0) >= 0 for j < count when kappa* = 0), or
 # refuse kappa* = 0 ties (use the rho = 0 reasons / coefficient route there).

@@ -1,4 +1,4 @@
-"""Complex poles with exactly p*'s real part (exactinv/paper/line_poles.py, issue 22 item 4 / the gap it left):
+"""Complex poles with exactly p*'s real part (exactinv/monotonicity/line_poles.py, issue 22 item 4 / the gap it left):
 proved on the line exactly, then decided; every certificate re-proved by the kernel, every radius checked
 against the slow exact reference (c_j at rationals, many j: tests/radius_reference.py)."""
 
@@ -13,8 +13,8 @@ from radius_reference import admissible, coefficients_at, from_partial_fractions
 import exactinv as ei
 from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.core.scalars import INF
-from exactinv.paper.line_poles import line_density, line_gcd, single_pair
-from exactinv.paper.monotonicity import absolute_monotonicity_radius
+from exactinv.monotonicity.line_poles import line_density, line_gcd, single_pair
+from exactinv.monotonicity.radius import absolute_monotonicity_radius
 from exactinv_check import check
 
 BOTH = [F(1), F(-2), F(3, 2), F(-1, 2)]  # (1 - z)(1 - z + z^2/2): poles 1, 1 +- i
@@ -197,9 +197,9 @@ def test_a_negative_slowest_decaying_term_gives_a_finite_rho_with_a_witness():
 def test_the_slowest_decaying_pair_off_the_line_is_undecided_for_f_and_says_why():
     """Line pair balanced, and the slowest poles off the line a non-real pair 2 +- i: f's sign at B's zeros is R's,
     which oscillates -- not decided; the density verdict names the case."""
-    from exactinv.paper.bernstein import density_nonnegative
-    from exactinv.paper.monotonicity_tail import _with_line_poles
-    from exactinv.paper.poles import precision
+    from exactinv.monotonicity.bernstein import density_nonnegative
+    from exactinv.monotonicity.poles import precision
+    from exactinv.monotonicity.tail import _with_line_poles
     terms = [((F(1), F(0)), (F(1), F(0))), ((F(1), F(2)), (F(1, 2), F(0))), ((F(1), F(-2)), (F(1, 2), F(0))),
              ((F(2), F(1)), (F(1), F(0))), ((F(2), F(-1)), (F(1), F(0)))]
     g, h = from_partial_fractions(terms)

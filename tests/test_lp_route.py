@@ -1,4 +1,4 @@
-"""The LP route (exactinv/beyond/lp_route.py): exact valid sets from parametric LPs, one basis per
+"""The LP route (exactinv/validset/lp_route.py): exact valid sets from parametric LPs, one basis per
 piece of [0, oo) and facet, no vertex list; the same set as the vertex and box routes, end by end
 and flag by flag, and the same as an independent exact LP (PPL's MIP solver) at rational steps
 just inside and outside every end."""
@@ -14,12 +14,12 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 import exactinv_check
-from exactinv.beyond.conditions import ConditionSet
-from exactinv.beyond.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
+from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity
 from exactinv.errors import InvalidInput
 from exactinv.validset.lp import LP_ABOVE
+from exactinv.validset.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
 
 M = ei.methods
 F = Fraction

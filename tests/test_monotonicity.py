@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
+from exactinv.monotonicity.radius import absolute_monotonicity_radius, taylor_coefficient_polynomials
 
 
 @pytest.mark.parametrize("method, expected", [

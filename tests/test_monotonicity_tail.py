@@ -1,4 +1,4 @@
-"""The radius of absolute monotonicity of rational methods with poles (exactinv.paper.monotonicity_tail):
+"""The radius of absolute monotonicity of rational methods with poles (exactinv.monotonicity.tail):
 Pringsheim's witness, the infinite-radius certificates, the tail argument, Undecided when nothing decides."""
 
 import pytest
@@ -6,7 +6,7 @@ import sympy
 
 import exactinv as ei
 from exactinv import methods as M
-from exactinv.paper.monotonicity import absolute_monotonicity_radius
+from exactinv.monotonicity.radius import absolute_monotonicity_radius
 
 
 def test_zero_radius_has_a_witness():

@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 from exactinv.core.roots import first_sign_change
-from exactinv.paper.bisection import paper_bisection, paper_bisection_float, paper_bound
+from exactinv.thresholds.bisection import paper_bisection, paper_bisection_float, paper_bound
 
 
 def test_erratum_e3_printed_algorithm_returns_infinity_for_1_minus_t():
@@ -26,7 +26,7 @@ def test_erratum_e3_repaired_bound():
 
 def test_taylor_f_p_minus_1_is_1_minus_t_up_to_scaling():
     """f_{p-1} of a Taylor method at gamma = 1 is dt^(p-1)/(p-1)! (1 - dt): the E3 trigger."""
-    from exactinv.paper.polynomial import f_i
+    from exactinv.thresholds.polynomial import f_i
 
     for p in range(2, 6):
         f = f_i(ei.methods.taylor(p).sigmas, Fraction(1), p - 1)

@@ -35,7 +35,7 @@ def _never_decided(method):
 def test_an_undecided_radius_leaves_everything_else_certified(tmp_path, capsys, monkeypatch):
     """Backward Euler on erratum E2's orthant with the radius forced Undecided: gamma*, forward
     Euler, the exact valid set [0, 1) and the largest threshold 1 (not attained) are certified."""
-    monkeypatch.setattr("exactinv.paper.rational.absolute_monotonicity_radius", _never_decided)
+    monkeypatch.setattr("exactinv.thresholds.rational.absolute_monotonicity_radius", _never_decided)
     cert = tmp_path / "cert.json"
     code, out = _certify_cli(E2, cert, capsys)
     assert code == 3 and cert.exists()
@@ -106,7 +106,7 @@ def test_a_batch_records_the_partial_answer(monkeypatch):
     from exactinv.interfaces.batch.corpus import Task
     from exactinv.interfaces.batch.task import Limits, run_task
 
-    monkeypatch.setattr("exactinv.paper.rational.absolute_monotonicity_radius", _never_decided)
+    monkeypatch.setattr("exactinv.thresholds.rational.absolute_monotonicity_radius", _never_decided)
     r = run_task(Task("e2", "certify", text=E2.read_text()), Limits(timeout=120))
     assert r["status"] == "undecided" and list(r["undecided"]) == ["paper's threshold for backward_euler"]
     assert r["outcome"] == "undecided"

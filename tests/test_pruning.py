@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from pruning_helpers import fractions_of
 
 import exactinv as ei
-import exactinv.beyond.pruning as engine_pruning
-from exactinv.beyond.conditions import ConditionSet, Kind
+import exactinv.conditions.pruning as engine_pruning
+from exactinv.conditions.polyhedron import ConditionSet, Kind
 from exactinv_check import check, pruning
 from exactinv_check.conditions import method_matrices
 

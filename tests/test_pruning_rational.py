@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 from pruning_helpers import fractions_of
 
 import exactinv as ei
-import exactinv.beyond.pruning as engine_pruning
-from exactinv.beyond import pruning_rational as engine_rational
-from exactinv.beyond.conditions import ConditionSet
+import exactinv.conditions.pruning as engine_pruning
+from exactinv.conditions import pruning_rational as engine_rational
+from exactinv.conditions.polyhedron import ConditionSet
 from exactinv_check import check
 from exactinv_check import pruning_rational as kernel_rational
 from exactinv_check.conditions import method_matrices

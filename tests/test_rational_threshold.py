@@ -9,7 +9,7 @@ from strategies import metzler_cones as cones
 import exactinv as ei
 from exactinv import methods as M
 from exactinv.core.flintq import fmpq_matrix
-from exactinv.paper.rational import rational_threshold, spectral_abscissa
+from exactinv.thresholds.rational import rational_threshold, spectral_abscissa
 
 E2_SYSTEM = ei.LinearSystem([[-1, 2], [0, 1]])
 ORTHANT = ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])

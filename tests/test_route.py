@@ -231,7 +231,7 @@ def test_a_forced_route_that_does_not_accept_is_refused_by_name(monkeypatch):
     assert ei.valid_steplengths(S, orthant, M.taylor(1), route="lp").intervals == \
         ei.valid_steplengths(S, orthant, M.taylor(1), route="vertex").intervals
     import exactinv.validset.lp as lp_module
-    from exactinv.beyond.lp_route import LPRouteDeclined
+    from exactinv.validset.lp_route import LPRouteDeclined
 
     def declines(cs):
         raise LPRouteDeclined("a point no piece decides")

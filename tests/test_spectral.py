@@ -21,8 +21,8 @@ from exactinv import methods as M
 from exactinv.core.algebraic import ExactKey
 from exactinv.core.roots import real_roots
 from exactinv.core.sparse import SparseRows
-from exactinv.paper import rational
-from exactinv.paper.spectral import (
+from exactinv.thresholds import rational
+from exactinv.thresholds.spectral import (
     abscissa_is_nonpositive,
     collatz_wielandt_upper,
     components,

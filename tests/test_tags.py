@@ -11,7 +11,7 @@ from exactinv.core.tags import BisectionStep, CounterexampleKind
 from exactinv.lp.hint import LPStatus
 from exactinv.lp.solver import LPPath
 from exactinv.model.record import certificate
-from exactinv.paper.bisection import paper_bisection
+from exactinv.thresholds.bisection import paper_bisection
 from exactinv_check.format import ClaimType, RadiusReason
 
 

@@ -21,13 +21,13 @@ from exactinv_check.format import ClaimType
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.scalars import INF, Infinity, Matrix, to_matrix
 from ..errors import ExactinvError, InvalidInput, NotInvariant, VerificationFailed
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..lp import INFEASIBLE, OPTIMAL, solve_lp
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method, check_polyhedron
-from ..paper.forward_euler import ForwardEulerThreshold
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.polynomial import SteplengthThreshold
-from ..paper.threshold import steplength_threshold
+from ..thresholds.forward_euler import ForwardEulerThreshold
+from ..thresholds.polynomial import SteplengthThreshold
+from ..thresholds.steplength import steplength_threshold
 from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 from ..validset.results import LargestThreshold, ValidSteplengths
 from .gain_lp import GainLP, gain_lp

@@ -37,12 +37,12 @@ from ..core.results import ExactValueMixin
 from ..core.scalars import INF, Infinity, Matrix
 from ..core.sparse import SparseRows
 from ..errors import InvalidInput, NotInvariant, Undecided
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import method_record
 from ..model.validate import check_method, check_pair
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
-from ..paper.rational import smallest_positive_pole
+from ..monotonicity.radius import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
+from ..thresholds.rational import smallest_positive_pole
 from ..validset.engine import valid_steplengths
 
 __all__ = ["RobustThreshold", "robust_threshold", "abscissa_bound"]

@@ -14,7 +14,7 @@ from ..core.algebraic import Real
 from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity
 from ..model import LinearSystem, Polyhedron
-from ..paper.threshold import steplength_threshold
+from ..thresholds.steplength import steplength_threshold
 from ..validset.engine import largest_threshold
 
 __all__ = ["ThresholdComparison", "compare_thresholds"]

@@ -15,20 +15,20 @@ from abc import ABC, abstractmethod
 from fractions import Fraction
 from typing import Any
 
-from ..beyond.conditions import ConditionSet
-from ..beyond.ellipsoid_eigenvalue import generalised_eigenvalue_step
-from ..beyond.ellipsoid_invariance import (
+from ..conditions.polyhedron import ConditionSet
+from ..core.scalars import INF, Infinity
+from ..errors import InvalidInput, VerificationFailed
+from ..invariance import polyhedra as paper_invariance
+from ..invariance.ellipsoids import (
     check_ellipsoid_pair,
     ellipsoid_continuous_invariance,
     ellipsoid_discrete_invariance,
 )
-from ..core.scalars import INF, Infinity
-from ..errors import InvalidInput, VerificationFailed
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..model import Ellipsoid
 from ..model.validate import check_method
-from ..paper import invariance as paper_invariance
-from ..paper.forward_euler import ForwardEulerThreshold
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
+from ..thresholds.ellipsoid_forward_euler import generalised_eigenvalue_step
+from ..thresholds.forward_euler import ForwardEulerThreshold
 from .results import EllipsoidForwardEulerThreshold
 
 __all__ = ["SetFamily", "POLYHEDRA", "ELLIPSOIDS", "family_of"]
@@ -98,7 +98,7 @@ class Polyhedra(SetFamily):
         >>> import exactinv as ei
         >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
         >>> POLYHEDRA.checked(S, P, ei.methods.taylor(2), None)[3]
-        <exactinv.beyond.conditions.ConditionSet object at ...>
+        <exactinv.conditions.polyhedron.ConditionSet object at ...>
         """
         if conditions is None:
             cs = ConditionSet(system, invariant_set, method)  # checks the three arguments
@@ -193,7 +193,7 @@ class Ellipsoids(SetFamily):
         return ellipsoid_discrete_invariance(Ad, invariant_set, method, dt, allow_float=allow_float)
 
     def forward_euler(self, system, invariant_set, by_valid_set, gamma: Any = None) -> EllipsoidForwardEulerThreshold:
-        """The generalised eigenvalue (:mod:`exactinv.beyond.ellipsoid_eigenvalue`) against the valid set.
+        """The generalised eigenvalue (:mod:`exactinv.thresholds.ellipsoid_forward_euler`) against the valid set.
 
         >>> import exactinv as ei
         >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])

@@ -5,7 +5,7 @@ gamma* = min{gamma : H + gamma I >= 0, HG = GA, Hb <= 0}, answered row by row
 :mod:`exactinv.lp` for the rest): row j of H is the optimal dual of
 the LP max{g_j^T A x : x in P, g_j^T x = b_j}.  Every returned H has been
 re-checked in Q; when continuous invariance fails the result carries an exact
-:class:`~exactinv.paper.witness.FacetWitness` instead.
+:class:`~exactinv.invariance.witness.FacetWitness` instead.
 """
 
 from __future__ import annotations
@@ -204,8 +204,8 @@ def optimal_gamma(system: LinearSystem, polyhedron: Polyhedron) -> OptimalGamma:
     gamma* = max_j ( -max{h_j : h^T G = g_j^T A, h^T b <= 0, h_k >= 0 (k != j)} ).
     The m row LPs share their constraint matrix [G^T; b^T]: for a sparse G
     they are solved in float as ONE block-diagonal LP
-    (:mod:`~exactinv.paper.gamma_batch`), otherwise by one HiGHS model
-    warm-started from row to row (:mod:`~exactinv.paper.gamma_dense`); either
+    (:mod:`~exactinv.invariance.gamma_batch`), otherwise by one HiGHS model
+    warm-started from row to row (:mod:`~exactinv.invariance.gamma_dense`); either
     way all rows are then proved optimal in one exact integer check.  Rows
     that check fails, other hint backends, and infeasible or unbounded rows go
     through the general engine (:mod:`exactinv.lp`).  Exact: every row value

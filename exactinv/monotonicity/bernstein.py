@@ -204,7 +204,7 @@ def completely_monotone(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
     (1 + z)/(1 - z)^2 has f(t) = (2t - 1) e^(-t) < 0 near 0 (a witness c_j(K) < 0 bounds rho).
 
     >>> from fractions import Fraction as F
-    >>> from exactinv.paper.poles import pole_structure, precision
+    >>> from exactinv.monotonicity.poles import pole_structure, precision
     >>> g, h = [F(1), F(-1)], [F(1), F(-8), F(24), F(-32), F(16)]
     >>> with precision(256):
     ...     completely_monotone(g, h, pole_structure(g, h, F(1, 2))).infinite
@@ -243,7 +243,7 @@ def density_nonnegative(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
     The trapezoid -1 + 4/(2 - z): f(t) = 4 e^(-2t) >= 0 (its c = -1 < 0 does not matter here).
 
     >>> from fractions import Fraction as F
-    >>> from exactinv.paper.poles import pole_structure, precision
+    >>> from exactinv.monotonicity.poles import pole_structure, precision
     >>> g, h = [F(1), F(1, 2)], [F(1), F(-1, 2)]
     >>> with precision(256):
     ...     density_nonnegative(g, h, pole_structure(g, h, F(2))).infinite
@@ -263,7 +263,7 @@ def density_nonnegative(g: list, h: list, s: PoleStructure, bits: int = 256, p_s
 
 def _line_verdict(g, h, p_star: Fraction, s: PoleStructure) -> Verdict | None:
     """Every pole on the line Re z = p* (p* rational): the exact trigonometric density (rational heights) or
-    the closed form of one pair (exactinv.paper.line_poles); None when neither applies."""
+    the closed form of one pair (exactinv.monotonicity.line_poles); None when neither applies."""
     line = line_density(g, h, p_star)
     if line is not None:
         Q, L, _ = line
@@ -426,7 +426,7 @@ def _line_outweighs(s: PoleStructure) -> bool:
 
 def _balanced_far(g, h, s: PoleStructure, p_star):
     """The far piece when the line poles balance p* (e^(p* t) f = B + R, B the part of p* and the line poles):
-    B >= 0 exactly (:func:`exactinv.paper.line_poles.line_part`) and R dominated by its slowest-decaying pole q,
+    B >= 0 exactly (:func:`exactinv.monotonicity.line_poles.line_part`) and R dominated by its slowest-decaying pole q,
     real with b_(q,M) > 0 -- a function T -> bool proving f > 0 on [T, oo); or a Verdict: f >= 0 (no pole off the
     line), f < 0 somewhere (B negative somewhere, or b_(q,M) < 0 with B touching 0: R < 0 at B's zeros for
     large t), or not decided (the case named)."""

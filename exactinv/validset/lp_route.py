@@ -6,7 +6,7 @@ N(h) = D(h) r(hA) = sum_k h^k N_k (D = 1 for polynomial methods) let
 c_i(h) = N(h)^T g_i and, for a basis B (n rows of G, nonsingular, its vertex
 x_B = B^-1 b_B in P), z_B(h) = D(h) B^-T c_i(h), a vector of polynomials.
 Where z_B(h) >= 0 and D(h) != 0, weak duality gives, for every x in P,
-g_i A_d(h) x <= g_i A_d(h) x_B (module :mod:`exactinv.beyond.lp_route`'s
+g_i A_d(h) x <= g_i A_d(h) x_B (module :mod:`exactinv.validset.lp_route`'s
 design section proves it; the sign of D is folded into z_B).  So the route
 splits [0, oo) for each facet into closed pieces [t_k, t_k+1], each with a basis
 whose z_B is >= 0 on it; the condition of the piece is the vertex-facet
@@ -17,7 +17,7 @@ condition of x_B and facet i,
 and the valid set is exactly {h >= 0 : D(h) != 0, every p_ik(h) >= 0} --
 each p_ik is necessary (x_B is a point of P), and together they suffice (h lies
 in some piece of every facet, where x_B is a maximizer).  These are ordinary
-:class:`~exactinv.beyond.conditions.Condition` objects, so the valid set,
+:class:`~exactinv.conditions.polyhedron.Condition` objects, so the valid set,
 the largest threshold and their certificates go through the same exact
 interval code as the vertex route: the result is identical, end by end and
 flag by flag.
@@ -63,6 +63,7 @@ from fractions import Fraction
 import flint
 import numpy as np
 
+from ..conditions.polyhedron import Condition, ConditionSet, Kind, never_binds
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real, vec
 from ..core.flintq import fmpq_of, fraction_of
@@ -82,7 +83,6 @@ from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
-from .conditions import Condition, ConditionSet, Kind, never_binds
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 

@@ -4,9 +4,9 @@ polynomial theorems (:mod:`.polynomial`) or the rational one (:mod:`.rational`).
 from __future__ import annotations
 
 from ..errors import NotInvariant
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.validate import check_method
-from .gamma_star import OptimalGamma, optimal_gamma
 from .polynomial import SteplengthThreshold, polynomial_threshold
 from .rational import rational_threshold
 
@@ -32,7 +32,7 @@ def steplength_threshold(system: LinearSystem, polyhedron: Polyhedron, method: M
 
 def steplength_threshold_from_gamma(method: Method, gamma: OptimalGamma) -> SteplengthThreshold:
     """:func:`steplength_threshold` with gamma* already solved by
-    :func:`~exactinv.paper.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims).
+    :func:`~exactinv.invariance.gamma_star.optimal_gamma` (exactinv.certify solves it once for all claims).
 
     >>> import exactinv as ei
     >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])

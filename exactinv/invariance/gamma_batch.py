@@ -1,6 +1,6 @@
 """gamma*'s m row LPs in one pass: one float solve, one exact integer check.
 
-Row LP j (see :mod:`~exactinv.paper.gamma_star`) is
+Row LP j (see :mod:`~exactinv.invariance.gamma_star`) is
 max h_j  s.t.  G^T h = A^T g_j,  b^T h <= 0,  h_k >= 0 (k != j),
 with dual  min (A^T g_j).y  s.t.  g_k.y + lam b_k >= 0 (k != j),
 g_j.y + lam b_j = 1,  lam >= 0.  When G is sparse (at most two nonzeros per

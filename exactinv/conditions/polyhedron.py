@@ -163,7 +163,7 @@ class ConditionSet:
 
     def cache(self, kind: type[_Cache]) -> _Cache:
         """The one instance of ``kind`` kept for this problem, created (``kind()``) on first use: a route's
-        typed cache, keyed by its class (the LP route's :class:`~exactinv.beyond.lp_route.LPRouteCache`).
+        typed cache, keyed by its class (the LP route's :class:`~exactinv.validset.lp_route.LPRouteCache`).
 
         >>> from exactinv.model import methods
         >>> cs = ConditionSet(LinearSystem([[-1]]), Polyhedron.box([-1], [1]), methods.forward_euler())

@@ -1,7 +1,7 @@
 """gamma*'s m row LPs for a dense G: warm-started float solves, exact basis
 solves, and one FLINT check of all rows with a denominator per row.
 
-Row LP j and its dual are those of :mod:`~exactinv.paper.gamma_batch`; so are
+Row LP j and its dual are those of :mod:`~exactinv.invariance.gamma_batch`; so are
 the three checks (primal, dual, equal objectives) that prove row j optimal.
 Here every row is solved in float by HiGHS (one model, warm-started from row
 to row), rounded to multiples of 1/5040 or else solved exactly on its optimal

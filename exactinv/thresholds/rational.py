@@ -38,9 +38,9 @@ from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity
 from ..core.sparse import SparseRows
+from ..invariance.gamma_star import OptimalGamma
 from ..model.methods import Method, matrix_polynomial
-from .gamma_star import OptimalGamma
-from .monotonicity import absolute_monotonicity_radius
+from ..monotonicity.radius import absolute_monotonicity_radius
 from .polynomial import SteplengthThreshold
 from .spectral import abscissa_is_nonpositive, collatz_wielandt_upper, spectral_abscissa
 
@@ -123,7 +123,7 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
     r(dt) = (1 + dt/2)/(1 - dt/2) has its pole at z_p/alpha(H) = 2 (erratum E2): tau = 2, not attained.
 
     >>> import exactinv as ei
-    >>> from exactinv.paper.gamma_star import optimal_gamma
+    >>> from exactinv.invariance.gamma_star import optimal_gamma
     >>> decay = optimal_gamma(ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1]))
     >>> t = rational_threshold(ei.methods.trapezoid(), decay)
     >>> t.value, t.attained
@@ -172,7 +172,7 @@ def rational_threshold(method: Method, gamma: OptimalGamma) -> SteplengthThresho
 
 class _NonPositive:
     """Whether alpha(H) <= 0 for every certificate H of gamma's problem (A has no positive real
-    eigenvalue and P is full-dimensional: :func:`~exactinv.paper.spectral.abscissa_is_nonpositive`),
+    eigenvalue and P is full-dimensional: :func:`~exactinv.thresholds.spectral.abscissa_is_nonpositive`),
     decided once, on first use."""
 
     def __init__(self, gamma: OptimalGamma):

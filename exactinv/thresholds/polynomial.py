@@ -31,10 +31,10 @@ from ..core.results import ExactValueMixin
 from ..core.roots import nonnegative_until
 from ..core.scalars import INF, Infinity
 from ..core.sparse import SparseRows
+from ..invariance.gamma_star import OptimalGamma
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from .gamma_star import OptimalGamma
-from .monotonicity import AbsoluteMonotonicityRadius
+from ..monotonicity.radius import AbsoluteMonotonicityRadius
 
 __all__ = ["FiRow", "SteplengthThreshold", "f_i", "f_i_symbolic", "polynomial_threshold"]
 

@@ -1,6 +1,6 @@
 """The radius of absolute monotonicity of a rational stability function with poles
 (paper, Section 3.2; the definition and the polynomial case:
-:mod:`exactinv.paper.monotonicity`).
+:mod:`exactinv.monotonicity.radius`).
 
 *Rational functions with poles*: infinitely many c_j matter.  With
 d_j(kappa) = c_j(kappa) h(-kappa)^(j+1), a polynomial with the sign of c_j,
@@ -15,7 +15,7 @@ the engine argues in four exact or certified steps:
 3. Dominance: another pole z_k = a + ib (a < p*) is as close to -kappa as p* at
    kappa_k = (|z_k|^2 - p*^2)/(2(p* - a)) and closer beyond it, which again
    violates Pringsheim, so rho <= kappa_A = min_k kappa_k.  kappa_A is exact:
-   a root of the tie polynomial (:mod:`exactinv.paper.poles`), an algebraic
+   a root of the tie polynomial (:mod:`exactinv.monotonicity.poles`), an algebraic
    condition isolated among that polynomial's real roots.
 4. The tail: on [0, K] with K < kappa_A an explicit index N (Arb ball bounds
    on the partial fraction expansion) bounds where c_j, j >= N, is positive.
@@ -31,7 +31,7 @@ the engine argues in four exact or certified steps:
 
 6. No tie (every other pole has Re z > p*, so no tail index is uniform in
    kappa): rho = oo iff r(-x) is completely monotone (Bernstein's theorem,
-   :mod:`exactinv.paper.bernstein`, reason ``"bernstein"``); when f >= 0 but
+   :mod:`exactinv.monotonicity.bernstein`, reason ``"bernstein"``); when f >= 0 but
    c = lim r < 0, every c_j with j >= 1 is >= 0 for every kappa and c_0 =
    r(-kappa) decreases, so rho is the one positive root of g(-kappa) (reason
    ``"bernstein-root"``, no tail: the trapezoid); otherwise an exact witness
@@ -39,9 +39,9 @@ the engine argues in four exact or certified steps:
 7. An exactly balanced tie of two simple real poles (|b_a| = b_*, e.g.
    1/(1 - 2z/3 - z^2/4)): the closed form c_j = b_* w*^-(j+1) + b_a w_a^-(j+1)
    is >= 0 on [0, kappa*] (reason ``"balanced-tie"``); of several simple Gaussian-rational poles:
-   :mod:`exactinv.paper.balanced_tie` (the poles go into the claim).
+   :mod:`exactinv.monotonicity.balanced_tie` (the poles go into the claim).
 8. Non-real poles with exactly p*'s real part (p* rational) are proved on the line
-   (:mod:`exactinv.paper.line_poles`) and never tie; Bernstein then decides.
+   (:mod:`exactinv.monotonicity.line_poles`) and never tie; Bernstein then decides.
 
 Undecided (documented, never a guess; docs/design.md): (a) an exact balance
 with more poles, or (b) tied poles that outweigh p* with no c_j, j < 600,
@@ -49,8 +49,8 @@ negative below kappa_A -- the positivity problem of linear recurrences with
 several dominant characteristic roots, open in general; (c) f touching 0 with
 exponents not all rational -- the continuous positivity problem, open in
 general; (d) a non-real pole with exactly p*'s real part when p* is irrational (proved on the line for p*
-rational: :mod:`exactinv.paper.line_poles`); an exact balance of several poles that are not all Gaussian
-rationals (:mod:`exactinv.paper.balanced_tie` decides the rest).
+rational: :mod:`exactinv.monotonicity.line_poles`); an exact balance of several poles that are not all Gaussian
+rationals (:mod:`exactinv.monotonicity.balanced_tie` decides the rest).
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 """
@@ -75,8 +75,8 @@ from ..model.methods import Method
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
 from .line_poles import on_line_indices
-from .monotonicity_radius import AbsoluteMonotonicityRadius
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
+from .result import AbsoluteMonotonicityRadius
 
 _WITNESS_SCAN = 4000  # series terms scanned for a negative c_j(0)
 _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* loses the tie
@@ -122,7 +122,7 @@ def _sign_at_real(p: flint.fmpq_poly, alpha) -> int:
 
 
 def coefficient_polynomials(method: Method):
-    """d_0, d_1, ... incrementally (:func:`exactinv.paper.monotonicity.taylor_coefficient_polynomials`
+    """d_0, d_1, ... incrementally (:func:`exactinv.monotonicity.radius.taylor_coefficient_polynomials`
     lists the first ones): with G, H the coefficients of g(w - kappa), h(w - kappa) in w
     (polynomials in kappa), d_j = G_j H_0^j - sum_{i=1}^{min(j, deg h)} H_i d_{j-i} H_0^(i-1):
     the coefficients of w^j in g(w - kappa) = r(w - kappa) h(w - kappa), with the c_j of
@@ -203,7 +203,7 @@ def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
 
 def _with_line_poles(method: Method, p_star) -> PoleStructure:
     """The pole structure, with every non-real pole whose real part Arb cannot separate from p*'s proved to be
-    p* + iy exactly (exactinv.paper.line_poles); the precision is raised (to 4096 bits) for a pole that is not
+    p* + iy exactly (exactinv.monotonicity.line_poles); the precision is raised (to 4096 bits) for a pole that is not
     on the line.  Undecided for p* irrational with such a pole (the exact proof needs p* rational)."""
     bits = _BITS
     while True:
@@ -356,7 +356,7 @@ def _undecided_scan(method, tie, verdict=None) -> AbsoluteMonotonicityRadius:
 def _balanced_tie_kappa(method: Method) -> tuple[Fraction | None, tuple]:
     """(kappa*, ()) when r has exactly two simple poles p* > 0 > a, |a| > p*, whose residues balance
     exactly, |b_a| = b_* (exactinv_check.tie.balanced_tie has the proof); (kappa*, poles) for a balanced tie of
-    several Gaussian-rational simple poles (:mod:`exactinv.paper.balanced_tie`, the poles listed in the
+    several Gaussian-rational simple poles (:mod:`exactinv.monotonicity.balanced_tie`, the poles listed in the
     certificate); else (None, ()).  With s = sqrt(D) the two poles are (-h1 +- s)/(2 h2), g there is
     G0 +- G1 s, h' = +-s, and |b_+| = |b_-| iff G0 = 0 or G1 = 0."""
     h, g = method.denominator, method.numerator

@@ -1,4 +1,4 @@
-"""Invariance of a polyhedron (paper, Section 2); gamma* is in :mod:`exactinv.paper.gamma_star`.
+"""Invariance of a polyhedron (paper, Section 2); gamma* is in :mod:`exactinv.invariance.gamma_star`.
 
 * Continuous invariance: P = {x : Gx <= b} is invariant for x' = Ax iff there
   is H with nonnegative off-diagonal entries, HG = GA and Hb <= 0.

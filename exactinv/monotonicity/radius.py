@@ -13,8 +13,8 @@ kappa and rho = min_j (end of the first interval where c_j >= 0), exactly.
 
 *Rational functions with poles*: infinitely many c_j matter; the argument
 (Pringsheim, the principal part's sign, dominance, the certified tail, the
-tie) is :mod:`exactinv.paper.monotonicity_tail`.  The result and its
-certificate claim: :mod:`exactinv.paper.monotonicity_radius`.
+tie) is :mod:`exactinv.monotonicity.tail`.  The result and its
+certificate claim: :mod:`exactinv.monotonicity.result`.
 
 The value is exact (Fraction, RealAlgebraic, 0 or INF) and the result
 records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
@@ -34,8 +34,8 @@ from ..core.roots import nonnegative_until
 from ..core.scalars import INF
 from ..model.methods import Method
 from ..model.validate import check_method
-from .monotonicity_radius import AbsoluteMonotonicityRadius
-from .monotonicity_tail import coefficient_polynomials, rational_radius
+from .result import AbsoluteMonotonicityRadius
+from .tail import coefficient_polynomials, rational_radius
 
 __all__ = ["AbsoluteMonotonicityRadius", "absolute_monotonicity_radius", "taylor_coefficient_polynomials"]
 

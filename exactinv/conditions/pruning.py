@@ -58,7 +58,7 @@ from ..core.intervals import IntervalUnion
 from ..core.nonnegative import earliest_first, nonnegative_set
 from ..core.nonnegative import first_end as earliest_end
 from ..core.scalars import Infinity
-from .conditions import Kind
+from .polyhedron import Kind
 
 __all__ = ["Pruning", "nodes", "piece", "surviving_pairs", "pieces_test", "coarse_above", "vertex_order",
            "bounding_horizon", "prune", "build_survivors"]
@@ -332,7 +332,7 @@ def bounding_horizon(cs, first_end: bool) -> tuple[Fraction | None, list, list, 
     skipped when proved positive up to the bound so far (:mod:`..core.nonnegative`).
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
     >>> T, _, _, vertex_zero = bounding_horizon(cs, False)
     >>> T, vertex_zero
@@ -369,7 +369,7 @@ def prune(cs, T: Fraction, first: list, seconds: list) -> tuple[list, list, Prun
     the surviving vertex-facet pairs, every ray pair (inequalities) and line pair.
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
     >>> T, first, seconds, _ = bounding_horizon(cs, False)
     >>> prune(cs, Fraction(1, 2), first, seconds)[2].survivors   # vertex 0's two pairs, vertex 1's own facet
@@ -389,7 +389,7 @@ def build_survivors(cs, facets: np.ndarray, vertices: np.ndarray, first: list, s
     :data:`WORTHWHILE` of the pairs survive, every pair is built instead (not applied).
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
     >>> first = cs.pairs(Kind.VERTEX, [(0, 0), (0, 1)])
     >>> build_survivors(cs, np.array([1]), np.array([1]), first, (), Pruning(Fraction(1), 0, 0, 0, ()))[2].survivors

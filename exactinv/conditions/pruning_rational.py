@@ -49,7 +49,7 @@ from ..core.flintq import fmpq_of, fraction_of
 from ..core.float_hint import log2_hint
 from ..core.intervals import IntervalUnion
 from ..core.roots import positive_roots
-from .conditions import Kind
+from .polyhedron import Kind
 from .pruning import Pruning, bounding_horizon, build_survivors, coarse_above, pieces_test, vertex_order
 
 _BITS = 28  # piece ends are rounded to multiples of 2^-_BITS (after normalisation to size ~1)
@@ -167,7 +167,7 @@ def rational_survivors(cs, s: Fraction, U: Fraction, count: int):
     cannot prune (every other pair has q > 0 on [0, sU/(1 - U)]).
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 2]), ei.methods.backward_euler())
     >>> f, v = rational_survivors(cs, Fraction(1), Fraction(1), 4)   # x -> x/(1 + h): never the far facet
     >>> cs.polyhedron.vertices, sorted(zip(v.tolist(), f.tolist()))  # only each vertex on its own facet
@@ -193,7 +193,7 @@ def rational_horizon(cs, first_end: bool) -> tuple[Fraction, Fraction, list, lis
     in (0, sU/(1 - U)] (then c = qD can change sign without q: nothing is pruned).
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.backward_euler())
     >>> rational_horizon(cs, False)[:2]                 # D = 1 + h; the valid set is [0, oo): U = 1
     (Fraction(1, 1), Fraction(1, 1))
@@ -212,7 +212,7 @@ def prune_rational(cs, first_end: bool):
     pruned in u = h/(s + h), or None when D vanishes in the range (then every pair is built by the caller).
 
     >>> import exactinv as ei
-    >>> from exactinv.beyond.conditions import ConditionSet
+    >>> from exactinv.conditions.polyhedron import ConditionSet
     >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 2]), ei.methods.backward_euler())
     >>> inequalities, equalities, record, _ = prune_rational(cs, False)
     >>> record.record()["variable"], record.survivors, inequalities   # 2 of 4 pairs built, none binds

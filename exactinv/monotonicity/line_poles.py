@@ -6,7 +6,7 @@ enclosure cannot tell Re z = p* from Re z < p* (a tie at a huge kappa).  The pro
 h(p* + iy) = U(y) + i V(y) (U, V in Q[y]), the real roots y of G = gcd(U, V) are exactly the poles
 p* + iy on the line; a root y of G in a pole's Arb box proves that pole to be p* + iy.
 
-Then (:mod:`exactinv.paper.bernstein`, no tie: rho = oo iff f(t) = sum b t^(m-1) e^(-z t)/(m-1)! >= 0):
+Then (:mod:`exactinv.monotonicity.bernstein`, no tie: rho = oo iff f(t) = sum b t^(m-1) e^(-z t)/(m-1)! >= 0):
 * p* dominates strictly (line poles of multiplicity < mu, or = mu with sum |b| < b_*): the dominance bound
   with |e^(-(z - p*) t)| = 1;
 * every pole on the line, simple, rational heights y_k = n_k/L: f(t) = e^(-p* t) T(t/L) with
@@ -61,7 +61,7 @@ def on_line_indices(h: flint.fmpq_poly, p: Fraction, balls, candidates) -> froze
     be p + iy, y != 0 real: a real root y != 0 of :func:`line_gcd` lies in the box's imaginary part (refined
     until it does or is outside) and p in its real part.
 
-    >>> from exactinv.paper.poles import pole_structure, precision, ambiguous_line_poles
+    >>> from exactinv.monotonicity.poles import pole_structure, precision, ambiguous_line_poles
     >>> from fractions import Fraction as F
     >>> h = [F(1), F(-2), F(3, 2), F(-1, 2)]                     # poles 1, 1 +- i
     >>> with precision(256):
@@ -225,7 +225,7 @@ def line_part(g: list, h: list, p: Fraction) -> LinePart | None:
     """B >= 0 decided exactly for p* = p rational and simple with simple line poles (G = gcd(U, V) of h itself
     squarefree, G(0) = 0): one pair (G = y^3 - Y y: B >= 0 iff b_* >= 0 and b_*^2 >= 4|b|^2, rational), or every
     line pole at a rational height (the density polynomial Q >= 0 on R, Sturm).  None for any other line part.
-    The other poles of h may be anywhere (their part R is the caller's: exactinv.paper.bernstein).
+    The other poles of h may be anywhere (their part R is the caller's: exactinv.monotonicity.bernstein).
 
     1/((1 - z)(1 - z + z^2/2)(1 - z/3)): poles 1, 1 +- i and 3 off the line; B = b_* + 2 Re(b e^(-it)):
 

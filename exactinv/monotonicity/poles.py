@@ -70,7 +70,7 @@ class PoleStructure:
     balls: tuple
     star: int
     mu: int
-    on_line: frozenset = frozenset()  # poles proved to be p* + iy, y != 0 (exactinv.paper.line_poles)
+    on_line: frozenset = frozenset()  # poles proved to be p* + iy, y != 0 (exactinv.monotonicity.line_poles)
 
 
 def _acb(q: Fraction) -> flint.acb:
@@ -233,7 +233,7 @@ def dominance_tie(s: PoleStructure, h: flint.fmpq_poly, exact: bool = True) -> T
     cluster = [v for v in values if not v[1].lower() > lowest[1].upper()]
     if not all(exact for _, _, exact in cluster):
         raise Undecided("a non-real pole's real part is not separated from p*'s, and it is not proved to equal it "
-                        "(exactinv.paper.line_poles)")
+                        "(exactinv.monotonicity.line_poles)")
     lo = min(dyadic_of(v[1].lower()) for v in cluster)
     hi = max(dyadic_of(v[1].upper()) for v in cluster)
     if any(not v[1].lower() > flint.arb(fmpq_of(hi)) for v in values if v not in cluster):

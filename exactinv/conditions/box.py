@@ -49,7 +49,7 @@ from ..core.flintq import fmpq_of
 from ..core.polys import integer_part, sign_variations
 from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
-from .conditions import Condition, ConditionSet, Kind, never_binds
+from .polyhedron import Condition, ConditionSet, Kind, never_binds
 
 __all__ = ["Box", "BoxRoute", "detect_box", "box_route", "vertex_index"]
 

@@ -13,9 +13,9 @@ from ..core.algebraic import Real
 from ..core.encode import encode_real
 from ..core.latex import latex_real
 from ..core.results import ExactValueMixin
+from ..invariance.gamma_star import OptimalGamma
 from ..model.record import certificate as make_certificate
 from ..model.record import generator_record
-from .gamma_star import OptimalGamma
 
 __all__ = ["ForwardEulerThreshold"]
 

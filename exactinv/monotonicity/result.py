@@ -1,6 +1,6 @@
 """The radius of absolute monotonicity as a result: rho(r) exactly, the argument
 that decides it, and its certificate claim (computed by
-:func:`exactinv.paper.monotonicity.absolute_monotonicity_radius`).
+:func:`exactinv.monotonicity.radius.absolute_monotonicity_radius`).
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         """rho and its reason in LaTeX (the trapezoid: rho = 2).
 
         >>> from exactinv.model import methods
-        >>> from exactinv.paper.monotonicity import absolute_monotonicity_radius
+        >>> from exactinv.monotonicity.radius import absolute_monotonicity_radius
         >>> print(absolute_monotonicity_radius(methods.trapezoid()).to_latex())
         \\rho = 2\\ (\\text{bernstein-root})
         """
@@ -72,7 +72,7 @@ class AbsoluteMonotonicityRadius(ExactValueMixin):
         Taylor(2): c_0 = 1 - k + k^2/2 > 0, c_1 = 1 - k >= 0 iff k <= 1, c_2 = 1/2: rho = 1 (binding j = 1).
 
         >>> from exactinv.model import methods
-        >>> from exactinv.paper.monotonicity import absolute_monotonicity_radius
+        >>> from exactinv.monotonicity.radius import absolute_monotonicity_radius
         >>> claim = absolute_monotonicity_radius(methods.taylor(2)).claims()[0]
         >>> claim["value"], claim["binding"], claim["d"]
         ('1', 1, [['1', '-1', '1/2'], ['1', '-1'], ['1/2']])
