@@ -34,6 +34,7 @@ from ..errors import InvalidInput
 from ..model import Ellipsoid, LinearSystem
 from ..model.ellipsoid import lyapunov_matrix
 from ..model.record import certificate as make_certificate
+from ..model.sets import expect_set
 from ..model.validate import discrete_map
 
 __all__ = ["QuadraticWitness", "EllipsoidInvariance", "ellipsoid_continuous_invariance",
@@ -140,8 +141,7 @@ def check_ellipsoid_pair(system: Any, ellipsoid: Any) -> tuple[LinearSystem, Ell
     """
     if not isinstance(system, LinearSystem):
         raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(system).__name__}")
-    if not isinstance(ellipsoid, Ellipsoid):
-        raise InvalidInput(f"ellipsoid: expected an exactinv.Ellipsoid, got {type(ellipsoid).__name__}")
+    expect_set(ellipsoid, "ellipsoid", "ellipsoid")
     if system.n != ellipsoid.n:
         raise InvalidInput(f"system/ellipsoid: A is {system.n}x{system.n} but Q is {ellipsoid.n}x{ellipsoid.n}")
     return system, ellipsoid
@@ -181,8 +181,7 @@ def ellipsoid_discrete_invariance(Ad: Any, ellipsoid: Ellipsoid, method: Any = N
     >>> ellipsoid_discrete_invariance([[0, 2], [0, 0]], E).witness
     QuadraticWitness(v=[0, 1], value=3, norm=1)
     """
-    if not isinstance(ellipsoid, Ellipsoid):
-        raise InvalidInput(f"ellipsoid: expected an exactinv.Ellipsoid, got {type(ellipsoid).__name__}")
+    expect_set(ellipsoid, "ellipsoid", "ellipsoid")
     if isinstance(Ad, LinearSystem):
         check_ellipsoid_pair(Ad, ellipsoid)
     Adm, origin = discrete_map(Ad, method, dt, ellipsoid.n, "E", allow_float)

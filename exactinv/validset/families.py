@@ -5,8 +5,9 @@ and is not a route: the exact continuous and discrete invariance tests, the
 check of the problem's arguments, and the second, independent derivation of
 the largest forward-Euler step that the engine's valid set must agree with
 (1/gamma* by Lemma 3.14 on a polyhedron; a generalised eigenvalue on an
-ellipsoid).  :func:`family_of` is the one place that looks at the type of
-the set; every other decision goes through a family or a route.
+ellipsoid).  :func:`family_of` is the one place that chooses by the type of
+the set (its ``family``: :func:`exactinv.model.sets.set_family`); every other
+decision goes through a family or a route.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from ..invariance.ellipsoids import (
     ellipsoid_discrete_invariance,
 )
 from ..invariance.gamma_star import OptimalGamma, optimal_gamma
-from ..model import Ellipsoid
+from ..model.sets import set_family
 from ..model.validate import check_method
 from ..thresholds.ellipsoid_forward_euler import generalised_eigenvalue_step
 from ..thresholds.forward_euler import ForwardEulerThreshold
@@ -222,4 +223,4 @@ def family_of(invariant_set: Any) -> SetFamily:
     >>> family_of(Ellipsoid([[1]])).name, family_of(Polyhedron.box([0], [1])).name
     ('ellipsoid', 'polyhedron')
     """
-    return ELLIPSOIDS if isinstance(invariant_set, Ellipsoid) else POLYHEDRA
+    return ELLIPSOIDS if set_family(invariant_set) == "ellipsoid" else POLYHEDRA
