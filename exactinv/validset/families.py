@@ -219,7 +219,7 @@ def family_of(invariant_set: Any) -> SetFamily:
     """The family of ``invariant_set``: ELLIPSOIDS for an :class:`~exactinv.Ellipsoid`, else POLYHEDRA
     (whose argument check then names what is wrong with anything that is not a Polyhedron).
 
-    >>> from exactinv.model import Polyhedron
+    >>> from exactinv.model import Ellipsoid, Polyhedron
     >>> family_of(Ellipsoid([[1]])).name, family_of(Polyhedron.box([0], [1])).name
     ('ellipsoid', 'polyhedron')
     """
