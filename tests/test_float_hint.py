@@ -76,10 +76,10 @@ def test_ldexp_hint_is_the_rounded_scaled_value(q, k):
 # or is listed here with its reason.
 ALLOWED_FLOAT_CALLS = {
     "model/ellipsoid.py": ["float(Xf[i][j])", "float(Xf[j][i])"],  # the SDP's float solution
-    "paper/monotonicity_tail.py": ["float(tie.kappa.mid())"],  # an Arb midpoint: inf, never raises
-    "paper/bisection.py": ["float(epsilon)"],  # the float algorithm's own tolerance (a float)
-    "paper/spectral.py": ["float(x)"],  # a numpy eigenvector entry
-    "paper/gamma_dense.py": ["float(np.abs(hint.x).max())"],  # a float LP point
+    "monotonicity/tail.py": ["float(tie.kappa.mid())"],  # an Arb midpoint: inf, never raises
+    "thresholds/bisection.py": ["float(epsilon)"],  # the float algorithm's own tolerance (a float)
+    "thresholds/spectral.py": ["float(x)"],  # a numpy eigenvector entry
+    "invariance/gamma_dense.py": ["float(np.abs(hint.x).max())"],  # a float LP point
     "interfaces/cli.py": ['float("inf")'],
     "interfaces/oracle_batch.py": ["float(text)"],  # the oracle reads float results
     "interfaces/display.py": ["float(v)"],  # only floats, RealAlgebraic and INF (both never raise)
@@ -91,7 +91,7 @@ ALLOWED_FLOAT_CALLS = {
     "core/scalars.py": ["float(INF)", "float(x)", "float(value)"],  # float input, refused or converted on request
     "core/real_algebraic.py": ["float()"],  # the docstring
     # Merged from main after the issue-22 audit (issues 23, 25); NOT yet audited here -- see the report:
-    "beyond/lp_route.py": ["float(lo)", "float(np.abs(c).max())", "float(span)", "float(v)"],
+    "validset/lp_route.py": ["float(lo)", "float(np.abs(c).max())", "float(span)", "float(v)"],
     "core/digits.py": ['float("inf")', "float(float_text(1e-300 / 3))", "float(text)"],
     "core/doubles.py": ["float(q)"],
     "core/results.py": ["float(lo)", "float(lower)", "float(x.lower)"],

@@ -1,5 +1,5 @@
-"""gamma*'s batched routes (paper/gamma_batch.py: one block-diagonal float LP
-for a sparse G; paper/gamma_dense.py: warm-started rows for a dense G), both
+"""gamma*'s batched routes (invariance/gamma_batch.py: one block-diagonal float LP
+for a sparse G; invariance/gamma_dense.py: warm-started rows for a dense G), both
 proving every row in one integer check, against the general engine row by
 row; forged rows are rejected by both checks."""
 

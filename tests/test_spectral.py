@@ -1,4 +1,4 @@
-"""alpha(H) only as far as erratum E2 needs it (issue 22, item 3): paper/spectral.py.
+"""alpha(H) only as far as erratum E2 needs it (issue 22, item 3): thresholds/spectral.py.
 
 The route against the old one (the largest real root of H's dense characteristic
 polynomial, always), the certified bounds as theorems, the eigenvalue argument on

@@ -189,7 +189,7 @@ def _e2_may_bind(H, gamma: OptimalGamma, z_p, value, nonpositive) -> bool:
     """False when exact bounds show that z_p/alpha(H) cannot be below ``value`` (then alpha(H) is
     not needed, and not computed): no pole; alpha(H) <= U = max_i (Hv)_i / v_i (Collatz-Wielandt,
     v = b when b > 0, else 1, as the kernel does) with U <= 0 or z_p/U > value; or alpha(H) <= 0
-    because A has no positive real eigenvalue on a full-dimensional P (paper/spectral.py)."""
+    because A has no positive real eigenvalue on a full-dimensional P (thresholds/spectral.py)."""
     if z_p is None or H.m == 0:
         return False
     b = gamma.polyhedron.b
