@@ -153,7 +153,7 @@ def test_a_long_pruning_horizon_is_rejected_quickly():
 # ------------------------------------------------------------------------------------------------
 # Resisted: pruning
 #
-# SPIN/DIAMOND under Taylor-2 (tests/test_pruning.py): the valid set [0, 0] U [594/1019, 2194/1769].
+# SPIN/DIAMOND under Taylor-2 (tests/conditions/test_pruning.py): the valid set [0, 0] U [594/1019, 2194/1769].
 
 DIAMOND_PROBLEM = dict(A=[["-1", "1/4"], ["-1/4", "-1"]],
                        G=[["-7", "30"], ["-7", "-30"], ["-3", "-70"], ["-3", "70"], ["3", "-70"], ["7", "-30"],

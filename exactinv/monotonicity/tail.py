@@ -167,7 +167,7 @@ def _first_end(d: flint.fmpq_poly) -> Real:
     """sup{T : d >= 0 on [0, T]} (d >= 0 just right of 0 or not): 0, INF or the least positive root of
     odd multiplicity -- Descartes' rule, then Vincent-Collins-Akritas bisection on the odd part
     (:func:`exactinv.core.roots.nonnegative_until`).  (Isolating every complex root of d_j in Arb, as before,
-    took over ten minutes for a d_j of degree ~300 from tests/test_line_poles.py's random tie family.)  An algebraic
+    took over ten minutes for a d_j of degree ~300 from tests/monotonicity/test_line_poles.py's random tie family.)  An algebraic
     end is refined to 64 relative bits: the bound K = its 48-bit upper end sets the tail index."""
     end = nonnegative_until(d, 0)
     return end.refine_relative(64) if isinstance(end, RealAlgebraic) else end

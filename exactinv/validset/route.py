@@ -11,7 +11,7 @@ certified pruning, the box cells, the parametric LP's pieces, the ellipsoid's
 coefficient polynomials).  One engine (:mod:`exactinv.validset.engine`)
 turns any route's conditions into the valid set, the largest threshold and
 the forward-Euler step; every route that accepts a problem gives the same
-exact set, end by end and flag by flag (tests/test_route.py).
+exact set, end by end and flag by flag (tests/validset/test_route.py).
 """
 
 from __future__ import annotations

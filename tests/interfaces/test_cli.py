@@ -7,7 +7,7 @@ import pytest
 
 from exactinv.cli import main
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 BOX = ROOT / "examples" / "paper_box_taylor4.json"
 
 

@@ -21,7 +21,7 @@ import pytest
 from exactinv.cli import main
 from exactinv.interfaces.files import atomic_write, is_certificate, same_file
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 BOX = (ROOT / "examples" / "paper_box_taylor4.json").read_text()
 DECAY = json.dumps({"name": "decay", "system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]},
                     "method": {"taylor": 1}})

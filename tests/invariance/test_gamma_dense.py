@@ -23,7 +23,7 @@ from exactinv.invariance import gamma_batch, gamma_dense, gamma_star
 from exactinv.invariance.gamma_batch import IntegerData, fits_doubles
 from exactinv.lp.solver import LPPath
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 from largest import polygon  # noqa: E402
 
 CHECKED = {LPPath.ROUNDED, LPPath.BASIS, LPPath.PPL}  # rows proved by the integer check of gamma_dense

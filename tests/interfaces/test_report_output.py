@@ -20,7 +20,7 @@ import pytest
 
 from exactinv.cli import main
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.json") if "design" not in json.loads(p.read_text()))
 DESIGNS = sorted(p for p in (ROOT / "examples").glob("*.json") if "design" in json.loads(p.read_text()))
 CLAIM = {"gamma_star": ("gamma_star", "value"), "forward_euler": ("forward_euler_threshold", "value"),

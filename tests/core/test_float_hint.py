@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from exactinv.core.float_hint import float_hint, float_hints, ldexp_hint, log2_hint
 
-ROOT = Path(__file__).resolve().parent.parent / "exactinv"
+ROOT = Path(__file__).resolve().parents[2] / "exactinv"
 
 huge_ints = st.integers(-(10**700), 10**700)
 rationals = st.builds(Fraction, huge_ints, st.integers(1, 10**700))

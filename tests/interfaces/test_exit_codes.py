@@ -17,7 +17,7 @@ import exactinv_check
 from exactinv.cli import main
 from exactinv.interfaces.exit_codes import CODES, EXIT_CODES, INTERRUPTED, PIPE_CLOSED, exit_code
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 BOX = json.loads((ROOT / "examples" / "paper_box_taylor4.json").read_text())
 SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
 # r = 1/h, h = (u^2 - 2)(u^4 - 2u^2 + 9)/34, u = z - 2: p* = 2 - sqrt 2 and the pair p* +- i on its line --
@@ -130,7 +130,7 @@ def test_a_closed_pipe_stops_quietly():
     import subprocess
     import sys
     from pathlib import Path
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     proc = subprocess.Popen([sys.executable, "-m", "exactinv", "certify", "examples/paper_box_taylor4.json"],
                             cwd=root, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     proc.stdout.close()

@@ -100,7 +100,7 @@ def test_the_old_packages_hold_no_code():
     """paper/ and beyond/ are gone from the tree: an old path is only a stand-in, and every new home is real."""
     from pathlib import Path
 
-    root = Path(__file__).resolve().parents[1] / "exactinv"
+    root = Path(__file__).resolve().parents[2] / "exactinv"
     assert not (root / "paper").exists() and not (root / "beyond").exists()
     for home in OLD_MODULE_PATHS.values():
         assert (root.parent / (home.replace(".", "/") + ".py")).is_file(), home

@@ -19,7 +19,7 @@ from exactinv.core.doubles import DOUBLE_MAX, double_above, double_below
 from exactinv.core.real_algebraic import RealAlgebraic
 from exactinv.interfaces.problem import load_problem
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 
 # issue 21: RK4 on x' = [[0, 1], [-2, -3]]x, P = {|2x1 + x2| <= 1, |x1 + x2| <= 1}
 RK4_S = ei.LinearSystem([[0, 1], [-2, -3]])
@@ -181,7 +181,7 @@ def test_every_threshold_has_a_float_safe_lower_end(problem, method):
 
 @st.composite
 def ellipsoid_problems(draw):
-    """A Q-dissipative A = (J - R) Q on E = {x^T Q x <= 1}, n = 2 (as tests/test_ellipsoid_thresholds.py)."""
+    """A Q-dissipative A = (J - R) Q on E = {x^T Q x <= 1}, n = 2 (as tests/validset/test_ellipsoid.py)."""
     q = st.builds(Fraction, st.integers(-3, 3), st.integers(1, 3))
     B = [[draw(q) for _ in range(2)] for _ in range(2)]
     Q = [[sum(B[k][i] * B[k][j] for k in range(2)) + (i == j) for j in range(2)] for i in range(2)]

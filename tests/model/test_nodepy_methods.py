@@ -137,7 +137,7 @@ def _generator():
     import importlib.util
     from pathlib import Path
 
-    path = Path(__file__).resolve().parents[1] / "docs" / "gen_method_table.py"
+    path = Path(__file__).resolve().parents[2] / "docs" / "gen_method_table.py"
     spec = importlib.util.spec_from_file_location("gen_method_table", path)
     gen = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gen)

@@ -15,7 +15,7 @@ from exactinv.core.digits import float_text
 from exactinv.interfaces.pipeline import certify
 from exactinv.interfaces.problem import Problem
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).parents[2]
 E2 = ROOT / "examples" / "erratum_e2_backward_euler.json"
 E2_S, ORTHANT = ei.LinearSystem([[-1, 2], [0, 1]]), ei.Polyhedron([[-1, 0], [0, -1]], [0, 0])
 # the method: r = 1/(1 - z + z^2/4 - z^3/40); its radius was Undecided when this was written

@@ -20,7 +20,7 @@ import exactinv as ei
 from exactinv.interfaces.problem import load_problem
 from exactinv.model.cdd import parse_cdd, read_cdd
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def ppl_h(G, b):

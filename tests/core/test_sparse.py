@@ -53,7 +53,7 @@ def test_gamma_star_builds_no_dense_H():
     claim lists exactly those, and the dense view (built only on request) agrees."""
     import sys
     from pathlib import Path
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
     from largest import polygon
     g = ei.optimal_gamma(ei.LinearSystem([[-1, F(1, 2)], [F(-1, 2), -1]]), polygon(30))
     assert "H_flint" not in g.__dict__  # not built by optimal_gamma
