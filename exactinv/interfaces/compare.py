@@ -1,8 +1,8 @@
 """How conservative is the paper?  For each method: the paper's threshold
 (taken literally), the corrected one and the exact largest one, side by side.
 
-It sits in ``interfaces`` because it joins ``paper`` and ``beyond``, which
-never import each other.
+It sits in ``interfaces``: it joins the paper's thresholds (``thresholds``) and the
+exact valid sets (``validset``) into one report.
 """
 
 from __future__ import annotations
