@@ -7,7 +7,7 @@ computed first and not timed; then `rational_threshold` (Theorem 3.12 with errat
 * before -- today's path until issue 22: alpha(H) = the largest real root of the dense
             characteristic polynomial of H, always (FLINT; no alarm interrupts it, so each
             run is a subprocess killed after --cap seconds);
-* after  -- paper/spectral.py: alpha(H) only where E2 may bind (Collatz-Wielandt with
+* after  -- thresholds/spectral.py: alpha(H) only where E2 may bind (Collatz-Wielandt with
             v = b: Hb <= 0 gives alpha(H) <= 0 here, so the bound never binds).
 
 Each cell is a fresh subprocess: seconds of the threshold computation and its peak memory
@@ -46,7 +46,7 @@ def _rss_mb() -> float:
 def _run(N: int, route: str, out, started) -> None:
     import exactinv as ei
     from exactinv.core.roots import real_roots
-    from exactinv.paper import rational
+    from exactinv.thresholds import rational
     from exactinv_check import check
     P, S, m = ellipse_polygon(N), ei.LinearSystem([[-2, 0], [0, -2]]), ei.methods.backward_euler()
     g = ei.optimal_gamma(S, P)

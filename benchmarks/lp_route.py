@@ -34,7 +34,7 @@ Two unbounded families whose valid sets are not trivial (``--family``):
               in R^(n-2) and M an integer (n-2) x 2 shear, so ker G (two lines)
               is {(-M z, z)}; A = T^-1 [[A_Q, 0], [C, A_L]] T (T = [[I, M], [0, I]])
               maps ker G into itself, so the facets see the quotient A_Q on Q
-              (the LP route on P with lines, exactinv/beyond/lp_lines.py).
+              (the LP route on P with lines, exactinv/validset/lp_lines.py).
 
 Run:  python benchmarks/lp_route.py [--quick] [--methods taylor4,pade22] [--sizes 10x40,20x200]
       [--unbounded | --family cone | --family lines]
@@ -55,7 +55,7 @@ import numpy as np
 
 import exactinv as ei
 import exactinv_check
-from exactinv.beyond.conditions import ConditionSet
+from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.lp.highs import silent_highs
 from exactinv.model.record import certificate
 

@@ -28,7 +28,7 @@ OLD_COMMIT = "17e9024"
 OLD_RUN = """
 import json, sys, time
 from exactinv.model import methods as M
-from exactinv.paper.monotonicity import absolute_monotonicity_radius
+from exactinv.monotonicity.radius import absolute_monotonicity_radius
 num, den = json.loads(sys.argv[1])
 m = M.rational(num, den) if len(den) > 1 else M.polynomial(num)
 t = time.perf_counter()

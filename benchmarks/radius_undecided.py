@@ -16,7 +16,7 @@ certificate is checked by the trusted kernel (``--no-check`` skips it); a reject
   * balanced:  p* and tied poles on the circle |w| = R around -kappa* (Gaussian rationals: a pair, a negative
                pole and a pair, or two pairs) whose residues' moduli add up to b_* exactly.
 
-``--family line-balance`` (line-balance, issue 22): the family of tests/test_line_poles.py's random tie test, in two
+``--family line-balance`` (line-balance, issue 22): the family of tests/monotonicity/test_line_poles.py's random tie test, in two
 equal parts --
   * pair:      p* and a pair p* +- iy on its line, p*, y, b_*, u, v random with denominators <= 4 (as the test
                draws them), half of them with a farther real pole p* + 2 (b = 1);

@@ -23,7 +23,7 @@ from fractions import Fraction
 import sympy
 
 from exactinv.core.roots import first_sign_change
-from exactinv.paper.bisection import paper_bisection
+from exactinv.thresholds.bisection import paper_bisection
 
 
 def instance(degree: int, bits: int, rng: random.Random) -> list[int]:

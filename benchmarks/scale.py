@@ -17,7 +17,7 @@ set), hypercubes (Taylor-4), and the R^6 family: 100 random facets
 matrix (P invariant), with the Taylor-6 valid set, the Taylor-12 largest
 threshold, the backward-Euler and the Pade(6,6) valid sets.
 
-Hypercubes take the box route (exactinv/beyond/box_conditions.py: the sign patterns of
+Hypercubes take the box route (exactinv/conditions/box.py: the sign patterns of
 the rows of N(h), no vertex enumeration); ``--general`` measures the general route
 (``box=False``) on them instead, for the same-run ratio.
 

@@ -9,7 +9,8 @@ standard-library-only package :mod:`exactinv_check` -- re-verifies
 (``exactinv.check`` is ``exactinv_check.check``).
 
 The package is layered; imports point one way only (tests/test_layering.py):
-errors <- core <- lp <- model <- {paper, beyond} <- {control, certificates} <- interfaces.
+errors <- core <- lp <- model <- {invariance, monotonicity, conditions} <- thresholds
+<- {validset, control, certificates} <- interfaces.
 
 >>> import exactinv as ei
 >>> S = ei.LinearSystem([[-1, 1], [-1, -1]])
@@ -24,10 +25,10 @@ Fraction(1, 1)
 
 from exactinv_check import check  # the trusted kernel: a separate, standard-library-only package
 
-from .beyond.conditions import ConditionSet
-from .beyond.ellipsoid_invariance import EllipsoidInvariance, QuadraticWitness
+from .conditions.polyhedron import ConditionSet
 from .control import OptimalGain, RobustThreshold, optimal_gain, robust_threshold
 from .core import scalars as numbers  # noqa: F401 (ei.numbers: the exact input conversions)
+from .core.moved import install_moved_modules
 from .core.real_algebraic import RealAlgebraic
 from .core.roots import first_sign_change, nonnegative_until, real_roots
 from .core.scalars import INF, Infinity, exact_from_float, nearest_rational
@@ -35,18 +36,19 @@ from .errors import EmptyPolyhedron, ExactinvError, InvalidInput, NotInvariant, 
 from .interfaces import display, oracle
 from .interfaces.batch import BatchSummary, run_batch
 from .interfaces.compare import ThresholdComparison, compare_thresholds
-from .model import Ellipsoid, LinearSystem, Method, Polyhedron, methods
-from .paper.forward_euler import ForwardEulerThreshold
-from .paper.invariance import (
+from .invariance.ellipsoids import EllipsoidInvariance, QuadraticWitness
+from .invariance.polyhedra import (
     ContinuousInvariance,
     DiscreteInvariance,
     FacetWitness,
     OptimalGamma,
     optimal_gamma,
 )
-from .paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
-from .paper.polynomial import SteplengthThreshold
-from .paper.threshold import steplength_threshold
+from .model import Ellipsoid, LinearSystem, Method, Polyhedron, methods
+from .monotonicity.radius import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
+from .thresholds.forward_euler import ForwardEulerThreshold
+from .thresholds.polynomial import SteplengthThreshold
+from .thresholds.steplength import steplength_threshold
 from .validset.engine import (
     continuous_invariance,
     discrete_invariance,
@@ -63,6 +65,8 @@ from .validset.results import (
 )
 
 __version__ = "0.1.0"
+
+install_moved_modules()  # exactinv.paper.* and exactinv.beyond.* (issue 26) still import, with a warning
 
 __all__ = [
     "AbsoluteMonotonicityRadius",

@@ -70,4 +70,4 @@ if jsonschema is not None:
 @pytest.fixture
 def forced(monkeypatch):
     """Pruning always applied, however many pairs survive (tests/test_pruning*.py)."""
-    monkeypatch.setattr("exactinv.beyond.pruning.WORTHWHILE", 1.0)
+    monkeypatch.setattr("exactinv.conditions.pruning.WORTHWHILE", 1.0)

@@ -3,7 +3,7 @@ a generated corpus whose records equal `certify` called directly (and exact
 values worked out by hand), a resumed run that skips finished work, and a
 poisoned corpus -- bad input, a timeout, a memory blow-up -- that still
 completes with each failure recorded.  The sandbox is tested on its own in
-tests/test_batch_sandbox.py."""
+tests/interfaces/batch/test_sandbox.py."""
 
 from __future__ import annotations
 

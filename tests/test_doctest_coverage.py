@@ -60,5 +60,5 @@ def test_the_scan_sees_the_public_api():
     # guards against a scan that finds nothing (and so cannot fail)
     found = _public_callables()
     for name in ("exactinv.model.families.taylor", "exactinv.model.method.Method.matrix",
-                 "exactinv.beyond.conditions.ConditionSet.all", "exactinv.paper.rational.rational_threshold"):
+                 "exactinv.conditions.polyhedron.ConditionSet.all", "exactinv.thresholds.rational.rational_threshold"):
         assert name in found, name

@@ -1,9 +1,10 @@
 """The package's layers, checked from the source (AST, nothing is imported).
 
-    errors <- core <- lp <- model <- {paper, beyond} <- {validset, control, certificates} <- interfaces <- top
+    errors <- core <- lp <- model <- {invariance, monotonicity, conditions} <- thresholds
+           <- {validset, control, certificates} <- interfaces <- top
 
 Every import inside ``exactinv`` must point to the same or a lower layer,
-``paper`` and ``beyond`` never import each other, the module import graph has
+``invariance``, ``monotonicity`` and ``conditions`` never import each other, the module import graph has
 no cycle, and no import sits inside a function except optional heavy extras.
 """
 
@@ -22,15 +23,19 @@ LAYERS = {
     "core": 1,
     "lp": 2,
     "model": 3,
-    "paper": 4,
-    "beyond": 4,
-    "validset": 5,  # the one valid-set engine and its routes: joins paper and beyond (issue 26)
-    "control": 5,  # gain design and robust thresholds: joins paper and beyond (issue 25)
-    "certificates": 5,
-    "interfaces": 6,
-    "top": 7,  # exactinv/__init__, __main__, cli (the entry point), check (the kernel re-exported)
+    # rooms by mathematics (issue 26), the paper's Section 2 and 3.2 and the conditions beyond it
+    "invariance": 4,  # continuous and discrete invariance, gamma* (polyhedra, ellipsoids)
+    "monotonicity": 4,  # the radius of absolute monotonicity
+    "conditions": 4,  # the polynomial conditions of A_d(h) S in S, their certified pruning
+    "thresholds": 5,  # the paper's thresholds from gamma* and rho, forward Euler, the paper's bisection
+    "validset": 6,  # the one valid-set engine and its routes (issue 26)
+    "control": 6,  # gain design and robust thresholds (issue 25)
+    "certificates": 6,
+    "interfaces": 7,
+    "top": 8,  # exactinv/__init__, __main__, cli (the entry point), check (the kernel re-exported)
 }
-SIBLINGS_THAT_NEVER_MEET = {("paper", "beyond"), ("beyond", "paper")}
+SIBLINGS_THAT_NEVER_MEET = {(a, b) for a in ("invariance", "monotonicity", "conditions")
+                            for b in ("invariance", "monotonicity", "conditions") if a != b}
 # Optional heavy extras, imported where they are used.  cvxpy: only the cvxpy
 # hint backend (exactinv/lp/hint.py) and the oracle's judge_lp need it, so it
 # stays an optional dependency.  dask: only `exactinv batch` (interfaces/batch/engine.py)
@@ -114,7 +119,7 @@ def test_imports_point_down(module):
     here = _layer(module)
     for target, line in GRAPH[module][0]:
         there = _layer(target)
-        assert (here, there) not in SIBLINGS_THAT_NEVER_MEET, f"{module}:{line} imports {target}: paper and beyond never meet"
+        assert (here, there) not in SIBLINGS_THAT_NEVER_MEET, f"{module}:{line} imports {target}: siblings never meet"
         assert LAYERS[there] <= LAYERS[here], f"{module}:{line} ({here}) imports {target} ({there}): up a layer"
 
 
@@ -157,8 +162,8 @@ def test_the_kernel_imports_nothing_from_the_engine():
 
 
 def test_the_layering_test_sees_an_upward_import():
-    """The test itself: a core module importing paper would be caught."""
-    node = ast.parse("from ..paper.invariance import optimal_gamma").body[0]
+    """The test itself: a core module importing invariance would be caught."""
+    node = ast.parse("from ..invariance.gamma_star import optimal_gamma").body[0]
     target = _resolve("exactinv.core.roots", False, node)[0]
     assert LAYERS[_layer(target)] > LAYERS[_layer("exactinv.core.roots")]
 
@@ -219,5 +224,5 @@ def test_the_private_name_test_sees_a_private_import():
     path = ROOT / "exactinv_check" / "polys.py"
     assert len(_private_cross_imports(path, "from .cones import _primitive, primitive, __doc__")) == 1
     assert len(_private_cross_imports(path, "from . import cones\ncones._reduce(1, 2)\ncones.__name__")) == 1
-    assert len(_private_cross_imports(ROOT / "exactinv" / "core" / "roots.py", "from ..paper import threshold as t\nt._x")) == 1
+    assert len(_private_cross_imports(ROOT / "exactinv" / "core" / "roots.py", "from ..monotonicity import tail as t\nt._x")) == 1
     assert _private_cross_imports(path, "from fractions import _gcd") == []

@@ -283,7 +283,7 @@ def test_a_sliver_of_the_end_polynomial_times_a_power_of_h():
 
 
 def _ray_certificate(method=None, claim="valid"):
-    """The orthant of R^2 with M = [[-4, -1], [10, 0]] (tests/test_lp_route.py works it by hand):
+    """The orthant of R^2 with M = [[-4, -1], [10, 0]] (tests/validset/test_lp_route.py works it by hand):
     Taylor(2) gives facet 0 two ray pieces (0, 1/2) with e2, (1/2, 1) with e1, then a basis; Taylor(3) a ray
     piece (0, 1), a point piece [1, 1] and a ray piece (1, oo)."""
     S = ei.LinearSystem([[-4, -1], [10, 0]])

@@ -29,7 +29,7 @@ def test_threshold_verdicts():
 
 def test_erratum_e3_caught_by_the_oracle():
     """The paper's float bisection returns inf for f(t) = 1 - t; the pipeline built on it claims tau = inf."""
-    from exactinv.paper.bisection import paper_bisection_float
+    from exactinv.thresholds.bisection import paper_bisection_float
 
     claimed = float(paper_bisection_float(["1", "-1"]).tau)  # f_1 of Taylor(2) at gamma = 1, normalised
     assert claimed == math.inf

@@ -25,7 +25,7 @@ MUST_SHIP = [
     "docs/errata.md", "docs/certificate.schema.json", "docs/make_figures.py", "docs/img/valid_set.png",
     "notebooks/01_quickstart.ipynb", "benchmarks/README.md", "benchmarks/gamma.py",
 ]
-SUBSET = ["tests/kernel/test_standalone.py", "tests/test_roots.py"]
+SUBSET = ["tests/kernel/test_standalone.py", "tests/core/test_roots.py"]
 
 
 def _setuptools_version() -> tuple[int, ...]:

@@ -1,8 +1,8 @@
 """Control (issue 25): the gain that minimizes gamma* (so maximizes every method's
 certified threshold) and robust thresholds over a polytope of matrices.
 
-This room sits above ``paper`` and ``beyond`` (it joins them: the closed loop's
-thresholds and valid sets) and below ``interfaces``.
+This room sits above ``thresholds`` and beside ``validset`` (it joins them: the closed
+loop's thresholds and valid sets), below ``interfaces``.
 """
 
 from .optimal_gain import OptimalGain, optimal_gain

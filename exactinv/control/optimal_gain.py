@@ -21,13 +21,14 @@ from exactinv_check.format import ClaimType
 from ..core.encode import encode_real, envelope, mat, vec
 from ..core.scalars import INF, Infinity, Matrix, to_matrix
 from ..errors import ExactinvError, InvalidInput, NotInvariant, VerificationFailed
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..lp import INFEASIBLE, OPTIMAL, solve_lp
 from ..model import LinearSystem, Method, Polyhedron
+from ..model.sets import expect_set, set_family
 from ..model.validate import check_method, check_polyhedron
-from ..paper.forward_euler import ForwardEulerThreshold
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.polynomial import SteplengthThreshold
-from ..paper.threshold import steplength_threshold
+from ..thresholds.forward_euler import ForwardEulerThreshold
+from ..thresholds.polynomial import SteplengthThreshold
+from ..thresholds.steplength import steplength_threshold
 from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 from ..validset.results import LargestThreshold, ValidSteplengths
 from .gain_lp import GainLP, gain_lp
@@ -205,15 +206,14 @@ def optimal_gain(A: Any, B: Any, polyhedron: Polyhedron, inputs: Polyhedron | No
     A_m = A.A if isinstance(A, LinearSystem) else to_matrix(A, "A", square=True)
     n = len(A_m)
     B_m = to_matrix(B, "B", shape=(n, None))
-    if not isinstance(polyhedron, Polyhedron):
-        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(polyhedron).__name__}")
+    expect_set(polyhedron, "polyhedron", "polyhedron")
     if polyhedron.n != n:
         raise InvalidInput(f"polyhedron: A is {n}x{n} but G has {polyhedron.n} columns")
     P = check_polyhedron(polyhedron)
     p = len(B_m[0])
     U = None
     if inputs is not None:
-        if not isinstance(inputs, Polyhedron):
+        if set_family(inputs) != "polyhedron":
             raise InvalidInput(f"inputs: expected an exactinv.Polyhedron U = {{u : Eu <= e}}, got {type(inputs).__name__}")
         if inputs.n != p:
             raise InvalidInput(f"inputs: B has {p} columns (inputs) but U = {{u : Eu <= e}} lives in R^{inputs.n}")

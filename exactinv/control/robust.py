@@ -37,12 +37,13 @@ from ..core.results import ExactValueMixin
 from ..core.scalars import INF, Infinity, Matrix
 from ..core.sparse import SparseRows
 from ..errors import InvalidInput, NotInvariant, Undecided
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..model import LinearSystem, Method, Polyhedron
 from ..model.record import method_record
+from ..model.sets import expect_set
 from ..model.validate import check_method, check_pair
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.monotonicity import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
-from ..paper.rational import smallest_positive_pole
+from ..monotonicity.radius import AbsoluteMonotonicityRadius, absolute_monotonicity_radius
+from ..thresholds.rational import smallest_positive_pole
 from ..validset.engine import valid_steplengths
 
 __all__ = ["RobustThreshold", "robust_threshold", "abscissa_bound"]
@@ -206,8 +207,7 @@ def robust_threshold(systems: Sequence[LinearSystem], polyhedron: Polyhedron, me
     >>> r.value, r.attained, r.gammas, r.forward_euler_step
     (Fraction(1, 1), True, (Fraction(1, 2), Fraction(1, 1)), Fraction(1, 1))
     """
-    if not isinstance(polyhedron, Polyhedron):
-        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(polyhedron).__name__}")
+    expect_set(polyhedron, "polyhedron", "polyhedron")
     method = check_method(method)
     Ss = _systems(systems, polyhedron.n)
     P = check_pair(Ss[0], polyhedron)[1]

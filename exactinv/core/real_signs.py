@@ -1,6 +1,6 @@
 """Signs of rational polynomials at and just right of an exact real, and the next sign change.
 
-The LP route (:mod:`exactinv.beyond.lp_route`) starts a piece at a breakpoint t,
+The LP route (:mod:`exactinv.validset.lp_route`) starts a piece at a breakpoint t,
 a Fraction or a :class:`~exactinv.RealAlgebraic` (a root of an irreducible
 integer polynomial q, isolated).  It needs, exactly:
 

@@ -7,7 +7,7 @@ the certificate format and are defined once, in :mod:`exactinv_check.format` (``
 member is its string, and a :class:`Tag` also prints as its string.  (The LP engine's own
 tags are :class:`exactinv.lp.hint.LPStatus` and :class:`exactinv.lp.solver.LPPath`; the
 oracle's verdicts are :class:`exactinv.interfaces.oracle.Status`; the generator kinds of the
-valid sets are :class:`exactinv.beyond.conditions.Kind`.)
+valid sets are :class:`exactinv.conditions.polyhedron.Kind`.)
 
 >>> BisectionStep.STEP_2 == "step 2", repr(CounterexampleKind.INFEASIBLE)
 (True, "'infeasible'")

@@ -1,8 +1,8 @@
 """How conservative is the paper?  For each method: the paper's threshold
 (taken literally), the corrected one and the exact largest one, side by side.
 
-It sits in ``interfaces`` because it joins ``paper`` and ``beyond``, which
-never import each other.
+It sits in ``interfaces``: it joins the paper's thresholds (``thresholds``) and the
+exact valid sets (``validset``) into one report.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from ..core.algebraic import Real
 from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity
 from ..model import LinearSystem, Polyhedron
-from ..paper.threshold import steplength_threshold
+from ..thresholds.steplength import steplength_threshold
 from ..validset.engine import largest_threshold
 
 __all__ = ["ThresholdComparison", "compare_thresholds"]

@@ -14,16 +14,16 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ..beyond.ellipsoid_invariance import ellipsoid_discrete_invariance
 from ..core.digits import significant_digits
 from ..core.float_hint import float_hint
 from ..core.latex import latex_matrix, latex_real
 from ..core.real_algebraic import RealAlgebraic
 from ..core.scalars import Infinity, to_rational
 from ..errors import InvalidInput, NotInvariant, Undecided
+from ..invariance.ellipsoids import ellipsoid_discrete_invariance
 from ..model import Ellipsoid
-from ..paper.monotonicity import absolute_monotonicity_radius, taylor_coefficient_polynomials
-from ..paper.threshold import steplength_threshold
+from ..monotonicity.radius import absolute_monotonicity_radius, taylor_coefficient_polynomials
+from ..thresholds.steplength import steplength_threshold
 from ..validset.engine import largest_threshold, valid_steplengths
 from ..validset.families import ELLIPSOIDS, family_of
 

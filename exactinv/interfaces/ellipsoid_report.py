@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ..beyond.ellipsoid_invariance import ellipsoid_continuous_invariance
 from ..core.text import exact_text, safe_step_text
+from ..invariance.ellipsoids import ellipsoid_continuous_invariance
 from ..model import Ellipsoid, LinearSystem, Method
 from ..validset.engine import forward_euler_threshold, largest_threshold, valid_steplengths
 

@@ -19,10 +19,10 @@ from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import first_sign_change
 from ..core.scalars import INF, Infinity, exact_from_float, to_rational
 from ..errors import InvalidInput
+from ..invariance.gamma_star import optimal_gamma
 from ..model import LinearSystem, Polyhedron
 from ..model.methods import Method, forward_euler
-from ..paper.gamma_star import optimal_gamma
-from ..paper.monotonicity import absolute_monotonicity_radius
+from ..monotonicity.radius import absolute_monotonicity_radius
 from ..validset.engine import discrete_invariance, largest_threshold, valid_steplengths
 
 __all__ = ["Status", "Verdict", "judge_threshold", "judge_gamma", "judge_root", "judge_radius", "assert_threshold"]

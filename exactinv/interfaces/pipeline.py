@@ -19,18 +19,18 @@ from typing import Any, Callable
 
 import exactinv_check
 
-from ..beyond.conditions import ConditionSet
+from ..conditions.polyhedron import ConditionSet
 from ..control.optimal_gain import OptimalGain, optimal_gain
 from ..core.encode import encode_real, mat
 from ..core.scalars import matrix_text
 from ..core.text import exact_text, safe_step_text
 from ..errors import Undecided
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
 from ..model import Method
 from ..model.record import certificate as make_certificate
-from ..paper.forward_euler import ForwardEulerThreshold
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
-from ..paper.polynomial import SteplengthThreshold
-from ..paper.threshold import steplength_threshold_from_gamma
+from ..thresholds.forward_euler import ForwardEulerThreshold
+from ..thresholds.polynomial import SteplengthThreshold
+from ..thresholds.steplength import steplength_threshold_from_gamma
 from ..validset.engine import forward_euler_with_gamma, largest_threshold, valid_steplengths
 from ..validset.results import EllipsoidForwardEulerThreshold, LargestThreshold, ValidSteplengths
 from .ellipsoid_report import ellipsoid_results

@@ -15,8 +15,8 @@ from typing import Any
 
 from ..control.optimal_gain import OptimalGain
 from ..core.latex import latex_matrix, latex_real, latex_text
-from ..paper.gamma_star import OptimalGamma
-from ..paper.polynomial import SteplengthThreshold
+from ..invariance.gamma_star import OptimalGamma
+from ..thresholds.polynomial import SteplengthThreshold
 from ..validset.results import LargestThreshold, ValidSteplengths
 from .exit_codes import CODES
 from .pipeline import Report

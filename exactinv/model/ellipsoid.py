@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Sequence
+from typing import Any, ClassVar, Sequence
 
 import flint
 import numpy as np
@@ -43,6 +43,7 @@ class Ellipsoid(LatexMixin):
     """
 
     Q: Matrix
+    family: ClassVar[str] = "ellipsoid"  # the set type, for exactinv.model.sets.set_family
 
     def __init__(self, Q: Any, center: Any = 0, *, allow_float: bool = False):
         Qm = symmetric_matrix(Q, "Q", allow_float=allow_float)

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 from math import lcm
-from typing import Any, Sequence
+from typing import Any, ClassVar, Sequence
 
 import flint
 import ppl
@@ -43,6 +43,7 @@ class Polyhedron(LatexMixin):
 
     G: Matrix
     b: Vector
+    family: ClassVar[str] = "polyhedron"  # the set type, for exactinv.model.sets.set_family
 
     def __init__(self, G: Any, b: Any, *, allow_float: bool = False):
         Gm = to_matrix(G, "G", allow_float=allow_float)

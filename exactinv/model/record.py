@@ -6,9 +6,9 @@ from __future__ import annotations
 from typing import Any, Iterable
 
 from ..core.encode import envelope, mat, vec
-from .ellipsoid import Ellipsoid
 from .methods import Method
 from .polyhedron import Polyhedron
+from .sets import set_family
 from .system import LinearSystem
 
 __all__ = ["method_record", "problem_record", "generator_record", "certificate"]
@@ -31,7 +31,7 @@ def problem_record(system: LinearSystem, polyhedron: Polyhedron, method: Method 
     >>> problem_record(LinearSystem([['-1/2']]), Polyhedron.box([-1], [1]))
     {'A': [['-1/2']], 'G': [['1'], ['-1']], 'b': ['1', '1']}
     """
-    if isinstance(polyhedron, Ellipsoid):
+    if set_family(polyhedron) == "ellipsoid":
         record = {"A": mat(system.A), "Q": mat(polyhedron.Q)}
     else:
         record = {"A": mat(system.A), "G": mat(polyhedron.G), "b": vec(polyhedron.b)}

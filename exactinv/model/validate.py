@@ -8,9 +8,9 @@ from typing import Any
 
 from ..core.scalars import Matrix, to_matrix, to_rational
 from ..errors import EmptyPolyhedron, InvalidInput
-from .ellipsoid import Ellipsoid
 from .methods import Method
 from .polyhedron import Polyhedron
+from .sets import expect_set, set_family
 from .system import LinearSystem
 
 __all__ = ["check_polyhedron", "check_pair", "check_method", "check_problem", "discrete_map"]
@@ -28,10 +28,9 @@ def check_polyhedron(P: Any) -> Polyhedron:
     >>> check_polyhedron(Polyhedron.box([-1], [1])).b
     (Fraction(1, 1), Fraction(1, 1))
     """
-    if isinstance(P, Ellipsoid):
+    if set_family(P) == "ellipsoid":
         raise InvalidInput(f"polyhedron: got an Ellipsoid{_FOR_ELLIPSOIDS}")
-    if not isinstance(P, Polyhedron):
-        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
+    expect_set(P, "polyhedron", "polyhedron")
     if P.is_empty:
         raise EmptyPolyhedron("polyhedron: P = {x : Gx <= b} is empty; invariance questions about it are vacuous")
     return P
@@ -59,10 +58,9 @@ def check_pair(S: Any, P: Any) -> tuple[LinearSystem, Polyhedron]:
     """
     if not isinstance(S, LinearSystem):
         raise InvalidInput(f"system: expected an exactinv.LinearSystem, got {type(S).__name__}")
-    if isinstance(P, Ellipsoid):
+    if set_family(P) == "ellipsoid":
         raise InvalidInput(f"polyhedron: got an Ellipsoid{_FOR_ELLIPSOIDS}")
-    if not isinstance(P, Polyhedron):
-        raise InvalidInput(f"polyhedron: expected an exactinv.Polyhedron, got {type(P).__name__}")
+    expect_set(P, "polyhedron", "polyhedron")
     if S.n != P.n:
         raise InvalidInput(f"system/polyhedron: A is {S.n}x{S.n} but G has {P.n} columns")
     return S, check_polyhedron(P)

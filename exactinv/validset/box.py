@@ -1,7 +1,7 @@
 """The box route: P = {lo <= x <= hi} without vertex enumeration (docs/design.md, "The route protocol").
 
 The conditions are those of the sign patterns of the rows of N(h) on the
-cells between their entries' roots (:mod:`exactinv.beyond.box_conditions`,
+cells between their entries' roots (:mod:`exactinv.conditions.box`,
 which proves that their valid set is exactly that of all 2n 2^n
 vertex-facet pairs).  It accepts P when every row of G has one nonzero
 entry and every coordinate is bounded both ways (an O(mn) test).
@@ -9,7 +9,7 @@ entry and every coordinate is bounded both ways (an O(mn) test).
 
 from __future__ import annotations
 
-from ..beyond.box_conditions import box_route, detect_box
+from ..conditions.box import box_route, detect_box
 from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions

@@ -2,7 +2,7 @@
 
 A_d(h) E subset of E iff q_k(h) >= 0 for k = 1..n and h > 0 with h(hA)
 regular, q_k the coefficient polynomials of H^T Q H - G^T Q G divided by h
-(:mod:`exactinv.beyond.ellipsoid_conditions`), and h = 0 is always valid.
+(:mod:`exactinv.conditions.ellipsoid`), and h = 0 is always valid.
 So the route's conditions are c_k(h) = h q_k(h) >= 0: the same set for
 h > 0, and c_k(0) = 0 keeps h = 0.  The engine treats them like any other
 route's conditions (q_1, the trace, first: it usually bounds the set).
@@ -14,7 +14,7 @@ from typing import Any
 
 import flint
 
-from ..beyond.conditions import Condition, Kind, never_binds
+from ..conditions.polyhedron import Condition, Kind, never_binds
 from ..core.flintq import fraction_of
 from ..core.intervals import IntervalUnion
 from .families import ELLIPSOIDS

@@ -35,7 +35,7 @@ from typing import Any
 
 import flint
 
-from ..beyond.conditions import Condition, ConditionSet, distinct_conditions
+from ..conditions.polyhedron import Condition, ConditionSet, distinct_conditions
 from ..core.algebraic import ExactKey, Real, exact_lt, upper_bound
 from ..core.flintq import fraction_of
 from ..core.intervals import Interval, IntervalUnion, complement_of_open
@@ -44,8 +44,8 @@ from ..core.polys import no_positive_root_below, positive_right_of_zero
 from ..core.roots import nonnegative_until, positive_roots
 from ..core.scalars import INF, Infinity
 from ..errors import InvalidInput
+from ..invariance.gamma_star import OptimalGamma
 from ..model.methods import forward_euler
-from ..paper.gamma_star import OptimalGamma
 from .box import BoxCellRoute
 from .ellipsoid import EllipsoidRoute
 from .families import POLYHEDRA, family_of

@@ -5,8 +5,9 @@ and is not a route: the exact continuous and discrete invariance tests, the
 check of the problem's arguments, and the second, independent derivation of
 the largest forward-Euler step that the engine's valid set must agree with
 (1/gamma* by Lemma 3.14 on a polyhedron; a generalised eigenvalue on an
-ellipsoid).  :func:`family_of` is the one place that looks at the type of
-the set; every other decision goes through a family or a route.
+ellipsoid).  :func:`family_of` is the one place that chooses by the type of
+the set (its ``family``: :func:`exactinv.model.sets.set_family`); every other
+decision goes through a family or a route.
 """
 
 from __future__ import annotations
@@ -15,20 +16,20 @@ from abc import ABC, abstractmethod
 from fractions import Fraction
 from typing import Any
 
-from ..beyond.conditions import ConditionSet
-from ..beyond.ellipsoid_eigenvalue import generalised_eigenvalue_step
-from ..beyond.ellipsoid_invariance import (
+from ..conditions.polyhedron import ConditionSet
+from ..core.scalars import INF, Infinity
+from ..errors import InvalidInput, VerificationFailed
+from ..invariance import polyhedra as paper_invariance
+from ..invariance.ellipsoids import (
     check_ellipsoid_pair,
     ellipsoid_continuous_invariance,
     ellipsoid_discrete_invariance,
 )
-from ..core.scalars import INF, Infinity
-from ..errors import InvalidInput, VerificationFailed
-from ..model import Ellipsoid
+from ..invariance.gamma_star import OptimalGamma, optimal_gamma
+from ..model.sets import set_family
 from ..model.validate import check_method
-from ..paper import invariance as paper_invariance
-from ..paper.forward_euler import ForwardEulerThreshold
-from ..paper.gamma_star import OptimalGamma, optimal_gamma
+from ..thresholds.ellipsoid_forward_euler import generalised_eigenvalue_step
+from ..thresholds.forward_euler import ForwardEulerThreshold
 from .results import EllipsoidForwardEulerThreshold
 
 __all__ = ["SetFamily", "POLYHEDRA", "ELLIPSOIDS", "family_of"]
@@ -98,7 +99,7 @@ class Polyhedra(SetFamily):
         >>> import exactinv as ei
         >>> S, P = ei.LinearSystem([[-1]]), ei.Polyhedron.box([-1], [1])
         >>> POLYHEDRA.checked(S, P, ei.methods.taylor(2), None)[3]
-        <exactinv.beyond.conditions.ConditionSet object at ...>
+        <exactinv.conditions.polyhedron.ConditionSet object at ...>
         """
         if conditions is None:
             cs = ConditionSet(system, invariant_set, method)  # checks the three arguments
@@ -193,7 +194,7 @@ class Ellipsoids(SetFamily):
         return ellipsoid_discrete_invariance(Ad, invariant_set, method, dt, allow_float=allow_float)
 
     def forward_euler(self, system, invariant_set, by_valid_set, gamma: Any = None) -> EllipsoidForwardEulerThreshold:
-        """The generalised eigenvalue (:mod:`exactinv.beyond.ellipsoid_eigenvalue`) against the valid set.
+        """The generalised eigenvalue (:mod:`exactinv.thresholds.ellipsoid_forward_euler`) against the valid set.
 
         >>> import exactinv as ei
         >>> S, E = ei.LinearSystem([[-1, -2], [2, -1]]), ei.Ellipsoid([[1, 0], [0, 1]])
@@ -218,8 +219,8 @@ def family_of(invariant_set: Any) -> SetFamily:
     """The family of ``invariant_set``: ELLIPSOIDS for an :class:`~exactinv.Ellipsoid`, else POLYHEDRA
     (whose argument check then names what is wrong with anything that is not a Polyhedron).
 
-    >>> from exactinv.model import Polyhedron
+    >>> from exactinv.model import Ellipsoid, Polyhedron
     >>> family_of(Ellipsoid([[1]])).name, family_of(Polyhedron.box([0], [1])).name
     ('ellipsoid', 'polyhedron')
     """
-    return ELLIPSOIDS if isinstance(invariant_set, Ellipsoid) else POLYHEDRA
+    return ELLIPSOIDS if set_family(invariant_set) == "ellipsoid" else POLYHEDRA

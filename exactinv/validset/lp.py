@@ -1,11 +1,11 @@
 """The LP route: per facet, the pieces of [0, oo) on which one basis of the parametric LP
 max g_i A_d(h) x over P is optimal (docs/design.md, "The LP route" and "The route protocol").
 
-Wraps :func:`exactinv.beyond.lp_route.lp_route` (weak duality proves each
+Wraps :func:`exactinv.validset.lp_route.lp_route` (weak duality proves each
 piece's vertex a maximizer, a ray of P each ray piece's unboundedness; the
 vertex-facet and ray-facet conditions of the pieces give the valid set
 exactly, with no vertex list).  It accepts every P, bounded or not; a P with
-lines (rank G < n) goes through :func:`exactinv.beyond.lp_lines.lp_lines`
+lines (rank G < n) goes through :func:`exactinv.validset.lp_lines.lp_lines`
 (the pieces on P' = P with the rows of a basis of ker G appended, and the
 line equalities).  The rare degenerate point it cannot decide is found while
 solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
@@ -13,8 +13,8 @@ solving and declined (:class:`~exactinv.validset.route.RouteDeclined`).
 
 from __future__ import annotations
 
-from ..beyond.lp_lines import lp_lines
-from ..beyond.lp_route import LPRoute, LPRouteDeclined, lp_route
+from .lp_lines import lp_lines
+from .lp_route import LPRoute, LPRouteDeclined, lp_route
 from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions, RouteDeclined
@@ -43,7 +43,7 @@ class ParametricLPRoute(PolyhedralRoute):
         return problem.invariant_set.m * LP_ABOVE + 1
 
     def apply(self, problem: ValidSetProblem, first_end: bool) -> RouteConditions:
-        """The conditions of the pieces (:func:`~exactinv.beyond.lp_route.lp_route`; RouteDeclined
+        """The conditions of the pieces (:func:`~exactinv.validset.lp_route.lp_route`; RouteDeclined
         at an irrational point where all ray conditions of a facet vanish).
 
         >>> import exactinv as ei

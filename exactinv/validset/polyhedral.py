@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..beyond.conditions import Condition, Kind
+from ..conditions.polyhedron import Condition, Kind
 from ..core.intervals import IntervalUnion
 from .families import POLYHEDRA
 from .problem import ValidSetProblem

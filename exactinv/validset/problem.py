@@ -3,7 +3,7 @@
 
 What every route needs is computed here once: the set's family
 (:mod:`.families`), D(h) = det h(hA) (the poles of r(hA)), and -- built
-lazily -- a polyhedron's :class:`~exactinv.beyond.conditions.ConditionSet`
+lazily -- a polyhedron's :class:`~exactinv.conditions.polyhedron.ConditionSet`
 (shared by the routes, and between the valid set and the largest threshold
 when a caller passes one) or an ellipsoid's coefficient polynomials.
 """
@@ -16,8 +16,8 @@ from typing import Any
 
 import flint
 
-from ..beyond.conditions import ConditionSet
-from ..beyond.ellipsoid_conditions import psd_polynomials
+from ..conditions.ellipsoid import psd_polynomials
+from ..conditions.polyhedron import ConditionSet
 from ..core.flintq import fraction_of
 from ..errors import InvalidInput
 from .families import SetFamily, family_of
@@ -55,7 +55,7 @@ class ValidSetProblem:
 
     @cached_property
     def coefficient_polynomials(self) -> tuple[list[flint.fmpq_poly], flint.fmpq_poly]:
-        """An ellipsoid's ([q_1, .., q_n], D) (:func:`~exactinv.beyond.ellipsoid_conditions.psd_polynomials`)."""
+        """An ellipsoid's ([q_1, .., q_n], D) (:func:`~exactinv.conditions.ellipsoid.psd_polynomials`)."""
         return psd_polynomials(self.system, self.invariant_set.Q_flint, self.method)
 
     @property

@@ -15,10 +15,9 @@ from typing import Any
 
 from exactinv_check.format import ClaimType
 
-from ..beyond.box_conditions import BoxRoute
-from ..beyond.conditions import Condition
-from ..beyond.lp_route import LPRoute
-from ..beyond.pruning import Pruning
+from ..conditions.box import BoxRoute
+from ..conditions.polyhedron import Condition
+from ..conditions.pruning import Pruning
 from ..core.algebraic import Real
 from ..core.encode import encode_real, vec
 from ..core.intervals import IntervalUnion
@@ -27,6 +26,7 @@ from ..core.results import ExactValueMixin
 from ..model import Ellipsoid, LinearSystem, Method, Polyhedron
 from ..model.record import certificate as make_certificate
 from ..model.record import generator_record
+from .lp_route import LPRoute
 
 __all__ = ["ValidSteplengths", "LargestThreshold", "EllipsoidValidSteplengths", "EllipsoidLargestThreshold",
            "EllipsoidForwardEulerThreshold"]
@@ -250,7 +250,7 @@ class EllipsoidLargestThreshold(LargestThreshold):
 @dataclass(frozen=True)
 class EllipsoidForwardEulerThreshold(ExactValueMixin):
     """The largest forward-Euler step on an ellipsoid, derived twice: ``by_eigenvalue``
-    (the generalised eigenvalue, :mod:`exactinv.beyond.ellipsoid_eigenvalue`) and ``by_valid_set``
+    (the generalised eigenvalue, :mod:`exactinv.thresholds.ellipsoid_forward_euler`) and ``by_valid_set``
     (the one engine on the ellipsoid route's coefficient polynomials); they must agree.  The valid set is [0, value]."""
 
     value: Real

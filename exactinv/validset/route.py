@@ -11,7 +11,7 @@ certified pruning, the box cells, the parametric LP's pieces, the ellipsoid's
 coefficient polynomials).  One engine (:mod:`exactinv.validset.engine`)
 turns any route's conditions into the valid set, the largest threshold and
 the forward-Euler step; every route that accepts a problem gives the same
-exact set, end by end and flag by flag (tests/test_route.py).
+exact set, end by end and flag by flag (tests/validset/test_route.py).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from ..beyond.conditions import Condition
+from ..conditions.polyhedron import Condition
 from ..core.intervals import IntervalUnion
 from ..errors import ExactinvException
 
@@ -41,7 +41,7 @@ class RouteConditions:
     """What a route proves: the exact conditions of the valid set.
 
     ``inequalities`` (c(h) >= 0 each) and ``equalities`` (e(h) = 0, lines of P)
-    are :class:`~exactinv.beyond.conditions.Condition` objects; ``leading`` are the
+    are :class:`~exactinv.conditions.polyhedron.Condition` objects; ``leading`` are the
     conditions the engine intersects first (vertex 0, the trace q_1: they usually
     bound the set, so later conditions are skipped when Descartes shows them
     positive up to that bound); ``leading_set``, when the route already computed

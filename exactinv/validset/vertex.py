@@ -2,21 +2,21 @@
 
 A_d(h) P subset of P iff A_d(h) maps every vertex into P, every ray into the
 recession cone and every line into the lineality space
-(:mod:`exactinv.beyond.conditions`).  For more than one vertex and not too
+(:mod:`exactinv.conditions.polyhedron`).  For more than one vertex and not too
 many pairs per facet, vertex 0's conditions bound the set (or its first
 interval) by a horizon T and only the pairs that can bind on [0, T] are
-built (:mod:`exactinv.beyond.pruning`; rational methods in u = h/(s + h),
-:mod:`exactinv.beyond.pruning_rational`): the same exact set.  It accepts
+built (:mod:`exactinv.conditions.pruning`; rational methods in u = h/(s + h),
+:mod:`exactinv.conditions.pruning_rational`): the same exact set.  It accepts
 every polyhedron; its cost grows with the number of vertices.
 """
 
 from __future__ import annotations
 
-from ..beyond.conditions import Kind
-from ..beyond.lp_route import vertex_bound
-from ..beyond.pruning import WORTHWHILE, bounding_horizon
-from ..beyond.pruning import prune as prune_pairs
-from ..beyond.pruning_rational import prune_rational
+from ..conditions.polyhedron import Kind
+from ..conditions.pruning import WORTHWHILE, bounding_horizon
+from ..conditions.pruning import prune as prune_pairs
+from ..conditions.pruning_rational import prune_rational
+from .lp_route import vertex_bound
 from .polyhedral import PolyhedralRoute, vertex_zero
 from .problem import ValidSetProblem
 from .route import RouteConditions

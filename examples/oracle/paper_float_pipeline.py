@@ -30,8 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", ".."))
 
 from exactinv.interfaces.oracle import judge_lp  # noqa: E402
-from exactinv.paper.bisection import paper_bisection_float  # noqa: E402
 from exactinv.interfaces.problem import load_problem  # noqa: E402
+from exactinv.thresholds.bisection import paper_bisection_float  # noqa: E402
 
 PROBLEMS = ["../paper_box_taylor4.json", "../octagon_heun.json"]
 METHODS = [{"taylor": 1}, {"taylor": 2}, {"taylor": 3}, {"taylor": 4}]

@@ -14,7 +14,7 @@ import re
 from pathlib import Path
 
 import exactinv as ei
-import exactinv.beyond.pruning as engine_pruning
+import exactinv.conditions.pruning as engine_pruning
 from exactinv.certificates import certificate, dumps
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -61,7 +61,7 @@ def main():
     certs["ellipsoid-discrete-taylor2"] = certificate(S, E, t2, [ei.discrete_invariance(S, E, t2, "1/2")])
     certs["gain-holds"] = ei.optimal_gain([[-1, 0], [0, 1]], [[0], [1]], box).certificate
     # a pruning record: pruning forced (the engine applies it only where it pays) on a Taylor-2 valid set whose
-    # pairs mostly cannot bind (tests/test_pruning.py: 23 of 64 survive)
+    # pairs mostly cannot bind (tests/conditions/test_pruning.py: 23 of 64 survive)
     spin = ei.LinearSystem([[-1, "1/4"], ["-1/4", -1]])
     diamond = ei.Polyhedron.from_vertices([[10, 0], [0, 1], [-10, 0], [0, -1], [7, "7/10"], [-7, "7/10"],
                                            [7, "-7/10"], [-7, "-7/10"]])

@@ -44,7 +44,7 @@ from radius_reference import from_partial_fractions  # noqa: E402
 
 import exactinv as ei  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
-from exactinv.paper.monotonicity import absolute_monotonicity_radius  # noqa: E402
+from exactinv.monotonicity.radius import absolute_monotonicity_radius  # noqa: E402
 from exactinv_check import check  # noqa: E402
 from exactinv_check.failure import CheckFailure  # noqa: E402
 

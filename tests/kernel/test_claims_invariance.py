@@ -1,7 +1,7 @@
 """exactinv_check.claims_invariance, attacked: ``claims_invariance.check_H`` over the nonzero entries of
 H's rows, ``claims_thresholds._ratio_tests`` (forward Euler) in integers cross-multiplied, and
 ``rationals.rational``'s fast path for the string "0"; plus the engine's ``gamma=`` keyword
-(``exactinv.paper.gamma_star.gamma_for``).
+(``exactinv.invariance.gamma_star.gamma_for``).
 
 What held (kept as fast regressions below):
 
@@ -43,8 +43,8 @@ from versions import as_version
 
 import exactinv as ei
 from exactinv import forward_euler_threshold
-from exactinv.paper.gamma_star import optimal_gamma
-from exactinv.paper.threshold import steplength_threshold, steplength_threshold_from_gamma
+from exactinv.invariance.gamma_star import optimal_gamma
+from exactinv.thresholds.steplength import steplength_threshold, steplength_threshold_from_gamma
 from exactinv.validset.engine import forward_euler_with_gamma
 from exactinv_check import check, claims_thresholds
 from exactinv_check.claims_invariance import check_H

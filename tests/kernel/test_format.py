@@ -37,10 +37,11 @@ def test_the_kernel_reads_its_tables_and_bounds_from_the_format():
 
 
 def test_the_engine_shares_the_kernels_constants():
-    from exactinv.beyond import pruning as engine_pruning
-    from exactinv.beyond import pruning_rational as engine_rational
+    from exactinv.conditions import pruning as engine_pruning
+    from exactinv.conditions import pruning_rational as engine_rational
     from exactinv.core import encode
-    from exactinv.paper import line_poles, monotonicity_tail, poles
+    from exactinv.monotonicity import line_poles, poles
+    from exactinv.monotonicity import tail as monotonicity_tail
 
     assert (encode.FORMAT, encode.VERSION) == (fmt.FORMAT, fmt.VERSION)
     assert engine_pruning.HORIZON_BITS is fmt.HORIZON_BITS and engine_rational.VARIABLE is fmt.PRUNING_VARIABLE

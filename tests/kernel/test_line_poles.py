@@ -8,7 +8,7 @@ import pytest
 from radius_reference import from_partial_fractions, product
 
 import exactinv as ei
-from exactinv.paper.monotonicity import absolute_monotonicity_radius
+from exactinv.monotonicity.radius import absolute_monotonicity_radius
 from exactinv_check import check
 from exactinv_check.bernstein import prove_completely_monotone
 from exactinv_check.failure import CheckFailure

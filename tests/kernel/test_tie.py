@@ -12,7 +12,7 @@ import exactinv as ei
 from exactinv import methods as M
 from exactinv.core.encode import encode_real
 from exactinv.core.roots import real_roots
-from exactinv.paper.poles import dominance_tie, pole_structure, precision, tie_polynomial
+from exactinv.monotonicity.poles import dominance_tie, pole_structure, precision, tie_polynomial
 from exactinv_check import check
 from exactinv_check.tie import tie_polynomial as kernel_tie_polynomial
 

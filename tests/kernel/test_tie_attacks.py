@@ -76,7 +76,7 @@ def test_a_negative_tie_radius_is_rejected():
 # (a root of T).  The Q = 1 tail bound proves c_j(0) > 0 for j >= 2, and recompute(..., K = 0) proves nothing
 # about j < 2 (first_end >= 0 always holds), then the branch sets rho_attained = True unconditionally (the
 # attained flag that recompute derives for rho = 0 is discarded).  Truth: c_1(0) = -99/100 < 0, so kappa = 0
-# is not admissible: rho = 0 NOT attained.  The engine (exactinv/paper/monotonicity_tail.py) writes exactly this
+# is not admissible: rho = 0 NOT attained.  The engine (exactinv/monotonicity/tail.py) writes exactly this
 # false certificate, and the kernel REJECTS the true claim {value 0, reason tie, attained false}.
 # Fix: in the 'tie' branch take attained from recompute (all c_j(0) >= 0 for j < count when kappa* = 0), or
 # refuse kappa* = 0 ties (use the rho = 0 reasons / coefficient route there).
@@ -155,7 +155,7 @@ def test_a_long_pruning_horizon_is_rejected_quickly():
 # ------------------------------------------------------------------------------------------------
 # Resisted: pruning
 #
-# SPIN/DIAMOND under Taylor-2 (tests/test_pruning.py): the valid set [0, 0] U [594/1019, 2194/1769].
+# SPIN/DIAMOND under Taylor-2 (tests/conditions/test_pruning.py): the valid set [0, 0] U [594/1019, 2194/1769].
 
 DIAMOND_PROBLEM = dict(A=[["-1", "1/4"], ["-1/4", "-1"]],
                        G=[["-7", "30"], ["-7", "-30"], ["-3", "-70"], ["-3", "70"], ["3", "-70"], ["7", "-30"],

@@ -1,0 +1,743 @@
+"""The LP route: exact valid sets from parametric LPs, without a vertex list (docs/design.md, "The LP route").
+
+For a facet i, A_d(h) P is inside P along that facet iff
+phi_i(h) = max{g_i A_d(h) x : x in P} <= b_i.  With D(h) = det h_r(hA) and
+N(h) = D(h) r(hA) = sum_k h^k N_k (D = 1 for polynomial methods) let
+c_i(h) = N(h)^T g_i and, for a basis B (n rows of G, nonsingular, its vertex
+x_B = B^-1 b_B in P), z_B(h) = D(h) B^-T c_i(h), a vector of polynomials.
+Where z_B(h) >= 0 and D(h) != 0, weak duality gives, for every x in P,
+g_i A_d(h) x <= g_i A_d(h) x_B (module :mod:`exactinv.validset.lp_route`'s
+design section proves it; the sign of D is folded into z_B).  So the route
+splits [0, oo) for each facet into closed pieces [t_k, t_k+1], each with a basis
+whose z_B is >= 0 on it; the condition of the piece is the vertex-facet
+condition of x_B and facet i,
+
+    p_ik(h) = (b_i D(h) - g_i N(h) x_B) D(h) >= 0,
+
+and the valid set is exactly {h >= 0 : D(h) != 0, every p_ik(h) >= 0} --
+each p_ik is necessary (x_B is a point of P), and together they suffice (h lies
+in some piece of every facet, where x_B is a maximizer).  These are ordinary
+:class:`~exactinv.conditions.polyhedron.Condition` objects, so the valid set,
+the largest threshold and their certificates go through the same exact
+interval code as the vertex route: the result is identical, end by end and
+flag by flag.
+
+The pieces come from the parametric simplex in h, facet by facet: at a
+breakpoint t (0 first), a float LP (HiGHS through :class:`~exactinv.lp.floatlp.FloatLP`,
+warm-started across facets) at a rational s just right of t proposes a basis,
+or the exact LP chain (:class:`~exactinv.lp.solver.ExactLPSolver`) gives a
+verified optimum at s from which a basis is read; the basis is accepted only
+when every component of z_B is >= 0 just right of t (exact signs, also at an
+algebraic t), and the piece then ends at the least root of odd multiplicity
+beyond t of any component (certified root isolation).  A basis that fails is a
+hint that did not help: s moves closer to t.  At h = 0 the optimal face is the
+facet itself, a degenerate LP; "sign just right of 0" is the lexicographic
+order of the powers of h, so the accepted basis is the lexicographically
+optimal one, with no epsilon.
+
+Unbounded (pointed) P: where the LP of facet i is unbounded, a *ray piece*
+carries a ray d of P (G d <= 0) with r(h) = c_i(h)^T d D(h) > 0 on the open
+piece, found by the dual simplex step whose ratio test meets no row (then
+r = -z_leaving) or by the exact LP chain's verified ray; its condition is the
+ray-facet condition -r >= 0, necessary because P is nonempty (the route keeps
+a point of P) and violated on the whole piece.  A ray piece ends at every
+root of r (so r > 0 on all of it); an end it leaves undecided (r = 0 there,
+not a pole) is decided by the next piece: a basis piece, a point piece [t, t]
+(a basis optimal at a rational t alone), or a ray piece positive at t (t
+moved to a rational just left when irrational).  docs/design.md, "Unbounded
+P: rays and lines", has the proofs and the degenerate cases.
+
+The route declines (:class:`LPRouteDeclined`) a P with lines (rank G < n: :mod:`exactinv.validset.lp_lines` takes it) and
+the rare irrational point where all of a facet's ray conditions vanish: the
+vertex route handles those.  The cost is (facets) x (pieces) LPs and basis
+solves, independent of the number of vertices.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from fractions import Fraction
+
+import flint
+import numpy as np
+
+from ..conditions.polyhedron import Condition, ConditionSet, Kind, never_binds
+from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
+from ..core.encode import encode_real, vec
+from ..core.flintq import fmpq_of, fraction_of
+from ..core.polys import no_root_between, shift, sign_at, sign_variations
+from ..core.real_signs import (
+    interval_signs,
+    narrowed,
+    next_sign_change,
+    positive_after,
+    rational_right_of,
+    sign_at_real,
+    sign_right_of_real,
+)
+from ..core.roots import real_roots
+from ..core.scalars import INF, Infinity
+from ..errors import ExactinvException
+from ..lp.floatlp import FloatLP
+from ..lp.hint import resolve_hint_backend
+from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
+
+__all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
+
+_ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
+_TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
+
+
+_TOUCH = ("an unbounded facet's ray conditions all vanish at h = {} (two rays of P change places there, or one "
+          "touches 0): the LP route does not handle it, the vertex route does")
+
+
+class LPRouteDeclined(ExactinvException):
+    """The LP route does not handle this problem (P with lines; a basis or ray not found; an irrational
+    point where all ray conditions of a facet vanish)."""
+
+
+@dataclass(frozen=True)
+class Piece:
+    """[start, end] (end may be INF) on which ``basis`` (rows of G, sorted) is optimal; or, for a ray
+    piece (``basis`` None), the open (start, end) on which the ray ``ray`` of P has
+    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated."""
+
+    start: Real
+    end: Real
+    basis: tuple[int, ...] | None
+    ray: tuple[Fraction, ...] | None = None
+
+
+@dataclass(frozen=True)
+class FacetPieces:
+    """The pieces of one facet, consecutive closed intervals from 0 to the last ``end`` (INF, or a
+    point at or beyond the horizon that bounds the valid set)."""
+
+    facet: int
+    pieces: tuple[Piece, ...]
+
+
+@dataclass(frozen=True)
+class LPRoute:
+    """The LP route's result: the pieces of every facet, the vertex x_B of each piece
+    (flattened, facet by facet: the ``generator`` of its condition; a ray piece's entry is ``point``),
+    the number of LPs (float hints and exact solves), seconds per stage, and ``point``: a point of P,
+    set when some piece is a ray piece (P is then unbounded; the point makes P nonempty, so every ray
+    condition is necessary)."""
+
+    facets: tuple[FacetPieces, ...]
+    vertices: tuple[tuple[Fraction, ...], ...] = field(repr=False)
+    float_lps: int = 0
+    exact_lps: int = 0
+    seconds: tuple[tuple[str, float], ...] = field(default=(), compare=False)
+    point: tuple[Fraction, ...] | None = field(default=None, repr=False)
+
+    @property
+    def pieces(self) -> int:
+        return sum(len(f.pieces) for f in self.facets)
+
+    def record(self) -> dict:
+        """The certificate's record: per facet the breakpoints (exact reals) and one basis per piece.
+
+        >>> import exactinv as ei
+        >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+        >>> _, route = lp_route(cs)
+        >>> route.record()       # x <= 1: max (1 - h) x is attained at x = 1 until h = 1, then at x = -1
+        {'facets': [{'ends': ['1', 'oo'], 'bases': [[0], [1]]}, {'ends': ['1', '2'], 'bases': [[1], [0]]}]}
+
+        (Facet 0's last piece, walked first, ends at oo; its condition 2 - h >= 0 sets the horizon
+        T = 2, where facet 1's walk stops.)
+        """
+        out: dict = {"facets": [{"ends": [encode_real(p.end) for p in f.pieces],
+                                 "bases": [list(p.basis) if p.basis is not None else {"ray": vec(p.ray)}
+                                           for p in f.pieces]} for f in self.facets]}
+        if self.point is not None:
+            out["point"] = vec(self.point)
+        return out
+
+    @property
+    def rays(self) -> int:
+        """How many pieces are ray pieces (facet i violated on the open piece)."""
+        return sum(p.basis is None for f in self.facets for p in f.pieces)
+
+
+
+@dataclass
+class LPRouteCache:
+    """The LP route's work on one :class:`ConditionSet`, kept by ``ConditionSet.cache(LPRouteCache)``:
+    ``found`` (the conditions and the pieces) or ``declined`` (why the route does not handle it)."""
+
+    found: tuple[list[Condition], LPRoute] | None = None
+    declined: LPRouteDeclined | None = None
+
+
+class _Basis:
+    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
+    b - G x_B (exact, and their numerators over a positive common denominator)."""
+
+    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack")
+
+    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
+        self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
+        self.slack = slack_q.numer_denom()[0].entries()
+
+    @property
+    def feasible(self) -> bool:
+        return not any(v < _ZERO for v in self.slack)
+
+
+class _Problem:
+    """G, b, D and the facets' objective matrices, the float LP and the exact LP chain, shared by all facets."""
+
+    def __init__(self, cs: ConditionSet):
+        self.cs = cs
+        self.G, self.n, self.m = cs.G, cs.polyhedron.n, cs.polyhedron.m
+        self.b = flint.fmpq_mat(self.m, 1, cs.b)
+        self.D = cs.D
+        self.L = len(cs.N)
+        self.float_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
+        self._exact: ExactLPSolver | None = None
+        self._bases: dict[tuple[int, ...], _Basis | None] = {}
+        self.b_float = _floats(cs.b)
+        self.G_rows = self.G.tolist()
+        self.float_lps = self.exact_lps = self.pivots = 0
+        self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
+
+    @property
+    def exact(self) -> ExactLPSolver:
+        if self._exact is None:
+            self._exact = ExactLPSolver(self.G, (False,) * self.m)
+        return self._exact
+
+    def objective(self, i: int) -> flint.fmpq_mat:
+        """C_i: the n x L matrix whose column k is (g_i N_k)^T, so c_i(h) = C_i (1, h, h^2, ..)^T."""
+        GN = self.cs.GN
+        return flint.fmpq_mat(self.n, self.L, [GN[k][i][l] for l in range(self.n) for k in range(self.L)])
+
+    def basis(self, rows: tuple[int, ...]) -> _Basis | None:
+        """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
+        if rows not in self._bases:
+            B = flint.fmpq_mat(self.n, self.n, [v for r in rows for v in self.G_rows[r]])
+            out = None
+            try:
+                inv = B.inv()
+            except ZeroDivisionError:
+                inv = None
+            if inv is not None:
+                x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
+                out = _Basis(rows, inv.transpose(), x, self.b - self.G * x)
+                if not out.feasible:
+                    out = None
+            self._bases[rows] = out
+        return self._bases[rows]
+
+
+def _floats(values) -> np.ndarray | None:
+    try:
+        out = np.array([float(v) for v in values], dtype=float)
+    except OverflowError:
+        return None
+    return out if np.all(np.isfinite(out)) else None
+
+
+def _cost(C: flint.fmpq_mat, D: flint.fmpq_poly, s: Fraction) -> flint.fmpq_mat:
+    """D(s) C_i (1, s, s^2, ..)^T exactly: the LP's objective at the rational s."""
+    x = fmpq_of(s)
+    powers = flint.fmpq_mat(C.ncols(), 1, [x ** k for k in range(C.ncols())])
+    return C * powers * D(x)
+
+
+def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
+    """The float LP's tight rows at this cost, when they are n of them (a vertex basis); None otherwise.
+    A hint never raises: a cost beyond double range or a failed solve only gives no hint."""
+    c = _floats(cost.entries())
+    if c is None or P.b_float is None:
+        return None
+    scale = float(np.abs(c).max()) if len(c) else 0.0
+    if not scale > 0:
+        return None
+    P.float_lps += 1
+    hint = P.float_lp.solve_floats(c / scale, P.b_float, (False,) * P.n)
+    if hint.status != OPTIMAL:
+        return None
+    basis = hint.fetch_basis()
+    if basis is None or len(basis[1]) != P.n:
+        return None
+    return tuple(sorted(basis[1]))
+
+
+def _exact_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | tuple[Fraction, ...] | None:
+    """A basis read off the exact LP chain's verified optimum at this cost: the rows of the dual's
+    support, completed by rows tight at x to n independent ones (then z_B(s) is that dual and x_B = x).
+    When the LP is unbounded (P is unbounded): the verified ray d instead (G d <= 0, cost . d > 0), as a
+    :class:`_Ray`; its feasible point is kept as P's point."""
+    P.exact_lps += 1
+    res = P.exact.solve(cost, P.b, (False,) * P.n)
+    if res.status == UNBOUNDED and res.ray_q is not None:
+        if P.point is None and res.x_q is not None:
+            P.point = tuple(fraction_of(v) for v in res.x_q.entries())
+        return _Ray(_primitive(res.ray_q.entries()))
+    if res.status != OPTIMAL:
+        return None
+    y, x = res.y_q.entries(), res.x_q
+    slack = (P.b - P.G * x).entries()
+    rows = [r for r in range(P.m) if y[r] != 0]
+    chosen: list[int] = []
+    for r in rows + [r for r in range(P.m) if slack[r] == 0 and y[r] == 0]:
+        trial = chosen + [r]
+        M = flint.fmpq_mat(len(trial), P.n, [P.G[q, l] for q in trial for l in range(P.n)])
+        if M.rank() == len(trial):
+            chosen = trial
+        elif y[r] != 0:
+            return None  # a dual that is not basic: no basis from it
+        if len(chosen) == P.n:
+            return tuple(sorted(chosen))
+    return None
+
+
+class _Ray(tuple):
+    """A candidate ray d of P (a tuple of Fractions), told apart from a basis (a tuple of row indices)."""
+
+
+def _primitive(entries) -> tuple[Fraction, ...]:
+    """The positive multiple of a rational vector with coprime integer entries."""
+    q = [fraction_of(v) for v in entries]
+    den = math.lcm(*(v.denominator for v in q)) if q else 1
+    ints = [int(v * den) for v in q]
+    g = math.gcd(*ints) or 1
+    return tuple(Fraction(v // g) for v in ints)
+
+
+def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
+    """The dual simplex step at a breakpoint: component ``leaving`` of z_B turns negative, so its row
+    is released -- x moves along d with B d = -e_leaving (d = minus row ``leaving`` of B^-T) -- and
+    the first rows of G that d meets (the ratio test, ties all kept) are candidates to enter.
+    Only candidates: each is verified like any hint.  When no row stops d, d is a ray of P (G d <= 0)
+    with c_i^T d D = -z_leaving > 0 just past the breakpoint: the one candidate is that ray (a
+    :class:`_Ray`), the certificate of a ray piece."""
+    P.pivots += 1
+    d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
+    numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
+    Gd = numerators.entries()
+    s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
+    best, enter = None, []
+    for r in range(P.m):
+        if Gd[r] > _ZERO and r not in basis.rows:
+            if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
+                best, enter = r, [r]
+            elif s[r] * Gd[best] == s[best] * Gd[r]:
+                enter.append(r)
+    if best is None:
+        if P.point is None:
+            P.point = tuple(fraction_of(v) for v in basis.x.entries())
+        return [_Ray(_primitive(d.entries()))]
+    out = basis.rows[:leaving] + basis.rows[leaving + 1:]
+    return [tuple(sorted(out + (r,))) for r in enter]
+
+
+def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[float]:
+    """For each row of Y (a polynomial's coefficients), the first point of a float grid on
+    (lo, lo + span], denser near lo, where it is negative (inf if none): a guess that only
+    chooses which component's roots are computed first, and never raises."""
+    n, W = Y.nrows(), Y.ncols()
+    try:
+        with np.errstate(all="ignore"):
+            numerators, _ = Y.numer_denom()  # a positive common factor: the same first negative points
+            M = np.array([float(v) for v in numerators.entries()], dtype=float).reshape(n, W)
+            M /= np.abs(M).max() or 1.0
+            grid = float(lo) + float(span) * (np.arange(1, 65) / 64.0) ** 2
+            values = M @ np.vstack([grid ** k for k in range(W)])
+            negative = values < 0
+            first = np.where(negative.any(axis=1), grid[negative.argmax(axis=1)], math.inf)
+        return [float(v) if math.isfinite(v) else math.inf for v in first]
+    except (OverflowError, ValueError):
+        return [0.0] * n
+
+
+def _tight(e: Real) -> Real:
+    """An algebraic end with a narrow enclosure (Arb's, about 2^-53 relative), so that Descartes tests up
+    to its upper end, and from its lower end on the next piece, see no neighbouring root."""
+    if isinstance(e, RealAlgebraic) and e.upper - e.lower > (abs(e.lower) + 1) / 2**40:
+        return narrowed(e)
+    return e
+
+
+def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
+    return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
+
+
+def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmpq_mat:
+    """z_B = D B^-T c_i as a matrix: row l holds the coefficients of component l."""
+    Y = basis.inv_t * C
+    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
+        Dm = P.D.coeffs()
+        W = Y.ncols() + len(Dm) - 1
+        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
+                                             for k in range(Y.ncols()) for m in range(W)])
+    return Y
+
+
+def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> tuple[_Step | None, list[_Ray]]:
+    """(the point piece [t, t] or None, the rays met): a basis with every component of z_B(t) >= 0
+    (weak duality at t alone; exact signs at a rational or algebraic t).  Candidates: the exact LP's
+    basis at t (t rational), or at the rationals just around t (t algebraic), then the bases met so far
+    (where c_i(t) = 0 every feasible basis qualifies).  When those LPs are unbounded, their verified rays
+    are returned instead: one of them may be positive at t itself."""
+    if isinstance(t, RealAlgebraic):
+        t = _tight(t)
+        points = [t.lower, t.upper]
+    else:
+        points = [Fraction(t)]
+    candidates: list = []
+    rays: list[_Ray] = []
+    for s in points:
+        found = _exact_rows(P, _cost(C, P.D, s))
+        if isinstance(found, _Ray):
+            rays.append(found)
+        elif found is not None:
+            candidates.append(found)
+    candidates += [rows for rows, basis in list(P._bases.items())[:64] if basis is not None]
+    for rows in candidates:
+        basis = P.basis(rows)
+        if basis is None:
+            continue
+        Y = _dual_components(P, basis, C)
+        if all(sign_at_real(_row(Y, l), t) >= 0 for l in range(P.n)):
+            return _Step(Piece(t, t, rows), basis, -1, None, True), rays
+    return None, rays
+
+
+def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: FiniteReal,
+            cap: Fraction | None) -> tuple[_Basis, Real, int] | None:
+    """(basis, end, leaving): the piece from t on which the basis is optimal, or None if it is not
+    optimal just right of t.  Every component of z_B = D B^-T c_i must be >= 0 right of t; the piece
+    ends at the least odd-multiplicity root beyond t of any component (the ``leaving`` one; -1 if
+    none) -- or at ``cap`` (a rational beyond the horizon) if that comes first.
+
+    Exact throughout; a float grid only guesses which component ends the piece.  Its end e is
+    computed exactly, then one batch of Descartes tests on (lo, e) (lo = t, or a rational just
+    below an algebraic t) proves most components positive there; only the others get exact signs
+    right of t and exact roots."""
+    if rows is None:
+        return None
+    basis = P.basis(rows)
+    if basis is None:
+        return None
+    if cap is not None and not exact_lt(t, cap):
+        cap = None  # a first piece when the horizon is 0: no cap, pieces have positive length
+    Y = _dual_components(P, basis, C)
+    lo = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
+    end: Real = INF if cap is None else cap
+    leaving = -1
+    span = (cap - lo) if cap is not None and cap > lo else 2 * (1 + abs(lo))
+    guess = _first_negative(Y, lo, span)
+    done: set[int] = set()
+    first = min(range(P.n), key=lambda l: guess[l])
+    if guess[first] < math.inf:
+        p = _row(Y, first)
+        if sign_right_of_real(p, t) < 0:
+            return None
+        e = _tight(next_sign_change(p, t))
+        if exact_lt(e, end):
+            end, leaving = e, first
+        done.add(first)
+    bound = _cap(end)
+    signs = interval_signs(Y, lo, bound if bound is not None and bound > lo else None)
+    for l in sorted(range(P.n), key=lambda l: guess[l]):
+        if l in done or signs[l] > 0:
+            continue  # > 0 on (lo, end), which holds (t, end)
+        p = _row(Y, l)
+        right = sign_right_of_real(p, t)
+        if right < 0:
+            return None
+        bound = _cap(end)
+        if bound is not None and positive_after(p, t, bound, right):
+            continue  # > 0 on (t, bound), which holds (t, end)
+        e = _tight(next_sign_change(p, t))
+        if exact_lt(e, end):
+            end, leaving = e, l
+    return basis, end, leaving
+
+
+def _first_width(t: FiniteReal) -> Fraction:
+    top = t.upper if isinstance(t, RealAlgebraic) else Fraction(t)
+    return (1 + abs(top)) / 64
+
+
+def _cap(T: Real) -> Fraction | None:
+    """A rational >= T (None for INF)."""
+    if isinstance(T, Infinity):
+        return None
+    return T.upper if isinstance(T, RealAlgebraic) else Fraction(T)
+
+
+@dataclass(frozen=True)
+class _Step:
+    """A piece found from t: a basis piece (``basis``, the ``leaving`` component that ends it, -1 if none)
+    or a ray piece (``r`` = c_i^T d D > 0 on the open piece); ``covered``: the piece itself shows its finite
+    end decided (a basis piece is closed; a ray piece only when r > 0 at that end, a rational cap, or when
+    the end is a pole, D = 0)."""
+
+    piece: Piece
+    basis: _Basis | None
+    leaving: int
+    r: flint.fmpq_poly | None
+    covered: bool
+
+
+def _ray_poly(P: _Problem, C: flint.fmpq_mat, d: tuple[Fraction, ...]) -> flint.fmpq_poly:
+    """r(h) = c_i(h)^T d D(h) = (g_i N(h) d) D(h): where r > 0 and d is a ray of P, g_i A_d(h) d > 0."""
+    row = flint.fmpq_mat(1, P.n, [fmpq_of(v) for v in d]) * C
+    return flint.fmpq_poly(row.entries()) * P.D
+
+
+def _accept_ray(P: _Problem, C: flint.fmpq_mat, d: tuple[Fraction, ...], t: FiniteReal,
+                cap: Fraction | None) -> _Step | None:
+    """The ray piece from t: d must be a ray of P (G d <= 0, d != 0) with r = c_i^T d D > 0 just right of
+    t (exact signs; at h = 0 the lexicographic order of the powers of h); it ends at r's next sign change
+    (or at ``cap``, where r > 0 still), or at a root where r only touches 0.  None if d does not qualify."""
+    Gd = (P.G * flint.fmpq_mat(P.n, 1, [fmpq_of(v) for v in d])).entries()
+    if not any(d) or any(v > 0 for v in Gd):
+        return None
+    r = _ray_poly(P, C, d)
+    if r.is_zero() or sign_right_of_real(r, t) <= 0:
+        return None
+    if cap is not None and not exact_lt(t, cap):
+        cap = None
+    end: Real = _next_root(r, t)
+    covered = isinstance(end, Infinity) or _is_pole(P.D, end)
+    if cap is not None and exact_lt(cap, end):
+        end, covered = cap, True
+    return _Step(Piece(t, end, None, tuple(d)), None, -1, r, covered)
+
+
+def _is_pole(D: flint.fmpq_poly, t: FiniteReal) -> bool:
+    """D(t) = 0 exactly (r(tA) does not exist: t is no steplength, and needs no piece to decide it)."""
+    if D.degree() < 1:
+        return False
+    if isinstance(t, RealAlgebraic):
+        return (D % flint.fmpq_poly(t.poly)).is_zero()
+    return D(fmpq_of(Fraction(t))) == 0
+
+
+def _next_root(r: flint.fmpq_poly, t: FiniteReal) -> Real:
+    """The least real root of r greater than t, of any multiplicity (INF if none): a ray piece must have
+    r > 0 on its whole open piece, so it also ends where r only touches 0."""
+    for root, _ in real_roots(r):
+        if exact_lt(t, root):
+            return _tight(root)
+    return INF
+
+
+def _try(P: _Problem, C: flint.fmpq_mat, candidate, t: FiniteReal, cap: Fraction | None) -> _Step | None:
+    """A candidate (rows of a basis, a :class:`_Ray` or None) verified as the piece from t, or None."""
+    if isinstance(candidate, _Ray):
+        return _accept_ray(P, C, candidate, t, cap)
+    found = _accept(P, C, candidate, t, cap)
+    if found is None:
+        return None
+    return _Step(Piece(t, found[1], candidate), found[0], found[2], None, True)
+
+
+def _next_piece(P: _Problem, i: int, C: flint.fmpq_mat, t: FiniteReal, cap: Fraction | None,
+                previous: _Step | None) -> _Step:
+    """The piece of facet i from t: a basis optimal just right of t, ending where it stops being optimal
+    (or at cap), or a ray of P showing the LP unbounded just right of t.  Candidates: the dual simplex
+    step from the previous piece's basis (its ray when no row stops it), then float LP hints at
+    rationals s ever closer to t, and every other time the exact LP chain's answer at s (an optimum's
+    basis, or an unbounded LP's verified ray).  A candidate that fails only costs time."""
+    if previous is not None and previous.basis is not None and previous.leaving >= 0:
+        for candidate in _pivots(P, previous.basis, previous.leaving):
+            found = _try(P, C, candidate, t, cap)
+            if found is not None:
+                return found
+    width = _first_width(t)
+    for attempt in range(_TRIES):
+        s = rational_right_of(t, width)
+        cost = _cost(C, P.D, s)
+        found = _try(P, C, _hint_rows(P, cost), t, cap)
+        if found is None and attempt % 2 == 1:
+            found = _try(P, C, _exact_rows(P, cost), t, cap)
+        if found is not None:
+            return found
+        width /= 8
+    raise LPRouteDeclined(f"facet {i}: no basis or ray found optimal just right of h = {t}")
+
+
+def _rational_cover(r: flint.fmpq_poly, start: Real, t: FiniteReal) -> Fraction | None:
+    """Two ray pieces meet at t, where the first one's r vanishes: a rational s in (start, t] with the
+    second one's r > 0 on [s, t] (so the second piece, moved to start at s, decides s and t itself).
+    None when r(t) = 0 too (or not proved > 0 near t)."""
+    if not isinstance(t, RealAlgebraic):
+        return Fraction(t) if sign_at(r, Fraction(t)) > 0 else None
+    if sign_at_real(r, t) <= 0:  # exact: r(t) = 0 (t's polynomial divides r) or r(t) < 0
+        return None
+    bits = 16
+    for _ in range(12):
+        s = t.lower
+        if exact_lt(start, s) and sign_at(r, s) > 0 and no_root_between(r, s, t.upper) and sign_at(r, t.upper) > 0:
+            return s
+        t.refine(bits)
+        bits *= 2
+    return None
+
+
+def _bound(p: flint.fmpq_poly, T: Real) -> Real:
+    """sup{h >= 0 : p(h) >= 0} when p's leading coefficient is negative (p(0) >= 0 for a piece's
+    condition: x_B is in P): its largest real root, or 0; INF otherwise -- or INF when p has a
+    root beyond the current horizon T (an odd count of sign variations beyond it), which then
+    cannot lower T."""
+    if p.degree() < 1 or p.coeffs()[-1] > 0:
+        return INF
+    cap = _cap(T)
+    if cap is not None and sign_variations(shift(p, cap).coeffs()) % 2 == 1:
+        return INF
+    roots = real_roots(p)
+    top = roots[-1][0] if roots else Fraction(0)
+    return top if top > 0 else Fraction(0)
+
+
+def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
+    """(conditions, route): the condition of every (facet, piece) that can bind, with ``generator``
+    its index among the pieces (facet by facet), and the pieces themselves; computed once per
+    :class:`ConditionSet`.  Raises :class:`LPRouteDeclined` for P with lines or unbounded.
+
+    The walk of a facet stops at the horizon T: the least sup{h : p(h) >= 0} over the conditions
+    p built so far (the first piece of every facet first).  The valid set lies in [0, T], each
+    facet's pieces cover [0, T] at least, and so the conditions still give the valid set exactly.
+
+    x' = -x on [-1, 1], forward Euler: facet x <= 1 has the piece [0, 1] with x = 1
+    (condition h >= 0, never binding) and [1, oo) with x = -1: 1 + (1 - h) = 2 - h >= 0,
+    which bounds the valid set by T = 2 (pieces 1 and 3: the vertex -1 on x <= 1, 1 on -x <= 1).
+
+    >>> import exactinv as ei
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1]], [1, 1]), ei.methods.taylor(1))
+    >>> conditions, route = lp_route(cs)
+    >>> [(c.generator, c.facet, c.poly) for c in conditions]
+    [(1, 0, (Fraction(2, 1), Fraction(-1, 1))), (3, 1, (Fraction(2, 1), Fraction(-1, 1)))]
+    """
+    cache = cs.cache(LPRouteCache)
+    if cache.found is None and cache.declined is None:
+        try:
+            cache.found = _build(cs)
+        except LPRouteDeclined as exc:
+            cache.declined = exc
+    if cache.declined is not None:
+        raise cache.declined
+    assert cache.found is not None
+    return cache.found
+
+
+def walk_facets(cs: ConditionSet, facets: int) -> tuple[list[Condition], LPRoute]:
+    """:func:`lp_route`'s work, uncached, on the first ``facets`` rows of G only: the other rows bound
+    the LP's feasible set but are not facets whose validity is asked (the P with lines of
+    :mod:`exactinv.validset.lp_lines`: the rows l^T x <= 0 of a basis of ker G).
+
+    The interval [-1, 1] with the row x <= 2 appended but not walked: only facets 0 and 1 get pieces.
+
+    >>> import exactinv as ei
+    >>> cs = ConditionSet(ei.LinearSystem([[-1]]), ei.Polyhedron([[1], [-1], [1]], [1, 1, 2]), ei.methods.taylor(1))
+    >>> _, route = walk_facets(cs, 2)
+    >>> [f.facet for f in route.facets]
+    [0, 1]
+    """
+    return _build(cs, facets)
+
+
+def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition], LPRoute]:
+    t0 = time.perf_counter()
+    if cs.G.rank() < cs.polyhedron.n:
+        raise LPRouteDeclined("P has lines (rank G < n): no basis exists; the vertex route handles it")
+    P = _Problem(cs)
+    asked = range(P.m if walked is None else walked)
+    T: Real = INF
+    objectives = [P.objective(i) for i in range(P.m)]
+    walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
+
+    last: list[_Step | None] = [None] * P.m
+
+    def step(i: int, t: FiniteReal) -> None:
+        nonlocal T
+        found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
+        before = last[i]
+        if found.basis is None and before is not None and not before.covered:
+            # two ray pieces meet at t, where the first one's r vanishes: the second must decide t (r > 0 at t),
+            # or a point piece [t, t] (a basis optimal at t alone: r touches 0 there, or two rays change
+            # places), or a third ray, of the LP unbounded at (or around) t, positive at t
+            covering = cover(i, found.piece.ray, before, t)  # type: ignore[arg-type]
+            if covering is None:
+                point_piece, rays = _point_piece(P, objectives[i], t)
+                if point_piece is not None:
+                    add(i, point_piece)
+                    covering = found
+                for d in rays if covering is None else ():
+                    covering = cover(i, d, before, t)
+                    if covering is not None:
+                        break
+                if covering is None:
+                    raise LPRouteDeclined(_TOUCH.format(t))
+            found = covering
+        add(i, found)
+
+    def cover(i: int, d: tuple[Fraction, ...], before: _Step, t: FiniteReal) -> _Step | None:
+        """The ray piece of d from a rational s <= t at which its r > 0 (moving the previous piece's end
+        from t to s), or None."""
+        s = _rational_cover(_ray_poly(P, objectives[i], d), before.piece.start, t)
+        again = None if s is None else _accept_ray(P, objectives[i], d, s, _cap(T))
+        if again is not None and s != t:
+            old = walks[i][-1]
+            walks[i][-1] = (replace(old[0], end=s), old[1], old[2])
+        return again
+
+    def add(i: int, found: _Step) -> None:
+        nonlocal T
+        last[i] = found
+        if found.basis is not None:
+            x = found.basis.x
+            gNx = x.transpose() * objectives[i]  # 1 x L: g_i N_k x_B
+            c = (P.D * P.cs.b[i] - flint.fmpq_poly(gNx.entries())) * P.D
+            point: tuple[Fraction, ...] | None = tuple(Fraction(int(v.p), int(v.q)) for v in x.entries())
+        else:
+            c = -found.r  # the ray-facet condition -(g_i N d) D >= 0: negative on the open piece
+            point = None
+        bound = _bound(c, T)
+        if exact_lt(bound, T):
+            T = bound
+        walks[i].append((found.piece, c, point))
+
+    for i in asked:  # the first piece of every facet: an early horizon
+        step(i, Fraction(0))
+    for i in asked:  # on to the horizon, and past a ray piece's end that it leaves undecided
+        while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
+            step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
+    t1 = time.perf_counter()
+    rays = any(piece.basis is None for walk in walks for piece, _, _ in walk)
+    conditions, vertices, facets = [], [], []
+    for i, walk in enumerate(walks[:len(asked)]):
+        facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
+        for piece, c, x in walk:
+            vertices.append(x if x is not None else P.point)
+            if not never_binds(c.coeffs()):
+                kind = Kind.VERTEX if piece.basis is not None else Kind.RAY
+                conditions.append(Condition(kind, len(vertices) - 1, i, c))
+    t2 = time.perf_counter()
+    route = LPRoute(tuple(facets), tuple(vertices), P.float_lps, P.exact_lps,
+                    (("pieces", t1 - t0), ("conditions", t2 - t1)), P.point if rays else None)
+    return conditions, route
+
+
+def vertex_bound(n: int, m: int) -> int:
+    """McMullen's upper bound on the number of vertices of a polytope in R^n with m facets:
+    C(m - ceil(n/2), floor(n/2)) + C(m - floor(n/2) - 1, ceil(n/2) - 1) -- the route choice's
+    cheap estimate (no vertex is computed).
+
+    >>> vertex_bound(2, 5), vertex_bound(3, 6), vertex_bound(10, 40)
+    (5, 8, 371008)
+    """
+    if m <= n:
+        return 1
+    lo, hi = n // 2, (n + 1) // 2
+    return math.comb(m - hi, lo) + math.comb(m - lo - 1, hi - 1)
