@@ -1,4 +1,4 @@
-"""The condition polynomials of the exact valid set (DESIGN.md section 1, beyond the paper).
+"""The condition polynomials of the exact valid set (docs/design.md, section 1; beyond the paper).
 
 A_d(dt) P is a subset of P iff A_d(dt) v is in P for every point v of a
 minimal generator system of P, A_d(dt) r is in the recession cone for every
