@@ -96,13 +96,14 @@ def descartes_variations(ints: Sequence[int], a: Any, b: Any) -> int:
     rule after the Moebius map (0, oo) -> (a, b)).  Integer arithmetic throughout."""
     D = len(ints) - 1
     w = b - a
-    size = a.numerator.bit_length() + a.denominator.bit_length() + b.numerator.bit_length() + b.denominator.bit_length()
     if D < 1:  # a constant: no root, no variation
         return 0
-    charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size, size),
-           "root isolation (Descartes' rule)")
     s = a.denominator * w.denominator
     u, v = a.numerator * w.denominator, w.numerator * a.denominator  # a + w y = (u + v y) / s
+    if active():  # charged by the largest coefficient (not the ends': big middle coefficients cost too)
+        stride = max(abs(u).bit_length(), v.bit_length(), s.bit_length())  # each Horner step grows q by this
+        charge(descartes_node_cost(D, max(abs(c).bit_length() for c in ints) + D * stride, stride),
+               "root isolation (Descartes' rule)")
     q = [ints[-1]]
     for k in range(D - 1, -1, -1):  # Horner: q <- q (u + v y) + c_k s^(D-k)
         q = [u * q[0]] + [u * q[i] + v * q[i - 1] for i in range(1, len(q))] + [v * q[-1]]
