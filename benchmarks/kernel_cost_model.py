@@ -22,6 +22,7 @@ import random
 import statistics
 import sys
 from fractions import Fraction
+from functools import partial
 from pathlib import Path
 from time import process_time
 
@@ -58,24 +59,23 @@ def rows(quick: bool):
     for d in degrees:
         for bits in sizes:
             p = random_poly(rng, d, bits)
-            yield ("descartes, short ends", d, bits, measured(lambda: polys.descartes_variations(p, *short)))
+            yield ("descartes, short ends", d, bits, measured(partial(polys.descartes_variations, p, *short)))
             lo, hi = sorted(long_end)
-            yield ("descartes, 200-bit ends", d, bits, measured(lambda: polys.descartes_variations(p, lo, hi)))
+            yield ("descartes, 200-bit ends", d, bits, measured(partial(polys.descartes_variations, p, lo, hi)))
             x = Fraction(rng.getrandbits(64) | 1, 2 ** 63 + 1)
-            yield ("sign at a 64-bit rational", d, bits, measured(lambda: polys.sign_at(p, x)))
+            yield ("sign at a 64-bit rational", d, bits, measured(partial(polys.sign_at, p, x)))
             if d ** 2 * bits <= 120 ** 2 * 16:
                 dp = polys.integer_derivative(p)
-                yield ("pseudo-remainder sequence", d, bits, measured(lambda: polys.integer_gcd(p, dp)))
-            q = [c * (1 + 0 * k) for k, c in enumerate(p)]
+                yield ("pseudo-remainder sequence", d, bits, measured(partial(polys.integer_gcd, p, dp)))
             yield ("isolation (0, Cauchy bound)", d, bits,
-                   measured(lambda: polys.isolate(q, Fraction(0), polys.cauchy_bound(q))))
+                   measured(partial(polys.isolate, p, Fraction(0), polys.cauchy_bound(p))))
     for deg in ((2, 3, 5) if quick else (2, 3, 5, 7)):
         for den in (1, 2 ** 20, 2 ** 100):
             g, h = _rational_function(rng, deg, den)
             if g is None:
                 continue
             try:
-                yield (f"prove_tail", deg, den.bit_length(), measured(lambda: prove_tail(g, h, Fraction(1, 2))))
+                yield ("prove_tail", deg, den.bit_length(), measured(partial(prove_tail, g, h, Fraction(1, 2))))
             except Exception:  # noqa: BLE001 (a family member the tail proof does not take: skipped)
                 continue
 

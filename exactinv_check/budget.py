@@ -69,7 +69,8 @@ DESCARTES_BUDGET = 16 * STURM_BUDGET  # degree^4 bits^2 of one Descartes isolati
 # was rejected though its isolation takes about 4 s (3.8e13); 16x keeps the red team's degree-127, 670-bit H3 (1.2e14) out
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
-CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)
+CERTIFICATE_BUDGET = 40 * WORK_BUDGET  # everything one certificate may cost: about 40 s at RATE (the clock, TIME_LIMIT,
+# stands behind it); genuine ones measured up to 2e9 (a radius of degree 272, an LP-route Pade(2,2) set on R^10/40)
 BIG_CHARGE = 10**6  # a charge this large reads the clock itself (else every 64th: 63 priced computations of up
 # to WORK_BUDGET each, mispriced a few times, would run minutes between two readings)
 TIME_LIMIT = 50  # CPU seconds: the clock behind the account (a verdict within a minute of the kernel's own work)
@@ -225,7 +226,8 @@ def evaluation_cost(degree: int, bits: int, end_bits: int = 0) -> int:
     at degree 200; issue 22) -- plus a few interpreted operations."""
     e = words(end_bits)
     grown = words(bits + degree * end_bits)
-    return (degree + 1) * (4 * PYTHON_OP + e * (grown + words(degree * end_bits)) + words(bits) * (e + words(degree * end_bits)) // 2)
+    power = words(degree * end_bits)
+    return (degree + 1) * (4 * PYTHON_OP + e * (grown + power) + words(bits) * (e + power) // 2)
 
 
 def sparse_read_cost(entries: int, longest_chars: int) -> int:

@@ -35,7 +35,8 @@ from typing import Any
 __all__ = [
     "FORMAT", "VERSIONS", "VERSION", "SPARSE_VERSION", "ENVELOPE_KEYS", "PROBLEM_KEYS", "METHOD_KEYS",
     "BOOLEAN_KEYS", "INFINITY", "NEG_INFINITY", "PRUNING_VARIABLE",
-    "MAX_DIGITS", "MAX_DIMENSION", "MAX_DEGREE", "MAX_METHOD_DEGREE", "MAX_COEFFICIENTS", "MAX_TAIL_INDEX",
+    "MAX_DIGITS", "MAX_DIMENSION", "MAX_DEGREE", "MAX_ALGEBRAIC_DEGREE", "MAX_METHOD_DEGREE",
+    "MAX_COEFFICIENTS", "MAX_TAIL_INDEX",
     "MAX_POLES", "MAX_LINE_EXPONENT", "HORIZON_BITS", "MAX_RATIONAL_PIECES",
     "Tag", "ClaimType", "RadiusReason", "GeneratorKind", "Verdict", "Key", "ClaimSpec", "CLAIMS",
     "keys_since", "json_schema", "schema_text",
@@ -57,6 +58,9 @@ PRUNING_VARIABLE = "h/(s+h)"  # the pruning record's name of the substitution u 
 MAX_DIGITS = 4000  # characters of every number string: parsing is never the bottleneck
 MAX_DIMENSION = 2000  # every vector and matrix dimension
 MAX_DEGREE = 200  # every polynomial the kernel builds from a certificate (an algebraic number: 201 coefficients)
+MAX_ALGEBRAIC_DEGREE = 1000  # an algebraic number's polynomial (and a radius's d_j): not capped at MAX_DEGREE but priced
+# by its size -- its Descartes tests, signs at rationals and gcds are charged as they run (issue 22: a genuine rho of
+# degree 272 was refused)
 MAX_METHOD_DEGREE = 64  # deg g and deg h of the method r = g/h after trimming
 MAX_COEFFICIENTS = 4096  # coefficient polynomials d_j of the radius the kernel computes (a longer scan cannot be certified)
 MAX_TAIL_INDEX = 1 << 20  # the largest tail index of a radius claim
@@ -424,9 +428,9 @@ def _value_defs() -> dict[str, Any]:
                            f"exponent, no spaces, at most {MAX_DIGITS} characters.",
             "type": "string", "maxLength": MAX_DIGITS, "pattern": _NUMBER_PATTERN},
         "infinity": {"type": "string", "enum": [INFINITY, NEG_INFINITY]},
-        "algebraic": _object({"poly": _array(_RATIONAL, 2, MAX_DEGREE + 1), "interval": _array(_RATIONAL, 2, 2)},
+        "algebraic": _object({"poly": _array(_RATIONAL, 2, MAX_ALGEBRAIC_DEGREE + 1), "interval": _array(_RATIONAL, 2, 2)},
                              description="The unique root of poly[0] + poly[1] x + ... in the open interval (lo, hi); "
-                                         "the kernel proves uniqueness by a Sturm count."),
+                                         "the kernel proves uniqueness by Descartes' rule (with bisection)."),
         "real": {"description": "An exact real: a rational, oo / -oo, or a real algebraic number.",
                  "oneOf": [_RATIONAL, _ref("infinity"), _ref("algebraic")]},
         "index": {"type": "integer", "minimum": 0},

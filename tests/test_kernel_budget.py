@@ -66,9 +66,9 @@ def test_budget_constants_live_in_one_module_and_agree_with_the_docs():
     assert not hasattr(rationals, "WORK_BUDGET") and polys.STURM_BUDGET is budget.STURM_BUDGET  # no second home
     assert pruning_rational.PIECES_BUDGET == budget.PIECES_BUDGET and not hasattr(reals, "STURM_BUDGET")
     doc = (ROOT / "docs" / "certificate-format.md").read_text()
-    for number in ("5 x 10^12", "2 x 10^9", "10^8", f"{budget.TIME_LIMIT} s"):
+    for number in ("5 x 10^12", "4 x 10^9", "10^8", f"{budget.TIME_LIMIT} s"):
         assert number in doc, number
-    assert budget.STURM_BUDGET == 5 * 10 ** 12 and budget.CERTIFICATE_BUDGET == 2 * 10 ** 9
+    assert budget.STURM_BUDGET == 5 * 10 ** 12 and budget.CERTIFICATE_BUDGET == 4 * 10 ** 9
     assert budget.WORK_BUDGET == 10 ** 8
     assert "10^11" not in doc  # the old, wrong statement of the root-isolation budget
 
