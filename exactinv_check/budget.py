@@ -1,9 +1,11 @@
 """The kernel's work budgets: every constant and cost formula in one place, and
 the one account of a whole certificate.
 
-Two limits, both in *word operations* (about one machine-word integer
-operation each; measured on the 2-core reference machine, shared and loaded,
-3 to 8 x 10^7 of them per second of pure-Python work):
+Two limits, both in *word operations* (a unit of work calibrated to RATE =
+10^8 of them per CPU second on the 2-core reference machine, shared and
+loaded: benchmarks/kernel_cost_model.py measures every charged primitive --
+Descartes tests, signs at rationals, pseudo-remainder sequences, isolations,
+the tail proof -- and each charges within about 3x of that rate):
 
 * per computation: a single exact computation (a rebuild of D and N, a
   pseudo-remainder sequence, the pieces of a pruning test...) is priced before
@@ -50,11 +52,13 @@ from typing import Any, Callable, Iterator, Sequence
 
 from .failure import require_budget
 
+RATE = 10**8  # charged word operations per CPU second of the kernel's real work on the reference machine (shared, loaded):
+# every cost formula below is calibrated to it within about 3x by benchmarks/kernel_cost_model.py (benchmarks/README.md)
 WORK_BUDGET = 10**8  # word operations of one priced computation: one to three seconds of work
 FRACTION_WEIGHT = 100  # word operations per Fraction operation on short numbers
 PYTHON_OP = 10  # word operations per interpreted integer operation on short numbers (its overhead)
 DISK_STEP = 50000  # word operations per term of one step of the Bernstein positivity proof (disk arithmetic)
-CALL = 1000  # word operations of the fixed overhead of one Descartes test
+CALL = 3000  # word operations of the fixed overhead of one Descartes test (measured: about 30 us)
 STURM_BUDGET = 5 * 10**12  # degree^4 bits^2 of one pseudo-remainder sequence (gcd, Sturm): up to about 20 s
 STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequence (measured: 880 at degree 80)
 SCAN_BUDGET = 5 * WORK_BUDGET  # the estimate of the radius's coefficient polynomials d_0 .. d_(N-1) (claims_radius):
@@ -65,7 +69,8 @@ DESCARTES_BUDGET = 16 * STURM_BUDGET  # degree^4 bits^2 of one Descartes isolati
 # was rejected though its isolation takes about 4 s (3.8e13); 16x keeps the red team's degree-127, 670-bit H3 (1.2e14) out
 PIECES_BUDGET = 20 * WORK_BUDGET  # the estimate of the Bernstein pieces of a pruning test in u
 PIECES_PER_WORD = 5  # that estimate runs about 7 times faster than word operations (a genuine Pade(6,6) record: 7e8, 1 s)
-CERTIFICATE_BUDGET = 20 * WORK_BUDGET  # everything one certificate may cost: 25-60 s (genuine ones: < 5e8)
+CERTIFICATE_BUDGET = 40 * WORK_BUDGET  # everything one certificate may cost: about 40 s at RATE (the clock, TIME_LIMIT,
+# stands behind it); genuine ones measured up to 2e9 (a radius of degree 272, an LP-route Pade(2,2) set on R^10/40)
 BIG_CHARGE = 10**6  # a charge this large reads the clock itself (else every 64th: 63 priced computations of up
 # to WORK_BUDGET each, mispriced a few times, would run minutes between two readings)
 TIME_LIMIT = 50  # CPU seconds: the clock behind the account (a verdict within a minute of the kernel's own work)
@@ -176,11 +181,16 @@ def remainder_step_cost(length: int, lead_bits: int, other_bits: int) -> int:
 
 
 def descartes_node_cost(degree: int, bits: int, end_bits: int = 0) -> int:
-    """One Descartes test (a Moebius transform and a Taylor shift): about 2 degree^2 products and
-    additions of numbers of up to ``bits`` bits (the coefficients' plus degree times the ends'), the
-    degree^2 / 2 products of the Horner step each by a number of ``end_bits`` bits (quadratic in words)."""
+    """One Descartes test (a Moebius transform by Horner and a Taylor shift; polys.descartes_variations):
+    about 2 (degree + 1)^2 interpreted integer operations, the degree^2 products of the Horner step each of a
+    number of up to ``bits`` bits (the coefficients' plus degree times the ends') by one of ``end_bits`` bits,
+    and the degree^2 / 2 additions of the Taylor shift on numbers of up to ``bits`` bits.  Calibrated by
+    benchmarks/kernel_cost_model.py (a fit over degrees 10-200, coefficients of 8-2048 bits, ends of 2-200 bits:
+    22 RATE-units per interpreted operation, 0.45 per word of a product, 0.55 per word of an addition); the
+    former price, 2 (degree + 1)^2 (PYTHON_OP + w) + ..., charged every addition like an interpreted
+    operation and ran 4 to 20 times high (issue 22)."""
     w = words(bits)
-    return CALL + 2 * (degree + 1) ** 2 * (PYTHON_OP + w) + (degree + 1) ** 2 * w * words(end_bits) // 2
+    return CALL + (degree + 1) ** 2 * (2 * PYTHON_OP + w * (2 * words(end_bits) + 1) // 4)
 
 
 def fraction_products_cost(count: int, bits: int) -> Any:
@@ -210,9 +220,14 @@ def disk_step_cost(terms: Any) -> Any:
 
 def evaluation_cost(degree: int, bits: int, end_bits: int = 0) -> int:
     """One exact value of a degree-``degree`` polynomial with ``bits``-bit coefficients at a rational of
-    ``end_bits``-bit numerator and denominator (Horner: each step multiplies a number growing to
-    bits + degree end_bits bits by one of end_bits bits)."""
-    return (degree + 1) * (PYTHON_OP + words(bits + degree * end_bits) * words(end_bits))
+    ``end_bits``-bit numerator and denominator (polys.sign_at, homogenised Horner from the low end): step k
+    multiplies the running sum (bits + k end_bits bits) by the denominator, the coefficient by n^k (k end_bits
+    bits) and n^k by n -- products by powers of the point, which the former price left out (2.5 to 4 times low
+    at degree 200; issue 22) -- plus a few interpreted operations."""
+    e = words(end_bits)
+    grown = words(bits + degree * end_bits)
+    power = words(degree * end_bits)
+    return (degree + 1) * (4 * PYTHON_OP + e * (grown + power) + words(bits) * (e + power) // 2)
 
 
 def sparse_read_cost(entries: int, longest_chars: int) -> int:
@@ -243,6 +258,9 @@ MAX_DIGITS = 4000  # (format) characters of every number string: parsing is neve
 MAX_DIMENSION = 2000  # (format) every vector and matrix dimension
 # (format) every polynomial the kernel builds from a certificate (an algebraic number: 201 coefficients)
 MAX_DEGREE = 200
+# (format) an algebraic number's polynomial (and a radius's d_j): not capped at MAX_DEGREE but priced by its size --
+# its Descartes tests, signs at rationals and gcds are charged as they run (issue 22: a genuine rho of degree 272)
+MAX_ALGEBRAIC_DEGREE = 1000
 MAX_METHOD_DEGREE = 64  # (format) deg g and deg h of the method r = g/h after trimming
 # (format) coefficient polynomials d_j of the radius the kernel computes (a longer scan cannot be certified)
 MAX_COEFFICIENTS = 4096

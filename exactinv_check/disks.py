@@ -16,7 +16,7 @@ from fractions import Fraction
 from math import ceil, comb, isqrt
 from typing import Any, Sequence
 
-from .budget import MAX_WEIERSTRASS
+from .budget import FRACTION_WEIGHT, MAX_WEIERSTRASS, PYTHON_OP, active, charge, words
 from .failure import CheckFailure, require
 from .poly_arithmetic import primitive
 
@@ -86,6 +86,12 @@ def taylor_balls(p: Sequence[Fraction], z: tuple[Fraction, Fraction, Fraction], 
     and |T_i(c + u) - s_i| <= sum_{k>i} C(k,i) |s_k| rho^(k-i)  (the centred form: no cancellation is lost)."""
     re, im, rho = z
     sr, si = [Fraction(a) for a in p], [Fraction(0)] * len(p)
+    if active():  # n^2 / 2 steps of 4 Fraction products and 4 sums on numbers growing by the centre's bits each
+        # step, then n^2 / 2 terms of the radii; a Fraction operation costs about 3 FRACTION_WEIGHT (3 us: its gcds),
+        # measured by benchmarks/kernel_cost_model.py (prove_tail) -- 16 n^2 in all
+        centre = max(_bits_of(re), _bits_of(im), 1)
+        w = words(max(map(_bits_of, sr), default=0) + len(p) * centre)
+        charge(len(p) ** 2 * (16 * FRACTION_WEIGHT + 2 * w * w), "a Taylor shift at a pole's disk")
     for i in range(len(p) - 1):  # repeated synthetic division by (x - c)
         for k in range(len(p) - 2, i - 1, -1):
             sr[k], si[k] = sr[k] + re * sr[k + 1] - im * si[k + 1], si[k] + re * si[k + 1] + im * sr[k + 1]
@@ -101,6 +107,10 @@ def taylor_balls(p: Sequence[Fraction], z: tuple[Fraction, Fraction, Fraction], 
 
 
 
+def _bits_of(x: Fraction) -> int:
+    return abs(x.numerator).bit_length() + x.denominator.bit_length()
+
+
 def _approx_roots(f: Any, iterations: int = 200) -> list[Any]:
     """Float approximations of the roots of f (Aberth-Ehrlich iteration): hints only."""
     d = len(f) - 1
@@ -111,6 +121,7 @@ def _approx_roots(f: Any, iterations: int = 200) -> list[Any]:
     R = 2 * max(abs(c[i]) ** (1 / (d - i)) for i in range(d))  # Fujiwara's bound on |roots|
     z = [R * cmath.exp(2j * cmath.pi * (k + 0.25) / d) for k in range(d)]
     for _ in range(iterations):
+        charge(3 * PYTHON_OP * d * (d + 2), "a step of the float root hints")  # d Horner and d sums of d complex terms
         moved = 0.0
         for i in range(d):
             p, dp = c[-1], 0j
@@ -132,6 +143,9 @@ def _weierstrass(f: Any, X: Sequence[tuple[int, int]], s: int) -> list[tuple[Fra
     """W_i = f(x_i) / (lc prod_{j != i} (x_i - x_j)) exactly, for x_i = X_i / 2^s (X_i Gaussian integers
     (re, im)) and f with integer coefficients: integer arithmetic, one division per root."""
     d, S = len(f) - 1, 1 << s
+    if active():  # per root: d homogeneous Horner steps and d - 1 products, on numbers growing by s bits each
+        big = words(max(abs(c).bit_length() for c in f) + s * d)
+        charge(d * 2 * d * (4 * PYTHON_OP + 4 * big * words(s)), "a Weierstrass correction of the pole hints")
     out = []
     for i, (a, b) in enumerate(X):
         pr, pi, scale = f[d], 0, 1  # 2^(s d) f(x_i), homogeneous Horner

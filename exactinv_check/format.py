@@ -34,6 +34,7 @@ from typing import Any
 
 from .budget import (
     HORIZON_BITS,
+    MAX_ALGEBRAIC_DEGREE,
     MAX_COEFFICIENTS,
     MAX_DEGREE,
     MAX_DIGITS,
@@ -48,7 +49,8 @@ from .budget import (
 __all__ = [
     "FORMAT", "VERSIONS", "VERSION", "SPARSE_VERSION", "ENVELOPE_KEYS", "PROBLEM_KEYS", "METHOD_KEYS",
     "BOOLEAN_KEYS", "INFINITY", "NEG_INFINITY", "PRUNING_VARIABLE",
-    "MAX_DIGITS", "MAX_DIMENSION", "MAX_DEGREE", "MAX_METHOD_DEGREE", "MAX_COEFFICIENTS", "MAX_TAIL_INDEX",
+    "MAX_DIGITS", "MAX_DIMENSION", "MAX_DEGREE", "MAX_ALGEBRAIC_DEGREE", "MAX_METHOD_DEGREE",
+    "MAX_COEFFICIENTS", "MAX_TAIL_INDEX",
     "MAX_POLES", "MAX_LINE_EXPONENT", "HORIZON_BITS", "MAX_RATIONAL_PIECES",
     "Tag", "ClaimType", "RadiusReason", "GeneratorKind", "Verdict", "Key", "ClaimSpec", "CLAIMS",
     "keys_since", "json_schema", "schema_text",
@@ -429,9 +431,9 @@ def _value_defs() -> dict[str, Any]:
                            f"exponent, no spaces, at most {MAX_DIGITS} characters.",
             "type": "string", "maxLength": MAX_DIGITS, "pattern": _NUMBER_PATTERN},
         "infinity": {"type": "string", "enum": [INFINITY, NEG_INFINITY]},
-        "algebraic": _object({"poly": _array(_RATIONAL, 2, MAX_DEGREE + 1), "interval": _array(_RATIONAL, 2, 2)},
+        "algebraic": _object({"poly": _array(_RATIONAL, 2, MAX_ALGEBRAIC_DEGREE + 1), "interval": _array(_RATIONAL, 2, 2)},
                              description="The unique root of poly[0] + poly[1] x + ... in the open interval (lo, hi); "
-                                         "the kernel proves uniqueness by a Sturm count."),
+                                         "the kernel proves uniqueness by Descartes' rule (with bisection)."),
         "real": {"description": "An exact real: a rational, oo / -oo, or a real algebraic number.",
                  "oneOf": [_RATIONAL, _ref("infinity"), _ref("algebraic")]},
         "index": {"type": "integer", "minimum": 0},

@@ -11,6 +11,7 @@ from math import gcd as _igcd
 from typing import Any, Sequence
 
 from .budget import (
+    MAX_ALGEBRAIC_DEGREE,
     MAX_DEGREE,  # bound on every polynomial the kernel builds from a certificate
     active,
     charge,
@@ -191,13 +192,16 @@ def integer_derivative(a: Sequence[int]) -> list[int]:
 
 def gcd(p: Any, q: Any) -> Any:
     """The monic gcd over Q."""
-    g = integer_gcd(integer_coefficients(bounded(p)), integer_coefficients(bounded(q)))
+    g = integer_gcd(integer_coefficients(bounded(p, MAX_ALGEBRAIC_DEGREE)),
+                    integer_coefficients(bounded(q, MAX_ALGEBRAIC_DEGREE)))
     return [Fraction(c, g[-1]) for c in g] if g else []
 
 
-def bounded(p: Sequence[int | Fraction]) -> Any:
-    """p itself, after checking its degree is at most MAX_DEGREE (else the claim is rejected)."""
-    require(len(p) - 1 <= MAX_DEGREE, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {MAX_DEGREE}")
+def bounded(p: Sequence[int | Fraction], limit: int = MAX_DEGREE) -> Any:
+    """p itself, after checking its degree is at most ``limit`` (else the claim is rejected): MAX_DEGREE, or
+    MAX_ALGEBRAIC_DEGREE for the computations charged by the sizes of their numbers as they run (gcds by
+    pseudo-remainders, squarefree parts, Descartes isolation)."""
+    require(len(p) - 1 <= limit, f"a polynomial of degree {len(p) - 1} exceeds the kernel's bound {limit}")
     return p
 
 

@@ -23,17 +23,18 @@ from __future__ import annotations
 from fractions import Fraction
 from math import gcd as _igcd
 from math import isqrt
-from typing import Any, Sequence
+from typing import Any, Iterator, Sequence
 
 from .budget import (
-    DESCARTES_BUDGET,
+    MAX_ALGEBRAIC_DEGREE,
     STURM_BUDGET,
+    WORK_BUDGET,
     active,
+    affordable,
     charge,
     descartes_node_cost,
     evaluation_cost,
     modular_squarefree_cost,
-    sturm_cost,
     within_sturm_budget,
 )
 from .budget import MAX_ROOT_BISECTIONS as MAX_BISECTIONS
@@ -82,13 +83,14 @@ def descartes_variations(ints: Sequence[int], a: Any, b: Any) -> int:
     rule after the Moebius map (0, oo) -> (a, b)).  Integer arithmetic throughout."""
     D = len(ints) - 1
     w = b - a
-    size = a.numerator.bit_length() + a.denominator.bit_length() + b.numerator.bit_length() + b.denominator.bit_length()
     if D < 1:  # a constant: no root, no variation
         return 0
-    charge(descartes_node_cost(D, max(abs(ints[0]).bit_length(), abs(ints[-1]).bit_length()) + D * size, size),
-           "root isolation (Descartes' rule)")
     s = a.denominator * w.denominator
     u, v = a.numerator * w.denominator, w.numerator * a.denominator  # a + w y = (u + v y) / s
+    if active():  # charged by the largest coefficient (not the ends': big middle coefficients cost too)
+        stride = max(abs(u).bit_length(), v.bit_length(), s.bit_length())  # each Horner step grows q by this
+        charge(descartes_node_cost(D, max(abs(c).bit_length() for c in ints) + D * stride, stride),
+               "root isolation (Descartes' rule)")
     q = [ints[-1]]
     for k in range(D - 1, -1, -1):  # Horner: q <- q (u + v y) + c_k s^(D-k)
         q = [u * q[0]] + [u * q[i] + v * q[i - 1] for i in range(1, len(q))] + [v * q[-1]]
@@ -155,7 +157,7 @@ def squarefree(p: Sequence[int | Fraction]) -> Any:
     deg f >= 1 and the prime does not divide lc(p), f mod the prime has f's degree and
     divides both p and p' there, so their gcd there is not constant); else the priced
     pseudo-remainder sequence.  Within a certificate each polynomial's part is computed once."""
-    a = integer_coefficients(bounded(trim(p)))
+    a = integer_coefficients(bounded(trim(p), MAX_ALGEBRAIC_DEGREE))
     if len(a) <= 2:
         return a
     return list(_memo(("squarefree", tuple(a)), lambda: _squarefree_integers(a)))
@@ -206,32 +208,45 @@ def isolate(q: Sequence[int], a: Fraction, b: Fraction) -> list[tuple[Fraction, 
     """The real roots of the squarefree integer polynomial q in the open (a, b), a < b, in
     increasing order: (lo, hi) with exactly one root in the open (lo, hi) and none at lo or hi,
     or (r, r) for a rational root r -- by Descartes' rule with bisection (see the module
-    docstring).  Gated first by degree^4 bits^2 <= DESCARTES_BUDGET (budget.py: 16 times the Sturm gate, as
-    Descartes costs about 10^-5 of a Sturm sequence in word operations), then each node is charged to the
-    certificate's account as it runs; the number of nodes is bounded."""
+    docstring).  Priced by its nodes, not by a cap on degree^4 bits^2 (issue 22: the gate DESCARTES_BUDGET
+    refused a genuine rho of degree 272 with 1044-bit coefficients, isolated in about a second): one node must
+    fit in what the certificate has left, then each is charged to the certificate's account as it runs (at
+    budget.RATE, calibrated); the number of nodes is bounded."""
+    return list(isolate_ascending(q, a, b))
+
+
+def isolate_ascending(q: Sequence[int], a: Fraction, b: Fraction) -> Iterator[tuple[Fraction, Fraction]]:
+    """:func:`isolate`'s roots one at a time, in increasing order (depth first, the left half first, a rational
+    root found at a midpoint between its two halves): a caller that needs only the first root with some property
+    stops early, and the isolation of the roots beyond it is never paid for."""
     if len(q) < 2:
-        return []
+        return
     bits = max(abs(c).bit_length() for c in q)
-    require_budget(sturm_cost(len(q) - 1, bits) <= DESCARTES_BUDGET, f"over the kernel's work budget: root isolation of a "
-            f"polynomial of degree {len(q) - 1} with {bits}-bit coefficients (degree^4 bits^2 > {DESCARTES_BUDGET:.0e})")
-    out, stack, nodes = [], [(Fraction(a), Fraction(b))], 0
+    D = len(q) - 1
+    node = descartes_node_cost(D, bits + D * 8, 8)  # the cheapest node: ends of a few bits
+    require_budget(node <= WORK_BUDGET and affordable(node), f"over the kernel's work budget: root isolation of a "
+            f"polynomial of degree {D} with {bits}-bit coefficients (one Descartes test alone costs {node:.2e} word "
+            "operations, more than the certificate has left)")
+    stack: list[tuple[Fraction, Fraction, bool]] = [(Fraction(a), Fraction(b), False)]
+    nodes = 0
     while stack:
-        lo, hi = stack.pop()
+        lo, hi, root = stack.pop()
+        if root:  # a rational root, between the two halves
+            yield lo, hi
+            continue
         nodes += 1
         require(nodes <= MAX_BISECTIONS * len(q), "root isolation does not terminate (is the polynomial squarefree?)")
         v = descartes_variations(q, lo, hi)  # charged there
         if v == 0:
             continue
         if v == 1 and sign_at(q, lo) != 0 and sign_at(q, hi) != 0:
-            out.append((lo, hi))  # an end that is a root (a midpoint found exactly): bisect on, away from it
+            yield lo, hi  # an end that is a root (a midpoint found exactly): bisect on, away from it
             continue
         m = (lo + hi) / 2
+        stack.append((m, hi, False))
         if sign_at(q, m) == 0:
-            out.append((m, m))
-        stack.append((m, hi))
-        stack.append((lo, m))
-    out.sort(key=lambda iv: iv[0])
-    return out
+            stack.append((m, m, True))
+        stack.append((lo, m, False))
 
 
 def sign_right_of(p: Sequence[int | Fraction], x: int | Fraction) -> Any:
@@ -326,3 +341,22 @@ def positive_roots(p: Sequence[int | Fraction], upper: Fraction | None = None) -
         if sign_at(q, top) == 0:
             out.append((top, top))
     return isolate(q, Fraction(0), top) + out
+
+
+def positive_roots_ascending(p: Sequence[int | Fraction], upper: Fraction | None = None) -> Iterator[Any]:
+    """:func:`positive_roots`, one root at a time in increasing order (:func:`isolate_ascending`)."""
+    p = strip_zero_roots(p)
+    if len(p) <= 1:
+        return
+    q = squarefree(p)
+    top = cauchy_bound(p)
+    last = None
+    if upper is not None and upper < top:
+        top = Fraction(upper)
+        if top <= 0:
+            return
+        if sign_at(q, top) == 0:
+            last = (top, top)
+    yield from isolate_ascending(q, Fraction(0), top)
+    if last is not None:
+        yield last

@@ -17,8 +17,8 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import budget, poly_arithmetic, polys, resultants, text
-from .budget import MAX_REFINEMENTS
+from . import poly_arithmetic, polys, resultants, text
+from .budget import MAX_ALGEBRAIC_DEGREE, MAX_REFINEMENTS, charge, remainder_step_cost
 from .failure import CheckFailure, require
 from .format import INFINITY, NEG_INFINITY
 from .poly_arithmetic import evaluate, sign
@@ -46,8 +46,8 @@ class Real:
             return cls(inf=1 if data == INFINITY else -1)
         if isinstance(data, dict):
             require(set(data) == {"poly", "interval"}, f"{what}: an algebraic number has exactly the keys poly, interval")
-            require(isinstance(data["poly"], list) and len(data["poly"]) <= budget.MAX_DEGREE + 1,
-                    f"{what}: the polynomial must be a list of at most {budget.MAX_DEGREE + 1} coefficients")
+            require(isinstance(data["poly"], list) and len(data["poly"]) <= MAX_ALGEBRAIC_DEGREE + 1,
+                    f"{what}: the polynomial must be a list of at most {MAX_ALGEBRAIC_DEGREE + 1} coefficients")
             poly = poly_arithmetic.trim([rational(c, what) for c in data["poly"]])
             require(isinstance(data["interval"], list) and len(data["interval"]) == 2, f"{what}: interval needs two ends")
             lo, hi = (rational(x, what) for x in data["interval"])
@@ -155,9 +155,14 @@ class Real:
             return sign(self.q - other.q)
         if self.poly is None:
             return -other.compare(self)
-        if other.poly is None:  # self algebraic, other rational
-            s = self.sign_of([-other.q, Fraction(1)])
-            return s
+        if other.poly is None:  # self algebraic, other rational q: one sign of poly at q (the root is poly's only
+            q = other.q  # sign change in (lo, hi)); a gcd with x - q cost a pseudo-remainder sequence at degree 272
+            if q <= self.lo:
+                return 1
+            if q >= self.hi:
+                return -1
+            s = polys.sign_at(self._ints, q, self._bits)
+            return 0 if s == 0 else (1 if s == self._sign_lo else -1)
         if self.hi <= other.lo:
             return -1
         if other.hi <= self.lo:
@@ -206,7 +211,11 @@ class Real:
         g = gcd iff g changes sign on its own isolating interval (g divides the
         squarefree poly, so it has at most that one root there); if both are,
         they are equal iff g has a single root in the union of the intervals."""
-        g = poly_arithmetic.gcd(self.poly, other.poly)
+        a, b = self._ints, other._ints
+        small, large = (a, b) if len(a) <= len(b) else (b, a)
+        # one polynomial dividing the other (a certificate's value is often a factor of the kernel's own d_j): that
+        # divisor is the gcd, found by one exact division instead of a pseudo-remainder sequence
+        g = small if divides(small, large) else poly_arithmetic.gcd(self.poly, other.poly)
         if len(g) <= 1:
             return False
         gi = poly_arithmetic.integer_coefficients(g)
@@ -281,3 +290,23 @@ def quotient(a: Any, b: Any) -> Any:
         a.bisect()
         b.bisect()
     raise CheckFailure("could not isolate a quotient of two algebraic numbers")
+
+
+def divides(b: Sequence[int], a: Sequence[int]) -> bool:
+    """Does the primitive integer polynomial b divide the primitive integer polynomial a over Q?  By Gauss's
+    lemma the quotient is then integral, so integer long division with every leading quotient exact decides it;
+    each step is charged by the sizes of its numbers.  Both with degree >= 1."""
+    if len(b) > len(a):
+        return False
+    a = list(a)
+    lead_bits = abs(b[-1]).bit_length()
+    for shift in range(len(a) - len(b), -1, -1):
+        c, rest = divmod(a[shift + len(b) - 1], b[-1])
+        if rest:
+            return False
+        charge(remainder_step_cost(len(b), lead_bits + abs(c).bit_length(), max(abs(a[shift + len(b) - 1]).bit_length(),
+                                                                                  1)), "an exact polynomial division")
+        if c:
+            for k, bk in enumerate(b):
+                a[k + shift] -= c * bk
+    return not any(a)

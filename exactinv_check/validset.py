@@ -228,7 +228,7 @@ def _coarse_above(x: Fraction) -> Any:
 def _first_sign_change(p: Any, upper: Any) -> Any:
     """The first root in (0, upper] where p (positive right of 0) changes sign, or None."""
     ints = poly_arithmetic.integer_coefficients(p)
-    for lo, hi in polys.positive_roots(p, upper):
+    for lo, hi in polys.positive_roots_ascending(p, upper):  # lazily: the roots past the first are never isolated
         if lo == hi:
             if polys.sign_right_of(p, lo) < 0:
                 return Real.rational(lo)

@@ -328,8 +328,8 @@ def _mutants():
          mutate(lambda c: c["claims"][3].update(value={"poly": ["-2", "0", "1"], "interval": ["1", "2"], "approx": "1.41"}))),
         ("an algebraic number of degree 0",
          mutate(lambda c: c["claims"][3].update(value={"poly": ["2"], "interval": ["1", "2"]}))),
-        ("an algebraic number of degree 201",
-         mutate(lambda c: c["claims"][3].update(value={"poly": ["-2"] + ["0"] * 200 + ["1"], "interval": ["1", "2"]}))),
+        ("an algebraic number of degree 1001",  # MAX_ALGEBRAIC_DEGREE: above 200 priced by size, not refused
+         mutate(lambda c: c["claims"][3].update(value={"poly": ["-2"] + ["0"] * 1000 + ["1"], "interval": ["1", "2"]}))),
         ("oo where a rational is needed", mutate(lambda c: c["problem"]["b"].__setitem__(0, "oo"))),
         ("an algebraic gamma*",
          mutate(lambda c: c["claims"][gamma].update(value={"poly": ["-2", "0", "1"], "interval": ["1", "2"]}))),

@@ -65,7 +65,7 @@ from math import comb
 
 import flint
 
-from exactinv_check.format import MAX_COEFFICIENTS, MAX_DEGREE, RadiusReason
+from exactinv_check.format import MAX_ALGEBRAIC_DEGREE, MAX_COEFFICIENTS, RadiusReason
 
 from ..core.algebraic import ExactKey, Real
 from ..core.flintq import dyadic_of, fmpq_of, fraction_of
@@ -87,7 +87,7 @@ _MAX_SCAN = 600  # coefficients scanned for a sign change below kappa_A when p* 
 _MAX_SCAN_NO_TIE = 96  # ... when no pole ever gets as close as p* (rho = oo is then the likely answer)
 _BITS = 256  # Arb working precision
 _MAX_INDEX = MAX_COEFFICIENTS  # the kernel's bound: a longer scan could not be certified
-_MAX_VALUE_DEGREE = MAX_DEGREE  # the kernel's polynomial bound on a certificate's value
+_MAX_VALUE_DEGREE = MAX_ALGEBRAIC_DEGREE  # the kernel's bound on a certificate's algebraic value (priced by size above 200)
 
 
 def _negative_coefficient_at_zero(method: Method) -> int | None:

@@ -69,9 +69,9 @@ def test_budget_constants_live_in_one_module_and_agree_with_the_docs():
     assert not any(hasattr(polys, name) for name in ("add", "interpolate", "resultant", "quotient_polynomial"))
     assert pruning_rational.PIECES_BUDGET == budget.PIECES_BUDGET and not hasattr(reals, "STURM_BUDGET")
     doc = (ROOT / "docs" / "certificate-format.md").read_text()
-    for number in ("5 x 10^12", "2 x 10^9", "10^8", f"{budget.TIME_LIMIT} s"):
+    for number in ("5 x 10^12", "4 x 10^9", "10^8", f"{budget.TIME_LIMIT} s"):
         assert number in doc, number
-    assert budget.STURM_BUDGET == 5 * 10 ** 12 and budget.CERTIFICATE_BUDGET == 2 * 10 ** 9
+    assert budget.STURM_BUDGET == 5 * 10 ** 12 and budget.CERTIFICATE_BUDGET == 4 * 10 ** 9
     assert budget.WORK_BUDGET == 10 ** 8
     assert "10^11" not in doc  # the old, wrong statement of the root-isolation budget
 
@@ -141,21 +141,22 @@ def test_twenty_claims_each_near_the_old_budget_get_a_verdict(tmp_path, squarefr
     assert out.count("not checked: claim 0") == 19
 
 
-def test_twenty_genuine_heavy_claims_exhaust_the_certificate_budget(tmp_path):
-    """20 radius claims of Pade(6,5) that each verify (about 3.7e8 word operations each, a few seconds;
-    nothing is shared between them): together far over the certificate's budget -- rejected at the
-    sixth, with a verdict well within the subprocess timeout, where before the kernel ran them all."""
+def test_twenty_genuine_heavy_claims_get_a_verdict_within_the_certificate_budget(tmp_path):
+    """20 radius claims of Pade(6,5), nothing shared between them.  Before the calibration (issue 22,
+    harden-budget) each was charged about 3.7e8 word operations and together they exhausted the 2e9 budget at the
+    sixth; now the d_j come from integer series division and Descartes tests are charged at their real cost
+    (about 7e7 each, 1.4e9 and 13 s of CPU for all 20): every one is verified, well within the certificate's
+    budget and the subprocess timeout."""
     claim = ei.absolute_monotonicity_radius(ei.methods.pade(6, 5)).certificate
     base = dict(next(c for c in claim["claims"] if c["type"] == "absolute_monotonicity_radius"))
     base.pop("d", None)
     N = base.get("tail_index") or 0
-    claims = [dict(base, tail_index=N + k % 2) for k in range(20)]  # N + 2 is over the per-computation price
+    claims = [dict(base, tail_index=N + k % 2) for k in range(20)]
     cert = _envelope(claim["problem"], claims)
     assert len(json.dumps(cert)) < 10 ** 6
     code, out = _verdict_in_subprocess(cert, tmp_path)
-    assert code == 1 and "certificate REJECTED" in out, out[-2000:]
-    assert "over the certificate's work budget" in out or "over the kernel's time limit" in out
-    assert out.count("[ok] absolute_monotonicity_radius") >= 3  # the first claims verified: the total is what fails
+    assert code == 0 and "certificate VERIFIED" in out, out[-2000:]
+    assert out.count("[ok] absolute_monotonicity_radius") == 20
 
 
 def test_the_gamma_star_forgery_is_rejected_by_the_cheap_test_first():
