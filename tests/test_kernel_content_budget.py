@@ -64,3 +64,18 @@ def test_integer_coefficients_are_coprime_and_proportional_under_an_account(p):
     for c in ints:
         g = gcd(g, c)
     assert g == 1
+
+
+def test_a_sign_is_priced_by_the_largest_coefficient_not_the_leading_one():
+    # lead 1, 13000-bit middle coefficients, a 62-bit point: priced by the lead it was charged 12 times below its
+    # measured CPU time (isolate's ends and Real.claimed's end signs passed no bits)
+    from exactinv_check.budget import evaluation_cost
+    from exactinv_check.polys import sign_at
+    rng = random.Random(3)
+    ints = [rng.randrange(-2 ** 13000, 2 ** 13000) for _ in range(250)] + [1]
+    x = Fraction(2 ** 60 + 1, 2 ** 61)
+    with account(limit=10 ** 15, time_limit=None) as acc:
+        s = sign_at(ints, x)
+    n, d = x.numerator, x.denominator
+    assert s == (lambda v: (v > 0) - (v < 0))(sum(c * n ** k * d ** (250 - k) for k, c in enumerate(ints)))
+    assert acc.spent == evaluation_cost(250, max(abs(c).bit_length() for c in ints), 62)
