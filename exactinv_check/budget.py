@@ -193,6 +193,15 @@ def descartes_node_cost(degree: int, bits: int, end_bits: int = 0) -> int:
     return CALL + (degree + 1) ** 2 * (2 * PYTHON_OP + w * (2 * words(end_bits) + 1) // 4)
 
 
+def content_cost(count: int, den_bits: int, other_bits: int) -> int:
+    """``count`` gcds (and products, exact quotients) of integers of up to ``den_bits`` + ``other_bits`` bits:
+    polys.integer_coefficients, whose coefficients share a common denominator of ``den_bits`` bits.  Quadratic in
+    the words (CPython's gcd is Lehmer's; numbers sharing a large factor take its slow path: measured about 2e8
+    words^2 a second on the red team's 1/d_k polynomials, so one word^2 per unit is within 2x of RATE)."""
+    w = words(den_bits + other_bits)
+    return count * (PYTHON_OP + w * w)
+
+
 def fraction_products_cost(count: int, bits: int) -> Any:
     """``count`` Fraction products and sums of numbers of about ``bits`` bits (each normalised by gcds,
     quadratic in the words)."""

@@ -15,6 +15,7 @@ from .budget import (
     MAX_DEGREE,  # bound on every polynomial the kernel builds from a certificate
     active,
     charge,
+    content_cost,
     fraction_products_cost,
     remainder_step_cost,
 )
@@ -49,12 +50,23 @@ def sign(x: int | Fraction) -> Any:
 
 
 def integer_coefficients(p: Sequence[int | Fraction]) -> Any:
-    """Coprime integers proportional to p by a positive factor (so signs agree)."""
+    """Coprime integers proportional to p by a positive factor (so signs agree).
+
+    Charged to the certificate's account by the sizes of its numbers before they are built (budget.content_cost):
+    coefficients 1/d_k with distinct 3300-bit d_k make a common denominator of degree x 3300 bits shared by every
+    integer, and the content's gcds of such numbers ran minutes uncharged (red team rt-budget2: a 200 KB algebraic
+    number of degree 200 kept the kernel over 60 s of CPU before any charge)."""
     p = trim(p)
+    metered = active()
     den = 1
     for c in p:
-        if not isinstance(c, int):
+        if not isinstance(c, int) and c.denominator != 1:
+            if metered:
+                charge(content_cost(1, den.bit_length(), c.denominator.bit_length()), "a common denominator")
             den = den * c.denominator // _igcd(den, c.denominator)
+    if metered and den != 1:
+        charge(content_cost(len(p), den.bit_length(), max(abs(Fraction(c).numerator).bit_length() for c in p)),
+               "the integer coefficients of a polynomial (their content)")
     return content_free([c * den if isinstance(c, int) else c.numerator * (den // c.denominator) for c in p])
 
 

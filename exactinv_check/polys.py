@@ -61,13 +61,15 @@ def sign_at(ints: Sequence[int], x: Any, bits: int | None = None) -> Any:
     """The sign of the integer polynomial ints at the rational x, in integer arithmetic
     (the homogenised value sum c_k n^k d^(D-k) with x = n/d, d > 0).  Charged by ``bits``, the largest
     coefficient's bits when the caller knows them (a certificate's algebraic number, :class:`reals.Real`), else
-    by the leading coefficient's: a degree-200 polynomial with 4000-digit middle coefficients and ends 1 was
-    charged 15 times low (9e3 word operations for 4.4 ms), 63 bisections between two readings of the clock."""
+    found here (a linear scan): a degree-200 polynomial with 4000-digit middle coefficients and ends 1 was
+    charged 15 times low (9e3 word operations for 4.4 ms), 63 bisections between two readings of the clock; priced
+    by the leading coefficient's bits, a degree-250 polynomial with lead 1 and 13000-bit middle coefficients at
+    62-bit points (isolate's ends, Real.claimed's) was charged 12 times low (red team rt-budget2)."""
     n, d = x.numerator, x.denominator
     if not ints:  # the zero polynomial
         return 0
     if active():
-        bits = abs(ints[-1]).bit_length() if bits is None else bits
+        bits = max(abs(c).bit_length() for c in ints) if bits is None else bits
         charge(evaluation_cost(len(ints) - 1, bits, max(abs(n).bit_length(), d.bit_length())),
                "a sign of a polynomial at a rational")
     acc, power = 0, 1
@@ -239,12 +241,12 @@ def isolate_ascending(q: Sequence[int], a: Fraction, b: Fraction) -> Iterator[tu
         v = descartes_variations(q, lo, hi)  # charged there
         if v == 0:
             continue
-        if v == 1 and sign_at(q, lo) != 0 and sign_at(q, hi) != 0:
+        if v == 1 and sign_at(q, lo, bits) != 0 and sign_at(q, hi, bits) != 0:
             yield lo, hi  # an end that is a root (a midpoint found exactly): bisect on, away from it
             continue
         m = (lo + hi) / 2
         stack.append((m, hi, False))
-        if sign_at(q, m) == 0:
+        if sign_at(q, m, bits) == 0:
             stack.append((m, m, True))
         stack.append((lo, m, False))
 

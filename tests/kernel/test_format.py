@@ -91,12 +91,12 @@ def test_the_tables_are_immutable():
 def test_the_schema_follows_the_bounds_and_vocabulary(monkeypatch):
     schema = fmt.json_schema()
     defs = schema["$defs"]
-    assert defs["algebraic"]["properties"]["poly"]["maxItems"] == fmt.MAX_DEGREE + 1
+    assert defs["algebraic"]["properties"]["poly"]["maxItems"] == fmt.MAX_ALGEBRAIC_DEGREE + 1
     assert defs["rational"]["maxLength"] == fmt.MAX_DIGITS
     assert defs["claim_absolute_monotonicity_radius"]["properties"]["reason"]["enum"] == [str(r) for r in fmt.RadiusReason]
     assert defs["claim_absolute_monotonicity_radius"]["properties"]["poles"]["oneOf"][0]["maxItems"] == fmt.MAX_POLES
     assert len(str(2 ** fmt.HORIZON_BITS - 1)) * 2 + 1 == defs["pruning"]["oneOf"][0]["properties"]["horizon"]["maxLength"]
-    monkeypatch.setattr(fmt, "MAX_DEGREE", 10)
+    monkeypatch.setattr(fmt, "MAX_ALGEBRAIC_DEGREE", 10)
     assert fmt.json_schema()["$defs"]["algebraic"]["properties"]["poly"]["maxItems"] == 11
     for kind, spec in fmt.CLAIMS.items():
         claim = defs[f"claim_{kind}"]
