@@ -65,7 +65,7 @@ def _drop_vertex(claim: Any) -> Any:
     return mutate
 
 
-HUGE_ROOT = {"poly": ["9" * 3000] * 200 + ["1"], "interval": ["0", "1"]}
+HUGE_ROOT = {"poly": ["9" * 3000] * 1000 + ["1"], "interval": ["0", "1"]}
 
 # (name, genuine certificate, what is forged, mutation, expected verdict kind)
 FORGERIES = [
@@ -134,7 +134,7 @@ FORGERIES = [
     ("unknown-claim", "box-taylor4", "an unknown claim type", _set("claims", 0, "type", "gamma"), Verdict.REJECTED),
     ("version-4", "box-taylor4", "version 4", _set("version", 4), Verdict.REJECTED),
     ("float-number", "box-taylor4", "a JSON float for a number", _set("claims", 0, "value", 1.0), Verdict.REJECTED),
-    ("huge-root", "box-taylor4", "a threshold of degree 200 with 3000-digit coefficients",
+    ("huge-root", "box-taylor4", "a threshold of degree 1000 with 3000-digit coefficients",
      _set("claims", 2, "value", HUGE_ROOT), Verdict.OVER_BUDGET),
     ("wrong-format", "box-taylor4", "not the exactinv format", _set("format", "exactinv"), Verdict.BAD_INPUT),
 ]
