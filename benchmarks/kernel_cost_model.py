@@ -88,7 +88,7 @@ def _rational_function(rng, degree, den):
     for _ in range(degree - 1):
         re, im = Fraction(rng.randint(3 * den, 6 * den), den), Fraction(rng.randint(1, 3 * den), den)
         n = re * re + im * im
-        h = polys.mul(h, [Fraction(1), -2 * re / n, 1 / n])
+        h = poly_arithmetic.mul(h, [Fraction(1), -2 * re / n, 1 / n])
     g = [Fraction(1)] + [Fraction(rng.randint(-4 * den, 4 * den), 4 * den) for _ in range(degree - 1)]
     return g, h
 

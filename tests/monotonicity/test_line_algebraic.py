@@ -117,6 +117,7 @@ def test_strict_dominance_gives_oo():
         assert admissible(g, h, kappa, 300)
 
 
+@pytest.mark.workload  # a kernel workload (about 40-60 s of CPU): left out at the lowest versions
 def test_the_first_example_with_g_one_is_oo():
     """1/h, h = (w^2 - 2)(w^4 - 2w^2 + 9), w = z - 2 (p* = 2 - sqrt 2, pair p* +- i): rho = oo, kernel-checked.
     (The kernel's march takes ~3000 certified steps here: 2|b| is close to b_*, so p*'s dominance starts late.)"""
