@@ -63,11 +63,20 @@ from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 from typing import Any, Sequence
 
+from .budget import (
+    CERTIFICATE_BUDGET,
+    MAX_RATIONAL_BISECTIONS,
+    STURM_BUDGET,
+    STURM_WORDS,
+    affordable,
+    charge,
+    disk_step_cost,
+    sturm_cost,
+)
 from .budget import MAX_BERNSTEIN_DEGREE as MAX_DEGREE
 from .budget import MAX_BERNSTEIN_STEPS as MAX_STEPS
 from .budget import MAX_BERNSTEIN_TRIALS as MAX_TRIALS
 from .budget import MAX_DEGREE as MAX_DEGREE_OF_F
-from .budget import MAX_RATIONAL_BISECTIONS, STURM_BUDGET, STURM_WORDS, affordable, charge, disk_step_cost, sturm_cost
 from .budget import MAX_RATIONAL_POLE_EXPONENT as MAX_EXPONENT
 from .disks import ball, ball_abs_upper, ball_mul
 from .failure import require
@@ -260,7 +269,9 @@ def _sturm_affordable(Q: Any) -> Any:
     if len(ints) <= 2:
         return True
     cost = sturm_cost(len(ints) - 1, max(abs(c).bit_length() for c in ints))
-    return cost <= STURM_BUDGET and affordable(cost // STURM_WORDS)
+    # at most half the certificate's account: the count's real work can exceed this estimate (a Descartes isolation
+    # of a density with near-real complex roots), and the dominance proof is the cheaper road when p* dominates
+    return cost <= STURM_BUDGET and cost // STURM_WORDS <= CERTIFICATE_BUDGET // 2 and affordable(cost // STURM_WORDS)
 
 
 def _single_pole(g: Any, h: Any, mu: Any) -> Any:
