@@ -141,11 +141,15 @@ def test_H2_large_forward_euler_condition_is_rejected_quickly():
 # (reject "too large for this kernel" before Sturm), or use a
 # Descartes/Vincent-Collins-Akritas isolation with a budget.
 
-def test_H3_high_degree_method_with_long_coefficients_is_rejected_quickly():
+# Since the cost model's calibration (issue 22) the isolation is no longer refused by its size up front: it runs,
+# charged node by node, and the certificate's account stops it (over budget after about 22 s of CPU, measured):
+# a bounded verdict within the 60 s promise, no longer "quickly".
+@pytest.mark.workload
+def test_H3_high_degree_method_with_long_coefficients_is_rejected_within_the_promise():
     rng = random.Random(1)
     num = ["1", "1"] + [str(rng.randint(-10**100, 10**100)) for _ in range(63)]
     cert = _cert([["-1"]], [["1"]], [{"type": "ellipsoid_valid_steplengths", "intervals": []}], (num, ["1"]))
-    assert _check_in_subprocess(cert, 3) == "REJECTED"
+    assert _check_in_subprocess(cert, 60) == "REJECTED"
 
 
 # --------------------------------------------------------------------------

@@ -106,9 +106,8 @@ def test_radius_of_degree_272_is_certified_and_verified():
     g, h = from_partial_fractions([((p, F(0)), (b_star, F(0))), ((p, y), (u, v)), ((p, -y), (u, -v))])
     r = ei.absolute_monotonicity_radius(ei.methods.rational(g, h))
     assert r.reason == "coefficient" and r.binding == 135 and r.value.poly.degree() == 272
-    import conftest  # the kernel itself: the schema validation of the 9 MB certificate (its d_j) takes minutes
-
-    report = getattr(conftest, "_kernel_check", check)(r.certificate)
+    kernel_alone = getattr(check, "unvalidated", check)  # the schema validation of the 9 MB certificate takes minutes
+    report = kernel_alone(r.certificate)
     assert report.ok and report.work <= budget.CERTIFICATE_BUDGET, str(report)
     assert admissible(g, h, F(r.value.lower) * F(255, 256), 140)
 

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from exactinv_check import poly_arithmetic as pa
-from exactinv_check.budget import MAX_DEGREE
+from exactinv_check.budget import MAX_ALGEBRAIC_DEGREE, MAX_DEGREE
 from exactinv_check.failure import CheckFailure
 
 coefficient = st.fractions(min_value=-50, max_value=50, max_denominator=12)
@@ -66,7 +66,11 @@ def test_strip_zero_roots_and_exact_quotient_by_hand():
 
 # ------------------------------------------------------------------ resources
 def test_a_polynomial_over_the_degree_bound_is_rejected_before_any_gcd():
-    big = [F(1)] * (MAX_DEGREE + 2)
+    # gcds are charged as they run, so they take up to MAX_ALGEBRAIC_DEGREE (a genuine rho of degree 272)
+    big = [F(1)] * (MAX_ALGEBRAIC_DEGREE + 2)
     with pytest.raises(CheckFailure, match="exceeds the kernel's bound"):
         pa.gcd(big, [F(1), F(1)])
+    with pytest.raises(CheckFailure, match="exceeds the kernel's bound"):
+        pa.bounded([F(1)] * (MAX_DEGREE + 2))
     assert pa.bounded([F(1)] * (MAX_DEGREE + 1))  # degree MAX_DEGREE itself is allowed
+    assert pa.bounded([F(1)] * (MAX_ALGEBRAIC_DEGREE + 1), MAX_ALGEBRAIC_DEGREE)
