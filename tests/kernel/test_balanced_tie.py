@@ -25,8 +25,8 @@ def _rat(x):
 
 
 def _method(terms):
-    """(g, h, poles) of r = sum b_k/(z_k - z) over ``terms`` = [(pole, b)] (Gaussian rationals as sympy numbers),
-    h = prod (z - z_k) scaled to h(0) > 0 when that is possible (not needed by the proof)."""
+    """(g, h, poles) of r = g/h = sum b_k/(z_k - z) over ``terms`` = [(pole, b)] (Gaussian rationals as sympy
+    numbers), h = prod (z - z_k) monic (the proof does not use the sign of h(0)), low degree first."""
     h = sp.expand(sp.prod([z - p for p, _ in terms]))
     g = sp.expand(sum(b * sp.cancel(h / (p - z)) for p, b in terms))
     hc = [_rat(c) for c in reversed(sp.Poly(h, z).all_coeffs())]

@@ -152,5 +152,5 @@ def test_the_generators_are_proved_once_per_context_and_the_work_is_charged():
         claims_sets.valid_steplengths(problem, {**_interval(str(tau)), **where}, context)
     assert first.spent > 0 and again.spent < first.spent
     with account(limit=first.spent // 10):
-        with pytest.raises(OverBudget):
+        with pytest.raises(OverBudget, match="over the certificate's work budget"):
             claims_sets.largest_threshold(problem, _threshold(str(tau), **where), {})

@@ -146,7 +146,7 @@ def test_the_euclid_steps_in_q_alpha_are_charged_and_stop_at_the_limit():
         assert len(_sqrt_line(2, (F(3),)).line_gcd(f)) == 5
     assert acc.spent > 0
     with account(limit=acc.spent // 3):
-        with pytest.raises(OverBudget):
+        with pytest.raises(OverBudget, match="over the certificate's work budget"):
             _sqrt_line(2, (F(3),)).line_gcd(f)
 
 
