@@ -91,6 +91,20 @@ def test_an_untied_real_pole_beyond_p_star_needs_a_positive_residue(pstar, extra
             prove_balanced_tie(g, h, poles)
 
 
+def test_three_tied_poles_one_real_and_a_farther_pair_by_hand():
+    # p* = 1; -4 reaches distance 1 + kappa at kappa = (4 - 1)/2 = 3/2, as +-2i do: all three are tied and their
+    # |b_k| add up: 3/10 + 1/4 + 1/4 = 4/5 <= 1 is balanced, 6/10 + 1/4 + 1/4 = 11/10 > 1 is not
+    b = sp.Rational(3, 20) + sp.Rational(4, 20) * sp.I  # |b| = 1/4
+    pair = [(2 * sp.I, b), (-2 * sp.I, sp.conjugate(b))]
+    assert prove_balanced_tie(*_method([(1, 1), (-4, sp.Rational(-3, 10))] + pair)) == F(3, 2)
+    with pytest.raises(CheckFailure, match="outweigh"):
+        prove_balanced_tie(*_method([(1, 1), (-4, sp.Rational(-6, 10))] + pair))
+    # +-3i reach it later (kappa = 4): not tied and not real, so their terms are not known to stay positive
+    far = [(3 * sp.I, sp.Rational(1, 100)), (-3 * sp.I, sp.Rational(1, 100))]
+    with pytest.raises(CheckFailure, match="a pole that is not tied must be real and positive"):
+        prove_balanced_tie(*_method([(1, 1)] + pair + far))
+
+
 def test_forged_pole_lists_are_rejected_for_their_reason():
     terms = [(1, 1), (2 * sp.I, sp.Rational(1, 4)), (-2 * sp.I, sp.Rational(1, 4))]
     g, h, poles = _method(terms)
