@@ -11,8 +11,8 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv_check.balanced_tie import MAX_POLES, prove_balanced_tie
-from exactinv_check.budget import MAX_TIE_POLE_BITS, account
+from exactinv_check.balanced_tie import prove_balanced_tie
+from exactinv_check.budget import MAX_POLES, MAX_TIE_POLE_BITS, account
 from exactinv_check.failure import CheckFailure, OverBudget
 
 z, k = sp.symbols("z kappa")

@@ -1,14 +1,51 @@
 """exactinv_check.bernstein: the kernel's exact pieces -- exponential enclosures, f's Taylor coefficients at 0 --
 against independent values (mpmath at 60 digits, and f worked out by hand)."""
 
+
 from fractions import Fraction as F
 
 import mpmath
+import pytest  # noqa: E402
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from radius_reference import from_partial_fractions  # noqa: E402
 
-from exactinv_check import bernstein
+import exactinv as ei  # noqa: E402
+from exactinv.core.encode import encode_real  # noqa: E402
+from exactinv.monotonicity.radius import absolute_monotonicity_radius  # noqa: E402
+from exactinv_check import (
+    bernstein,
+    check,  # noqa: E402
+)
+from exactinv_check.failure import CheckFailure  # noqa: E402
 
+
+def _terms(p, y, b, off):
+    """b_* = 1 at p, b at p +- iy (so B = 1 + 2b cos(yt)), and real poles off the line [(q, b_q)]."""
+    return [((p, F(0)), (F(1), F(0))), ((p, y), (b, F(0))), ((p, -y), (b, F(0)))] + \
+        [((q, F(0)), (bq, F(0))) for q, bq in off]
+
+
+def _method(terms):
+    return ei.methods.rational(*from_partial_fractions(terms))
+
+
+def _claim(method, **fields):
+    """A certificate of ``method`` with its radius claim replaced by ``fields`` (the kernel must judge it alone)."""
+    cert = absolute_monotonicity_radius(ei.methods.trapezoid()).certificate
+    cert["problem"]["method"] = {"name": "forged", "numerator": [str(c) for c in method.numerator],
+                                 "denominator": [str(c) for c in method.denominator]}
+    cert["claims"] = [{"type": "absolute_monotonicity_radius", "attained": True, **fields}]
+    return cert
+
+
+CASE_A = _terms(F(7, 2), F(9, 4), F(1, 2), [(F(11, 2), F(1))])  # the issue's CI failure (a): rho = oo
+
+
+CASE_B = _terms(F(7, 4), F(9, 4), F(1, 2), [(F(15, 4), F(1))])  # (b): c < 0, rho = the root of g(-kappa)
+
+
+# ------------------------------------------------------------------ soundness
 
 @settings(deadline=None, max_examples=60)
 @given(st.fractions(min_value=-60, max_value=5, max_denominator=64),
@@ -36,40 +73,6 @@ def test_density_at_zero_by_hand():
     assert c == 0 and fs == [0, 0, F(1, 16), F(-1, 16)]
     c, fs = bernstein.density_at_zero([F(1), F(1, 2)], [F(1), F(-1, 2)], 3)   # trapezoid: c = -1, f = 4 e^(-2t)
     assert c == -1 and fs == [4, -8, 16]
-
-
-# ------------------------------------------------ issue 22: the balanced line and reason bernstein-root (kernel)
-import pytest  # noqa: E402
-from radius_reference import from_partial_fractions  # noqa: E402
-
-import exactinv as ei  # noqa: E402
-from exactinv.core.encode import encode_real  # noqa: E402
-from exactinv.monotonicity.radius import absolute_monotonicity_radius  # noqa: E402
-from exactinv_check import check  # noqa: E402
-from exactinv_check.failure import CheckFailure  # noqa: E402
-
-
-def _terms(p, y, b, off):
-    """b_* = 1 at p, b at p +- iy (so B = 1 + 2b cos(yt)), and real poles off the line [(q, b_q)]."""
-    return [((p, F(0)), (F(1), F(0))), ((p, y), (b, F(0))), ((p, -y), (b, F(0)))] + \
-        [((q, F(0)), (bq, F(0))) for q, bq in off]
-
-
-def _method(terms):
-    return ei.methods.rational(*from_partial_fractions(terms))
-
-
-def _claim(method, **fields):
-    """A certificate of ``method`` with its radius claim replaced by ``fields`` (the kernel must judge it alone)."""
-    cert = absolute_monotonicity_radius(ei.methods.trapezoid()).certificate
-    cert["problem"]["method"] = {"name": "forged", "numerator": [str(c) for c in method.numerator],
-                                 "denominator": [str(c) for c in method.denominator]}
-    cert["claims"] = [{"type": "absolute_monotonicity_radius", "attained": True, **fields}]
-    return cert
-
-
-CASE_A = _terms(F(7, 2), F(9, 4), F(1, 2), [(F(11, 2), F(1))])  # the issue's CI failure (a): rho = oo
-CASE_B = _terms(F(7, 4), F(9, 4), F(1, 2), [(F(15, 4), F(1))])  # (b): c < 0, rho = the root of g(-kappa)
 
 
 def test_the_kernel_proves_the_balanced_line_of_the_ci_failures():
@@ -140,3 +143,7 @@ def test_the_balanced_line_proof_refuses_what_it_cannot_prove(terms, why):
     with pytest.raises(CheckFailure, match=why):
         bernstein.prove_density_nonnegative(method.numerator, method.denominator)
     assert not check(_claim(method, value="oo", reason="bernstein")).ok
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

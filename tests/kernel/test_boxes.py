@@ -2,6 +2,7 @@
 forged or unprovable one -- wrong intervals, a box claimed for a non-box, a missing bound,
 tampered numbers, an input too large to rebuild -- is rejected with a reason."""
 
+
 import random
 from fractions import Fraction
 from math import factorial
@@ -20,6 +21,8 @@ from exactinv_check.rationals import determinant, solve
 from exactinv_check.routes.boxes import prove_box, vertex_of
 
 M = ei.methods
+
+
 F = Fraction
 
 
@@ -34,11 +37,33 @@ def _rejected(cert, reason=""):
 
 
 SHEAR = ei.LinearSystem([[-1, 1], [0, -1]])
+
+
 SQUARE = ei.Polyhedron.box([-1, -1], [1, 1])
+
+
 SPIN = ei.LinearSystem([[-1, "1/2", 0], ["-1/2", -1, "1/4"], [0, "-1/3", -2]])
+
+
 OFFSET = ei.Polyhedron([[2, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -3], [1, 0, 0]],
                        [4, 1, 3, 1, "1/2", 3, 9])  # [-1, 2] x [-1/2, 1] x [-1, 3], the last row implied
 
+
+def _genuine():
+    cert = _cert(SPIN, OFFSET, M.taylor(4))
+    assert check(cert).ok
+    return cert
+
+
+def _matrix_polynomial(coeffs, t, A):
+    """sum_k coeffs[k] (tA)^k by Horner, in Fractions (3 x 3)."""
+    out = [[F(0)] * 3 for _ in range(3)]
+    for c in reversed(coeffs):
+        out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)] for i in range(3)]
+    return out
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_the_hand_example_verifies_and_names_the_box():
     cert = _cert(ei.LinearSystem([[-1]]), ei.Polyhedron.box([0], [2]), M.taylor(2))
@@ -86,13 +111,6 @@ def test_prove_box_rejects_what_is_not_a_box(G, b, reason):
         prove_box([[F(x) for x in r] for r in G], [F(x) for x in b])
 
 
-# ----------------------------------------------------------------------------- forgeries
-def _genuine():
-    cert = _cert(SPIN, OFFSET, M.taylor(4))
-    assert check(cert).ok
-    return cert
-
-
 def test_wrong_intervals_are_rejected():
     cert = _genuine()
     cert["claims"][1]["intervals"][0]["hi"] = "1/3"
@@ -100,19 +118,6 @@ def test_wrong_intervals_are_rejected():
     cert = _genuine()
     cert["claims"][1]["intervals"][0]["hi_closed"] = False
     _rejected(cert, "hi_closed")
-
-
-def test_a_wrong_largest_threshold_or_binding_is_rejected():
-    cert = _genuine()
-    cert["claims"][0]["value"] = "1/3"
-    _rejected(cert, "largest threshold is")
-    cert = _genuine()
-    binding = cert["claims"][0]["binding"]
-    binding["generator"] = (binding["generator"] + 1) % 8
-    _rejected(cert, "binding")
-    cert = _genuine()
-    cert["claims"][0]["binding"]["generator"] = 8  # 2^3 vertices: out of range
-    _rejected(cert, "out of range")
 
 
 def test_a_tampered_box_record_is_rejected():
@@ -168,54 +173,6 @@ def test_a_determinant_of_another_method_is_rejected():
     _rejected(cert, "det h(dt A)")
 
 
-def test_a_huge_box_problem_is_priced_and_rejected_before_any_work():
-    n = 120
-    A = [["-2" if i == j else "1/7" for j in range(n)] for i in range(n)]
-    G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
-    cert = {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
-                        "method": {"name": "taylor(12)", "numerator": [str(F(1, factorial(k)))
-                                                                        for k in range(13)], "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
-    _rejected(cert, "work budget")
-
-
-def test_huge_numbers_in_a_box_problem_are_priced():
-    n = 20
-    big = "1" + "0" * 600
-    A = [[big if i == j else "1" for j in range(n)] for i in range(n)]
-    G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
-    cert = {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
-                        "method": {"name": "taylor(8)", "numerator": [str(F(1, factorial(k)))
-                                                                       for k in range(9)], "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
-    _rejected(cert, "work budget")
-
-
-# ----------------------------------------------------------------------------- the kernel's integer linear algebra
-@settings(max_examples=60, deadline=None)
-@given(st.integers(1, 5), st.randoms(use_true_random=False))
-def test_integer_solve_is_the_adjugate_times_b(n, rng):
-    """det M and adj(M) B = det M * M^-1 B, against Gauss-Jordan over Q (rationals.solve, determinant)."""
-    M = [[rng.randint(-3, 3) * (rng.random() < 0.8) for _ in range(n)] for _ in range(n)]
-    B = [[rng.randint(-4, 4) for _ in range(2)] for _ in range(n)]
-    d, X = integer_solve(M, B)
-    assert d == determinant([[F(x) for x in r] for r in M])
-    if d:
-        assert X == [[d * x for x in r] for r in solve([[F(x) for x in r] for r in M], [[F(x) for x in r] for r in B])]
-    else:
-        assert X is None
-
-
-def _matrix_polynomial(coeffs, t, A):
-    """sum_k coeffs[k] (tA)^k by Horner, in Fractions (3 x 3)."""
-    out = [[F(0)] * 3 for _ in range(3)]
-    for c in reversed(coeffs):
-        out = [[sum(out[i][k] * t * A[k][j] for k in range(3)) + (c if i == j else 0) for j in range(3)] for i in range(3)]
-    return out
-
-
 @pytest.mark.parametrize("m", [M.backward_euler(), M.pade(2, 2), M.theta("1/3"), M.rational([2, 1], [2, -3, 1])],
                          ids=lambda m: m.name)
 def test_method_matrices_equal_a_direct_evaluation_off_the_interpolation_points(m):
@@ -248,6 +205,60 @@ def test_method_matrix_at_is_none_where_r_has_a_pole():
     """Backward Euler 1/(1 - z) on A = [[1]] at dt = 1: I - A is singular, r(A) does not exist."""
     assert method_matrix_at([[F(1)]], [F(1)], [F(1), F(-1)], F(1)) is None
     assert method_matrix_at([[F(1)]], [F(1)], [F(1), F(-1)], F(1, 2)) == [[F(2)]]
+
+
+# ------------------------------------------------------------------ resource
+
+def test_a_wrong_largest_threshold_or_binding_is_rejected():
+    cert = _genuine()
+    cert["claims"][0]["value"] = "1/3"
+    _rejected(cert, "largest threshold is")
+    cert = _genuine()
+    binding = cert["claims"][0]["binding"]
+    binding["generator"] = (binding["generator"] + 1) % 8
+    _rejected(cert, "binding")
+    cert = _genuine()
+    cert["claims"][0]["binding"]["generator"] = 8  # 2^3 vertices: out of range
+    _rejected(cert, "out of range")
+
+
+def test_a_huge_box_problem_is_priced_and_rejected_before_any_work():
+    n = 120
+    A = [["-2" if i == j else "1/7" for j in range(n)] for i in range(n)]
+    G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
+    cert = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
+                        "method": {"name": "taylor(12)", "numerator": [str(F(1, factorial(k)))
+                                                                        for k in range(13)], "denominator": ["1"]}},
+            "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
+    _rejected(cert, "work budget")
+
+
+def test_huge_numbers_in_a_box_problem_are_priced():
+    n = 20
+    big = "1" + "0" * 600
+    A = [[big if i == j else "1" for j in range(n)] for i in range(n)]
+    G = [[str(int(i == j)) for j in range(n)] for i in range(n)] + [[str(-int(i == j)) for j in range(n)] for i in range(n)]
+    cert = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": A, "G": G, "b": ["1"] * (2 * n),
+                        "method": {"name": "taylor(8)", "numerator": [str(F(1, factorial(k)))
+                                                                       for k in range(9)], "denominator": ["1"]}},
+            "claims": [{"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}]}
+    _rejected(cert, "work budget")
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 5), st.randoms(use_true_random=False))
+def test_integer_solve_is_the_adjugate_times_b(n, rng):
+    """det M and adj(M) B = det M * M^-1 B, against Gauss-Jordan over Q (rationals.solve, determinant)."""
+    M = [[rng.randint(-3, 3) * (rng.random() < 0.8) for _ in range(n)] for _ in range(n)]
+    B = [[rng.randint(-4, 4) for _ in range(2)] for _ in range(n)]
+    d, X = integer_solve(M, B)
+    assert d == determinant([[F(x) for x in r] for r in M])
+    if d:
+        assert X == [[d * x for x in r] for r in solve([[F(x) for x in r] for r in M], [[F(x) for x in r] for r in B])]
+    else:
+        assert X is None
 
 
 def test_the_entries_root_isolation_is_priced_before_any_sturm_sequence():

@@ -24,6 +24,7 @@ from exactinv_check.validset import first_end, valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 M = ei.methods
 
 
@@ -45,34 +46,6 @@ def _cube_problem(n):
     return {"A": A, "G": G, "b": b, "method": _degree_64_method()}
 
 
-# ---------------------------------------------------------------- resources (holes)
-
-def test_discrete_invariance_dt_prices_the_rational_method_matrices():
-    n = 12
-    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n),
-            "claims": [{"type": "discrete_invariance", "holds": True, "dt": "1", "H": [["0"] * (2 * n)] * (2 * n)}]}
-    assert not check_within(cert, 2).ok
-
-
-def test_listed_route_prices_the_rational_method_matrices():
-    n = 6
-    claim = {"type": "valid_steplengths", "intervals": [], "rays": [], "lines": [],
-             "vertices": [[str(x) for x in v] for v in itertools.product([-1, 1], repeat=n)]}
-    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
-    assert not check_within(cert, 2).ok
-
-
-def test_box_route_prices_the_same_input_first():
-    """What held: the box route prices the rebuild before method_matrices."""
-    n = 6
-    claim = {"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}
-    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
-    report = check_within(cert, 2)
-    assert not report.ok and "work budget" in str(report)
-
-
-# ---------------------------------------------------------------- what held: box route == listed route
-
 def _kernel_routes(A, G, b, lo, hi, m):
     km = Method({"numerator": [str(x) for x in m.numerator], "denominator": [str(x) for x in m.denominator]})
     D, ineq, _ = boxes.box_conditions(A, G, b, km.numerator, km.denominator,
@@ -89,6 +62,8 @@ def _same(a, b):
     return len(a) == len(b) and all(x.lo.compare(y.lo) == 0 and x.hi.compare(y.hi) == 0
                                     and (x.lo_closed, x.hi_closed) == (y.lo_closed, y.hi_closed) for x, y in zip(a, b))
 
+
+# ------------------------------------------------------------------ soundness
 
 @pytest.mark.parametrize("seed", range(12))
 def test_box_conditions_equal_the_vertex_route(seed):
@@ -126,3 +101,29 @@ def test_forged_box_interval_is_rejected_and_listed_truth_accepted():
         iv["hi_closed"] = not iv["hi_closed"] if iv["hi"] != "oo" else iv["hi_closed"]
         iv["lo_closed"] = not iv["lo_closed"]
     assert not check(cert).ok
+
+
+# ------------------------------------------------------------------ resource
+
+def test_discrete_invariance_dt_prices_the_rational_method_matrices():
+    n = 12
+    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n),
+            "claims": [{"type": "discrete_invariance", "holds": True, "dt": "1", "H": [["0"] * (2 * n)] * (2 * n)}]}
+    assert not check_within(cert, 2).ok
+
+
+def test_listed_route_prices_the_rational_method_matrices():
+    n = 6
+    claim = {"type": "valid_steplengths", "intervals": [], "rays": [], "lines": [],
+             "vertices": [[str(x) for x in v] for v in itertools.product([-1, 1], repeat=n)]}
+    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
+    assert not check_within(cert, 2).ok
+
+
+def test_box_route_prices_the_same_input_first():
+    """What held: the box route prices the rebuild before method_matrices."""
+    n = 6
+    claim = {"type": "valid_steplengths", "intervals": [], "box": {"lo": ["-1"] * n, "hi": ["1"] * n}}
+    cert = {"format": "exactinv-certificate", "version": 2, "problem": _cube_problem(n), "claims": [claim]}
+    report = check_within(cert, 2)
+    assert not report.ok and "work budget" in str(report)

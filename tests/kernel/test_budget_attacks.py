@@ -4,6 +4,7 @@ Each test is a reproduction of an attack; the ones fixed in the kernel pass, any
 xfail(strict=True).
 """
 
+
 import json
 import os
 import subprocess
@@ -19,6 +20,7 @@ from exactinv_check.bernstein import prove_completely_monotone
 from exactinv_check.failure import CheckFailure
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -57,7 +59,50 @@ def slow_bernstein(pairs=7, delta_den=1000):
     return num, den
 
 
-# ------------------------------------------------------------------ Goal B: bernstein's compact piece
+def _big_witness_cert(bits=300, D=64, j=796):
+    import random
+    rng = random.Random(5)
+    den = [2**bits + rng.randint(0, 2**bits)] + [rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))
+                                                  for _ in range(D)]
+    num = [den[0]] + [rng.randint(2**bits, 2**(bits + 1)) for _ in range(D)]
+    return _radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "0", "reason": "no-positive-pole",
+                                   "attained": False, "witness_j": j})
+
+
+# ------------------------------------------------------------------ soundness
+
+def test_genuine_bernstein_with_many_steps_still_verified():
+    """The same family with faster dominance (a_k = 1 + 1/(100 + k)): 1197 steps, 1.35e9 word operations."""
+    num, den = slow_bernstein(pairs=3, delta_den=100)
+    report = check(_radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "oo",
+                                           "reason": "bernstein", "attained": True}))
+    assert report.ok, str(report)
+
+
+@pytest.mark.parametrize("num, den, kappa", [
+    (["-4"], ["-4", "3", "1"], "3/2"),            # r = 4/((1 - z)(4 + z)): c_j(3/2) = (4/5)(2/5)^(j+1)(1 + (-1)^j)
+    (["-9"], ["-9", "5/2", "1"], "5/4"),
+    (["-2", "-8", "-8"], ["-2", "1", "1"], "1/2"),
+])
+def test_balanced_tie_checks_the_claimed_attained_flag(num, den, kappa):
+    """The balanced-tie branch unpacked recompute(...) into ``attained``, overwriting the claim's flag, so the
+    final ``attained is rho_attained`` compared the kernel's value with itself: a claim with the wrong flag
+    (attained false; kappa* is admissible, c_j(kappa*) >= 0 for every j) was VERIFIED."""
+    claim = {"type": "absolute_monotonicity_radius", "value": kappa, "reason": "balanced-tie", "attained": True}
+    assert check(_radius_cert(num, den, claim)).ok
+    report = check(_radius_cert(num, den, {**claim, "attained": False}))
+    assert not report.ok and "attained" in str(report), str(report)
+
+
+def test_balanced_tie_attained_agrees_with_the_reference():
+    sys.path.insert(0, str(ROOT / "tests"))
+    from radius_reference import admissible
+    num, den = [F(-4)], [F(-4), F(3), F(1)]
+    assert admissible(num, den, F(3, 2), 60) and not admissible(num, den, F(3, 2) + F(1, 100), 400)
+
+
+# ------------------------------------------------------------------ resource
+
 def test_bernstein_steps_are_charged_to_the_account():
     """Before the fix bernstein._positive charged nothing: no work budget, and the clock (read only at a
     charge) never fired -- 130 s of CPU (165 s wall) before a rejection for a 4.3 KB certificate.  Now every
@@ -83,48 +128,6 @@ def test_slow_bernstein_certificate_gets_a_verdict_within_a_minute(tmp_path):
     assert done.returncode == 1 and "budget" in done.stdout + done.stderr
 
 
-def test_genuine_bernstein_with_many_steps_still_verified():
-    """The same family with faster dominance (a_k = 1 + 1/(100 + k)): 1197 steps, 1.35e9 word operations."""
-    num, den = slow_bernstein(pairs=3, delta_den=100)
-    report = check(_radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "oo",
-                                           "reason": "bernstein", "attained": True}))
-    assert report.ok, str(report)
-
-
-# ------------------------------------------------------------------ Goal A: balanced-tie's attained flag
-@pytest.mark.parametrize("num, den, kappa", [
-    (["-4"], ["-4", "3", "1"], "3/2"),            # r = 4/((1 - z)(4 + z)): c_j(3/2) = (4/5)(2/5)^(j+1)(1 + (-1)^j)
-    (["-9"], ["-9", "5/2", "1"], "5/4"),
-    (["-2", "-8", "-8"], ["-2", "1", "1"], "1/2"),
-])
-def test_balanced_tie_checks_the_claimed_attained_flag(num, den, kappa):
-    """The balanced-tie branch unpacked recompute(...) into ``attained``, overwriting the claim's flag, so the
-    final ``attained is rho_attained`` compared the kernel's value with itself: a claim with the wrong flag
-    (attained false; kappa* is admissible, c_j(kappa*) >= 0 for every j) was VERIFIED."""
-    claim = {"type": "absolute_monotonicity_radius", "value": kappa, "reason": "balanced-tie", "attained": True}
-    assert check(_radius_cert(num, den, claim)).ok
-    report = check(_radius_cert(num, den, {**claim, "attained": False}))
-    assert not report.ok and "attained" in str(report), str(report)
-
-
-def test_balanced_tie_attained_agrees_with_the_reference():
-    sys.path.insert(0, str(ROOT / "tests"))
-    from radius_reference import admissible
-    num, den = [F(-4)], [F(-4), F(3), F(1)]
-    assert admissible(num, den, F(3, 2), 60) and not admissible(num, den, F(3, 2) + F(1, 100), 400)
-
-
-# ------------------------------------------------------------------ Goal B: the price of c_j(0) (rho = 0 reasons)
-def _big_witness_cert(bits=300, D=64, j=796):
-    import random
-    rng = random.Random(5)
-    den = [2**bits + rng.randint(0, 2**bits)] + [rng.randint(2**bits, 2**(bits + 1)) * rng.choice((-1, 1))
-                                                  for _ in range(D)]
-    num = [den[0]] + [rng.randint(2**bits, 2**(bits + 1)) for _ in range(D)]
-    return _radius_cert(num, den, {"type": "absolute_monotonicity_radius", "value": "0", "reason": "no-positive-pole",
-                                   "attained": False, "witness_j": j})
-
-
 def test_sign_at_zero_priced_by_the_size_of_its_numbers():
     """A 12 KB certificate (deg h = 64, 300-bit coefficients, witness_j = 796) was priced 7e7 word operations
     (under the 1e8 limit) and ran 120 s before its verdict: H_i u_(k-i) H_0^(i-1) multiplies (k bits)-bit by
@@ -146,7 +149,6 @@ def test_a_big_charge_reads_the_clock():
             budget.charge(budget.BIG_CHARGE, "big")
 
 
-# ------------------------------------------------------------------ Goal B: the price of the tie polynomial
 def test_tie_polynomial_priced_by_the_square_of_its_numbers():
     """tie.interpolation_cost was linear in the bits of h: for deg h = 2 with 10^5-bit coefficients (a 90 KB
     method) it priced the interpolation of T at 3.2e7 word operations (under the 1e8 limit) and it ran 47 s of
@@ -165,7 +167,6 @@ def test_tie_polynomial_priced_by_the_square_of_its_numbers():
     assert time.process_time() - start < 10
 
 
-# ------------------------------------------------------------------ Goal B: quotients of algebraic numbers
 def test_quotient_polynomial_resultants_and_interpolation_are_charged():
     """resultants.quotient_polynomial (rho/gamma*, z_p/alpha(H) with both algebraic) ran its 201 resultants and its
     Newton interpolation uncharged: for deg 40 and deg 5 with 300-bit coefficients 54 s of CPU passed before a

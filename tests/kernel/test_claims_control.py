@@ -25,6 +25,7 @@ h <= tau, A_d(h) = r(hA) computed here with flint, D(hA) nonsingular, A_d(h) map
 (from ppl) into P exactly; the forward-Euler step checked at 1/gamma and just above it.
 """
 
+
 import copy
 import random
 from fractions import Fraction
@@ -42,9 +43,10 @@ from exactinv_check.rationals import rank_and_nullspace
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
-# ------------------------------------------------------------------ finding 1: a Farkas vector on an empty P
 
 _EMPTY_P = {"A": [["0", "1"], ["0", "0"]], "B": [["0"], ["1"]], "G": [["1", "0"], ["-1", "0"]], "b": ["-1", "-1"]}
+
+
 # P = {x1 <= -1, -x1 <= -1} is empty (x1 <= -1 and x1 >= 1), so every gain leaves it invariant.  The Farkas
 # vector is genuine: the first row of G(A + BF) is (0, 1) for every F (B's first row is 0), outside the row
 # space {(t, 0)} of G, so HG = G(A + BF) has no solution; Y = [[0, -1], [0, 0]] gives <GA, Y> = -1 < 0 with
@@ -56,66 +58,18 @@ def _gain_cert(problem, claim):
     return {"format": "exactinv-certificate", "version": 2, "problem": problem, "claims": [claim]}
 
 
-def test_a_farkas_vector_on_an_empty_P_does_not_prove_that_no_gain_exists():
-    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS)}
-    assert not exactinv_check.check(_gain_cert(_EMPTY_P, claim)).ok  # was accepted
-    for x in (["-1", "0"], ["1", "0"], ["0", "0"]):  # no point of the empty P can be offered
-        report = exactinv_check.check(_gain_cert(_EMPTY_P, dict(claim, x=x)))
-        assert not report.ok and "not in P" in str(report), report
-
-
-def test_the_same_farkas_vector_on_a_nonempty_P_with_its_point_is_accepted():
-    """Route against route: P = {x1 <= 1, -x1 <= 1} is nonempty and the LP is infeasible for the same
-    reason (the first row of G(A + BF) is (0, 1)); so no gain makes P invariant -- true: at x = (1, 1),
-    on the facet x1 = 1, x1' = x2 = 1 > 0 whatever u is."""
-    problem = dict(_EMPTY_P, b=["1", "1"])
-    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS), "x": ["1", "1"]}
-    assert exactinv_check.check(_gain_cert(problem, claim)).ok
-    claim.pop("x")
-    assert not exactinv_check.check(_gain_cert(problem, claim)).ok  # x is required
-    P = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])
-    for a22 in (0, -7, 3):  # whatever the gain puts in the second row
-        assert not ei.continuous_invariance(ei.LinearSystem([[0, 1], [0, a22]]), P).holds
-
-
 # P = {x1 <= -1, -x1 <= -1, x2 <= 1} is empty; U = {u : -u <= 1}.  Lambda G = EF needs EF = (-f1, -f2) in the
 # cone of G's rows {(s, t) : t >= 0}, so the LP admits only f2 <= 0, and its optimum is gamma = 0 (F = 0).  But
 # on an empty P "Fx in U for every x in P" holds for EVERY F, and F' = (0, 5) has gamma*(A + BF') = -5.
 _EMPTY_P3 = {"A": [["0", "0"], ["0", "0"]], "B": [["0"], ["1"]], "G": [["1", "0"], ["-1", "0"], ["0", "1"]],
              "b": ["-1", "-1", "1"], "inputs": {"E": [["-1"]], "e": ["1"]}}
+
+
 _EMPTY_P3_CLAIM = {"type": "optimal_gain", "holds": True, "value": "0", "F": [["0", "0"]], "H": [["0"] * 3] * 3,
                    "Lambda": [["0", "0", "0"]],
                    "dual": {"Y": [["0", "0"], ["0", "0"], ["0", "1"]], "mu": ["0", "0", "0"], "nu": ["0", "0", "1"],
                             "Z": [["0", "1"]], "w": ["0"]}}
 
-
-def test_an_optimal_gain_on_an_empty_P_is_refused():
-    """The LP's claim 'gamma*(A + BF') >= 0 for every gain F' with u in U' was accepted on the empty P above; the
-    kernel itself proves it false: gamma*(A + BF') = -5 for F' = (0, 5) (a gamma_star certificate on the same P,
-    H rows (5, 5, 0), (5, 5, 0), (3, 3, 5); the dual of row 2 is y = (0, 1), lambda = 0)."""
-    assert not exactinv_check.check(_gain_cert(_EMPTY_P3, _EMPTY_P3_CLAIM)).ok  # was accepted
-    report = exactinv_check.check(_gain_cert(_EMPTY_P3, dict(_EMPTY_P3_CLAIM, x=["1", "1"])))
-    assert not report.ok and "not in P" in str(report), report
-    closed = {"A": [["0", "0"], ["0", "5"]], "G": _EMPTY_P3["G"], "b": _EMPTY_P3["b"]}
-    smaller = {"type": "gamma_star", "value": "-5", "H": [["5", "5", "0"], ["5", "5", "0"], ["3", "3", "5"]],
-               "binding_row": 2, "dual": {"y": ["0", "1"], "lambda": "0"}}
-    assert exactinv_check.check(_gain_cert(closed, smaller)).ok  # so the optimum 0 was false
-
-
-def test_the_engine_writes_the_point_and_the_kernel_checks_it():
-    P = ei.Polyhedron([[1, 0], [-1, 0], [1, 1], [-1, -1]], [1, 1, 1, 1])
-    for e, holds in ((1, False), (2, True)):
-        g = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], P, inputs=ei.Polyhedron.box([-e], [e]))
-        assert g.holds is holds
-        cert = g.certificate
-        assert [Fraction(v) for v in cert["claims"][0]["x"]] in P
-        assert exactinv_check.check(cert).ok
-        bad = copy.deepcopy(cert)
-        bad["claims"][0]["x"] = ["5", "0"]
-        assert not exactinv_check.check(bad).ok
-
-
-# ------------------------------------------------------------------ finding 2: a robust forward-Euler step on an empty P
 
 _FE_RADIUS = {"type": "absolute_monotonicity_radius", "value": "1", "reason": "coefficient", "attained": True,
               "binding": 0, "d": [["1", "-1"], ["1"]]}
@@ -139,65 +93,10 @@ def _empty_robust(x=None):
             "claims": [_FE_RADIUS, claim]}
 
 
-def test_the_largest_robust_forward_euler_step_needs_a_nonempty_P():
-    assert not exactinv_check.check(_empty_robust()).ok  # was accepted: "forward_euler": "1" on an empty P
-    for x in (["-1", "0"], ["1", "0"], ["0", "5"]):
-        report = exactinv_check.check(_empty_robust(x))
-        assert not report.ok and "not in P" in str(report), report
-    # the same record on the nonempty P = {|x1| <= 1, x2 <= 5} (b = (1, 1, 5)) is true: at x = (0, 5) on the
-    # facet x2 = 5, forward Euler gives x2 = 5 - 5h, and the facets |x1| <= 1 are fixed (x1' = 0); the step
-    # 1/gamma = 1 is the largest, as the independent sampler of this file confirms.
-    cert = _empty_robust(["0", "5"])
-    cert["problem"]["b"] = ["1", "1", "5"]
-    cert["claims"][1]["vertices"][0]["H"] = [["0", "0", "0"], ["0", "0", "0"], ["0", "0", "-1"]]
-    cert["claims"][1]["vertices"][0]["dual"] = {"y": ["0", "1"], "lambda": "0"}
-    assert exactinv_check.check(cert).ok
-    assert _robust_claim_is_true(cert["problem"], cert["claims"][1], random.Random(3), samples=20)
-
-
-# ------------------------------------------------------------------ finding 3: the hull problem's rank, uncharged
-
 def _hull_record(G):
     n = len(G[0])
     return {"hull": [[["0"] * n for _ in range(n)]], "G": [[str(v) for v in r] for r in G], "b": ["1"] * len(G),
             "method": {"name": "backward_euler", "numerator": ["1"], "denominator": ["1", "-1"]}}
-
-
-def test_the_hull_problems_rank_is_charged():
-    """Before: Problem() ran rank_and_nullspace (Fraction Gauss-Jordan) with no charge, so a 400 x 200 G
-    (640 KB) ran minutes of CPU that neither the budget nor the clock saw.  Now each elimination step is
-    charged: under a small account the same work (scaled down: 60 x 30) is rejected, not run."""
-    rng = random.Random(1)
-    G = [[rng.randint(-9, 9) for _ in range(30)] for _ in range(60)]
-    with budget.account(limit=10**5, time_limit=None):
-        with pytest.raises(CheckFailure, match="work budget"):
-            Problem(_hull_record(G))
-    with budget.account(time_limit=None) as acc:
-        assert not Problem(_hull_record(G)).lines_possible
-    assert acc.spent > 10**5
-
-
-def test_integer_rank_agrees_with_gauss_jordan():
-    rng = random.Random(2)
-    for _ in range(60):
-        m, n = rng.randint(1, 6), rng.randint(1, 5)
-        k = rng.randint(0, min(m, n))  # rank at most k: a product of m x k and k x n
-        L = [[rng.randint(-3, 3) for _ in range(k)] for _ in range(m)]
-        R = [[rng.randint(-3, 3) for _ in range(n)] for _ in range(k)]
-        M = [[sum(L[i][t] * R[t][j] for t in range(k)) for j in range(n)] for i in range(m)]
-        expected = rank_and_nullspace([[Fraction(v) for v in r] for r in M], n)[0]
-        assert integer_rank(M, n) == expected <= k
-        assert expected == flint.fmpz_mat(M).rank()
-
-
-def test_a_hull_with_lines_is_still_refused_for_a_rational_method():
-    """P = {|x1| <= 1} in R^2 has the line x1 = 0: the rational robust claim needs P without lines."""
-    with budget.account(time_limit=None):
-        assert Problem(_hull_record([[1, 0], [-1, 0]])).lines_possible
-        assert not Problem(_hull_record([[1, 0], [-1, 0], [0, 1], [0, -1]])).lines_possible
-
-
-# ------------------------------------------------------------------ the fuzzer: independent truth
 
 
 def _q(x):
@@ -496,6 +395,76 @@ def fuzz(seed, problems=2, mutants_per_cert=60):
     return stats
 
 
+# ------------------------------------------------------------------ soundness
+
+def test_a_farkas_vector_on_an_empty_P_does_not_prove_that_no_gain_exists():
+    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS)}
+    assert not exactinv_check.check(_gain_cert(_EMPTY_P, claim)).ok  # was accepted
+    for x in (["-1", "0"], ["1", "0"], ["0", "0"]):  # no point of the empty P can be offered
+        report = exactinv_check.check(_gain_cert(_EMPTY_P, dict(claim, x=x)))
+        assert not report.ok and "not in P" in str(report), report
+
+
+def test_the_same_farkas_vector_on_a_nonempty_P_with_its_point_is_accepted():
+    """Route against route: P = {x1 <= 1, -x1 <= 1} is nonempty and the LP is infeasible for the same
+    reason (the first row of G(A + BF) is (0, 1)); so no gain makes P invariant -- true: at x = (1, 1),
+    on the facet x1 = 1, x1' = x2 = 1 > 0 whatever u is."""
+    problem = dict(_EMPTY_P, b=["1", "1"])
+    claim = {"type": "optimal_gain", "holds": False, "value": "oo", "farkas": dict(_EMPTY_FARKAS), "x": ["1", "1"]}
+    assert exactinv_check.check(_gain_cert(problem, claim)).ok
+    claim.pop("x")
+    assert not exactinv_check.check(_gain_cert(problem, claim)).ok  # x is required
+    P = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1])
+    for a22 in (0, -7, 3):  # whatever the gain puts in the second row
+        assert not ei.continuous_invariance(ei.LinearSystem([[0, 1], [0, a22]]), P).holds
+
+
+def test_an_optimal_gain_on_an_empty_P_is_refused():
+    """The LP's claim 'gamma*(A + BF') >= 0 for every gain F' with u in U' was accepted on the empty P above; the
+    kernel itself proves it false: gamma*(A + BF') = -5 for F' = (0, 5) (a gamma_star certificate on the same P,
+    H rows (5, 5, 0), (5, 5, 0), (3, 3, 5); the dual of row 2 is y = (0, 1), lambda = 0)."""
+    assert not exactinv_check.check(_gain_cert(_EMPTY_P3, _EMPTY_P3_CLAIM)).ok  # was accepted
+    report = exactinv_check.check(_gain_cert(_EMPTY_P3, dict(_EMPTY_P3_CLAIM, x=["1", "1"])))
+    assert not report.ok and "not in P" in str(report), report
+    closed = {"A": [["0", "0"], ["0", "5"]], "G": _EMPTY_P3["G"], "b": _EMPTY_P3["b"]}
+    smaller = {"type": "gamma_star", "value": "-5", "H": [["5", "5", "0"], ["5", "5", "0"], ["3", "3", "5"]],
+               "binding_row": 2, "dual": {"y": ["0", "1"], "lambda": "0"}}
+    assert exactinv_check.check(_gain_cert(closed, smaller)).ok  # so the optimum 0 was false
+
+
+def test_the_engine_writes_the_point_and_the_kernel_checks_it():
+    P = ei.Polyhedron([[1, 0], [-1, 0], [1, 1], [-1, -1]], [1, 1, 1, 1])
+    for e, holds in ((1, False), (2, True)):
+        g = ei.optimal_gain([[0, 1], [0, 0]], [[0], [1]], P, inputs=ei.Polyhedron.box([-e], [e]))
+        assert g.holds is holds
+        cert = g.certificate
+        assert [Fraction(v) for v in cert["claims"][0]["x"]] in P
+        assert exactinv_check.check(cert).ok
+        bad = copy.deepcopy(cert)
+        bad["claims"][0]["x"] = ["5", "0"]
+        assert not exactinv_check.check(bad).ok
+
+
+def test_integer_rank_agrees_with_gauss_jordan():
+    rng = random.Random(2)
+    for _ in range(60):
+        m, n = rng.randint(1, 6), rng.randint(1, 5)
+        k = rng.randint(0, min(m, n))  # rank at most k: a product of m x k and k x n
+        L = [[rng.randint(-3, 3) for _ in range(k)] for _ in range(m)]
+        R = [[rng.randint(-3, 3) for _ in range(n)] for _ in range(k)]
+        M = [[sum(L[i][t] * R[t][j] for t in range(k)) for j in range(n)] for i in range(m)]
+        expected = rank_and_nullspace([[Fraction(v) for v in r] for r in M], n)[0]
+        assert integer_rank(M, n) == expected <= k
+        assert expected == flint.fmpz_mat(M).rank()
+
+
+def test_a_hull_with_lines_is_still_refused_for_a_rational_method():
+    """P = {|x1| <= 1} in R^2 has the line x1 = 0: the rational robust claim needs P without lines."""
+    with budget.account(time_limit=None):
+        assert Problem(_hull_record([[1, 0], [-1, 0]])).lines_possible
+        assert not Problem(_hull_record([[1, 0], [-1, 0], [0, 1], [0, -1]])).lines_possible
+
+
 def test_the_independent_checks_accept_genuine_and_refuse_forged_claims():
     """The fuzzer's oracle is no rubber stamp: true on genuine certificates, false on known-false claims."""
     rng = random.Random(5)
@@ -524,3 +493,35 @@ def test_fuzzer_every_accepted_mutant_is_true():
     assert stats["mutants"] >= 100
     assert stats["false"] == [], stats["false"]
     assert stats["accepted"] == stats["true"]
+
+
+# ------------------------------------------------------------------ resource
+
+def test_the_largest_robust_forward_euler_step_needs_a_nonempty_P():
+    assert not exactinv_check.check(_empty_robust()).ok  # was accepted: "forward_euler": "1" on an empty P
+    for x in (["-1", "0"], ["1", "0"], ["0", "5"]):
+        report = exactinv_check.check(_empty_robust(x))
+        assert not report.ok and "not in P" in str(report), report
+    # the same record on the nonempty P = {|x1| <= 1, x2 <= 5} (b = (1, 1, 5)) is true: at x = (0, 5) on the
+    # facet x2 = 5, forward Euler gives x2 = 5 - 5h, and the facets |x1| <= 1 are fixed (x1' = 0); the step
+    # 1/gamma = 1 is the largest, as the independent sampler of this file confirms.
+    cert = _empty_robust(["0", "5"])
+    cert["problem"]["b"] = ["1", "1", "5"]
+    cert["claims"][1]["vertices"][0]["H"] = [["0", "0", "0"], ["0", "0", "0"], ["0", "0", "-1"]]
+    cert["claims"][1]["vertices"][0]["dual"] = {"y": ["0", "1"], "lambda": "0"}
+    assert exactinv_check.check(cert).ok
+    assert _robust_claim_is_true(cert["problem"], cert["claims"][1], random.Random(3), samples=20)
+
+
+def test_the_hull_problems_rank_is_charged():
+    """Before: Problem() ran rank_and_nullspace (Fraction Gauss-Jordan) with no charge, so a 400 x 200 G
+    (640 KB) ran minutes of CPU that neither the budget nor the clock saw.  Now each elimination step is
+    charged: under a small account the same work (scaled down: 60 x 30) is rejected, not run."""
+    rng = random.Random(1)
+    G = [[rng.randint(-9, 9) for _ in range(30)] for _ in range(60)]
+    with budget.account(limit=10**5, time_limit=None):
+        with pytest.raises(CheckFailure, match="work budget"):
+            Problem(_hull_record(G))
+    with budget.account(time_limit=None) as acc:
+        assert not Problem(_hull_record(G)).lines_possible
+    assert acc.spent > 10**5

@@ -2,6 +2,7 @@
 rejected (shrunk or indefinite Q, dropped intervals, flipped flags, wrong ends,
 forged witnesses, claims on the wrong kind of problem)."""
 
+
 import copy
 import json
 from fractions import Fraction
@@ -15,7 +16,11 @@ from exactinv.certificates import certificate
 from exactinv_check import check
 
 DISC = ei.Ellipsoid([[1, 0], [0, 1]])
+
+
 ROT = ei.LinearSystem([[-1, -2], [2, -1]])
+
+
 GAP_METHOD = ei.methods.polynomial([1, "1/2", "3/4", "1/4"])
 
 
@@ -46,6 +51,20 @@ def _rejected(cert, reason=""):
     assert not report.ok, f"accepted:\n{report}"
     assert reason.lower() in str(report).lower(), str(report)
 
+
+@st.composite
+def _problems(draw):
+    n = draw(st.integers(1, 2))
+    entry = st.builds(Fraction, st.integers(-4, 4), st.integers(1, 3))
+    A = [[draw(entry) for _ in range(n)] for _ in range(n)]
+    B = [[draw(entry) for _ in range(n)] for _ in range(n)]
+    Q = [[sum(B[k][i] * B[k][j] for k in range(n)) + (i == j) for j in range(n)] for i in range(n)]
+    method = draw(st.sampled_from([ei.methods.taylor(1), ei.methods.taylor(2), ei.methods.theta("1/4"),
+                                   ei.methods.pade(1, 1), GAP_METHOD]))
+    return ei.LinearSystem(A), ei.Ellipsoid(Q), method
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_genuine_certificates_verify():
     assert check(_taylor2()).ok and check(_gap()).ok
@@ -160,18 +179,6 @@ def test_a_wrong_determinant_is_rejected():
     _rejected(cert, "det h")
 
 
-@st.composite
-def _problems(draw):
-    n = draw(st.integers(1, 2))
-    entry = st.builds(Fraction, st.integers(-4, 4), st.integers(1, 3))
-    A = [[draw(entry) for _ in range(n)] for _ in range(n)]
-    B = [[draw(entry) for _ in range(n)] for _ in range(n)]
-    Q = [[sum(B[k][i] * B[k][j] for k in range(n)) + (i == j) for j in range(n)] for i in range(n)]
-    method = draw(st.sampled_from([ei.methods.taylor(1), ei.methods.taylor(2), ei.methods.theta("1/4"),
-                                   ei.methods.pade(1, 1), GAP_METHOD]))
-    return ei.LinearSystem(A), ei.Ellipsoid(Q), method
-
-
 @given(_problems())
 @settings(max_examples=15)
 def test_every_end_is_checked_exactly(case):
@@ -188,3 +195,7 @@ def test_every_end_is_checked_exactly(case):
             forged = copy.deepcopy(cert)
             forged["claims"][0]["intervals"][k][key] = str(moved)
             _rejected(forged)
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

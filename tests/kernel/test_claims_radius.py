@@ -8,6 +8,7 @@ rho <= kappa_z (the first kappa at which a pole z is as close to -kappa as p*), 
 Q(i).  The last test is a seeded mutation fuzzer over genuine engine certificates.
 """
 
+
 import json
 import random
 from fractions import Fraction as F
@@ -22,7 +23,6 @@ from exactinv_check.failure import CheckFailure
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
 
-# ------------------------------------------------------------------ helpers (independent of the kernel)
 def _cmul(x, y):
     return (x[0] * y[0] - x[1] * y[1], x[0] * y[1] + x[1] * y[0])
 
@@ -90,45 +90,16 @@ def admissible(num, den, kappa, count):
 # A balanced tie of four simple poles at kappa* = 1: p* = 1, a = -3 ((|a| - p*)/2 = 1) and the pair
 # 1/5 +- 8i/5 (|z|^2 = 13/5: (13/5 - 1)/(2 (1 - 1/5)) = 1); all three are at distance 2 from -1.
 P_STAR, A, Z = (F(1), F(0)), (F(-3), F(0)), (F(1, 5), F(8, 5))
+
+
 POLES = [P_STAR, A, Z, (Z[0], -Z[1])]
+
+
 POLES_TEXT = [[str(x), str(y)] for x, y in POLES]
 
 
 def four_pole_tie(beta_a, beta_z):
     return from_poles(POLES, [(F(1), F(0)), (beta_a, F(0)), beta_z, (beta_z[0], -beta_z[1])])
-
-
-def test_the_four_pole_tie_is_a_tie():
-    assert tie_kappa(F(1), A) == tie_kappa(F(1), Z) == 1
-
-
-# ------------------------------------------------------------------ balanced ties: genuine, then forged
-@pytest.mark.parametrize("beta_a, beta_z", [(F(-1, 2), (F(1, 4), F(0))), (F(1, 2), (F(0), F(1, 4))),
-                                            (F(-1, 4), (F(3, 20), F(4, 20)))])
-def test_a_genuine_balanced_tie_is_verified_and_true(beta_a, beta_z):
-    """sum of the tied |b_k| = 1 = b_* (exact square roots: |3/20 + 4i/20| = 1/4): rho = 1, attained.  The
-    reference: c_j(1) >= 0 for j < 300 (the bound is tight: the sum equals b_*), some c_j(1 + 1/100) < 0."""
-    num, den = four_pole_tie(beta_a, beta_z)
-    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
-    assert admissible(num, den, F(1), 300)
-    assert not admissible(num, den, F(101, 100), 300)
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=False, poles=POLES_TEXT)
-    for value in ("101/100", "2", "oo", "99/100"):
-        assert not verified(num, den, value=value, reason="balanced-tie", attained=True, poles=POLES_TEXT)
-
-
-@pytest.mark.parametrize("beta_a, beta_z", [(F(-51, 100), (F(1, 4), F(0))), (F(1, 2), (F(1, 5), F(1, 5))),
-                                            (F(-1, 2), (F(1, 4), F(1, 10**30)))])
-def test_outweighed_residues_are_rejected_and_rho_is_below_the_tie(beta_a, beta_z):
-    """sum |b_T| > b_* (by 1/100; by sqrt(2)/5 - 1/4; by about 10^-60 through an irrational modulus whose rational
-    upper bound must not be rounded down): the kernel rejects rho = 1.  For the first two the reference shows
-    the claim false (some c_j(1) < 0)."""
-    num, den = four_pole_tie(beta_a, beta_z)
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=False, poles=POLES_TEXT)
-    if beta_z[1] < F(1, 1000):
-        return
-    assert not admissible(num, den, F(1), 400)
 
 
 def _forged_lists():
@@ -145,185 +116,6 @@ def _forged_lists():
     yield "too many", good * 5
 
 
-@pytest.mark.parametrize("what, poles", list(_forged_lists()))
-def test_forged_pole_lists_are_rejected(what, poles):
-    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=poles), what
-
-
-def test_the_pole_order_does_not_matter():
-    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
-    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT[::-1])
-
-
-def test_a_double_pole_cannot_pass_as_simple_poles():
-    """h = (1 - z)^2 (1 + z/3): listing 1 twice is refused (not distinct), listing it once is refused (deg h)."""
-    den = [F(1)]
-    for f in ([F(1), F(-1)], [F(1), F(-1)], [F(1), F(1, 3)]):
-        den = [sum(den[i] * f[k - i] for i in range(len(den)) if 0 <= k - i < len(f)) for k in range(len(den) + 1)]
-    num = [F(1)]
-    for poles in ([["1", "0"], ["1", "0"], ["-3", "0"]], [["1", "0"], ["-3", "0"]]):
-        assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=poles)
-
-
-def test_an_untied_pole_left_of_p_star_is_refused():
-    """A pole with Re z < p* that is not in the tie (a negative real pole farther out, reached later) and a
-    complex pole right of p* are refused: the closed-form bound does not cover their terms."""
-    poles = POLES + [(F(-7), F(0))]  # kappa = (7 - 1)/2 = 3 > 1
-    num, den = from_poles(poles, [(F(1), F(0)), (F(-1, 4), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0))])
-    text = [[str(x), str(y)] for x, y in poles]
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=text)
-    poles = POLES + [(F(2), F(1)), (F(2), F(-1))]
-    num, den = from_poles(poles, [(F(1), F(0)), (F(-1, 4), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0)),
-                                  (F(1, 100), F(0)), (F(1, 100), F(0))])
-    text = [[str(x), str(y)] for x, y in poles]
-    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=text)
-
-
-def test_a_cancelled_factor_is_no_pole():
-    """r = g (1 + z/5) / (h (1 + z/5)): the method is reduced first, so a list naming -5 as a pole is refused,
-    and the list of the reduced poles is accepted."""
-    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
-    f = [F(1), F(1, 5)]
-    def mul(p):
-        return [sum(p[i] * f[k - i] for i in range(len(p)) if 0 <= k - i < 2) for k in range(len(p) + 1)]
-
-    num5, den5 = mul(num), mul(den)
-    assert not verified(num5, den5, value="1", reason="balanced-tie", attained=True,
-                        poles=POLES_TEXT + [["-5", "0"]])
-    assert verified(num5, den5, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
-
-
-# ------------------------------------------------------------------ poles on the line Re z = p* (bernstein)
-def test_one_pair_on_the_line_decided_exactly():
-    """p* = 1 and 1 +- 2i: f(t) = e^(-t) (b_* + 2 Re(b e^(-2it))), nonnegative iff b_* >= 2|b|.  b = 1/2 (touching
-    0) is accepted; b = 1/2 + 10^-40 is refused, and (b_* < 2|b|) rho is finite: c_j(kappa) < 0 somewhere."""
-    poles = [(F(1), F(0)), (F(1), F(2)), (F(1), F(-2))]
-    ok = from_poles(poles, [(F(1), F(0)), (F(1, 2), F(0)), (F(1, 2), F(0))], constant=False)
-    assert verified(*ok, value="oo", reason="bernstein", attained=True)
-    eps = F(1, 10**40)
-    bad = from_poles(poles, [(F(1), F(0)), (F(1, 2) + eps, F(0)), (F(1, 2) + eps, F(0))], constant=False)
-    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
-    with pytest.raises(CheckFailure):
-        prove_completely_monotone(*bad)
-    bad = from_poles(poles, [(F(1), F(0)), (F(3, 5), F(0)), (F(3, 5), F(0))], constant=False)
-    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
-    assert any(not admissible(*bad, F(k), 200) for k in (1, 4, 16, 64))
-
-
-def test_a_pair_just_left_of_the_line_is_not_on_it():
-    """1 - 10^-30 +- 2i: its tie with p* = 1 is at kappa_z = (|z|^2 - 1)/(2 10^-30), finite, so by Pringsheim rho
-    <= kappa_z < oo; the kernel must not prove the pair on the line (an enclosure cannot tell)."""
-    x = 1 - F(1, 10**30)
-    poles = [(F(1), F(0)), (x, F(2)), (x, F(-2))]
-    num, den = from_poles(poles, [(F(1), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0))], constant=False)
-    assert 0 < tie_kappa(F(1), poles[1]) < 10**31
-    assert not verified(num, den, value="oo", reason="bernstein", attained=True)
-
-
-def test_all_poles_on_the_line_density():
-    """p* = 1 and 1 +- i, 1 +- 2i, residues 1, a, a, b, b (c = 0): f(t) = e^(-t) T(t) with
-    T = 1 + 2a cos t + 2b cos 2t = 1 - b + 2a x + 4b x^2 (x = cos t).  a = b = 1/8: min 3/4 - 1/32 > 0;
-    a = 1/8, b = 1/4: 1/2 - 1/64 > 0 (rho = oo, accepted); a = 1/8, b = 3/4: T(pi/2) = -1/2 < 0 (refused, and
-    the reference finds a c_j(kappa) < 0)."""
-    poles = [(F(1), F(0)), (F(1), F(1)), (F(1), F(-1)), (F(1), F(2)), (F(1), F(-2))]
-
-    def r(a, b):
-        return from_poles(poles, [(F(1), F(0)), (a, F(0)), (a, F(0)), (b, F(0)), (b, F(0))], constant=False)
-
-    assert verified(*r(F(1, 8), F(1, 8)), value="oo", reason="bernstein", attained=True)
-    assert verified(*r(F(1, 8), F(1, 4)), value="oo", reason="bernstein", attained=True)
-    bad = r(F(1, 8), F(3, 4))
-    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
-    assert any(not admissible(*bad, F(k), 300) for k in (2, 8, 32, 128))
-
-
-def test_a_line_pole_of_higher_multiplicity_than_p_star_is_refused():
-    """h = (1 - z)((z - 1)^2 + 1)^2: the double pair on Re z = 1 outgrows p* (t e^(-t) against e^(-t)), so f
-    changes sign for some numerators; the kernel refuses dominance by p* whatever the numerator."""
-    q = [F(2), F(-2), F(1)]  # (z - 1)^2 + 1
-    den = [F(1), F(-1)]
-    for f in (q, q):
-        den = [sum(den[i] * f[k - i] for i in range(len(den)) if 0 <= k - i < len(f)) for k in range(len(den) + 2)]
-    den = [c / den[0] for c in den]
-    assert not verified([F(1)], den, value="oo", reason="bernstein", attained=True)
-
-
-# ------------------------------------------------------------------ edges and sizes
-@pytest.mark.parametrize("num, den", [([F(1)], [F(1), F(1)]),            # pole at -1 only: rho = 0 (c_1(0) < 0)
-                                      ([F(1), F(1)], [F(1), F(-1)]),     # (1 + z)/(1 - z): deg g = deg h
-                                      ([F(1), F(-1, 2)], [F(1), F(-1)]),  # 1 - ... : b = 1/2 > 0, c = 1/2
-                                      ([F(1), F(-2)], [F(1), F(-1)])])    # c = 2 > 0 but b = -1 < 0
-def test_degree_one(num, den):
-    """Degree 1: r = c + b/(1 - z).  rho = oo iff b >= 0 and c >= 0 (the reference: c_j(kappa) = b/(1 + kappa)^(j+1)
-    for j >= 1 and c_0 = c + b/(1 + kappa)); every other combination of (value, reason) is refused."""
-    b = num[0] + num[1] if len(num) > 1 else num[0]  # r = g/(1 - z): b = g(1)
-    c = -num[1] if len(num) > 1 else F(0)
-    truth_oo = b >= 0 and c >= 0 and den[1] < 0
-    for reason in ("bernstein", "balanced-tie"):
-        for poles in (None, [["1", "0"]], [["1", "0"], ["-1", "0"]]):
-            claim = dict(value="oo", reason=reason, attained=True)
-            if poles is not None:
-                claim["poles"] = poles
-            ok = verified(num, den, **claim)
-            assert not ok or (reason == "bernstein" and poles is None and truth_oo)
-    if truth_oo:
-        assert verified(num, den, value="oo", reason="bernstein", attained=True)
-        assert all(admissible(num, den, F(k), 50) for k in (0, 1, 100))
-
-
-def test_huge_pole_coordinates_get_a_quick_verdict():
-    """15 simple poles whose coordinates have about 800 bits (p* = 1, a = -3 and 13 real poles above 1 with long
-    denominators): the Q(i) products are priced; the verdict comes within seconds."""
-    rng = random.Random(22)
-    poles = [(F(1), F(0))] + [(1 + F(rng.getrandbits(400) | 1, 2 ** 400 + rng.getrandbits(390)), F(0))
-                              for _ in range(13)]
-    poles = [poles[0], (F(-3), F(0))] + poles[1:]
-    num, den = from_poles(poles, [(F(1), F(0))] * len(poles))
-    text = [[str(x), str(y)] for x, y in poles]
-    report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
-                                                               poles=text)))))
-    assert not report.ok  # the untied real poles have b_k = 1 > 0 but 1 + ... > p*: a tie with a (b_a = 1 <= b_*)
-
-
-def test_poles_belong_to_the_balanced_tie_only():
-    """A 'poles' list on another reason was ignored (accepted unread); the format is strict: refused.  Backward
-    Euler, rho = oo by product, with a (true) 'poles' list attached."""
-    num, den = [F(1)], [F(1), F(-1)]
-    assert verified(num, den, value="oo", reason="product", attained=True)
-    assert not verified(num, den, value="oo", reason="product", attained=True, poles=[["1", "0"], ["2", "0"]])
-    assert not verified(num, den, value="oo", reason="bernstein", attained=True, poles=[["1", "0"], ["2", "0"]])
-
-
-def test_a_verified_several_pole_tie_matches_the_schema():
-    """The kernel verified the v2 key 'poles' but docs/certificate.schema.json did not list it (tests/conftest.py
-    validates every verified certificate against the schema: this failed before the schema was fixed)."""
-    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
-    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
-
-
-def test_large_numbers_in_messages_do_not_crash():
-    """Messages were built with str() of exact numbers, eagerly (an f-string is evaluated before require is
-    called): b_* = -g(p*)/h'(p*) for 2000-bit poles and deg g = 30 has over 4300 digits, and str() raised
-    ValueError (Python's int -> str limit) -- even on the path where the check passes.  Now the numbers go
-    through rationals.describe: a clear CheckFailure (the claim is false: the residues do not balance)."""
-    from exactinv_check.balanced_tie import prove_balanced_tie
-    from exactinv_check.tail import reduced
-    rng = random.Random(5)
-    p = 1 + F(1, rng.getrandbits(2000) | 1 << 1999)
-    a = -(3 + F(1, rng.getrandbits(2000) | 1 << 1999))
-    den = [p * a, -(p + a), F(1)]
-    den = [c / den[0] for c in den]
-    num = [F(1)] + [F(rng.getrandbits(8)) for _ in range(30)]
-    g, h = reduced(num, den)
-    with pytest.raises(CheckFailure, match="residues outweigh"):
-        prove_balanced_tie(g, h, [[p, F(0)], [a, F(0)]])
-    report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
-                                                               poles=[[str(p), "0"], [str(a), "0"]])))))
-    assert not report.ok and "ValueError" not in str(report)
-
-
-# ------------------------------------------------------------------ a seeded mutation fuzzer (kernel + reference)
 def _rand(rng, lo, hi, dens=(1, 2, 3, 4, 5, 8)):
     d = rng.choice(dens)
     return F(rng.randint(int(lo * d), int(hi * d)), d)
@@ -393,6 +185,172 @@ def _refuted(num, den, claim, tie=None):
     return None
 
 
+# ------------------------------------------------------------------ soundness
+
+def test_the_four_pole_tie_is_a_tie():
+    assert tie_kappa(F(1), A) == tie_kappa(F(1), Z) == 1
+
+
+@pytest.mark.parametrize("beta_a, beta_z", [(F(-1, 2), (F(1, 4), F(0))), (F(1, 2), (F(0), F(1, 4))),
+                                            (F(-1, 4), (F(3, 20), F(4, 20)))])
+def test_a_genuine_balanced_tie_is_verified_and_true(beta_a, beta_z):
+    """sum of the tied |b_k| = 1 = b_* (exact square roots: |3/20 + 4i/20| = 1/4): rho = 1, attained.  The
+    reference: c_j(1) >= 0 for j < 300 (the bound is tight: the sum equals b_*), some c_j(1 + 1/100) < 0."""
+    num, den = four_pole_tie(beta_a, beta_z)
+    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
+    assert admissible(num, den, F(1), 300)
+    assert not admissible(num, den, F(101, 100), 300)
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=False, poles=POLES_TEXT)
+    for value in ("101/100", "2", "oo", "99/100"):
+        assert not verified(num, den, value=value, reason="balanced-tie", attained=True, poles=POLES_TEXT)
+
+
+@pytest.mark.parametrize("beta_a, beta_z", [(F(-51, 100), (F(1, 4), F(0))), (F(1, 2), (F(1, 5), F(1, 5))),
+                                            (F(-1, 2), (F(1, 4), F(1, 10**30)))])
+def test_outweighed_residues_are_rejected_and_rho_is_below_the_tie(beta_a, beta_z):
+    """sum |b_T| > b_* (by 1/100; by sqrt(2)/5 - 1/4; by about 10^-60 through an irrational modulus whose rational
+    upper bound must not be rounded down): the kernel rejects rho = 1.  For the first two the reference shows
+    the claim false (some c_j(1) < 0)."""
+    num, den = four_pole_tie(beta_a, beta_z)
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=False, poles=POLES_TEXT)
+    if beta_z[1] < F(1, 1000):
+        return
+    assert not admissible(num, den, F(1), 400)
+
+
+@pytest.mark.parametrize("what, poles", list(_forged_lists()))
+def test_forged_pole_lists_are_rejected(what, poles):
+    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=poles), what
+
+
+def test_the_pole_order_does_not_matter():
+    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
+    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT[::-1])
+
+
+def test_a_double_pole_cannot_pass_as_simple_poles():
+    """h = (1 - z)^2 (1 + z/3): listing 1 twice is refused (not distinct), listing it once is refused (deg h)."""
+    den = [F(1)]
+    for f in ([F(1), F(-1)], [F(1), F(-1)], [F(1), F(1, 3)]):
+        den = [sum(den[i] * f[k - i] for i in range(len(den)) if 0 <= k - i < len(f)) for k in range(len(den) + 1)]
+    num = [F(1)]
+    for poles in ([["1", "0"], ["1", "0"], ["-3", "0"]], [["1", "0"], ["-3", "0"]]):
+        assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=poles)
+
+
+def test_an_untied_pole_left_of_p_star_is_refused():
+    """A pole with Re z < p* that is not in the tie (a negative real pole farther out, reached later) and a
+    complex pole right of p* are refused: the closed-form bound does not cover their terms."""
+    poles = POLES + [(F(-7), F(0))]  # kappa = (7 - 1)/2 = 3 > 1
+    num, den = from_poles(poles, [(F(1), F(0)), (F(-1, 4), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0))])
+    text = [[str(x), str(y)] for x, y in poles]
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=text)
+    poles = POLES + [(F(2), F(1)), (F(2), F(-1))]
+    num, den = from_poles(poles, [(F(1), F(0)), (F(-1, 4), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0)),
+                                  (F(1, 100), F(0)), (F(1, 100), F(0))])
+    text = [[str(x), str(y)] for x, y in poles]
+    assert not verified(num, den, value="1", reason="balanced-tie", attained=True, poles=text)
+
+
+def test_a_cancelled_factor_is_no_pole():
+    """r = g (1 + z/5) / (h (1 + z/5)): the method is reduced first, so a list naming -5 as a pole is refused,
+    and the list of the reduced poles is accepted."""
+    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
+    f = [F(1), F(1, 5)]
+    def mul(p):
+        return [sum(p[i] * f[k - i] for i in range(len(p)) if 0 <= k - i < 2) for k in range(len(p) + 1)]
+
+    num5, den5 = mul(num), mul(den)
+    assert not verified(num5, den5, value="1", reason="balanced-tie", attained=True,
+                        poles=POLES_TEXT + [["-5", "0"]])
+    assert verified(num5, den5, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
+
+
+def test_one_pair_on_the_line_decided_exactly():
+    """p* = 1 and 1 +- 2i: f(t) = e^(-t) (b_* + 2 Re(b e^(-2it))), nonnegative iff b_* >= 2|b|.  b = 1/2 (touching
+    0) is accepted; b = 1/2 + 10^-40 is refused, and (b_* < 2|b|) rho is finite: c_j(kappa) < 0 somewhere."""
+    poles = [(F(1), F(0)), (F(1), F(2)), (F(1), F(-2))]
+    ok = from_poles(poles, [(F(1), F(0)), (F(1, 2), F(0)), (F(1, 2), F(0))], constant=False)
+    assert verified(*ok, value="oo", reason="bernstein", attained=True)
+    eps = F(1, 10**40)
+    bad = from_poles(poles, [(F(1), F(0)), (F(1, 2) + eps, F(0)), (F(1, 2) + eps, F(0))], constant=False)
+    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
+    with pytest.raises(CheckFailure):
+        prove_completely_monotone(*bad)
+    bad = from_poles(poles, [(F(1), F(0)), (F(3, 5), F(0)), (F(3, 5), F(0))], constant=False)
+    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
+    assert any(not admissible(*bad, F(k), 200) for k in (1, 4, 16, 64))
+
+
+def test_a_pair_just_left_of_the_line_is_not_on_it():
+    """1 - 10^-30 +- 2i: its tie with p* = 1 is at kappa_z = (|z|^2 - 1)/(2 10^-30), finite, so by Pringsheim rho
+    <= kappa_z < oo; the kernel must not prove the pair on the line (an enclosure cannot tell)."""
+    x = 1 - F(1, 10**30)
+    poles = [(F(1), F(0)), (x, F(2)), (x, F(-2))]
+    num, den = from_poles(poles, [(F(1), F(0)), (F(1, 8), F(0)), (F(1, 8), F(0))], constant=False)
+    assert 0 < tie_kappa(F(1), poles[1]) < 10**31
+    assert not verified(num, den, value="oo", reason="bernstein", attained=True)
+
+
+def test_all_poles_on_the_line_density():
+    """p* = 1 and 1 +- i, 1 +- 2i, residues 1, a, a, b, b (c = 0): f(t) = e^(-t) T(t) with
+    T = 1 + 2a cos t + 2b cos 2t = 1 - b + 2a x + 4b x^2 (x = cos t).  a = b = 1/8: min 3/4 - 1/32 > 0;
+    a = 1/8, b = 1/4: 1/2 - 1/64 > 0 (rho = oo, accepted); a = 1/8, b = 3/4: T(pi/2) = -1/2 < 0 (refused, and
+    the reference finds a c_j(kappa) < 0)."""
+    poles = [(F(1), F(0)), (F(1), F(1)), (F(1), F(-1)), (F(1), F(2)), (F(1), F(-2))]
+
+    def r(a, b):
+        return from_poles(poles, [(F(1), F(0)), (a, F(0)), (a, F(0)), (b, F(0)), (b, F(0))], constant=False)
+
+    assert verified(*r(F(1, 8), F(1, 8)), value="oo", reason="bernstein", attained=True)
+    assert verified(*r(F(1, 8), F(1, 4)), value="oo", reason="bernstein", attained=True)
+    bad = r(F(1, 8), F(3, 4))
+    assert not verified(*bad, value="oo", reason="bernstein", attained=True)
+    assert any(not admissible(*bad, F(k), 300) for k in (2, 8, 32, 128))
+
+
+def test_a_line_pole_of_higher_multiplicity_than_p_star_is_refused():
+    """h = (1 - z)((z - 1)^2 + 1)^2: the double pair on Re z = 1 outgrows p* (t e^(-t) against e^(-t)), so f
+    changes sign for some numerators; the kernel refuses dominance by p* whatever the numerator."""
+    q = [F(2), F(-2), F(1)]  # (z - 1)^2 + 1
+    den = [F(1), F(-1)]
+    for f in (q, q):
+        den = [sum(den[i] * f[k - i] for i in range(len(den)) if 0 <= k - i < len(f)) for k in range(len(den) + 2)]
+    den = [c / den[0] for c in den]
+    assert not verified([F(1)], den, value="oo", reason="bernstein", attained=True)
+
+
+@pytest.mark.parametrize("num, den", [([F(1)], [F(1), F(1)]),            # pole at -1 only: rho = 0 (c_1(0) < 0)
+                                      ([F(1), F(1)], [F(1), F(-1)]),     # (1 + z)/(1 - z): deg g = deg h
+                                      ([F(1), F(-1, 2)], [F(1), F(-1)]),  # 1 - ... : b = 1/2 > 0, c = 1/2
+                                      ([F(1), F(-2)], [F(1), F(-1)])])    # c = 2 > 0 but b = -1 < 0
+def test_degree_one(num, den):
+    """Degree 1: r = c + b/(1 - z).  rho = oo iff b >= 0 and c >= 0 (the reference: c_j(kappa) = b/(1 + kappa)^(j+1)
+    for j >= 1 and c_0 = c + b/(1 + kappa)); every other combination of (value, reason) is refused."""
+    b = num[0] + num[1] if len(num) > 1 else num[0]  # r = g/(1 - z): b = g(1)
+    c = -num[1] if len(num) > 1 else F(0)
+    truth_oo = b >= 0 and c >= 0 and den[1] < 0
+    for reason in ("bernstein", "balanced-tie"):
+        for poles in (None, [["1", "0"]], [["1", "0"], ["-1", "0"]]):
+            claim = dict(value="oo", reason=reason, attained=True)
+            if poles is not None:
+                claim["poles"] = poles
+            ok = verified(num, den, **claim)
+            assert not ok or (reason == "bernstein" and poles is None and truth_oo)
+    if truth_oo:
+        assert verified(num, den, value="oo", reason="bernstein", attained=True)
+        assert all(admissible(num, den, F(k), 50) for k in (0, 1, 100))
+
+
+def test_a_verified_several_pole_tie_matches_the_schema():
+    """The kernel verified the v2 key 'poles' but docs/certificate.schema.json did not list it (tests/conftest.py
+    validates every verified certificate against the schema: this failed before the schema was fixed)."""
+    num, den = four_pole_tie(F(-1, 2), (F(1, 4), F(0)))
+    assert verified(num, den, value="1", reason="balanced-tie", attained=True, poles=POLES_TEXT)
+
+
 def test_seeded_mutation_fuzzer():
     """Genuine claims for the two new families (a balanced tie at kappa*, rho = oo with poles on the line), each
     with mutants: residues nudged (the function changes, the claim stays), pole lists edited, value and attained
@@ -444,6 +402,52 @@ def test_seeded_mutation_fuzzer():
     print(stats["claims"], "claims,", stats["verified"], "verified,", len(stats["false"]), "refuted")
     assert stats["verified"] > 0
     assert not stats["false"], stats["false"][:3]
+
+
+# ------------------------------------------------------------------ resource
+
+def test_huge_pole_coordinates_get_a_quick_verdict():
+    """15 simple poles whose coordinates have about 800 bits (p* = 1, a = -3 and 13 real poles above 1 with long
+    denominators): the Q(i) products are priced; the verdict comes within seconds."""
+    rng = random.Random(22)
+    poles = [(F(1), F(0))] + [(1 + F(rng.getrandbits(400) | 1, 2 ** 400 + rng.getrandbits(390)), F(0))
+                              for _ in range(13)]
+    poles = [poles[0], (F(-3), F(0))] + poles[1:]
+    num, den = from_poles(poles, [(F(1), F(0))] * len(poles))
+    text = [[str(x), str(y)] for x, y in poles]
+    report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
+                                                               poles=text)))))
+    assert not report.ok  # the untied real poles have b_k = 1 > 0 but 1 + ... > p*: a tie with a (b_a = 1 <= b_*)
+
+
+def test_poles_belong_to_the_balanced_tie_only():
+    """A 'poles' list on another reason was ignored (accepted unread); the format is strict: refused.  Backward
+    Euler, rho = oo by product, with a (true) 'poles' list attached."""
+    num, den = [F(1)], [F(1), F(-1)]
+    assert verified(num, den, value="oo", reason="product", attained=True)
+    assert not verified(num, den, value="oo", reason="product", attained=True, poles=[["1", "0"], ["2", "0"]])
+    assert not verified(num, den, value="oo", reason="bernstein", attained=True, poles=[["1", "0"], ["2", "0"]])
+
+
+def test_large_numbers_in_messages_do_not_crash():
+    """Messages were built with str() of exact numbers, eagerly (an f-string is evaluated before require is
+    called): b_* = -g(p*)/h'(p*) for 2000-bit poles and deg g = 30 has over 4300 digits, and str() raised
+    ValueError (Python's int -> str limit) -- even on the path where the check passes.  Now the numbers go
+    through rationals.describe: a clear CheckFailure (the claim is false: the residues do not balance)."""
+    from exactinv_check.balanced_tie import prove_balanced_tie
+    from exactinv_check.tail import reduced
+    rng = random.Random(5)
+    p = 1 + F(1, rng.getrandbits(2000) | 1 << 1999)
+    a = -(3 + F(1, rng.getrandbits(2000) | 1 << 1999))
+    den = [p * a, -(p + a), F(1)]
+    den = [c / den[0] for c in den]
+    num = [F(1)] + [F(rng.getrandbits(8)) for _ in range(30)]
+    g, h = reduced(num, den)
+    with pytest.raises(CheckFailure, match="residues outweigh"):
+        prove_balanced_tie(g, h, [[p, F(0)], [a, F(0)]])
+    report = check(json.loads(json.dumps(_cert(num, den, dict(value="1", reason="balanced-tie", attained=True,
+                                                               poles=[[str(p), "0"], [str(a), "0"]])))))
+    assert not report.ok and "ValueError" not in str(report)
 
 
 @pytest.mark.parametrize("q", [F(1999, 1000), F(1501, 1000), F(2001, 1000)])

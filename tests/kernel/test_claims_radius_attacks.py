@@ -13,6 +13,7 @@ the true first end, a wrong binding index, an algebraic rho whose interval strad
 every genuine claim accepted, the values checked against radius_reference).
 """
 
+
 import json
 import os
 import resource
@@ -33,6 +34,7 @@ from exactinv_check.failure import CheckFailure
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -51,66 +53,6 @@ def _witness_cert(digits, js):
                         "reason": "negative-at-0", "witness_j": j} for j in js]}
 
 
-def test_sign_at_zero_matches_the_closed_form():
-    """The charged recurrence still computes the exact sign: against C(j+2, 2) (-B/A)^j and the reference."""
-    num, den, A, B = cube_method(4)
-    for j in range(0, 40):
-        expected = (-1) ** j
-        assert sign_at_zero(num, den, j) == expected
-    with budget.account(time_limit=None):
-        assert sign_at_zero(num, den, 37) == -1
-    c = coefficients_at(num, den, F(0), 12)
-    assert all((x > 0) - (x < 0) == (-1) ** j and x == comb(j + 2, 2) * F(-B, A) ** j for j, x in enumerate(c))
-
-
-def test_sign_at_zero_is_charged_as_it_runs():
-    """Before: priced 9.9e7 up front, nothing charged while it ran 10 s (deg h = 3, 1660-digit coefficients,
-    j = 369).  With an account of 2 x WORK_BUDGET it ran to the end; now the steps' charges overdraw it early."""
-    num, den, _, _ = cube_method(500)
-    start = time.process_time()
-    with budget.account(limit=2 * WORK_BUDGET, time_limit=None) as acc:
-        with pytest.raises(CheckFailure, match="work budget"):
-            sign_at_zero(num, den, 369)
-    assert acc.spent > 2 * WORK_BUDGET
-    assert time.process_time() - start < 8
-
-
-def test_a_long_witness_is_charged_more_than_its_price():
-    """The whole recurrence for j = 1355 with 100-digit coefficients: charged several times its up-front price
-    (about 2.4e8 + 1e8 for 7 s of CPU; the up-front price alone was 1e8)."""
-    num, den, _, _ = cube_method(100)
-    with budget.account(limit=10**12, time_limit=None) as acc:
-        assert sign_at_zero(num, den, 1355) == -1
-    assert acc.spent > 2 * WORK_BUDGET
-
-
-@pytest.mark.skipif(not os.environ.get("EXACTINV_FUZZ"), reason="about 40 s: the full-size certificate (EXACTINV_FUZZ=1)")
-def test_eight_witness_claims_get_a_verdict_by_the_account(tmp_path):
-    """Before: 8.6 KB, eight claims c_369(0), c_367(0)... < 0, 55 s of CPU, stopped by the clock (50 s) only."""
-    path = tmp_path / "cert.json"
-    path.write_text(json.dumps(_witness_cert(500, [369 - 2 * k for k in range(8)])))
-    assert path.stat().st_size < 10**4
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-
-    def limit():
-        resource.setrlimit(resource.RLIMIT_CPU, (60, 60))
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
-    done = subprocess.run([sys.executable, "-m", "exactinv_check", str(path)], capture_output=True, text=True,
-                          timeout=300, env=env, preexec_fn=limit)
-    used = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - before
-    assert done.returncode != 0 and "work budget" in done.stdout + done.stderr, done.stdout[-500:]
-    assert used < 45
-
-
-def test_short_above_is_above_and_short():
-    for q in [F(0), F(1, 3), F(2), F(10**50 + 1, 10**49), F(1, 10**40 + 3), F(12345, 1)]:
-        k = short_above(q)
-        assert k >= q and (q == 0 or k <= q * (1 + F(1, 2**14)))
-        bits = q.numerator.bit_length() + q.denominator.bit_length()
-        assert k.numerator.bit_length() + k.denominator.bit_length() <= max(40, bits)
-
-
-# ------------------------------------------------------------------ the coefficient route: seeded mutations
 def _frac(rng, lo, hi, dens=(1, 2, 3, 4, 6)):
     d = rng.choice(dens)
     return F(rng.randint(int(lo * d), int(hi * d)), d)
@@ -151,6 +93,28 @@ def _mutations(claim):
     return out
 
 
+# ------------------------------------------------------------------ soundness
+
+def test_sign_at_zero_matches_the_closed_form():
+    """The charged recurrence still computes the exact sign: against C(j+2, 2) (-B/A)^j and the reference."""
+    num, den, A, B = cube_method(4)
+    for j in range(0, 40):
+        expected = (-1) ** j
+        assert sign_at_zero(num, den, j) == expected
+    with budget.account(time_limit=None):
+        assert sign_at_zero(num, den, 37) == -1
+    c = coefficients_at(num, den, F(0), 12)
+    assert all((x > 0) - (x < 0) == (-1) ** j and x == comb(j + 2, 2) * F(-B, A) ** j for j, x in enumerate(c))
+
+
+def test_short_above_is_above_and_short():
+    for q in [F(0), F(1, 3), F(2), F(10**50 + 1, 10**49), F(1, 10**40 + 3), F(12345, 1)]:
+        k = short_above(q)
+        assert k >= q and (q == 0 or k <= q * (1 + F(1, 2**14)))
+        bits = q.numerator.bit_length() + q.denominator.bit_length()
+        assert k.numerator.bit_length() + k.denominator.bit_length() <= max(40, bits)
+
+
 def test_seeded_mutations_of_coefficient_claims():
     """Every mutation the kernel accepts states the genuine rho (exact comparison) and the genuine attained
     flag; every genuine claim is accepted and its rho checked against the slow reference just below it.
@@ -187,7 +151,47 @@ def test_seeded_mutations_of_coefficient_claims():
     assert mutated > 60
 
 
-# ------------------------------------------------------------------ bisections of a certificate's algebraic number
+# ------------------------------------------------------------------ resource
+
+def test_sign_at_zero_is_charged_as_it_runs():
+    """Before: priced 9.9e7 up front, nothing charged while it ran 10 s (deg h = 3, 1660-digit coefficients,
+    j = 369).  With an account of 2 x WORK_BUDGET it ran to the end; now the steps' charges overdraw it early."""
+    num, den, _, _ = cube_method(500)
+    start = time.process_time()
+    with budget.account(limit=2 * WORK_BUDGET, time_limit=None) as acc:
+        with pytest.raises(CheckFailure, match="work budget"):
+            sign_at_zero(num, den, 369)
+    assert acc.spent > 2 * WORK_BUDGET
+    assert time.process_time() - start < 8
+
+
+def test_a_long_witness_is_charged_more_than_its_price():
+    """The whole recurrence for j = 1355 with 100-digit coefficients: charged several times its up-front price
+    (about 2.4e8 + 1e8 for 7 s of CPU; the up-front price alone was 1e8)."""
+    num, den, _, _ = cube_method(100)
+    with budget.account(limit=10**12, time_limit=None) as acc:
+        assert sign_at_zero(num, den, 1355) == -1
+    assert acc.spent > 2 * WORK_BUDGET
+
+
+@pytest.mark.skipif(not os.environ.get("EXACTINV_FUZZ"), reason="about 40 s: the full-size certificate (EXACTINV_FUZZ=1)")
+def test_eight_witness_claims_get_a_verdict_by_the_account(tmp_path):
+    """Before: 8.6 KB, eight claims c_369(0), c_367(0)... < 0, 55 s of CPU, stopped by the clock (50 s) only."""
+    path = tmp_path / "cert.json"
+    path.write_text(json.dumps(_witness_cert(500, [369 - 2 * k for k in range(8)])))
+    assert path.stat().st_size < 10**4
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_CPU, (60, 60))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
+    done = subprocess.run([sys.executable, "-m", "exactinv_check", str(path)], capture_output=True, text=True,
+                          timeout=300, env=env, preexec_fn=limit)
+    used = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - before
+    assert done.returncode != 0 and "work budget" in done.stdout + done.stderr, done.stdout[-500:]
+    assert used < 45
+
+
 def test_bisections_charged_by_the_largest_coefficient():
     """A certificate's algebraic number of degree 200 with 4000-digit middle coefficients and ends 1: each bisection
     (polys.sign_at) was charged by the leading coefficient's bits, 9e3 word operations for 4.4 ms of CPU (15 times

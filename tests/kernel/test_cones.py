@@ -1,5 +1,6 @@
 """exactinv_check.cones: the extreme rays of a cone {y : A y <= 0} in integers, against brute force."""
 
+
 import itertools
 import math
 import random
@@ -8,6 +9,7 @@ from fractions import Fraction as F
 from exactinv_check import cones
 from exactinv_check.rationals import rank_and_nullspace
 
+# ------------------------------------------------------------------ soundness
 
 def test_degenerate_cone_enumeration_matches_brute_force():
     """The double description at a degenerate vertex finds exactly the extreme
@@ -34,3 +36,7 @@ def test_degenerate_cone_enumeration_matches_brute_force():
                     want.add(tuple(cones.primitive([int(x * den) for x in y])))
         assert len(got) == len(set(got)) and set(got) == want, (A, got, want)
         tested += 1
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

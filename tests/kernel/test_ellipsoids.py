@@ -18,6 +18,7 @@ now prices such work before it runs and rejects it ("over the kernel's work
 budget", tests/kernel/test_linalg.py), and they pass.
 """
 
+
 import copy
 import json
 import random
@@ -34,13 +35,22 @@ from exactinv_check.validset import valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 ROT = [["-1", "-2"], ["2", "-1"]]  # A = [[-a, -b], [b, -a]], a = 1, b = 2
+
+
 I2 = [["1", "0"], ["0", "1"]]
+
+
 TAYLOR2 = (["1", "1", "1/2"], ["1"])
+
+
 # r(z) = 1 + z - 5/2 z^2 - 9/4 z^3 - 1/2 z^4: on x' = -x, p(h) = r(-h) has a local
 # maximum p(2) = -1 (p(2) = 1 - 2 - 10 + 18 - 8, p'(2) = 0, p''(2) = -2 < 0), so
 # |p| >= 1 near 2 with equality only at 2: the valid set has the isolated point {2}.
 TANGENT = (["1", "1", "-5/2", "-9/4", "-1/2"], ["1"])
+
+
 BACKWARD_EULER = (["1"], ["1", "-1"])
 
 
@@ -76,90 +86,46 @@ def _iv(lo, hi, lo_closed=True, hi_closed=True):
 TAU_T2 = {"poly": ["-8", "8", "-20", "25"], "interval": ["430182216867/500000000000", "172072886747/200000000000"]}
 
 
-# ==========================================================================
-# HOLES (fixed): the kernel worked for minutes/hours inside its bounds
-# ==========================================================================
-
-# --------------------------------------------------------------------------
-# H1. Q's positive definiteness (ellipsoids.psd, run when the PROBLEM is read,
-# before any claim) is Gaussian elimination in Fractions with no size budget.
-# A dense, diagonally dominant Q with one-digit off-diagonal entries: measured
-# 3 s at n = 40, 28 s at n = 80 (~ n^3.2 with gcd-heavy Fraction growth), so
-# n = 200 takes ~10 minutes and MAX_DIMENSION = 2000 days.  The claim is false
-# (A = I: A^T Q + Q A = 2Q is positive definite, E is not invariant).
-# The same elimination decides ellipsoid_continuous/discrete_invariance: with
-# Q = I (fast) and a dense A, psd(Q - A_d^T Q A_d) took 0.4 s at n = 20 and
-# 2.8 s at n = 40 (Taylor(2), dt = 1/(7n)), the same growth.
-# Fix: bound n for ellipsoid problems (every condition claim already needs
-# n (2s - 1) <= 200; continuous/discrete invariance could share a bound such as
-# n <= 200), and/or fraction-free (Bareiss) LDL^T with a bit-size budget.
-
-def test_H1_dense_Q_is_rejected_quickly():
-    n, rng = 200, random.Random(5)
-    Q = [[0] * n for _ in range(n)]
-    for i in range(n):
-        for j in range(i):
-            Q[i][j] = Q[j][i] = rng.randint(-9, 9)
-        Q[i][i] = 10 * n
-    A = [["1" if i == j else "0" for j in range(n)] for i in range(n)]
-    cert = _cert(A, [[str(x) for x in row] for row in Q], [{"type": "ellipsoid_continuous_invariance", "holds": True}])
-    assert _check_in_subprocess(cert, 3) == "REJECTED"
+def _taylor2_cert(claims):
+    return _cert(ROT, I2, claims, TAYLOR2)
 
 
-# --------------------------------------------------------------------------
-# H2. condition_polynomials evaluates M'(t) at N + 1 = n (2s - 1) + 1 integer
-# points and runs linalg.characteristic_polynomial (Hessenberg reduction in
-# Fractions, O(n^3) operations on growing fractions) at each: O(n^4) with
-# coefficient growth.  Forward Euler (s = 1) on a dense A with small integer
-# entries, Q = I: measured 0.5 s at n = 10, 22 s at n = 20, 210 s at n = 30;
-# the kernel's degree bound admits n = 200.  The forward-Euler claim "1" is
-# false (tau is an algebraic number of degree 30..60 near 1/(3n)).
-# Fix: a work budget (n^4 x bits) checked before the evaluation, a
-# fraction-free characteristic polynomial (Berkowitz / Bareiss-Hessenberg on
-# integers after clearing denominators), and a lower degree bound for the
-# ellipsoid conditions until then.
-
-def test_H2_large_forward_euler_condition_is_rejected_quickly():
-    n, rng = 60, random.Random(4)
-    A = [[str(rng.randint(-3, 3) - (3 * n if i == j else 0)) for j in range(n)] for i in range(n)]
-    Q = [["1" if i == j else "0" for j in range(n)] for i in range(n)]
-    cert = _cert(A, Q, [{"type": "ellipsoid_forward_euler_threshold", "value": "1"}])
-    assert _check_in_subprocess(cert, 3) == "REJECTED"
+TANGENT_HI = {"poly": ["-2", "-1", "2"], "interval": ["320194101601/250000000000", "256155281281/200000000000"]}
 
 
-# --------------------------------------------------------------------------
-# H3. The condition polynomials the kernel BUILDS are isolated (validset.
-# _breakpoints -> polys.positive_roots -> squarefree + Sturm) with no budget:
-# Real.claimed's STURM_BUDGET (an earlier attack) guards only the numbers a
-# certificate writes.  n = 1, A = [[-1]], Q = [[1]], a polynomial method of
-# degree 64 (the kernel's bound) with 100-digit coefficients (a 6.5 KB
-# certificate): c_1(h) = 1 - g(-h)^2 has degree 128 and ~200-digit
-# coefficients; measured: degree 32 / 20 digits 8 s (positive_roots 5.4 s,
-# squarefree 2.9 s), degree 32 / 30 digits 14 s, degree 64 / 100 digits
-# > 200 s (killed).  The claim (an empty valid set) is false: 0 is always valid.
-# Fix: apply the degree^4 x bits^2 budget to kernel-built polynomials too
-# (reject "too large for this kernel" before Sturm), or use a
-# Descartes/Vincent-Collins-Akritas isolation with a budget.
-
-# Since the cost model's calibration (issue 22) the isolation is no longer refused by its size up front: it runs,
-# charged node by node, and the certificate's account stops it (over budget after about 22 s of CPU, measured):
-# a bounded verdict within the 60 s promise, no longer "quickly".
-@pytest.mark.workload
-def test_H3_high_degree_method_with_long_coefficients_is_rejected_within_the_promise():
-    rng = random.Random(1)
-    num = ["1", "1"] + [str(rng.randint(-10**100, 10**100)) for _ in range(63)]
-    cert = _cert([["-1"]], [["1"]], [{"type": "ellipsoid_valid_steplengths", "intervals": []}], (num, ["1"]))
-    assert _check_in_subprocess(cert, 60) == "REJECTED"
+def _direct_valid(A, Q, num, den, h):
+    """Q - A_d^T Q A_d >= 0 at the rational h, A_d = H^-1 G, by sympy (independent of the kernel)."""
+    sp = pytest.importorskip("sympy")
+    n = len(A)
+    As, Qs = sp.Matrix(A) * sp.Rational(h.numerator, h.denominator), sp.Matrix(Q)
+    G, H, P = sp.zeros(n), sp.zeros(n), sp.eye(n)
+    for k in range(max(len(num), len(den))):
+        if k < len(num):
+            G += sp.Rational(num[k].numerator, num[k].denominator) * P
+        if k < len(den):
+            H += sp.Rational(den[k].numerator, den[k].denominator) * P
+        P = P * As
+    if H.det() == 0:
+        return False
+    Ad = H.inv() * G
+    return (Qs - Ad.T * Qs * Ad).is_positive_semidefinite
 
 
-# --------------------------------------------------------------------------
-# C1 (completeness, not soundness). r = 1 (numerator ["1"], denominator ["1"],
-# accepted by Method: r(0) = 1): A_d = I for every h, so the valid set is
-# [0, oo).  coefficient_matrices returns [] (s = 0) and condition_polynomials
-# raises IndexError in _at(coefficients, t) -> the TRUE claim is rejected with
-# "IndexError: list index out of range".  (The engine raises the same
-# IndexError in ei.valid_steplengths for ei.methods.polynomial([1]).)
-# Fix: s = 0 means M = 0: no condition (or reject the method explicitly).
+def _contains(intervals, h):
+    x = Real.rational(h)
+    for iv in intervals:
+        a, b = x.compare(iv.lo), (-1 if iv.hi.inf else x.compare(iv.hi))
+        if (a > 0 or (a == 0 and iv.lo_closed)) and (b < 0 or (b == 0 and iv.hi_closed)):
+            return True
+    return False
+
+
+METHODS = {"taylor3": (["1", "1", "1/2", "1/6"], ["1"]), "pade12": (["1", "1/3"], ["1", "-2/3", "1/6"]),
+           "theta14": (["1", "3/4"], ["1", "-1/4"]), "pole": (["1", "1/2"], ["1", "-1/2", "1/10"]),
+           "gap": (["1", "1/2", "3/4", "1/4"], ["1"]), "backward": BACKWARD_EULER}
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_C1_constant_method_valid_set_is_accepted():
     cert = _cert(ROT, I2, [{"type": "ellipsoid_valid_steplengths", "intervals": [_iv("0", "oo", True, False)]},
@@ -170,29 +136,6 @@ def test_C1_constant_method_valid_set_is_accepted():
 def test_C1_constant_method_never_raises():
     cert = _cert(ROT, I2, [{"type": "ellipsoid_valid_steplengths", "intervals": [_iv("0", "1")]}], (["1"], ["1"]))
     _rejected(cert)  # a clean verdict, no exception
-
-
-# --------------------------------------------------------------------------
-# C2 (completeness). Success messages format the (huge) witness value with
-# str(): a witness v of 3000 digits gives v^T L v with ~6000 digits, and
-# str(Fraction) raises ValueError (Python's 4300-digit int->str limit), so a
-# TRUE witness is rejected.  The same eager f-strings sit in require(...)
-# messages (e.g. f"... {truth}" is built even when the check passes).
-# Fix: format large numbers by size ("a 6001-digit integer") or
-# sys.set_int_max_str_digits(0) in the kernel's messages.
-
-def test_C2_long_true_witness_is_accepted():
-    cert = _cert([["1"]], [["1"]], [{"type": "ellipsoid_continuous_invariance", "holds": False,
-                                      "witness": {"v": ["9" * 3000]}}])
-    _accepted(cert)
-
-
-# ==========================================================================
-# ATTACKS RESISTED (passing regression guards)
-# ==========================================================================
-
-def _taylor2_cert(claims):
-    return _cert(ROT, I2, claims, TAYLOR2)
 
 
 def test_genuine_taylor2_certificate_verifies():
@@ -216,17 +159,6 @@ def test_genuine_taylor2_certificate_verifies():
 ])
 def test_a_Q_that_is_no_ellipsoid_is_rejected(Q):
     _rejected(_cert(ROT, Q, [{"type": "ellipsoid_continuous_invariance", "holds": True}], TAYLOR2))
-
-
-def test_Q_with_huge_entries_is_decided_exactly():
-    # Q = diag(1, 10^3999) is positive definite; A^T Q + Q A for the rotation is
-    # [[-2, 2 (10^3999 - 1)], ...]: indefinite, so 'holds' is false.
-    big = "1" + "0" * 3999
-    Q = [["1", "0"], ["0", big]]
-    _rejected(_cert(ROT, Q, [{"type": "ellipsoid_continuous_invariance", "holds": True}]), "negative semidefinite")
-    # and the witness e_1 + e_2: v^T L v = -2 - 2 10^3999 + 4 (10^3999 - 1) > 0
-    _accepted(_cert(ROT, Q, [{"type": "ellipsoid_continuous_invariance", "holds": False,
-                              "witness": {"v": ["1", "1"]}}]))
 
 
 def test_an_ellipsoid_problem_with_a_centre_or_polyhedron_keys_is_rejected():
@@ -332,13 +264,6 @@ def test_forward_euler_threshold_ignores_the_problem_method():
                              {"type": "ellipsoid_forward_euler_threshold", "value": "2/5"}]))
 
 
-# --------------------------------------------------------------------------
-# Tangency: an isolated valid point (a root of even multiplicity of 1 - p^2
-# with p <= -1 around it), checked against an independent computation.
-
-TANGENT_HI = {"poly": ["-2", "-1", "2"], "interval": ["320194101601/250000000000", "256155281281/200000000000"]}
-
-
 def test_tangent_isolated_valid_point_is_required():
     genuine = [_iv("0", TANGENT_HI), _iv("2", "2")]
     _accepted(_cert([["-1"]], [["1"]], [{"type": "ellipsoid_valid_steplengths", "intervals": genuine}], TANGENT))
@@ -361,10 +286,6 @@ def test_tangent_example_agrees_with_direct_evaluation():
     for h, ok in ((Fraction(12807, 10000), True), (Fraction(12808, 10000), False), (Fraction(1), True)):
         assert (abs(p(h)) <= 1) == ok
 
-
-# --------------------------------------------------------------------------
-# A positive real pole: backward Euler on x' = x.  |1/(1 - h)| <= 1 iff
-# |1 - h| >= 1: the valid set is {0} u [2, oo), with the pole h = 1 excluded.
 
 def test_positive_real_pole():
     def claim(intervals):
@@ -390,41 +311,6 @@ def test_pole_of_a_removable_factor_is_no_pole():
     cert["claims"][1]["value"] = "1"
     cert["claims"][1]["attained"] = False
     _rejected(cert)
-
-
-# --------------------------------------------------------------------------
-# The c_1 pruning and the whole recomputation, against an independent test.
-
-def _direct_valid(A, Q, num, den, h):
-    """Q - A_d^T Q A_d >= 0 at the rational h, A_d = H^-1 G, by sympy (independent of the kernel)."""
-    sp = pytest.importorskip("sympy")
-    n = len(A)
-    As, Qs = sp.Matrix(A) * sp.Rational(h.numerator, h.denominator), sp.Matrix(Q)
-    G, H, P = sp.zeros(n), sp.zeros(n), sp.eye(n)
-    for k in range(max(len(num), len(den))):
-        if k < len(num):
-            G += sp.Rational(num[k].numerator, num[k].denominator) * P
-        if k < len(den):
-            H += sp.Rational(den[k].numerator, den[k].denominator) * P
-        P = P * As
-    if H.det() == 0:
-        return False
-    Ad = H.inv() * G
-    return (Qs - Ad.T * Qs * Ad).is_positive_semidefinite
-
-
-def _contains(intervals, h):
-    x = Real.rational(h)
-    for iv in intervals:
-        a, b = x.compare(iv.lo), (-1 if iv.hi.inf else x.compare(iv.hi))
-        if (a > 0 or (a == 0 and iv.lo_closed)) and (b < 0 or (b == 0 and iv.hi_closed)):
-            return True
-    return False
-
-
-METHODS = {"taylor3": (["1", "1", "1/2", "1/6"], ["1"]), "pade12": (["1", "1/3"], ["1", "-2/3", "1/6"]),
-           "theta14": (["1", "3/4"], ["1", "-1/4"]), "pole": (["1", "1/2"], ["1", "-1/2", "1/10"]),
-           "gap": (["1", "1/2", "3/4", "1/4"], ["1"]), "backward": BACKWARD_EULER}
 
 
 @pytest.mark.parametrize("seed", range(8))
@@ -458,11 +344,6 @@ def test_kernel_valid_set_matches_direct_evaluation_and_pruning_is_exact(seed):
         assert _contains(pruned, h) == _direct_valid(A, Q, method.numerator, method.denominator, h), (name, A, Q, h)
 
 
-# --------------------------------------------------------------------------
-# A near tie claimed as a tie: A = diag(-1, -(1 + 10^-40)), Q = I, forward
-# Euler: |1 + h a_i| <= 1 iff h <= -2/a_i, so tau = 2/(1 + 10^-40), not 2 (the
-# root of c_2 = h m_1 m_2 at 2 is not the first), and not a rational 10^-90 off.
-
 def test_a_near_tie_is_not_a_tie():
     eps = Fraction(1, 10**40)
     tau = 2 / (1 + eps)
@@ -477,3 +358,53 @@ def test_a_near_tie_is_not_a_tie():
     for forged in ("2", str(tau + Fraction(1, 10**90)), str(tau - Fraction(1, 10**90))):
         ok, text = _verdict(cert(forged))
         assert not ok and text.count("[REJECTED]") == 3, text
+
+
+# ------------------------------------------------------------------ resource
+
+def test_H1_dense_Q_is_rejected_quickly():
+    n, rng = 200, random.Random(5)
+    Q = [[0] * n for _ in range(n)]
+    for i in range(n):
+        for j in range(i):
+            Q[i][j] = Q[j][i] = rng.randint(-9, 9)
+        Q[i][i] = 10 * n
+    A = [["1" if i == j else "0" for j in range(n)] for i in range(n)]
+    cert = _cert(A, [[str(x) for x in row] for row in Q], [{"type": "ellipsoid_continuous_invariance", "holds": True}])
+    assert _check_in_subprocess(cert, 3) == "REJECTED"
+
+
+def test_H2_large_forward_euler_condition_is_rejected_quickly():
+    n, rng = 60, random.Random(4)
+    A = [[str(rng.randint(-3, 3) - (3 * n if i == j else 0)) for j in range(n)] for i in range(n)]
+    Q = [["1" if i == j else "0" for j in range(n)] for i in range(n)]
+    cert = _cert(A, Q, [{"type": "ellipsoid_forward_euler_threshold", "value": "1"}])
+    assert _check_in_subprocess(cert, 3) == "REJECTED"
+
+
+# Since the cost model's calibration (issue 22) the isolation is no longer refused by its size up front: it runs,
+# charged node by node, and the certificate's account stops it (over budget after about 22 s of CPU, measured):
+# a bounded verdict within the 60 s promise, no longer "quickly".
+@pytest.mark.workload
+def test_H3_high_degree_method_with_long_coefficients_is_rejected_within_the_promise():
+    rng = random.Random(1)
+    num = ["1", "1"] + [str(rng.randint(-10**100, 10**100)) for _ in range(63)]
+    cert = _cert([["-1"]], [["1"]], [{"type": "ellipsoid_valid_steplengths", "intervals": []}], (num, ["1"]))
+    assert _check_in_subprocess(cert, 60) == "REJECTED"
+
+
+def test_C2_long_true_witness_is_accepted():
+    cert = _cert([["1"]], [["1"]], [{"type": "ellipsoid_continuous_invariance", "holds": False,
+                                      "witness": {"v": ["9" * 3000]}}])
+    _accepted(cert)
+
+
+def test_Q_with_huge_entries_is_decided_exactly():
+    # Q = diag(1, 10^3999) is positive definite; A^T Q + Q A for the rotation is
+    # [[-2, 2 (10^3999 - 1)], ...]: indefinite, so 'holds' is false.
+    big = "1" + "0" * 3999
+    Q = [["1", "0"], ["0", big]]
+    _rejected(_cert(ROT, Q, [{"type": "ellipsoid_continuous_invariance", "holds": True}]), "negative semidefinite")
+    # and the witness e_1 + e_2: v^T L v = -2 - 2 10^3999 + 4 (10^3999 - 1) > 0
+    _accepted(_cert(ROT, Q, [{"type": "ellipsoid_continuous_invariance", "holds": False,
+                              "witness": {"v": ["1", "1"]}}]))

@@ -5,6 +5,7 @@ string of its own (it imports the names); the tables are immutable; the schema f
 (The generated schema against docs/certificate.schema.json: tests/test_certificate_schema.py.)
 """
 
+
 import ast
 import json
 from pathlib import Path
@@ -17,6 +18,24 @@ from exactinv_check.routes import pruning, pruning_rational
 
 ROOT = Path(__file__).resolve().parents[2]
 
+
+def _engine_strings():
+    """(file, line, string) of every string constant in exactinv/ outside docstrings."""
+    for path in sorted((ROOT / "exactinv").rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        docs = {id(node.body[0].value) for node in ast.walk(tree)
+                if isinstance(node, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+                and node.body and isinstance(node.body[0], ast.Expr) and isinstance(node.body[0].value, ast.Constant)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Dict):
+                for k, v in zip(node.keys, node.values):
+                    if isinstance(k, ast.Constant) and k.value == "type" and isinstance(v, ast.Constant):
+                        yield path, v.lineno, ("type", v.value)
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
+                yield path, node.lineno, node.value
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_tags_are_their_strings_so_certificates_are_byte_identical():
     assert json.dumps({"type": fmt.ClaimType.GAMMA_STAR, "reason": fmt.RadiusReason.BALANCED_TIE}) == \
@@ -47,22 +66,6 @@ def test_the_engine_shares_the_kernels_constants():
     assert engine_pruning.HORIZON_BITS is fmt.HORIZON_BITS and engine_rational.VARIABLE is fmt.PRUNING_VARIABLE
     assert line_poles.MAX_LINE_EXPONENT is fmt.MAX_LINE_EXPONENT
     assert monotonicity_tail._MAX_INDEX is fmt.MAX_COEFFICIENTS and poles._MAX_INDEX is fmt.MAX_TAIL_INDEX
-
-
-def _engine_strings():
-    """(file, line, string) of every string constant in exactinv/ outside docstrings."""
-    for path in sorted((ROOT / "exactinv").rglob("*.py")):
-        tree = ast.parse(path.read_text())
-        docs = {id(node.body[0].value) for node in ast.walk(tree)
-                if isinstance(node, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
-                and node.body and isinstance(node.body[0], ast.Expr) and isinstance(node.body[0].value, ast.Constant)}
-        for node in ast.walk(tree):
-            if isinstance(node, ast.Dict):
-                for k, v in zip(node.keys, node.values):
-                    if isinstance(k, ast.Constant) and k.value == "type" and isinstance(v, ast.Constant):
-                        yield path, v.lineno, ("type", v.value)
-            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
-                yield path, node.lineno, node.value
 
 
 def test_the_engine_spells_no_certificate_vocabulary_of_its_own():
@@ -102,3 +105,7 @@ def test_the_schema_follows_the_bounds_and_vocabulary(monkeypatch):
         claim = defs[f"claim_{kind}"]
         assert claim["properties"]["type"] == {"const": kind}
         assert set(claim["required"]) == {"type"} | spec.required
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

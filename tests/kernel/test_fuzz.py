@@ -1,6 +1,7 @@
 """Fuzz: random problems through the whole certify pipeline; the kernel must
 accept every certificate the engine writes (0 rejections)."""
 
+
 import random
 from fractions import Fraction
 
@@ -12,6 +13,7 @@ from exactinv.certificates import certificate
 from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 PROBLEMS = 300
 
@@ -79,6 +81,8 @@ def _results(S, P, m):
     return out
 
 
+# ------------------------------------------------------------------ soundness
+
 def test_the_kernel_accepts_every_certificate_the_engine_writes(capsys):
     rng = random.Random(7)
     written = undecided = 0
@@ -106,3 +110,7 @@ def test_the_kernel_accepts_every_certificate_the_engine_writes(capsys):
               f"{len(rejected)} rejected by the kernel; claims: {kinds}")
     assert not rejected, "\n\n".join(rejected[:5])
     assert written >= PROBLEMS * 3 // 4
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

@@ -8,6 +8,7 @@ valid sets of Pade methods on the random polytopes of issue 23, and the radius o
 ("beyond the kernel's polynomial bound") before the bound became a price.
 """
 
+
 import random
 import sys
 from fractions import Fraction as F
@@ -26,6 +27,8 @@ from exactinv_check.poly_arithmetic import power
 from exactinv_check.reals import Real, divides
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+
+
 from lp_route import family as lp_family  # noqa: E402
 from radius_undecided import _UNITS  # noqa: E402
 
@@ -47,6 +50,33 @@ def _degree5(rng):
     g = [F(1)] + [F(rng.randint(-4, 4), rng.choice([1, 2, 3, 4, 6, 8])) for _ in range(rng.randint(0, 5))]
     return g, h
 
+
+small = st.integers(-10 ** 30, 10 ** 30)
+
+
+def _d_reference(num, den, count):
+    """d_j = c_j(kappa) h(-kappa)^(j+1) by series division over Q (the kernel's former algorithm)."""
+    from math import comb
+
+    def shift(p, i):
+        return poly_arithmetic.trim([p[k] * comb(k, i) * (-1) ** (k - i) for k in range(i, len(p))])
+
+    G = [shift(num, i) for i in range(max(len(num), count))]
+    H = [shift(den, i) for i in range(len(den))]
+    d = []
+    for j in range(count):
+        value = poly_arithmetic.mul(G[j], power(H[0], j)) if j < len(G) and G[j] else []
+        for i in range(1, min(j, len(H) - 1) + 1):
+            if H[i] and d[j - i]:
+                value = poly_arithmetic.sub(value, poly_arithmetic.mul(poly_arithmetic.mul(H[i], d[j - i]), power(H[0], i - 1)))
+        d.append(poly_arithmetic.trim(value))
+    return d
+
+
+fractions = st.fractions(min_value=-9, max_value=9, max_denominator=12)
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_random_degree_5_radius_certificates_are_verified():
     rng = random.Random(5)
@@ -112,37 +142,11 @@ def test_radius_of_degree_272_is_certified_and_verified():
     assert admissible(g, h, F(r.value.lower) * F(255, 256), 140)
 
 
-# ----------------------------------------------------------------- the new integer algorithms against references
-small = st.integers(-10 ** 30, 10 ** 30)
-
-
 @given(st.lists(small, max_size=9), st.lists(small, max_size=9))
 @settings(max_examples=200, deadline=None)
 def test_kronecker_product_is_the_polynomial_product(a, b):
     expected = poly_arithmetic.trim(poly_arithmetic.mul([F(x) for x in a], [F(x) for x in b])) if a and b else []
     assert poly_arithmetic.trim(kronecker_mul(a, b)) == expected
-
-
-def _d_reference(num, den, count):
-    """d_j = c_j(kappa) h(-kappa)^(j+1) by series division over Q (the kernel's former algorithm)."""
-    from math import comb
-
-    def shift(p, i):
-        return poly_arithmetic.trim([p[k] * comb(k, i) * (-1) ** (k - i) for k in range(i, len(p))])
-
-    G = [shift(num, i) for i in range(max(len(num), count))]
-    H = [shift(den, i) for i in range(len(den))]
-    d = []
-    for j in range(count):
-        value = poly_arithmetic.mul(G[j], power(H[0], j)) if j < len(G) and G[j] else []
-        for i in range(1, min(j, len(H) - 1) + 1):
-            if H[i] and d[j - i]:
-                value = poly_arithmetic.sub(value, poly_arithmetic.mul(poly_arithmetic.mul(H[i], d[j - i]), power(H[0], i - 1)))
-        d.append(poly_arithmetic.trim(value))
-    return d
-
-
-fractions = st.fractions(min_value=-9, max_value=9, max_denominator=12)
 
 
 @given(st.lists(fractions, max_size=4), st.lists(fractions, min_size=1, max_size=4), st.integers(1, 25))
@@ -185,6 +189,8 @@ def test_an_algebraic_number_against_a_rational_by_one_sign(p, q):
         if expected is not None:
             assert x.compare(Real.rational(q)) == expected
 
+
+# ------------------------------------------------------------------ resource
 
 def test_descartes_is_charged_by_the_largest_coefficient():
     """A polynomial with 1-bit ends and 4000-bit middle coefficients costs like its middle: it is charged so

@@ -6,6 +6,7 @@ the CORRECT behaviour: a false claim must be rejected, and no input may make
 kernel is fixed.
 """
 
+
 import json
 import resource
 import signal
@@ -18,6 +19,7 @@ import pytest
 from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -52,30 +54,10 @@ def _check_in_subprocess(cert, seconds):
     return proc.stdout.strip()
 
 
-# --------------------------------------------------------------------------
-# 1. A method written with a common factor in g and h (a removable singularity)
-#
-# The stability function is the rational FUNCTION r = g/h.  The engine reduces
-# g/h to lowest terms (ei.methods.rational([1, 0, -1], [1, -1]) is r(z) = 1 + z,
-# and its certificates record the reduced method), and the kernel's own tail
-# proof cancels gcd(g, h) ("r is unchanged").  But the kernel's condition
-# polynomials, singular points and radius recomputation use the unreduced h,
-# so a root of the cancelled factor is treated as a pole of r: the kernel
-# proves false values.
-
 REMOVABLE = (["1", "0", "-1"], ["1", "-1"])  # (1 - z^2)/(1 - z) = 1 + z: forward Euler
 
 
-def test_removable_singularity_is_not_a_largest_threshold():
-    # x' = x on P = {x >= 0} with r(z) = 1 + z: A_d = 1 + dt >= 0 maps P into P
-    # for EVERY dt >= 0, so the largest threshold is oo (the engine says oo).
-    # The kernel accepts "1, not attained" (h(dt A) = 1 - dt is singular at 1,
-    # but r(A) = 1 + A = 2 exists and is valid).
-    cert = _cert([{"type": "largest_threshold", "value": "1", "attained": False,
-                   "vertices": [["0"]], "rays": [["1"]], "lines": []}],
-                 method=REMOVABLE, A=[["1"]], G=[["-1"]], b=["0"])
-    assert not check(cert).ok
-
+# ------------------------------------------------------------------ soundness
 
 def test_removable_singularity_is_not_a_hole_in_the_valid_set():
     # Same problem: the valid set is [0, oo); dt = 1 is valid (A_d = 2).
@@ -99,9 +81,6 @@ def test_removable_singularity_does_not_bound_the_radius():
     assert not check(cert).ok
 
 
-# --------------------------------------------------------------------------
-# 2. Exceptions that escape check()
-
 def test_deeply_nested_json_does_not_escape_check():
     # json.loads raises RecursionError on deep nesting; load() only catches
     # OSError/TypeError/ValueError/CheckFailure, so the RecursionError escapes
@@ -110,6 +89,32 @@ def test_deeply_nested_json_does_not_escape_check():
             + "[" * 100_000 + "]" * 100_000 + ', "claims": []}')
     report = check(text)  # must not raise
     assert not report.ok
+
+
+def test_duplicate_json_keys_are_rejected():
+    # The kernel promises to read a certificate strictly, but json.loads keeps
+    # the LAST of duplicate keys silently.  This file states the false
+    # "rho(1 + z) = oo" first and the true "1" second; the kernel verifies it,
+    # while a reader or a parser that keeps the first key sees a false claim
+    # in a VERIFIED certificate.  A duplicate key must reject the certificate.
+    text = ('{"format": "exactinv-certificate", "version": 2, '
+            '"problem": {"method": {"name": "fe", "numerator": ["1", "1"], "denominator": ["1"]}}, '
+            '"claims": [{"type": "absolute_monotonicity_radius", "value": "oo", "value": "1", '
+            '"reason": "coefficient", "attained": true}]}')
+    assert not check(text).ok
+
+
+# ------------------------------------------------------------------ resource
+
+def test_removable_singularity_is_not_a_largest_threshold():
+    # x' = x on P = {x >= 0} with r(z) = 1 + z: A_d = 1 + dt >= 0 maps P into P
+    # for EVERY dt >= 0, so the largest threshold is oo (the engine says oo).
+    # The kernel accepts "1, not attained" (h(dt A) = 1 - dt is singular at 1,
+    # but r(A) = 1 + A = 2 exists and is valid).
+    cert = _cert([{"type": "largest_threshold", "value": "1", "attained": False,
+                   "vertices": [["0"]], "rays": [["1"]], "lines": []}],
+                 method=REMOVABLE, A=[["1"]], G=[["-1"]], b=["0"])
+    assert not check(cert).ok
 
 
 def test_a_huge_claimed_radius_does_not_escape_check():
@@ -125,9 +130,6 @@ def test_a_huge_claimed_radius_does_not_escape_check():
     assert not report.ok
 
 
-# --------------------------------------------------------------------------
-# 3. Unbounded work before the kernel's degree bound is applied
-
 def test_an_algebraic_number_of_huge_degree_is_rejected_quickly():
     # Real.algebraic computes the squarefree part (a gcd with the derivative,
     # O(d^4)-ish in Fractions) BEFORE Sturm enforces MAX_DEGREE = 400.  A 6 KB
@@ -139,19 +141,3 @@ def test_an_algebraic_number_of_huge_degree_is_rejected_quickly():
                    "reason": "coefficient", "attained": True}],
                  method=(["1", "1"], ["1"]))
     assert _check_in_subprocess(cert, 30) == "REJECTED"
-
-
-# --------------------------------------------------------------------------
-# 4. Ambiguous JSON
-
-def test_duplicate_json_keys_are_rejected():
-    # The kernel promises to read a certificate strictly, but json.loads keeps
-    # the LAST of duplicate keys silently.  This file states the false
-    # "rho(1 + z) = oo" first and the true "1" second; the kernel verifies it,
-    # while a reader or a parser that keeps the first key sees a false claim
-    # in a VERIFIED certificate.  A duplicate key must reject the certificate.
-    text = ('{"format": "exactinv-certificate", "version": 2, '
-            '"problem": {"method": {"name": "fe", "numerator": ["1", "1"], "denominator": ["1"]}}, '
-            '"claims": [{"type": "absolute_monotonicity_radius", "value": "oo", "value": "1", '
-            '"reason": "coefficient", "attained": true}]}')
-    assert not check(text).ok

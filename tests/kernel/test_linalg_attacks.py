@@ -8,6 +8,7 @@ whose characteristic polynomial has roots 0 and > 0 (e.g. the path graph 0 - 1 -
 the Real is made from q with its root at 0 stripped.
 """
 
+
 from fractions import Fraction as F
 
 import pytest
@@ -38,6 +39,8 @@ def _path_certificate(alpha=None):
                                   "interval": ["353553390593/500000000000", "707106781187/1000000000000"]}}]}
 
 
+# ------------------------------------------------------------------ soundness
+
 def test_path_graph_truth():
     """Independently: the characteristic polynomial of A is x^3 - 2x (sympy), its largest real root sqrt 2, so
     z_p/alpha = 1/sqrt 2; I - hA is singular first at h = 1/sqrt 2 too (eigenvalue sqrt 2)."""
@@ -61,19 +64,6 @@ def test_a_block_with_eigenvalues_zero_and_positive_is_certified():
     assert not check(bad).ok
 
 
-def test_largest_real_root_with_a_root_at_zero():
-    """x^k (x^2 - 2)(x + 3) and friends: the largest real root by sympy, the kernel's enclosure holds it."""
-    x = sympy.Symbol("x")
-    for expr in (x * (x ** 2 - 2), x ** 2 * (x ** 2 - 2) * (x + 3), x * (x - F(1, 3)) * (x ** 2 + 1), -x * (x ** 2 - 5),
-                 x * (x + 1), x ** 3 * (x ** 2 + 2), x * (x - 7) ** 2):
-        p = [F(int(c.p), int(c.q)) for c in reversed(sympy.Poly(expr, x).all_coeffs())]
-        root = largest_real_root(p)
-        truth = max(sympy.Poly(expr, x).real_roots())
-        lo, hi = root.bounds()
-        assert sympy.Rational(lo.numerator, lo.denominator) <= truth <= sympy.Rational(hi.numerator, hi.denominator)
-
-
-# ------------------------------------------------ the mutation fuzzer (tests/fuzz_radius3.py), a small seeded slice
 def test_seeded_mutation_fuzz_of_the_balanced_line_and_bernstein_root():
     """Genuine balanced-line structures (B >= 0 touching 0, real poles off the line, pairs further right), one field
     mutated by 10^-60 or a little more; every proof of f >= 0 the kernel accepts is checked by mpmath at 200 digits
@@ -100,3 +90,17 @@ def test_bernstein_root_claims_and_their_mutants_on_hand_structures():
                  ((q, F(0)), (F(1), F(0)))]
         fuzz_radius3.check_claims(terms, stats)
     assert stats["roots_accepted"] == stats["claims_accepted"] >= 2  # bernstein-root (and coefficient: also true)
+
+
+# ------------------------------------------------------------------ resource
+
+def test_largest_real_root_with_a_root_at_zero():
+    """x^k (x^2 - 2)(x + 3) and friends: the largest real root by sympy, the kernel's enclosure holds it."""
+    x = sympy.Symbol("x")
+    for expr in (x * (x ** 2 - 2), x ** 2 * (x ** 2 - 2) * (x + 3), x * (x - F(1, 3)) * (x ** 2 + 1), -x * (x ** 2 - 5),
+                 x * (x + 1), x ** 3 * (x ** 2 + 2), x * (x - 7) ** 2):
+        p = [F(int(c.p), int(c.q)) for c in reversed(sympy.Poly(expr, x).all_coeffs())]
+        root = largest_real_root(p)
+        truth = max(sympy.Poly(expr, x).real_roots())
+        lo, hi = root.bounds()
+        assert sympy.Rational(lo.numerator, lo.denominator) <= truth <= sympy.Rational(hi.numerator, hi.denominator)

@@ -14,6 +14,7 @@ is e^(-p t) (c cos(yt) + (w/y) sin(yt)), y = sqrt Y: the line through p has B = 
 iff b >= 0 and b^2 >= c^2 + w^2/Y.
 """
 
+
 import random
 from fractions import Fraction as F
 
@@ -24,6 +25,8 @@ from exactinv_check import check
 from exactinv_check.line_algebraic import lines_nonnegative
 
 z = sp.symbols("z")
+
+
 OO = {"type": "absolute_monotonicity_radius", "value": "oo", "reason": "bernstein", "attained": True}
 
 
@@ -58,6 +61,35 @@ def _oo_accepted(g, h):
     return check(cert).ok
 
 
+def _random_lines(rng):
+    a, d = rng.choice([(2, 2), (3, 2), (3, 5), (4, 3)])
+    u, v = sp.Rational(rng.randint(1, 4)), sp.Rational(rng.randint(-2, 2), 4)
+    c0, c1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
+    w0, w1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
+    Ye, Yf = sp.Rational(rng.randint(2, 6)), sp.Rational(rng.randint(-1, 1), 2)
+    lines = [(a - s * sp.sqrt(d), u + s * v * sp.sqrt(d),
+              (c0 + s * c1 * sp.sqrt(d), w0 + s * w1 * sp.sqrt(d), Ye + s * Yf * sp.sqrt(d)), 0) for s in (1, -1)]
+    if rng.random() < 0.4:  # a rational pole (with a pair or not) off the conjugates' midpoint
+        p = sp.Rational(rng.choice([1, 5, 9, 13]), 4)
+        pair = (sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.randint(1, 6)))
+        lines.append((p, sp.Rational(rng.randint(1, 6), 2), pair if rng.random() < 0.5 else None, 0))
+    return lines
+
+
+def _truth(lines):
+    """Every line part B >= 0 (exact, sympy; S(0) > 0, so f's parts have S's signs)."""
+    for _, b, pair, _ in lines:
+        if not b > 0:
+            return False
+        if pair is not None:
+            c, w, Y = pair
+            if sp.radsimp(sp.expand(b ** 2 - c ** 2 - w ** 2 / Y)) < 0:
+                return False
+    return True
+
+
+# ------------------------------------------------------------------ soundness
+
 def test_the_honest_balanced_line_is_accepted():
     """c = 1, w = 0, Y = 1 beside p* = 2 - sqrt 2: B = 1 + cos t >= 0 touches 0; rho = oo is true and accepted."""
     g, h = _conjugates(2, 2, 1, 0, 1)
@@ -91,33 +123,6 @@ def test_a_flipped_real_residue_is_rejected():
     assert not _oo_accepted(g, h)
 
 
-def _random_lines(rng):
-    a, d = rng.choice([(2, 2), (3, 2), (3, 5), (4, 3)])
-    u, v = sp.Rational(rng.randint(1, 4)), sp.Rational(rng.randint(-2, 2), 4)
-    c0, c1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
-    w0, w1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
-    Ye, Yf = sp.Rational(rng.randint(2, 6)), sp.Rational(rng.randint(-1, 1), 2)
-    lines = [(a - s * sp.sqrt(d), u + s * v * sp.sqrt(d),
-              (c0 + s * c1 * sp.sqrt(d), w0 + s * w1 * sp.sqrt(d), Ye + s * Yf * sp.sqrt(d)), 0) for s in (1, -1)]
-    if rng.random() < 0.4:  # a rational pole (with a pair or not) off the conjugates' midpoint
-        p = sp.Rational(rng.choice([1, 5, 9, 13]), 4)
-        pair = (sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.randint(1, 6)))
-        lines.append((p, sp.Rational(rng.randint(1, 6), 2), pair if rng.random() < 0.5 else None, 0))
-    return lines
-
-
-def _truth(lines):
-    """Every line part B >= 0 (exact, sympy; S(0) > 0, so f's parts have S's signs)."""
-    for _, b, pair, _ in lines:
-        if not b > 0:
-            return False
-        if pair is not None:
-            c, w, Y = pair
-            if sp.radsimp(sp.expand(b ** 2 - c ** 2 - w ** 2 / Y)) < 0:
-                return False
-    return True
-
-
 def test_the_line_by_line_proof_against_the_exact_truth():
     """Seeded random conjugate lines (and a rational line): whenever lines_nonnegative claims f >= 0 line by line,
     every line part is >= 0 exactly; and it does claim some (the test is not vacuous)."""
@@ -135,3 +140,7 @@ def test_the_line_by_line_proof_against_the_exact_truth():
             claimed += 1
             assert _truth(lines), lines
     assert claimed >= 2
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

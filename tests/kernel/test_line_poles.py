@@ -1,6 +1,7 @@
 """exactinv_check.line_poles and .balanced_tie (issue 22): the kernel's own proofs for poles on Re z = p* and for
 balanced ties of several poles -- genuine certificates accepted, forged ones rejected."""
 
+
 import copy
 from fractions import Fraction as F
 
@@ -20,6 +21,15 @@ BOTH = product([1, -1], [1, -1, F(1, 2)])  # poles 1, 1 +- i
 def _certificate(g, h):
     return absolute_monotonicity_radius(ei.methods.rational(g, h)).certificate
 
+
+def _balanced():
+    u = (F(3, 5), F(4, 5))
+    terms = [((F(4), F(0)), (F(2), F(0))), ((F(-6), F(0)), (F(1), F(0))),
+             ((F(2), F(4)), (u[0] / 2, u[1] / 2)), ((F(2), F(-4)), (u[0] / 2, -u[1] / 2))]
+    return from_partial_fractions(terms)
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_line_gcd_and_disks():
     G = line_gcd([F(2), F(-4), F(3), F(-1)], F(1))
@@ -57,13 +67,6 @@ def test_a_pair_just_left_of_the_line_is_not_taken_for_on_it():
     assert not check(cert).ok
 
 
-def _balanced():
-    u = (F(3, 5), F(4, 5))
-    terms = [((F(4), F(0)), (F(2), F(0))), ((F(-6), F(0)), (F(1), F(0))),
-             ((F(2), F(4)), (u[0] / 2, u[1] / 2)), ((F(2), F(-4)), (u[0] / 2, -u[1] / 2))]
-    return from_partial_fractions(terms)
-
-
 def test_the_balanced_tie_certificate_verifies_and_forgeries_are_rejected():
     g, h = _balanced()
     cert = _certificate(g, h)
@@ -96,3 +99,7 @@ def test_outweighing_residues_cannot_be_passed_off_as_a_balanced_tie():
     cert["problem"]["method"]["denominator"] = [str(c) for c in h2]
     verdict = check(cert)
     assert not verdict.ok
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

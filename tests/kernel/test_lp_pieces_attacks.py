@@ -4,6 +4,7 @@ packed slacks, the batched Descartes test, the end-polynomial shortcut and the h
 Resource attacks that ran for a minute before the fix, and a seeded mutation fuzzer of genuine lp
 certificates whose every accepted mutation is checked against the vertex route's exact valid set."""
 
+
 import copy
 import json
 import random
@@ -23,6 +24,7 @@ from exactinv_check.routes import lp_pieces
 from exactinv_check.validset import valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 M = ei.methods
 
@@ -44,35 +46,6 @@ def _box_certificate(n, ends):
             "claims": [{"type": "valid_steplengths", "lp": {"facets": facets},
                         "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
 
-
-def test_ends_of_thousands_of_digits_are_priced_before_the_batched_transform():
-    """Found: a 36 KB certificate (n = 28, Taylor(26), six pieces whose ends are 2000-digit fractions)
-    ran the batched Descartes transform (:func:`lp_pieces._batch_positive`: L Moebius transforms of
-    numbers growing to W times the ends' bits) before charging it, and charged it without the ends' bits
-    (the Horner products by end-sized numbers): 61 s of CPU, stopped only by the clock ("over the kernel's
-    time limit").  Now priced like polys.descartes_variations before the transform runs: rejected by the
-    work budget, not the clock."""
-    rng = random.Random(1)
-    ends = [f"{k + 1}{_digits(rng, 1990)}/{_digits(rng, 1990)}" for k in range(6)]
-    text = json.dumps(_box_certificate(28, ends), separators=(",", ":"))
-    assert len(text) < 1_000_000
-    report = exactinv_check.check(text)
-    assert not report.ok
-    assert "over the certificate's work budget" in str(report), report
-
-
-def test_a_taylor_shift_at_a_long_end_is_priced_with_the_grown_numbers():
-    """:func:`lp_pieces._positive_around` on (a, oo) shifts a degree-D polynomial by a: its numbers grow by
-    D times a's bits, and the charge says so (it counted the coefficients' bits only: a D-fold underprice)."""
-    a = F(int(_digits(random.Random(2), 1990)), int(_digits(random.Random(3), 1990)))
-    ints = [1] * 20
-    with account(limit=10**30) as acc:
-        lp_pieces._positive_around(ints, a, None)
-        spent = acc.spent
-    assert spent > 10**7  # was about 5e4: the coefficients of one bit, never the grown ones
-
-
-# ---------------------------------------------------------------- the mutation fuzzer, seeded
 
 _METHODS = [M.taylor(k) for k in range(1, 7)] + [M.pade(1, 1), M.backward_euler(), M.pade(0, 2), M.pade(1, 2)]
 
@@ -216,6 +189,8 @@ def fuzz(seed, problems, mutations, dims=(2, 3, 4, 5)):
     return accepted, rejected, bad
 
 
+# ------------------------------------------------------------------ soundness
+
 def test_every_accepted_mutation_of_a_genuine_lp_record_gives_the_true_valid_set():
     accepted, rejected, bad = fuzz(seed=7, problems=20, mutations=15, dims=(2, 3, 4))
     assert not bad, json.dumps(bad[0])
@@ -229,3 +204,32 @@ def test_the_fuzzer_finds_a_false_accept_in_a_kernel_that_skips_the_slacks(monke
     monkeypatch.setattr(lp_pieces._Bases, "packed_slacks", lambda self, x, d: True)
     _, _, bad = fuzz(seed=7, problems=10, mutations=12, dims=(2, 3))
     assert bad
+
+
+# ------------------------------------------------------------------ resource
+
+def test_ends_of_thousands_of_digits_are_priced_before_the_batched_transform():
+    """Found: a 36 KB certificate (n = 28, Taylor(26), six pieces whose ends are 2000-digit fractions)
+    ran the batched Descartes transform (:func:`lp_pieces._batch_positive`: L Moebius transforms of
+    numbers growing to W times the ends' bits) before charging it, and charged it without the ends' bits
+    (the Horner products by end-sized numbers): 61 s of CPU, stopped only by the clock ("over the kernel's
+    time limit").  Now priced like polys.descartes_variations before the transform runs: rejected by the
+    work budget, not the clock."""
+    rng = random.Random(1)
+    ends = [f"{k + 1}{_digits(rng, 1990)}/{_digits(rng, 1990)}" for k in range(6)]
+    text = json.dumps(_box_certificate(28, ends), separators=(",", ":"))
+    assert len(text) < 1_000_000
+    report = exactinv_check.check(text)
+    assert not report.ok
+    assert "over the certificate's work budget" in str(report), report
+
+
+def test_a_taylor_shift_at_a_long_end_is_priced_with_the_grown_numbers():
+    """:func:`lp_pieces._positive_around` on (a, oo) shifts a degree-D polynomial by a: its numbers grow by
+    D times a's bits, and the charge says so (it counted the coefficients' bits only: a D-fold underprice)."""
+    a = F(int(_digits(random.Random(2), 1990)), int(_digits(random.Random(3), 1990)))
+    ints = [1] * 20
+    with account(limit=10**30) as acc:
+        lp_pieces._positive_around(ints, a, None)
+        spent = acc.spent
+    assert spent > 10**7  # was about 5e4: the coefficients of one bit, never the grown ones

@@ -9,6 +9,7 @@ dependent lines, a line not in ker G or the zero vector).  Nothing was found: ev
 true set (4,357 mutants in the red team's longer run, 1,465 accepted, none with another set).
 """
 
+
 import copy
 import random
 from fractions import Fraction as F
@@ -93,6 +94,8 @@ PROBLEMS = [  # (A, G, b, method): a slab whose line feeds the facet, a strip x 
 ]
 
 
+# ------------------------------------------------------------------ soundness
+
 @pytest.mark.parametrize("index", range(len(PROBLEMS)))
 def test_accepted_mutants_of_genuine_lines_records_give_the_true_set(index):
     """Every mutant the kernel accepts yields the genuine (= vertex route's) valid set; some are rejected and
@@ -158,6 +161,8 @@ def test_a_line_not_in_ker_g_or_zero_is_rejected_first():
         with pytest.raises(CheckFailure, match=words):
             _kernel_set(problem, forged)
 
+
+# ------------------------------------------------------------------ resource
 
 def test_largest_threshold_forgeries_on_lines_records():
     """The slab whose line feeds the facet (V = {0, 1} for Taylor(2): the largest threshold is 0, attained, bound by

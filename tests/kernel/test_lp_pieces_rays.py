@@ -9,6 +9,7 @@ sections, slabs) under Taylor 1..6 and rational methods, changes one field at a 
 an end, a point piece, the point, the problem) and checks that every record the kernel accepts gives the
 true valid set."""
 
+
 import copy
 import json
 import random
@@ -28,14 +29,17 @@ from exactinv_check.validset import Interval, require_intervals, valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 M = ei.methods
+
+
 ppl = pytest.importorskip("ppl")
 
+
 TALLY = {}  # (tried | accepted, mutation kind) -> count, for the fuzzer's report
+
+
 METHODS = [M.taylor(k) for k in range(1, 7)] + [M.pade(1, 1), M.backward_euler(), M.pade(0, 2), M.pade(1, 2)]
-
-
-# ------------------------------------------------------------------ the truth, in Q
 
 
 def _lcm_scale(values):
@@ -147,9 +151,6 @@ def _method_of(problem):
                      [F(c) for c in problem["method"]["denominator"]])
 
 
-# ------------------------------------------------------------------ the kernel under attack
-
-
 def kernel_set(cert):
     """The valid set the kernel derives from the certificate's lp record (the claim it would accept), or None
     when it rejects the record."""
@@ -160,9 +161,6 @@ def kernel_set(cert):
         return valid_set(D, list(inequalities), [])
     except CheckFailure:
         return None
-
-
-# ------------------------------------------------------------------ random unbounded P
 
 
 def random_problem(rng, dims=(2, 3, 4)):
@@ -468,8 +466,21 @@ def fuzz(seed, problems, mutations, dims=(2, 3, 4), use_lp=True, log=None, lp_ra
     return accepted, rejected, bad
 
 
-# ------------------------------------------------------------------ the tests
+def _pole_certificate():
+    """Pade(1,1) on P = {-3x1 - x2 <= 1, x2 >= 0, -3 x2 <= 1}, A = [[-4, -3/4], [-3/4, 3]]: D = 1 + h/2 -
+    201 h^2/64 has the pole t = 0.6494.. (root of 201h^2 - 32h - 64); facet 0 is a basis piece up to 0.402..,
+    then the ray (1, 0) up to the pole and the ray (-1, 3) after it.  The valid set is {0}."""
+    S = ei.LinearSystem([[-4, F(-3, 4)], [F(-3, 4), 3]])
+    P = ei.Polyhedron([[-3, -1], [0, -2], [0, -3]], [1, 0, 1])
+    cert = ei.valid_steplengths(S, P, M.pade(1, 1), route="lp").certificate
+    f = cert["claims"][0]["lp"]["facets"][0]
+    assert f["bases"][1:] == [{"ray": ["1", "0"]}, {"ray": ["-1", "3"]}]
+    assert f["ends"][1]["poly"] == ["-64", "-32", "201"]
+    assert exactinv_check.check(cert).ok
+    return cert
 
+
+# ------------------------------------------------------------------ soundness
 
 def test_the_lp_truth_agrees_with_the_vertex_route_on_a_worked_orthant():
     """The orthant of R^2 with M = [[-4, -1], [10, 0]], Taylor(3): the valid set is {0} and {1}
@@ -499,20 +510,6 @@ def test_every_accepted_mutation_of_a_genuine_ray_record_gives_the_true_valid_se
     assert accepted > 10 and rejected > 30
 
 
-def _pole_certificate():
-    """Pade(1,1) on P = {-3x1 - x2 <= 1, x2 >= 0, -3 x2 <= 1}, A = [[-4, -3/4], [-3/4, 3]]: D = 1 + h/2 -
-    201 h^2/64 has the pole t = 0.6494.. (root of 201h^2 - 32h - 64); facet 0 is a basis piece up to 0.402..,
-    then the ray (1, 0) up to the pole and the ray (-1, 3) after it.  The valid set is {0}."""
-    S = ei.LinearSystem([[-4, F(-3, 4)], [F(-3, 4), 3]])
-    P = ei.Polyhedron([[-3, -1], [0, -2], [0, -3]], [1, 0, 1])
-    cert = ei.valid_steplengths(S, P, M.pade(1, 1), route="lp").certificate
-    f = cert["claims"][0]["lp"]["facets"][0]
-    assert f["bases"][1:] == [{"ray": ["1", "0"]}, {"ray": ["-1", "3"]}]
-    assert f["ends"][1]["poly"] == ["-64", "-32", "201"]
-    assert exactinv_check.check(cert).ok
-    return cert
-
-
 @pytest.mark.parametrize("end", ["3/5", "649/1000", "13/20"])
 def test_a_ray_piece_cannot_cross_a_pole(end):
     """r = (g_i N(h) d) D(h) has the factor D, so it vanishes at the pole: moving the pole end of the two
@@ -525,18 +522,6 @@ def test_a_ray_piece_cannot_cross_a_pole(end):
     assert not report.ok and "vanishes inside its piece" in str(report), report
     p = cert["problem"]
     assert lp_valid_at(p["A"], p["G"], p["b"], M.pade(1, 1), F(end)) is False
-
-
-def test_huge_rays_and_points_give_the_same_set_or_are_priced():
-    """A ray scaled by 10^3000 is the same ray: the kernel accepts it and derives the same valid set (the
-    condition is a positive multiple); a point with 3000-digit entries outside P is rejected by G x <= b."""
-    cert = _pole_certificate()
-    lp = cert["claims"][0]["lp"]
-    lp["facets"][0]["bases"][1]["ray"] = [str(10**3000), "0"]
-    assert exactinv_check.check(cert).ok
-    lp["point"] = [str(-10**3000), "1"]
-    report = exactinv_check.check(cert)
-    assert not report.ok and "lp point violates" in str(report), report
 
 
 def test_the_lp_truth_catches_a_forged_basis_piece_in_a_kernel_that_skips_z_b(monkeypatch):
@@ -585,19 +570,6 @@ def test_a_passing_piece_formats_no_number(monkeypatch):
     assert not calls, f"{len(calls)} numbers printed while every check passed"
 
 
-def test_a_positive_ray_piece_with_long_ends_is_not_rejected_by_printing_its_sample():
-    """Found (robustness): the fallback of the ray piece's positivity test printed its sample point q into
-    the failure message before testing it; with ends of 3000 digits q has over 4300, and Python's int -> str
-    limit raised ValueError -- a true ray piece rejected.  p = (h - 1)^2 + 10^-6 > 0 everywhere, its complex
-    roots near 1 defeat Descartes' rule on (1/3, 2), so the fallback (root isolation, one sample) runs."""
-    p = [F(1) + F(1, 10**6), F(-2), F(1)]
-    start = Real.rational(F(10**3000 + 1, 3 * 10**3000))
-    end = Real.rational(2 - F(1, 7 * 10**3000 + 1))
-    assert lp_pieces._require_positive_open(p, start, end, "r")
-    with pytest.raises(CheckFailure, match="not positive inside its piece"):
-        lp_pieces._require_positive_open([-c for c in p], start, end, "r")
-
-
 def test_a_matching_valid_set_claim_formats_no_number(monkeypatch):
     """The same for the claim's intervals (validset.require_intervals): every interval's true ends were
     printed into the messages of checks that passed, and the whole true set once more."""
@@ -616,3 +588,30 @@ def test_a_matching_valid_set_claim_formats_no_number(monkeypatch):
     claim[1]["lo"] = "2"
     with pytest.raises(CheckFailure, match="interval 1 starts at 1.73205"):
         require_intervals(claim, truth)
+
+
+# ------------------------------------------------------------------ resource
+
+def test_huge_rays_and_points_give_the_same_set_or_are_priced():
+    """A ray scaled by 10^3000 is the same ray: the kernel accepts it and derives the same valid set (the
+    condition is a positive multiple); a point with 3000-digit entries outside P is rejected by G x <= b."""
+    cert = _pole_certificate()
+    lp = cert["claims"][0]["lp"]
+    lp["facets"][0]["bases"][1]["ray"] = [str(10**3000), "0"]
+    assert exactinv_check.check(cert).ok
+    lp["point"] = [str(-10**3000), "1"]
+    report = exactinv_check.check(cert)
+    assert not report.ok and "lp point violates" in str(report), report
+
+
+def test_a_positive_ray_piece_with_long_ends_is_not_rejected_by_printing_its_sample():
+    """Found (robustness): the fallback of the ray piece's positivity test printed its sample point q into
+    the failure message before testing it; with ends of 3000 digits q has over 4300, and Python's int -> str
+    limit raised ValueError -- a true ray piece rejected.  p = (h - 1)^2 + 10^-6 > 0 everywhere, its complex
+    roots near 1 defeat Descartes' rule on (1/3, 2), so the fallback (root isolation, one sample) runs."""
+    p = [F(1) + F(1, 10**6), F(-2), F(1)]
+    start = Real.rational(F(10**3000 + 1, 3 * 10**3000))
+    end = Real.rational(2 - F(1, 7 * 10**3000 + 1))
+    assert lp_pieces._require_positive_open(p, start, end, "r")
+    with pytest.raises(CheckFailure, match="not positive inside its piece"):
+        lp_pieces._require_positive_open([-c for c in p], start, end, "r")

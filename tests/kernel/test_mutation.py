@@ -7,6 +7,7 @@ an accepted false mutant, and also if it would pass vacuously (too few mutants
 tried, or none rejected).
 """
 
+
 import copy
 import json
 import random
@@ -19,6 +20,7 @@ import exactinv as ei
 from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
+
 
 PER_CERTIFICATE = 160  # mutants sampled per certificate (deterministic)
 
@@ -74,7 +76,6 @@ def _apply(cert, path, op):
     return cert
 
 
-# ---------------------------------------------------------------- the truth
 def _engine_value(v):
     return ei.INF if v == "oo" else (-ei.INF if v == "-oo" else (Fraction(v) if isinstance(v, str) else v))
 
@@ -150,6 +151,8 @@ def _claim_is_true(cert, claim):
     raise AssertionError(f"no truth for {kind}")
 
 
+# ------------------------------------------------------------------ soundness
+
 def test_accepted_mutants_are_true(capsys):
     rng = random.Random(20261122)
     tried = rejected = accepted_true = 0
@@ -177,3 +180,7 @@ def test_accepted_mutants_are_true(capsys):
               f"{accepted_true} accepted and proved true, {len(false_accepted)} accepted but false")
     assert not false_accepted, "\n".join(false_accepted)
     assert tried >= 1000 and rejected >= tried // 2  # never vacuous
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

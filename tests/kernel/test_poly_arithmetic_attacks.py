@@ -6,6 +6,7 @@ such numbers (CPython's Lehmer gcd on numbers with a huge common factor) cost ab
 algebraic number of degree 200 kept the kernel over 60 s of CPU (not finished) before any charge, and a
 degree-64 method with 3990-digit denominators 16.6 s.  Both must be refused by a price, quickly."""
 
+
 import random
 from fractions import Fraction
 from math import gcd
@@ -30,61 +31,11 @@ def _reciprocals(rng, count, digits):
     return [f"{rng.choice([-1, 1])}/{rng.randrange(10 ** (digits - 1), 10 ** digits) | 1}" for _ in range(count)]
 
 
-def test_an_algebraic_number_with_coprime_huge_denominators_is_refused_by_its_price():
-    rng = random.Random(1)
-    poly = _reciprocals(rng, 200, 1000) + ["1"]
-    report = check_within(_radius_cert({"poly": poly, "interval": ["0", "2"]}), 20)
-    assert not report.ok
-    assert "over the certificate's work budget: a common denominator" in str(report), str(report)[:500]
-
-
-def test_a_method_with_coprime_huge_denominators_is_refused_quickly():
-    rng = random.Random(1)
-    num = ["1"] + [c.lstrip("-") for c in _reciprocals(rng, 64, 3990)]
-    report = check_within(_radius_cert("1", num=num), 10)
-    assert not report.ok and "over the" in str(report), str(report)[:500]
-
-
-def test_a_fraction_algebraic_number_is_still_accepted():
-    # rho(1 + z) = 1, written as the root of (2/3) x^2 - 2/3 (= (2/3)(x - 1)(x + 1)) on (1/2, 3/2)
-    report = check(_radius_cert({"poly": ["-2/3", "0", "2/3"], "interval": ["1/2", "3/2"]}))
-    assert report.ok, str(report)
-
-
-@settings(max_examples=60, deadline=None)
-@given(st.lists(st.fractions(max_denominator=10 ** 30).filter(lambda x: abs(x.numerator) < 10 ** 30),
-                min_size=1, max_size=12).filter(lambda p: p[-1] != 0))
-def test_integer_coefficients_are_coprime_and_proportional_under_an_account(p):
-    with account():
-        ints = integer_coefficients(p)
-    factor = Fraction(ints[-1]) / p[-1]
-    assert factor > 0
-    assert [Fraction(c) for c in ints] == [factor * c for c in p]
-    g = 0
-    for c in ints:
-        g = gcd(g, c)
-    assert g == 1
-
-
-def test_a_sign_is_priced_by_the_largest_coefficient_not_the_leading_one():
-    # lead 1, 13000-bit middle coefficients, a 62-bit point: priced by the lead it was charged 12 times below its
-    # measured CPU time (isolate's ends and Real.claimed's end signs passed no bits)
-    from exactinv_check.budget import evaluation_cost
-    from exactinv_check.polys import sign_at
-    rng = random.Random(3)
-    ints = [rng.randrange(-2 ** 13000, 2 ** 13000) for _ in range(250)] + [1]
-    x = Fraction(2 ** 60 + 1, 2 ** 61)
-    with account(limit=10 ** 15, time_limit=None) as acc:
-        s = sign_at(ints, x)
-    n, d = x.numerator, x.denominator
-    assert s == (lambda v: (v > 0) - (v < 0))(sum(c * n ** k * d ** (250 - k) for k, c in enumerate(ints)))
-    assert acc.spent == evaluation_cost(250, max(abs(c).bit_length() for c in ints), 62)
-
-
-# ---------------------------------------------------------------- soundness probes (all rejected: nothing found)
 # r = 1 + z + z^2/2 + z^3/6 + z^4 + z^5: rho is the smaller root (6 - sqrt 21)/30 of 60 x^2 - 24 x + 1 (c_3 ends
 # first; worked out by hand: c_3(kappa) = 1/6 - 4 kappa + 10 kappa^2 = (60 kappa^2 - 24 kappa + 1)/6), attained.
 _NUM = ["1", "1", "1/2", "1/6", "1", "1"]
+
+
 _P = [1, -24, 60]
 
 
@@ -112,6 +63,35 @@ def _value(poly, interval):
     return {"poly": [str(c) for c in poly], "interval": [str(x) for x in interval]}
 
 
+def _cert_attained(value, attained):
+    cert = _radius_cert(value, num=_NUM)
+    cert["claims"][0]["attained"] = attained
+    return cert
+
+
+# ------------------------------------------------------------------ soundness
+
+def test_a_fraction_algebraic_number_is_still_accepted():
+    # rho(1 + z) = 1, written as the root of (2/3) x^2 - 2/3 (= (2/3)(x - 1)(x + 1)) on (1/2, 3/2)
+    report = check(_radius_cert({"poly": ["-2/3", "0", "2/3"], "interval": ["1/2", "3/2"]}))
+    assert report.ok, str(report)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.fractions(max_denominator=10 ** 30).filter(lambda x: abs(x.numerator) < 10 ** 30),
+                min_size=1, max_size=12).filter(lambda p: p[-1] != 0))
+def test_integer_coefficients_are_coprime_and_proportional_under_an_account(p):
+    with account():
+        ints = integer_coefficients(p)
+    factor = Fraction(ints[-1]) / p[-1]
+    assert factor > 0
+    assert [Fraction(c) for c in ints] == [factor * c for c in p]
+    g = 0
+    for c in ints:
+        g = gcd(g, c)
+    assert g == 1
+
+
 def test_radius_values_right_and_wrong_at_an_irrational_rho():
     Q = _times(_times(_P, [-2, 0, 1]), [-100, 1])  # rho's polynomial times (x^2 - 2)(x - 100)
     s2lo, s2hi = _sqrt_bounds(2)
@@ -131,12 +111,6 @@ def test_radius_values_right_and_wrong_at_an_irrational_rho():
             assert not check(_cert_attained(v, attained)).ok, v
 
 
-def _cert_attained(value, attained):
-    cert = _radius_cert(value, num=_NUM)
-    cert["claims"][0]["attained"] = attained
-    return cert
-
-
 def test_kronecker_products_at_the_packing_boundaries_equal_schoolbook_products():
     """claims_radius.kronecker_mul against the schoolbook product, coefficients at +-(2^b - 1) and +-2^(b-1)
     for b at and around byte and word boundaries (the packing's digit size), zeros and mixed signs."""
@@ -153,3 +127,35 @@ def test_kronecker_products_at_the_packing_boundaries_equal_schoolbook_products(
         if rng.random() < 0.3:  # the largest product coefficients: every term of one sign at the top of the range
             a, b = [2 ** ba - 1] * len(a), [1 - 2 ** bb] * len(b)
         assert trim(kronecker_mul(a, b)) == trim(mul_integers(a, b)), (a, b)
+
+
+# ------------------------------------------------------------------ resource
+
+def test_an_algebraic_number_with_coprime_huge_denominators_is_refused_by_its_price():
+    rng = random.Random(1)
+    poly = _reciprocals(rng, 200, 1000) + ["1"]
+    report = check_within(_radius_cert({"poly": poly, "interval": ["0", "2"]}), 20)
+    assert not report.ok
+    assert "over the certificate's work budget: a common denominator" in str(report), str(report)[:500]
+
+
+def test_a_method_with_coprime_huge_denominators_is_refused_quickly():
+    rng = random.Random(1)
+    num = ["1"] + [c.lstrip("-") for c in _reciprocals(rng, 64, 3990)]
+    report = check_within(_radius_cert("1", num=num), 10)
+    assert not report.ok and "over the" in str(report), str(report)[:500]
+
+
+def test_a_sign_is_priced_by_the_largest_coefficient_not_the_leading_one():
+    # lead 1, 13000-bit middle coefficients, a 62-bit point: priced by the lead it was charged 12 times below its
+    # measured CPU time (isolate's ends and Real.claimed's end signs passed no bits)
+    from exactinv_check.budget import evaluation_cost
+    from exactinv_check.polys import sign_at
+    rng = random.Random(3)
+    ints = [rng.randrange(-2 ** 13000, 2 ** 13000) for _ in range(250)] + [1]
+    x = Fraction(2 ** 60 + 1, 2 ** 61)
+    with account(limit=10 ** 15, time_limit=None) as acc:
+        s = sign_at(ints, x)
+    n, d = x.numerator, x.denominator
+    assert s == (lambda v: (v > 0) - (v < 0))(sum(c * n ** k * d ** (250 - k) for k, c in enumerate(ints)))
+    assert acc.spent == evaluation_cost(250, max(abs(c).bit_length() for c in ints), 62)

@@ -1,6 +1,7 @@
 """The kernel's O(m log m) proof of a bounded convex polygon (exactinv_check.routes.polygon),
 against the general edge walk and against forged generator lists."""
 
+
 import copy
 import random
 from fractions import Fraction as F
@@ -65,8 +66,18 @@ def as_lists(points):
 
 
 coordinate = st.fractions(min_value=-5, max_value=5, max_denominator=7)
+
+
 point_sets = st.lists(st.tuples(coordinate, coordinate), min_size=3, max_size=14)
 
+
+SQUARE_G = [[F(1), F(0)], [F(0), F(1)], [F(-1), F(0)], [F(0), F(-1)]]
+
+
+SQUARE_V = as_lists([(1, 1), (-1, 1), (-1, -1), (1, -1)])
+
+
+# ------------------------------------------------------------------ soundness
 
 @settings(max_examples=50, deadline=None)
 @given(point_sets, st.randoms(use_true_random=False))
@@ -108,21 +119,9 @@ def test_regular_polygon_with_many_facets():
     assert (g.minimal_faces, g.extra_vertices, g.dimension, g.lineality) == (len(corners), 0, 2, 0)
 
 
-SQUARE_G = [[F(1), F(0)], [F(0), F(1)], [F(-1), F(0)], [F(0), F(-1)]]
-SQUARE_V = as_lists([(1, 1), (-1, 1), (-1, -1), (1, -1)])
-
-
 def test_collinear_points_and_any_order_are_harmless():
     listed = SQUARE_V[::-1] + as_lists([(0, 1), (1, 0), (0, 0), (1, 1)])  # edge midpoints, centre, a repeat
     assert prove_polygon(SQUARE_G, [F(1)] * 4, listed) == (4, 4)
-
-
-def test_a_duplicate_row_that_is_tighter_changes_P():
-    G, b = SQUARE_G + [[F(2), F(0)]], [F(1)] * 5  # 2x <= 1: P is [-1, 1/2] x [-1, 1]
-    with pytest.raises(CheckFailure, match="not listed"):
-        prove_polygon(G, b, SQUARE_V)
-    assert prove_polygon(G, b, as_lists([(F(1, 2), 1), (-1, 1), (-1, -1), (F(1, 2), -1)])) == (4, 0)
-    assert isinstance(general(G, b, SQUARE_V), str)
 
 
 def test_a_redundant_facet_through_a_corner_and_a_cutting_one():
@@ -211,3 +210,13 @@ def test_forged_polygon_certificates():
     assert forged(add_row([str(2 * F(x)) for x in cert["problem"]["G"][0]], str(2 * F(cert["problem"]["b"][0])))).ok
     tighter = forged(add_row(cert["problem"]["G"][0], str(F(cert["problem"]["b"][0]) / 2)))
     assert not tighter.ok and "not listed" in str(tighter)
+
+
+# ------------------------------------------------------------------ resource
+
+def test_a_duplicate_row_that_is_tighter_changes_P():
+    G, b = SQUARE_G + [[F(2), F(0)]], [F(1)] * 5  # 2x <= 1: P is [-1, 1/2] x [-1, 1]
+    with pytest.raises(CheckFailure, match="not listed"):
+        prove_polygon(G, b, SQUARE_V)
+    assert prove_polygon(G, b, as_lists([(F(1, 2), 1), (-1, 1), (-1, -1), (F(1, 2), -1)])) == (4, 0)
+    assert isinstance(general(G, b, SQUARE_V), str)

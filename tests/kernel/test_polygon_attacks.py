@@ -12,6 +12,7 @@ do instead of doing it (monkeypatched counters), or extrapolate from a small
 instance.
 """
 
+
 from fractions import Fraction as F
 
 import pytest
@@ -44,46 +45,7 @@ def _certificate(pts, G, b, extra=(), vertex=1, horizon="2"):
             "claims": [claim]}
 
 
-# --------------------------------------------------------------------------
-# 1. polygon.prove_polygon: every listed point beyond the corners costs m row tests, unpriced
-#
-# The corners of a 20,000-gon are proved in 0.34 s, but each further listed point
-# (an interior point, a repeated corner) goes through _require_in against all m
-# rows.  Measured: m = 20,000 facets and 8,000 interior points listed (a 1.4 MB
-# certificate) take 20 s before the claim is even looked at; 20,000 points ~ 50 s,
-# 40,000 ~ 100 s.  (The general edge walk has the same V x m slack test, but it is
-# slow for the corners too; the fast path makes the extras the whole cost.)
-# A fix: price len(extra) * m before testing, or test each point in O(log m)
-# against the sorted corners (binary search on the angle around an interior point).
-
-def test_extra_listed_points_of_a_big_polygon_are_priced(monkeypatch):
-    m, extras = 20_000, 20_000
-    pts, G, b = _parabola_polygon(m)
-    interior = [[F(m // 2), F(m * m + k)] for k in range(extras)]
-    work = []
-
-    def counted(rows, v, i):  # the work _require_in would do, without doing it
-        work.append(len(rows))
-
-    monkeypatch.setattr(polygon, "_require_in", counted)
-    try:
-        prove_generators(G, b, [list(p) for p in pts] + interior, [], [])
-    except Exception:  # a budget rejection is the correct outcome
-        pass
-    assert sum(work) <= 10**8, f"{sum(work):.1e} row tests (~{sum(work) / 7e6:.0f} s) before any verdict"
-
-
-# --------------------------------------------------------------------------
-# 2. pruning.survivors: the surviving pairs are all built before MAX_CONDITIONS is checked
-#
-# pruning.survivors returns every pair its test keeps, as {vertex: [facets]}, and
-# only conditions.condition_polynomials then compares their number with
-# MAX_CONDITIONS = 20,000,000.  A 20,000-gon (1.16 MB certificate, the one of
-# _certificate below with m = 20,000) keeps 144,156,176 pairs: the kernel runs
-# 408 s and reaches 13.4 GB resident memory before it rejects with
-# "144156176 generator-facet conditions exceed the kernel's bound".
-# A fix: count the pairs in survivors (_descend) and reject as soon as the count
-# passes MAX_CONDITIONS (the same bound, just before the lists are built).
+# ------------------------------------------------------------------ soundness
 
 def test_survivors_stop_at_the_condition_bound(monkeypatch):
     bound = 2_000
@@ -104,29 +66,24 @@ def test_survivors_stop_at_the_condition_bound(monkeypatch):
     assert sum(built) <= bound + 2 * len(G), f"{sum(built)} pairs built for a bound of {bound}"
 
 
-# --------------------------------------------------------------------------
-# 3. MAX_CONDITIONS = 20,000,000 is not a 30 s budget
-#
-# Each built condition costs about 35-40 us (condition_polynomials, then the
-# Descartes skip in valid_set), so 20,000,000 conditions, which the kernel
-# accepts to build, are about 12 minutes.  Measured on the genuine certificate of
-# _certificate: m = 1,500 (76 KB) keeps 779,828 pairs and verifies in 27 s;
-# m = 3,000 (157 KB) keeps 3,132,070 pairs and takes over 2 minutes.
-# (The bound itself, 20,000,000 then, is now 500,000: about 20-45 s of conditions at the 40-90 us
-# per condition measured here and in CI; a timing assertion would be flaky, so the measurement lives
-# in the comment of conditions.MAX_CONDITIONS.)
+# ------------------------------------------------------------------ resource
 
-# --------------------------------------------------------------------------
-# 4. pruning._Packed: one long row widens every slot
-#
-# The slot width is set by the largest row and box entry over ALL rows, so one
-# row with a 3000-digit entry (a redundant facet 10^3000 x <= 10^3001) gives every
-# one of the m short rows a ~1250-byte slot, in each of the 2n + 2 columns of the
-# table (2n + 1 since the remainder widens each coordinate on its own).  Measured (survivors on the 4
-# corners of a square, T = 2, A = -I, forward Euler): 20,001 rows -> 380 MB resident, 100,001 rows (about 1.5 MB of G) ->
-# 1.85 GB, a memory amplification of about 1000x.  (Time stays a few seconds.)
-# A fix: price m x slot width before building the table, or pack rows in groups of
-# similar size (a slot width per group), or test the long rows one by one.
+def test_extra_listed_points_of_a_big_polygon_are_priced(monkeypatch):
+    m, extras = 20_000, 20_000
+    pts, G, b = _parabola_polygon(m)
+    interior = [[F(m // 2), F(m * m + k)] for k in range(extras)]
+    work = []
+
+    def counted(rows, v, i):  # the work _require_in would do, without doing it
+        work.append(len(rows))
+
+    monkeypatch.setattr(polygon, "_require_in", counted)
+    try:
+        prove_generators(G, b, [list(p) for p in pts] + interior, [], [])
+    except Exception:  # a budget rejection is the correct outcome
+        pass
+    assert sum(work) <= 10**8, f"{sum(work):.1e} row tests (~{sum(work) / 7e6:.0f} s) before any verdict"
+
 
 def test_one_long_row_does_not_widen_every_slot():
     """Fixed by a bound on the packed table (MAX_PACKED_BYTES): 25,001 rows in 1250-byte slots would

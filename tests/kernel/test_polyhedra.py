@@ -1,5 +1,6 @@
 """The kernel's proof that a claimed generator system is exactly {x : Gx <= b}."""
 
+
 import ast
 import itertools
 import math
@@ -61,6 +62,8 @@ OCTAHEDRON = (
     [F(1)] * 8,
     [[F(s if i == k else 0) for k in range(3)] for i in range(3) for s in (1, -1)],
 )
+
+
 # square pyramid: base [-1,1]^2 x {0}, apex (0,0,1); the apex has 4 active facets
 PYRAMID = (
     mat([[1, 0, 1], [-1, 0, 1], [0, 1, 1], [0, -1, 1], [0, 0, -1]]),
@@ -69,9 +72,71 @@ PYRAMID = (
 )
 
 
-# ----------------------------------------------------------------------------
-# genuine generator systems
+def _ppl_generators(poly):
+    P, R, L = [], [], []
+    for g in poly.minimized_generators():
+        c = [int(x) for x in g.coefficients()]
+        if g.is_point():
+            P.append([F(x, int(g.divisor())) for x in c])
+        elif g.is_ray():
+            R.append([F(x) for x in c])
+        else:
+            L.append([F(x) for x in c])
+    return P, R, L
 
+
+def _ppl_constraints(poly):
+    G, b = [], []
+    for c in poly.minimized_constraints():
+        a = [int(x) for x in c.coefficients()]
+        k = int(c.inhomogeneous_term())
+        G.append([F(-x) for x in a])  # a.x + k >= 0
+        b.append(F(k))
+        if c.is_equality():
+            G.append([F(x) for x in a])
+            b.append(F(-k))
+    return G, b
+
+
+def _random_polyhedra(seed, count):
+    ppl = pytest.importorskip("ppl")
+    rng = random.Random(seed)
+    out = []
+    while len(out) < count:
+        n = rng.randint(1, 5)
+        if rng.random() < 0.5:
+            cs = ppl.Constraint_System()
+            m = rng.randint(1, 3 * n + 2)
+            G = [[F(rng.randint(-3, 3)) for _ in range(n)] for _ in range(m)]
+            b = [F(rng.choice([0, 0, 1, 2, 4])) for _ in range(m)]
+            for g, beta in zip(G, b):
+                cs.insert(ppl.Linear_Expression([-int(x) for x in g], int(beta)) >= 0)
+            poly = ppl.C_Polyhedron(cs)
+        else:
+            gs = ppl.Generator_System()
+            cube = list(itertools.product([0, 1], repeat=n)) if rng.random() < 0.5 else None
+            pts = rng.sample(cube, rng.randint(1, len(cube))) if cube else [
+                [rng.randint(-2, 2) for _ in range(n)] for _ in range(rng.randint(1, 2 * n + 3))
+            ]
+            for p in pts:
+                gs.insert(ppl.point(ppl.Linear_Expression(list(p), 0), 1))
+            for _ in range(rng.choice([0, 0, 1, 2])):
+                r = [rng.randint(-1, 1) for _ in range(n)]
+                if any(r):
+                    gs.insert(ppl.ray(ppl.Linear_Expression(r, 0)))
+            if rng.random() < 0.25:
+                l = [rng.randint(-1, 1) for _ in range(n)]
+                if any(l):
+                    gs.insert(ppl.line(ppl.Linear_Expression(l, 0)))
+            poly = ppl.C_Polyhedron(gs)
+            G, b = _ppl_constraints(poly)
+        if poly.is_empty() or poly.is_universe():
+            continue
+        out.append((G, b) + _ppl_generators(poly))
+    return out
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_box_and_record():
     G, b, V = box(2)
@@ -189,10 +254,6 @@ def test_extra_points_and_rays_are_harmless():
     assert (rec.minimal_faces, rec.extreme_rays, rec.extra_vertices, rec.extra_rays) == (2, 2, 2, 2)
 
 
-# ----------------------------------------------------------------------------
-# forged generator systems
-
-
 def test_empty_vertex_list():
     G, b, V = box(2)
     rejects(G, b, [], match="no vertex")
@@ -280,74 +341,6 @@ def test_polytope_forged_as_unbounded():
     rejects(G, b, [vec(0, 0), vec(1, 0)], match="unbounded edge")
 
 
-# ----------------------------------------------------------------------------
-# against pplpy, an independent double-description implementation
-
-
-def _ppl_generators(poly):
-    P, R, L = [], [], []
-    for g in poly.minimized_generators():
-        c = [int(x) for x in g.coefficients()]
-        if g.is_point():
-            P.append([F(x, int(g.divisor())) for x in c])
-        elif g.is_ray():
-            R.append([F(x) for x in c])
-        else:
-            L.append([F(x) for x in c])
-    return P, R, L
-
-
-def _ppl_constraints(poly):
-    G, b = [], []
-    for c in poly.minimized_constraints():
-        a = [int(x) for x in c.coefficients()]
-        k = int(c.inhomogeneous_term())
-        G.append([F(-x) for x in a])  # a.x + k >= 0
-        b.append(F(k))
-        if c.is_equality():
-            G.append([F(x) for x in a])
-            b.append(F(-k))
-    return G, b
-
-
-def _random_polyhedra(seed, count):
-    ppl = pytest.importorskip("ppl")
-    rng = random.Random(seed)
-    out = []
-    while len(out) < count:
-        n = rng.randint(1, 5)
-        if rng.random() < 0.5:
-            cs = ppl.Constraint_System()
-            m = rng.randint(1, 3 * n + 2)
-            G = [[F(rng.randint(-3, 3)) for _ in range(n)] for _ in range(m)]
-            b = [F(rng.choice([0, 0, 1, 2, 4])) for _ in range(m)]
-            for g, beta in zip(G, b):
-                cs.insert(ppl.Linear_Expression([-int(x) for x in g], int(beta)) >= 0)
-            poly = ppl.C_Polyhedron(cs)
-        else:
-            gs = ppl.Generator_System()
-            cube = list(itertools.product([0, 1], repeat=n)) if rng.random() < 0.5 else None
-            pts = rng.sample(cube, rng.randint(1, len(cube))) if cube else [
-                [rng.randint(-2, 2) for _ in range(n)] for _ in range(rng.randint(1, 2 * n + 3))
-            ]
-            for p in pts:
-                gs.insert(ppl.point(ppl.Linear_Expression(list(p), 0), 1))
-            for _ in range(rng.choice([0, 0, 1, 2])):
-                r = [rng.randint(-1, 1) for _ in range(n)]
-                if any(r):
-                    gs.insert(ppl.ray(ppl.Linear_Expression(r, 0)))
-            if rng.random() < 0.25:
-                l = [rng.randint(-1, 1) for _ in range(n)]
-                if any(l):
-                    gs.insert(ppl.line(ppl.Linear_Expression(l, 0)))
-            poly = ppl.C_Polyhedron(gs)
-            G, b = _ppl_constraints(poly)
-        if poly.is_empty() or poly.is_universe():
-            continue
-        out.append((G, b) + _ppl_generators(poly))
-    return out
-
-
 @pytest.mark.parametrize("seed", [0, 1])
 def test_agrees_with_ppl(seed):
     for G, b, P, R, L in _random_polyhedra(seed, 120):
@@ -363,10 +356,6 @@ def test_agrees_with_ppl(seed):
         for i in range(len(L)):
             with pytest.raises(CheckFailure):
                 prove_generators(G, b, P, R, L[:i] + L[i + 1 :])
-
-
-# ----------------------------------------------------------------------------
-# scale
 
 
 def test_thousand_gon():
@@ -396,9 +385,6 @@ def test_cone_over_a_polygon_has_a_very_degenerate_apex():
     rejects(G, b, R, match="incomplete")
 
 
-# ----------------------------------------------------------------------------
-
-
 def test_imports_only_the_standard_library_and_the_kernel():
     source = Path(polyhedra.__file__).read_text()
     for node in ast.walk(ast.parse(source)):
@@ -416,3 +402,7 @@ def test_imports_only_the_standard_library_and_the_kernel():
         for name in names:
             top = name.split(".")[0]
             assert top in sys.stdlib_module_names or top == "exactinv_check", name
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

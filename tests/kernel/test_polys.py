@@ -2,6 +2,7 @@
 Descartes isolation costs the same for roots near 10^60, 1 or 10^-60 (issue 22: a Taylor-12 certificate on
 10^-60 A was rejected over the certificate budget after 3.4 s of CPU time with Cauchy's bound)."""
 
+
 from fractions import Fraction
 
 from hypothesis import given, settings
@@ -22,6 +23,8 @@ def _from_roots(roots):
         p = q
     return p
 
+
+# ------------------------------------------------------------------ soundness
 
 def test_the_bound_of_known_polynomials():
     assert cauchy_bound([-2, 0, 1]) == 4                   # +-sqrt(2) < 4 (Fujiwara: 2 * 2^1)
@@ -51,6 +54,8 @@ def test_positive_roots_of_far_and_near_roots():
         found = positive_roots(_from_roots(roots))
         assert len(found) == 3 and all(lo <= r <= hi for (lo, hi), r in zip(found, sorted(roots)))
 
+
+# ------------------------------------------------------------------ resource
 
 def test_taylor12_certificates_at_10_pm_60_verify_within_cpu_seconds():
     """V(cA) = V(A)/c exactly, and the kernel accepts both certificates in a few CPU seconds (it rejected the

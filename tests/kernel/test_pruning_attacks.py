@@ -56,6 +56,7 @@ The findings were RESOURCE holes (no soundness hole found), all fixed; their tes
    price 5e6, survivors 13 s of a 17 s check (profiled, load 4).
 """
 
+
 import copy
 import random
 import signal
@@ -97,9 +98,6 @@ class _Deadline:
         return False
 
 
-# ------------------------------------------------------------------ 1. the pieces are exact
-
-
 def _reference_piece(N, t, d):
     """(X, Z, M) straight from the definition, in Fractions (the code before the integer Taylor shift)."""
     n = len(N[0])
@@ -136,39 +134,6 @@ def _random_N(rng):
     return N
 
 
-@pytest.mark.parametrize("seed", range(150))
-def test_a_piece_is_the_fraction_definition(seed):
-    rng = random.Random(seed)
-    N = _random_N(rng)
-    t = rng.choice([F(0), F(1), F(rng.randint(0, 100), rng.randint(1, 100)), F(rng.randint(0, 2**64), rng.randint(1, 2**64))])
-    d = rng.choice([F(0), F(1), F(rng.randint(0, 100), rng.randint(1, 100)), F(rng.randint(0, 2**64), rng.randint(1, 2**64))])
-    assert list(pruning._piece(N, t, d)) == list(_reference_piece(N, t, d))
-
-
-def test_a_piece_of_integer_entries_and_of_the_real_nodes():
-    """int entries (no Fraction) and every piece of the nodes of a 64-bit horizon."""
-    rng = random.Random(7)
-    N = [[[rng.randint(-5, 5) for _ in range(2)] for _ in range(2)] for _ in range(4)]
-    ends = pruning.nodes(F(rng.randint(1, 2**64), rng.randint(1, 2**64)))
-    for t, u in zip(ends, ends[1:]):
-        assert list(pruning._piece(N, t, u - t)) == list(_reference_piece(N, t, u - t))
-
-
-@pytest.mark.parametrize("seed", range(40))
-def test_shifted_is_the_taylor_expansion(seed):
-    """P(t + s) = sum_k e_k s^k / (L q^(deg - k)) at several s, for t of either sign."""
-    rng = random.Random(seed)
-    a = [_entry(rng) for _ in range(rng.randint(1, 9))]
-    t = F(rng.randint(-50, 50), rng.randint(1, 50))
-    e, L = pruning._shifted(a, t)
-    top, q = len(a) - 1, t.denominator
-    for s in (F(0), F(1), F(-3, 7), F(rng.randint(-99, 99), rng.randint(1, 99))):
-        assert sum(x * (t + s) ** i for i, x in enumerate(a)) == sum(F(x, L * q ** (top - k)) * s**k for k, x in enumerate(e))
-
-
-# ------------------------------------------------------------------ 4. soundness from the definition, rational route
-
-
 def _stable_A(rng):
     while True:
         A = [[F(rng.randint(-6, 6), rng.choice([1, 2, 4])) for _ in range(2)] for _ in range(2)]
@@ -178,42 +143,6 @@ def _stable_A(rng):
 
 def _poly_at(p, h):
     return sum(c * h**k for k, c in enumerate(p))
-
-
-@pytest.mark.parametrize("seed", range(30))
-def test_a_pair_touching_at_a_rational_h_survives_in_u(seed):
-    """q(h) = b_j D(h) - g_j N(h) v_i = 0 at a rational h in [0, T] (T = sU/(1 - U); any h >= 0
-    when U = 1), or q(h) < 0 there: the rational route must keep (i, j)."""
-    rng = random.Random(seed)
-    method = rng.choice([ei.methods.backward_euler(), ei.methods.pade(1, 1), ei.methods.pade(2, 2),
-                         ei.methods.pade(1, 2), ei.methods.radau_iia2()])
-    A = _stable_A(rng)
-    D, N = method_matrices(A, [F(x) for x in method.numerator], [F(x) for x in method.denominator])
-    s = rng.choice([F(1), F(rng.randint(1, 30), rng.randint(1, 30))])
-    U = rng.choice([F(1), F(1, 2), F(rng.randint(1, 63), 64), F(rng.randint(1, 2**40), 2**40 + 1)])
-    T = None if U == 1 else s * U / (1 - U)
-    V = [[F(rng.randint(-9, 9), rng.randint(1, 4)) for _ in range(2)] for _ in range(rng.randint(1, 6))]
-    G, b, touch = [], [], []
-    for _ in range(rng.randint(1, 6)):
-        g = [F(rng.randint(-9, 9), rng.randint(1, 3)) for _ in range(2)]
-        g[0] = g[0] or F(1)
-        i = rng.randrange(len(V))
-        h = (T if T is not None else F(rng.randint(1, 10**6))) * F(rng.randint(0, 64), 64)
-        Dh = _poly_at(D, h)
-        image = [sum(_poly_at([Nk[r][c] for Nk in N], h) * V[i][c] for c in range(2)) for r in range(2)]
-        beta = sum(x * y for x, y in zip(g, image)) / Dh + rng.choice([0, 0, F(-1, 2**rng.randint(1, 90))])
-        G.append(g)
-        b.append(beta)
-        touch.append((i, h))
-    near = kernel_rational.survivors(G, b, V, D, N, s, U, rng.choice([1, 8, 33]))
-    for j, (i, h) in enumerate(touch):
-        q = b[j] * _poly_at(D, h) - sum(g * sum(_poly_at([Nk[r][c] for Nk in N], h) * V[i][c] for c in range(2))
-                                        for r, g in enumerate(G[j]))
-        if q <= 0:
-            assert j in near[i], (i, j, h)
-
-
-# ------------------------------------------------------------------ 4. differential, through the full check
 
 
 _METHODS = [lambda: ei.methods.taylor(2), lambda: ei.methods.taylor(4), lambda: ei.methods.rk4(),
@@ -292,24 +221,6 @@ def _mutant(rng, cert):
     return c
 
 
-@pytest.mark.parametrize("seed", range(8))
-def test_a_mutant_accepted_when_pruned_is_accepted_unpruned(seed):
-    """The unpruned route (every pair built) is the reference: a mutant whose pruned check
-    passes must pass it too (else the pruning left out a pair that binds)."""
-    rng = random.Random(1000 + seed)
-    cert = _genuine(rng)
-    assert check(cert).ok
-    for _ in range(6):
-        mutant = _mutant(rng, cert)
-        if check(mutant).ok:
-            reference = copy.deepcopy(mutant)
-            del reference["claims"][-1]["pruning"]
-            assert check(reference).ok
-
-
-# ------------------------------------------------------------------ 2. the price of the pieces
-
-
 def _coprime_method(digits, degree=64):
     """1 - z + sum_{k>=2} z^k / (10^digits + 2k + 1): coefficients over almost coprime denominators."""
     return [F(1), F(-1)] + [F(1, 10**digits + 2 * k + 1) for k in range(2, degree + 1)]
@@ -332,32 +243,6 @@ def _octahedron_certificate(digits):
                         "b": ["1"] * 8, "method": {"name": "custom", "numerator": [str(x) for x in _coprime_method(digits)],
                                                    "denominator": ["1"]}},
             "claims": [claim]}
-
-
-def test_the_small_octahedron_certificate_is_true():
-    assert check(_octahedron_certificate(5)).ok
-
-
-def test_the_pieces_are_priced_by_the_common_denominator():
-    """Fixed: pieces_cost counts the entries' common denominators (bounded by the product of
-    theirs) and the gcds of X, Z, M: this method is priced far over the budget, rejected at once."""
-    _, N = method_matrices(_NILPOTENT_BLOCK, _coprime_method(2000), [F(1)])
-    assert pruning.pieces_cost(N, pruning.nodes(F(1))) > WORK_BUDGET
-    with _Deadline(20), pytest.raises(CheckFailure, match="pieces of the pruning test"):
-        pruning.survivors([[F(1), F(1), F(1)]], [F(1)], [[F(0), F(1), F(0)]], N, F(1))
-
-
-def test_the_method_reduction_is_priced():
-    """Fixed: a polynomial r (h = 1) needs no gcd; a rational one is priced first
-    (polys.affordable_gcd: the common denominator built under a running bound)."""
-    numerator = [str(x) for x in _coprime_method(2000)]
-    with _Deadline(20):
-        assert Method({"numerator": numerator, "denominator": ["1"]}).is_polynomial
-    with _Deadline(20), pytest.raises(CheckFailure, match="work budget"):
-        Method({"numerator": numerator, "denominator": numerator})
-
-
-# ------------------------------------------------------------------ 3. the kernel's own order
 
 
 def _hull(points):
@@ -386,6 +271,90 @@ def _outlier_polygon():
 _ROT_TAYLOR4 = ([[F(-1), F(1, 2)], [F(-1, 2), F(-1)]], [F(1), F(1), F(1, 2), F(1, 6), F(1, 24)])
 
 
+# ------------------------------------------------------------------ soundness
+
+@pytest.mark.parametrize("seed", range(150))
+def test_a_piece_is_the_fraction_definition(seed):
+    rng = random.Random(seed)
+    N = _random_N(rng)
+    t = rng.choice([F(0), F(1), F(rng.randint(0, 100), rng.randint(1, 100)), F(rng.randint(0, 2**64), rng.randint(1, 2**64))])
+    d = rng.choice([F(0), F(1), F(rng.randint(0, 100), rng.randint(1, 100)), F(rng.randint(0, 2**64), rng.randint(1, 2**64))])
+    assert list(pruning._piece(N, t, d)) == list(_reference_piece(N, t, d))
+
+
+def test_a_piece_of_integer_entries_and_of_the_real_nodes():
+    """int entries (no Fraction) and every piece of the nodes of a 64-bit horizon."""
+    rng = random.Random(7)
+    N = [[[rng.randint(-5, 5) for _ in range(2)] for _ in range(2)] for _ in range(4)]
+    ends = pruning.nodes(F(rng.randint(1, 2**64), rng.randint(1, 2**64)))
+    for t, u in zip(ends, ends[1:]):
+        assert list(pruning._piece(N, t, u - t)) == list(_reference_piece(N, t, u - t))
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_shifted_is_the_taylor_expansion(seed):
+    """P(t + s) = sum_k e_k s^k / (L q^(deg - k)) at several s, for t of either sign."""
+    rng = random.Random(seed)
+    a = [_entry(rng) for _ in range(rng.randint(1, 9))]
+    t = F(rng.randint(-50, 50), rng.randint(1, 50))
+    e, L = pruning._shifted(a, t)
+    top, q = len(a) - 1, t.denominator
+    for s in (F(0), F(1), F(-3, 7), F(rng.randint(-99, 99), rng.randint(1, 99))):
+        assert sum(x * (t + s) ** i for i, x in enumerate(a)) == sum(F(x, L * q ** (top - k)) * s**k for k, x in enumerate(e))
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_a_pair_touching_at_a_rational_h_survives_in_u(seed):
+    """q(h) = b_j D(h) - g_j N(h) v_i = 0 at a rational h in [0, T] (T = sU/(1 - U); any h >= 0
+    when U = 1), or q(h) < 0 there: the rational route must keep (i, j)."""
+    rng = random.Random(seed)
+    method = rng.choice([ei.methods.backward_euler(), ei.methods.pade(1, 1), ei.methods.pade(2, 2),
+                         ei.methods.pade(1, 2), ei.methods.radau_iia2()])
+    A = _stable_A(rng)
+    D, N = method_matrices(A, [F(x) for x in method.numerator], [F(x) for x in method.denominator])
+    s = rng.choice([F(1), F(rng.randint(1, 30), rng.randint(1, 30))])
+    U = rng.choice([F(1), F(1, 2), F(rng.randint(1, 63), 64), F(rng.randint(1, 2**40), 2**40 + 1)])
+    T = None if U == 1 else s * U / (1 - U)
+    V = [[F(rng.randint(-9, 9), rng.randint(1, 4)) for _ in range(2)] for _ in range(rng.randint(1, 6))]
+    G, b, touch = [], [], []
+    for _ in range(rng.randint(1, 6)):
+        g = [F(rng.randint(-9, 9), rng.randint(1, 3)) for _ in range(2)]
+        g[0] = g[0] or F(1)
+        i = rng.randrange(len(V))
+        h = (T if T is not None else F(rng.randint(1, 10**6))) * F(rng.randint(0, 64), 64)
+        Dh = _poly_at(D, h)
+        image = [sum(_poly_at([Nk[r][c] for Nk in N], h) * V[i][c] for c in range(2)) for r in range(2)]
+        beta = sum(x * y for x, y in zip(g, image)) / Dh + rng.choice([0, 0, F(-1, 2**rng.randint(1, 90))])
+        G.append(g)
+        b.append(beta)
+        touch.append((i, h))
+    near = kernel_rational.survivors(G, b, V, D, N, s, U, rng.choice([1, 8, 33]))
+    for j, (i, h) in enumerate(touch):
+        q = b[j] * _poly_at(D, h) - sum(g * sum(_poly_at([Nk[r][c] for Nk in N], h) * V[i][c] for c in range(2))
+                                        for r, g in enumerate(G[j]))
+        if q <= 0:
+            assert j in near[i], (i, j, h)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_a_mutant_accepted_when_pruned_is_accepted_unpruned(seed):
+    """The unpruned route (every pair built) is the reference: a mutant whose pruned check
+    passes must pass it too (else the pruning left out a pair that binds)."""
+    rng = random.Random(1000 + seed)
+    cert = _genuine(rng)
+    assert check(cert).ok
+    for _ in range(6):
+        mutant = _mutant(rng, cert)
+        if check(mutant).ok:
+            reference = copy.deepcopy(mutant)
+            del reference["claims"][-1]["pruning"]
+            assert check(reference).ok
+
+
+def test_the_small_octahedron_certificate_is_true():
+    assert check(_octahedron_certificate(5)).ok
+
+
 def test_one_far_vertex_does_not_hand_the_order_back(monkeypatch):
     """Fixed: morton_order keys the ranks of the coordinates, not their values, so one far vertex
     leaves the others spread over the grid; the scattered listing costs what the listed one does."""
@@ -398,7 +367,25 @@ def test_one_far_vertex_does_not_hand_the_order_back(monkeypatch):
     count_slot_tests(monkeypatch, G, b, scattered, N, T, 3 * listed)
 
 
-# ------------------------------------------------------------------ the rational route's D and N
+# ------------------------------------------------------------------ resource
+
+def test_the_pieces_are_priced_by_the_common_denominator():
+    """Fixed: pieces_cost counts the entries' common denominators (bounded by the product of
+    theirs) and the gcds of X, Z, M: this method is priced far over the budget, rejected at once."""
+    _, N = method_matrices(_NILPOTENT_BLOCK, _coprime_method(2000), [F(1)])
+    assert pruning.pieces_cost(N, pruning.nodes(F(1))) > WORK_BUDGET
+    with _Deadline(20), pytest.raises(CheckFailure, match="pieces of the pruning test"):
+        pruning.survivors([[F(1), F(1), F(1)]], [F(1)], [[F(0), F(1), F(0)]], N, F(1))
+
+
+def test_the_method_reduction_is_priced():
+    """Fixed: a polynomial r (h = 1) needs no gcd; a rational one is priced first
+    (polys.affordable_gcd: the common denominator built under a running bound)."""
+    numerator = [str(x) for x in _coprime_method(2000)]
+    with _Deadline(20):
+        assert Method({"numerator": numerator, "denominator": ["1"]}).is_polynomial
+    with _Deadline(20), pytest.raises(CheckFailure, match="work budget"):
+        Method({"numerator": numerator, "denominator": numerator})
 
 
 def test_the_rational_rebuild_is_priced_by_the_method_coefficients():

@@ -9,6 +9,7 @@ resource one: the Bernstein pieces were priced by their count only, not by the s
 and 36 s before a verdict).  Fixed: the pieces run in integers and are priced by bit size
 (pruning_rational.pieces_cost); both inputs are now rejected by the price in a fraction of a second."""
 
+
 import random
 from math import factorial
 
@@ -20,7 +21,10 @@ from exactinv_check import check
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 SQUARE = [["1", "1"], ["1", "-1"], ["-1", "1"], ["-1", "-1"]]
+
+
 SQUARE_G = [["1", "0"], ["-1", "0"], ["0", "1"], ["0", "-1"]]
 
 
@@ -36,27 +40,6 @@ def _record(U, scale, pieces, vertex=0):
             "pieces": pieces}
 
 
-# ---------------------------------------------------------------- resources (two holes, fixed: pieces priced by bit size)
-
-def test_bernstein_pieces_priced_by_bit_size_taylor64():
-    method = {"numerator": [f"1/{factorial(k)}" for k in range(65)], "denominator": ["1"]}
-    A = [["-1", "1/3"], ["-1/5", "-1"]]
-    cert = _square_cert(method, A, _record("1", "18446744073709551615/9223372036854775809", 512))
-    assert not check_within(cert, 2).ok
-
-
-def test_bernstein_pieces_priced_by_method_coefficient_size():
-    rng = random.Random(1)
-    def big():
-        return str(rng.randrange(10 ** 999, 10 ** 1000))
-
-    method = {"numerator": ["1"] + [f"{big()}/{big()}" for _ in range(20)], "denominator": ["1"]}
-    cert = _square_cert(method, [["-1", "0"], ["0", "-1"]], _record("1", "1", 8))
-    assert not check_within(cert, 2).ok
-
-
-# ---------------------------------------------------------------- what held
-
 def _true_cert(kind=ei.valid_steplengths):
     """(1 + z)/(1 + z/3), A = diag(-1, -2): D(h) = (1 - h/3)(1 - 2h/3), roots 3/2 and 3 (D changes sign);
     the valid set is [0, 3/4]."""
@@ -65,6 +48,8 @@ def _true_cert(kind=ei.valid_steplengths):
     P = ei.Polyhedron.from_vertices([[1, 1], [1, -1], [-1, 1], [-1, -1]])
     return kind(S, P, m, prune=False, box=False).certificate
 
+
+# ------------------------------------------------------------------ soundness
 
 @pytest.mark.parametrize("kind", [ei.valid_steplengths, ei.largest_threshold])
 @pytest.mark.parametrize("U, ok, why", [
@@ -109,3 +94,22 @@ def test_touch_at_infinity_kept_with_u_equal_one():
     cert["claims"][0]["intervals"][-1]["hi"] = "1000"
     cert["claims"][0]["intervals"][-1]["hi_closed"] = True
     assert not check(cert).ok
+
+
+# ------------------------------------------------------------------ resource
+
+def test_bernstein_pieces_priced_by_bit_size_taylor64():
+    method = {"numerator": [f"1/{factorial(k)}" for k in range(65)], "denominator": ["1"]}
+    A = [["-1", "1/3"], ["-1/5", "-1"]]
+    cert = _square_cert(method, A, _record("1", "18446744073709551615/9223372036854775809", 512))
+    assert not check_within(cert, 2).ok
+
+
+def test_bernstein_pieces_priced_by_method_coefficient_size():
+    rng = random.Random(1)
+    def big():
+        return str(rng.randrange(10 ** 999, 10 ** 1000))
+
+    method = {"numerator": ["1"] + [f"{big()}/{big()}" for _ in range(20)], "denominator": ["1"]}
+    cert = _square_cert(method, [["-1", "0"], ["0", "-1"]], _record("1", "1", 8))
+    assert not check_within(cert, 2).ok

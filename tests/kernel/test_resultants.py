@@ -6,6 +6,7 @@ accepted, and no input may make ``check`` raise or run (practically) forever.
 These tests fail until the kernel is fixed.
 """
 
+
 import random
 
 import pytest
@@ -13,79 +14,11 @@ from test_kernel_attacks import _cert, _check_in_subprocess  # shared helpers
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
-# --------------------------------------------------------------------------
-# 1. Exact root work on a small, bounded-degree input runs for minutes
-#
-# MAX_DEGREE = 200 bounds the degree of every polynomial, and MAX_DIGITS =
-# 4000 the length of every number, but nothing bounds their PRODUCT.  Parsing
-# an algebraic number runs polys.squarefree (an integer primitive-PRS gcd with
-# the derivative) and then a full Sturm sequence; with primitive PRS the
-# coefficients grow to ~ degree x coefficient-size bits, so the work grows
-# like d^4 * bits^2.  Measured on the kernel: degree 200 with 10-digit
-# coefficients (a 2.4 KB claim) takes ~80 s; degree 200 with 30-digit or
-# degree 100 with 100-digit coefficients (about 10 KB) runs for more than
-# 100 s, degree 40 with 1000-digit coefficients spends 67 s in squarefree and
-# another 70 s in Sturm.  The claim below is false anyway (rho(1 + z) = 1)
-# and must be rejected quickly -- e.g. by a budget on degree x bit size
-# before any gcd / Sturm work on certificate-supplied polynomials.
-
-def test_a_bounded_degree_algebraic_number_with_long_coefficients_is_rejected_quickly():
-    rng = random.Random(1)
-    poly = [str(rng.randint(-10**30, 10**30)) for _ in range(200)] + ["1"]  # degree 200, ~6 KB
-    cert = _cert([{"type": "absolute_monotonicity_radius", "value": {"poly": poly, "interval": ["0", "2"]},
-                   "reason": "coefficient", "attained": True}],
-                 method=(["1", "1"], ["1"]))
-    assert _check_in_subprocess(cert, 60) == "REJECTED"
-
-
-def test_a_forged_threshold_with_long_coefficients_is_rejected_quickly():
-    # The same cost reached through a valid_steplengths claim: a forged end
-    # (degree 60, 1000-digit coefficients, ~60 KB) about a trivial problem.
-    # x' = -x, P = [-1, 1], forward Euler: the valid set is [0, 2].
-    rng = random.Random(2)
-    poly = [str(rng.randint(-10**1000, 10**1000)) for _ in range(60)] + ["1"]
-    cert = _cert([{"type": "valid_steplengths",
-                   "intervals": [{"lo": "0", "hi": {"poly": poly, "interval": ["1", "3"]},
-                                  "lo_closed": True, "hi_closed": True}],
-                   "vertices": [["-1"], ["1"]], "rays": [], "lines": []}],
-                 method=(["1", "1"], ["1"]), A=[["-1"]], G=[["1"], ["-1"]], b=["1", "1"])
-    assert _check_in_subprocess(cert, 60) == "REJECTED"
-
-
-# --------------------------------------------------------------------------
-# 2. polys.quotient_polynomial is wrong, so z_p / alpha(H) (erratum E2) is wrong
-#
-# reals.quotient(a, b) for two irrational algebraic numbers isolates a/b as a
-# root of t(T) = res_y(p(T y), q(y)), interpolated from its values at
-# T = 0, 1, ..., dp*dq.  At T = 0, p(0 y) is the CONSTANT p(0), and
-# polys.resultant(p(0), q) returns p(0)^dq -- but the polynomial in T is the
-# Sylvester resultant of FORMAL degree dp, whose value at 0 is
-# (-1)^(dp dq) lc(q)^dp p(0)^dq.  The sample at T = 0 is therefore wrong
-# whenever dp*dq is odd or lc(q) != +-1 (checked against sympy.resultant), so
-# t is not the resultant and a/b is in general not a root of it.  quotient()
-# then either returns a root of the wrong t that happens to be alone in a
-# coarse enclosure of a/b (a WRONG number), or never finds one and bisects
-# for MAX_REFINEMENTS = 20000 rounds with growing denominators (a hang).
-#
-# rational_threshold reaches it through quotient(pole, alpha): an irrational
-# smallest pole z_p and an irrational alpha(H) (with _e2_may_bind unable to
-# skip it).  The engine's own _quotient fails on the same problems
-# (ArithmeticError "could not isolate the quotient of two algebraic numbers"),
-# so it cannot write these certificates; the value below was computed with
-# sympy.
-#
-# Problem: x' = Ax on the orthant (G = -I, b = 0), A = [[0, 1/3], [1/3, 1/3]]
-# (Metzler, so H = A is forced by HG = GA and gamma* = 0), and
-# r(z) = 1/(1 - z + z^2/5), a product of two backward-Euler-type factors with
-# poles (5 -+ sqrt 5)/2, so rho = oo (the kernel verifies both claims).  Then
-# tau = min(z_p/alpha(H), first singular h) and both are
-# z_p/alpha(A) = ((5 - sqrt 5)/2) / ((1 + sqrt 5)/6) = 2.5623058987...,
-# the root of x^2 + 15x - 45 (sympy: det(I - tau A + tau^2 A^2/5) = 0), not
-# attained.  The kernel computes z_p/alpha(H) as a root of
-# 75 + 10475x - 9020x^2 + 2545x^3 - 247x^4 near 2.5020 instead.
 
 E2_PROBLEM = {"A": [["0", "1/3"], ["1/3", "1/3"]], "G": [["-1", "0"], ["0", "-1"]], "b": ["0", "0"],
               "method": {"name": "rational", "numerator": ["1"], "denominator": ["1", "-1", "1/5"]}}
+
+
 E2_CLAIMS = [  # written by the engine (optimal_gamma, absolute_monotonicity_radius); both verify
     {"type": "gamma_star", "value": "0", "paths": {"float-rounded": 2}, "H": [["0", "1/3"], ["1/3", "1/3"]],
      "binding_row": 0, "dual": {"y": ["-1", "0"], "lambda": "0"}},
@@ -98,6 +31,8 @@ def _e2_cert(threshold_claim):
     return {"format": "exactinv-certificate", "version": 2, "problem": E2_PROBLEM,
             "claims": E2_CLAIMS + [threshold_claim]}
 
+
+# ------------------------------------------------------------------ soundness
 
 def test_a_false_rational_threshold_from_a_wrong_quotient_is_rejected():
     # tau = 2.5020... (the kernel's wrong z_p/alpha) instead of 2.5623...: the
@@ -120,6 +55,31 @@ def test_the_true_rational_threshold_z_p_over_alpha_is_accepted():
                                "interval": ["2562305898749/1000000000000", "2049844719/800000000"]},
                      "attained": False, "rho": "oo"})
     assert check(cert).ok
+
+
+# ------------------------------------------------------------------ resource
+
+def test_a_bounded_degree_algebraic_number_with_long_coefficients_is_rejected_quickly():
+    rng = random.Random(1)
+    poly = [str(rng.randint(-10**30, 10**30)) for _ in range(200)] + ["1"]  # degree 200, ~6 KB
+    cert = _cert([{"type": "absolute_monotonicity_radius", "value": {"poly": poly, "interval": ["0", "2"]},
+                   "reason": "coefficient", "attained": True}],
+                 method=(["1", "1"], ["1"]))
+    assert _check_in_subprocess(cert, 60) == "REJECTED"
+
+
+def test_a_forged_threshold_with_long_coefficients_is_rejected_quickly():
+    # The same cost reached through a valid_steplengths claim: a forged end
+    # (degree 60, 1000-digit coefficients, ~60 KB) about a trivial problem.
+    # x' = -x, P = [-1, 1], forward Euler: the valid set is [0, 2].
+    rng = random.Random(2)
+    poly = [str(rng.randint(-10**1000, 10**1000)) for _ in range(60)] + ["1"]
+    cert = _cert([{"type": "valid_steplengths",
+                   "intervals": [{"lo": "0", "hi": {"poly": poly, "interval": ["1", "3"]},
+                                  "lo_closed": True, "hi_closed": True}],
+                   "vertices": [["-1"], ["1"]], "rays": [], "lines": []}],
+                 method=(["1", "1"], ["1"]), A=[["-1"]], G=[["1"], ["-1"]], b=["1", "1"])
+    assert _check_in_subprocess(cert, 60) == "REJECTED"
 
 
 def test_quotient_of_two_cubic_irrationals_does_not_hang():

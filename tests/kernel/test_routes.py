@@ -3,6 +3,7 @@
 The core reaches them at two dispatch points only (claims_sets, polyhedra); the routes import the core, never the
 other way round; and each route module is documented in the package's docstring."""
 
+
 import ast
 from pathlib import Path
 
@@ -10,6 +11,8 @@ import exactinv_check
 import exactinv_check.routes as routes
 
 PACKAGE = Path(exactinv_check.__file__).resolve().parent
+
+
 DISPATCH = {"claims_sets.py", "polyhedra.py"}
 
 
@@ -27,6 +30,8 @@ def _imports_from_routes(path: Path) -> set[str]:
             found |= {a.name for a in node.names if a.name.startswith("exactinv_check.routes")}
     return found
 
+
+# ------------------------------------------------------------------ soundness
 
 def test_the_scan_sees_every_form_of_import():
     import tempfile
@@ -48,3 +53,7 @@ def test_routes_are_documented_and_exist():
     assert modules == ["boxes", "lp_pieces", "polygon", "pruning", "pruning_rational"]
     for name in modules:
         assert f"* {name} -- " in routes.__doc__, name
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

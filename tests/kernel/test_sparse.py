@@ -9,6 +9,7 @@
 * the reader is the dense definition: random matrices, encoded sparse, read back equal.
 """
 
+
 from __future__ import annotations
 
 import copy
@@ -31,7 +32,11 @@ from exactinv_check.failure import CheckFailure
 from exactinv_check.sparse import read_square, sparse_matrix
 
 ROT = ei.LinearSystem([[-1, 1], [-1, -1]])
+
+
 BOX = ei.Polyhedron.box([-1, -1], [1, 1])
+
+
 HEX = ei.Polyhedron.from_vertices([(2, 0), (1, 2), (-1, 2), (-2, 0), (-1, -2), (1, -2)])
 
 
@@ -61,37 +66,6 @@ CERTS = _certificates()
 def _has_sparse(cert):
     text = json.dumps(cert)
     return '"sparse"' in text
-
-
-@pytest.mark.parametrize("name", sorted(CERTS))
-def test_the_engine_writes_version_3_and_the_kernel_verifies_it(name):
-    cert = CERTS[name]
-    assert cert["version"] == 3 and _has_sparse(cert)
-    assert check(copy.deepcopy(cert)).ok, check(copy.deepcopy(cert))
-
-
-@pytest.mark.parametrize("name", sorted(CERTS))
-def test_versions_1_and_2_still_verify(name):
-    v2 = as_version(CERTS[name], 2)
-    assert not _has_sparse(v2)
-    assert check(v2).ok, check(v2)
-    v1 = as_version(CERTS[name], 1)
-    for claim in v1["claims"]:
-        claim.pop("dt", None)  # a version 2 key; the stated Ad is the version 1 claim
-    if all("Ad" in c or c["type"] != "discrete_invariance" for c in v1["claims"]):
-        assert check(v1).ok, check(v1)
-
-
-def test_the_encodings_do_not_mix():
-    cert = CERTS["polynomial threshold"]
-    dense_in_v3 = as_version(cert, 2)
-    dense_in_v3["version"] = 3
-    report = check(dense_in_v3)
-    assert not report.ok and "version 3 matrix" in str(report)
-    sparse_in_v2 = copy.deepcopy(cert)
-    sparse_in_v2["version"] = 2
-    report = check(sparse_in_v2)
-    assert not report.ok and "expected a list of rows" in str(report)
 
 
 def _H(cert):
@@ -136,6 +110,46 @@ FORGERIES = {
 }
 
 
+@st.composite
+def matrices(draw):
+    m = draw(st.integers(0, 6))
+    entry = st.one_of(st.just(F(0)), st.fractions(max_denominator=10**12).filter(lambda q: abs(q) < 10**15))
+    return [[draw(entry) for _ in range(m)] for _ in range(m)]
+
+
+# ------------------------------------------------------------------ soundness
+
+@pytest.mark.parametrize("name", sorted(CERTS))
+def test_the_engine_writes_version_3_and_the_kernel_verifies_it(name):
+    cert = CERTS[name]
+    assert cert["version"] == 3 and _has_sparse(cert)
+    assert check(copy.deepcopy(cert)).ok, check(copy.deepcopy(cert))
+
+
+@pytest.mark.parametrize("name", sorted(CERTS))
+def test_versions_1_and_2_still_verify(name):
+    v2 = as_version(CERTS[name], 2)
+    assert not _has_sparse(v2)
+    assert check(v2).ok, check(v2)
+    v1 = as_version(CERTS[name], 1)
+    for claim in v1["claims"]:
+        claim.pop("dt", None)  # a version 2 key; the stated Ad is the version 1 claim
+    if all("Ad" in c or c["type"] != "discrete_invariance" for c in v1["claims"]):
+        assert check(v1).ok, check(v1)
+
+
+def test_the_encodings_do_not_mix():
+    cert = CERTS["polynomial threshold"]
+    dense_in_v3 = as_version(cert, 2)
+    dense_in_v3["version"] = 3
+    report = check(dense_in_v3)
+    assert not report.ok and "version 3 matrix" in str(report)
+    sparse_in_v2 = copy.deepcopy(cert)
+    sparse_in_v2["version"] = 2
+    report = check(sparse_in_v2)
+    assert not report.ok and "expected a list of rows" in str(report)
+
+
 @pytest.mark.parametrize("name", sorted(FORGERIES))
 def test_forged_sparse_matrices_are_rejected(name):
     mutate, message = FORGERIES[name]
@@ -170,32 +184,6 @@ def test_forged_h_tilde_and_robust_vertices_are_rejected():
     assert not check(cert).ok
 
 
-def test_a_huge_sparse_matrix_is_priced_before_its_numbers_are_parsed():
-    """1000 rows of 200 entries of 4000-digit strings: rejected by the price of reading them
-    (entries x words^2, over the certificate's budget), before one number is parsed."""
-    m, big = 1000, "7" * 4000
-    value = {"sparse": [[[k, big] for k in range(200)] for _ in range(m)]}
-    from exactinv_check import budget, rationals
-    parsed = []
-    real = rationals.rational
-    with budget.account() as acc:
-        import exactinv_check.sparse as sparse
-        sparse.rational = lambda *a: parsed.append(1) or real(*a)
-        try:
-            with pytest.raises(CheckFailure, match="numbers of up to 4000 digits"):
-                sparse_matrix(value, "H", m, m)
-        finally:
-            sparse.rational = real
-        assert not parsed and acc.spent <= budget.sparse_read_cost(200 * m, 1)  # only the count was charged
-
-
-@st.composite
-def matrices(draw):
-    m = draw(st.integers(0, 6))
-    entry = st.one_of(st.just(F(0)), st.fractions(max_denominator=10**12).filter(lambda q: abs(q) < 10**15))
-    return [[draw(entry) for _ in range(m)] for _ in range(m)]
-
-
 @settings(max_examples=200, deadline=None)
 @given(matrices())
 def test_the_reader_is_the_dense_definition(M):
@@ -221,3 +209,24 @@ def test_random_forgeries_of_indices_are_rejected():
         t = rng.randrange(len(rows[i]))
         rows[i][t][0] = rng.choice([rows[i][t][0] + len(rows), -1 - rng.randrange(5), len(rows)])
         assert not check(cert).ok
+
+
+# ------------------------------------------------------------------ resource
+
+def test_a_huge_sparse_matrix_is_priced_before_its_numbers_are_parsed():
+    """1000 rows of 200 entries of 4000-digit strings: rejected by the price of reading them
+    (entries x words^2, over the certificate's budget), before one number is parsed."""
+    m, big = 1000, "7" * 4000
+    value = {"sparse": [[[k, big] for k in range(200)] for _ in range(m)]}
+    from exactinv_check import budget, rationals
+    parsed = []
+    real = rationals.rational
+    with budget.account() as acc:
+        import exactinv_check.sparse as sparse
+        sparse.rational = lambda *a: parsed.append(1) or real(*a)
+        try:
+            with pytest.raises(CheckFailure, match="numbers of up to 4000 digits"):
+                sparse_matrix(value, "H", m, m)
+        finally:
+            sparse.rational = real
+        assert not parsed and acc.spent <= budget.sparse_read_cost(200 * m, 1)  # only the count was charged

@@ -3,6 +3,7 @@ the packed pruning test against the row-by-row test, the condition-by-condition
 valid set against the plain sweep over every root, and forged certificates
 that are wrong only where a condition is tangent (a double root)."""
 
+
 import random
 from fractions import Fraction as F
 from types import SimpleNamespace
@@ -20,9 +21,120 @@ from exactinv_check.routes import pruning
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
+
 big = st.integers(-(2**130), 2**130)
+
+
 small = st.integers(-9, 9)
 
+
+def _reference_survivors(G, b, verts, N, T):
+    """Every vertex against every row at every chord end, no blocks: the set the kernel must keep."""
+    rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], pruning.K * beta) for g, beta in integer_rows(G, b)]
+    ends = pruning._Ends(pruning.chord_pieces(N, T), [pruning.vertex_box(v) for v in verts])
+    return {i: sorted(j for j in range(len(rows)) if any(pruning._outside(rows[j], box)
+                                                         for box in ends.boxes(pruning.vertex_box(v))))
+            for i, v in enumerate(verts)}
+
+
+def _random_problem(rng, n, degree):
+    A = [[F(rng.randint(-3, 3), 4) - (i == j) for j in range(n)] for i in range(n)]
+    G = [[F(rng.randint(-5, 5)) for _ in range(n)] for _ in range(12)]
+    G = [g for g in G if any(g)]
+    b = [F(rng.randint(1, 9), rng.randint(1, 3)) for _ in G]
+    verts = [[F(rng.randint(-20, 20), rng.randint(1, 20)) for _ in range(n)] for _ in range(30)]
+    taylor = [F(1)]
+    for k in range(1, degree + 1):
+        taylor.append(taylor[-1] / k)
+    _, N = method_matrices(A, taylor, [F(1)])
+    return A, G, b, verts, N
+
+
+def _path(N, h, v):
+    return [sum(sum(h**k * N[k][r][c] for k in range(len(N))) * v[c] for c in range(len(v))) for r in range(len(v))]
+
+
+def _secant_error_within_remainder(N, t, d, s):
+    X, Z, M = pruning._piece(N, t, d)
+    n = len(X)
+    Ad = [[sum((t + s) ** k * N[k][r][c] for k in range(len(N))) for c in range(n)] for r in range(n)]
+    return all(abs(Ad[r][c] - ((1 - s / d) * X[r][c] + s / d * Z[r][c])) <= M[r][c] for r in range(n) for c in range(n))
+
+
+def _mul(*ps):
+    out = [F(1)]
+    for p in ps:
+        out = poly_arithmetic.mul(out, [F(c) for c in p])
+    return out
+
+
+def _same(a, b):
+    return len(a) == len(b) and all(
+        x.lo.compare(y.lo) == 0 and x.hi.compare(y.hi) == 0 and (x.lo_closed, x.hi_closed) == (y.lo_closed, y.hi_closed)
+        for x, y in zip(a, b))
+
+
+def _plain(D, ineq, eq):
+    """The reference: one sweep over every positive root of every condition."""
+    return validset._valid_set(D, ineq, eq, len(ineq), None)
+
+
+roots = st.fractions(min_value=0, max_value=4, max_denominator=6)
+
+
+factor = st.one_of(
+    st.tuples(roots).map(lambda r: [-r[0], 1]),  # h - r
+    st.tuples(roots).map(lambda r: [r[0] ** 2, -2 * r[0], 1]),  # (h - r)^2: tangent
+    st.tuples(st.integers(1, 5), st.integers(-4, 4)).map(lambda t: [t[0] + t[1] ** 2, -2 * t[1], 1]),  # no real root
+)
+
+
+condition = st.tuples(st.sampled_from([1, -1]), st.lists(factor, min_size=1, max_size=3)).map(
+    lambda t: _mul([t[0]], *t[1]))
+
+
+def _certificate(numerator, intervals):
+    """x' = -x on P = [-1, 1], a polynomial method r with the given numerator: the conditions
+    are 1 - r(-h) >= 0 and 1 + r(-h) >= 0 (vertex 1; vertex -1 gives the same)."""
+    return {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": [["-1"]], "G": [["1"], ["-1"]], "b": ["1", "1"],
+                        "method": {"name": "custom", "numerator": numerator, "denominator": ["1"]}},
+            "claims": [{"type": "valid_steplengths", "vertices": [["1"], ["-1"]], "rays": [], "lines": [],
+                        "intervals": [{"lo": lo, "hi": hi, "lo_closed": lc, "hi_closed": hc} for lo, hi, lc, hc in intervals]}]}
+
+
+# r(z) = 1 + z + 2z^2 + z^3: 1 - r(-h) = h (h - 1)^2 touches 0 at h = 1, 1 + r(-h) = 2 - h (h - 1)^2 ends the set at 2
+TOUCHING = ["1", "1", "2", "1"]
+
+
+# r(z) = 1 - z - 2z^2 - z^3: 1 - r(-h) = -h (h - 1)^2 <= 0, zero only at 0 and 1: the valid set is {0, 1}
+ISOLATED = ["1", "-1", "-2", "-1"]
+
+
+def _ratio_reference(A, G, b, gens):
+    best = None
+    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
+        for x in vectors:
+            Ax = [sum(a * c for a, c in zip(row, x)) for row in A]
+            for g, beta in zip(G, b):
+                rate = sum(a * c for a, c in zip(g, Ax))
+                if kind == "line":
+                    eps = None if rate == 0 else F(0)
+                elif rate <= 0:
+                    eps = None
+                else:
+                    eps = ((beta if kind == "vertex" else 0) - sum(a * c for a, c in zip(g, x))) / rate
+                if eps is not None and (best is None or eps < best):
+                    best = eps
+    return best
+
+
+def _rows(H):
+    """The kernel's form of H (exactinv_check/sparse.py): per row, the (column, nonzero value) pairs."""
+    return [[(k, x) for k, x in enumerate(row) if x] for row in H]
+
+
+# ------------------------------------------------------------------ soundness
 
 @settings(max_examples=60, deadline=None)
 @given(st.data(), st.integers(1, 3))
@@ -51,28 +163,6 @@ def test_the_slots_hold_the_rows_even_when_every_box_is_zero():
     assert pruning._Packed(table, [0, 1]).outside([0, 0]) == [1]
 
 
-def _reference_survivors(G, b, verts, N, T):
-    """Every vertex against every row at every chord end, no blocks: the set the kernel must keep."""
-    rows = [([max(x, 0) for x in g] + [min(x, 0) for x in g], pruning.K * beta) for g, beta in integer_rows(G, b)]
-    ends = pruning._Ends(pruning.chord_pieces(N, T), [pruning.vertex_box(v) for v in verts])
-    return {i: sorted(j for j in range(len(rows)) if any(pruning._outside(rows[j], box)
-                                                         for box in ends.boxes(pruning.vertex_box(v))))
-            for i, v in enumerate(verts)}
-
-
-def _random_problem(rng, n, degree):
-    A = [[F(rng.randint(-3, 3), 4) - (i == j) for j in range(n)] for i in range(n)]
-    G = [[F(rng.randint(-5, 5)) for _ in range(n)] for _ in range(12)]
-    G = [g for g in G if any(g)]
-    b = [F(rng.randint(1, 9), rng.randint(1, 3)) for _ in G]
-    verts = [[F(rng.randint(-20, 20), rng.randint(1, 20)) for _ in range(n)] for _ in range(30)]
-    taylor = [F(1)]
-    for k in range(1, degree + 1):
-        taylor.append(taylor[-1] / k)
-    _, N = method_matrices(A, taylor, [F(1)])
-    return A, G, b, verts, N
-
-
 @pytest.mark.parametrize("seed", range(4))
 def test_survivors_are_the_pairs_of_the_row_by_row_test(seed):
     rng = random.Random(seed)
@@ -96,10 +186,6 @@ def test_the_kernels_own_order_is_a_permutation_that_sorts_a_line():
     assert sorted(pruning.morton_order([pruning.vertex_box(v) for v in cloud])) == list(range(50))
 
 
-def _path(N, h, v):
-    return [sum(sum(h**k * N[k][r][c] for k in range(len(N))) * v[c] for c in range(len(v))) for r in range(len(v))]
-
-
 @settings(max_examples=40, deadline=None)
 @given(st.integers(0, 10**6), st.integers(2, 3), st.integers(1, 6), st.fractions(0, 3, max_denominator=64),
        st.lists(st.fractions(0, 1, max_denominator=1000), min_size=4, max_size=4))
@@ -120,13 +206,6 @@ def test_the_end_boxes_hold_the_path(seed, n, degree, T, xs):
             for x in xs:
                 point = _path(N, t + x * (u - t), v)
                 assert all(l <= pruning.K * p <= h for l, p, h in zip(lo, point, hi))
-
-
-def _secant_error_within_remainder(N, t, d, s):
-    X, Z, M = pruning._piece(N, t, d)
-    n = len(X)
-    Ad = [[sum((t + s) ** k * N[k][r][c] for k in range(len(N))) for c in range(n)] for r in range(n)]
-    return all(abs(Ad[r][c] - ((1 - s / d) * X[r][c] + s / d * Z[r][c])) <= M[r][c] for r in range(n) for c in range(n))
 
 
 @settings(max_examples=60, deadline=None)
@@ -164,37 +243,6 @@ def test_a_pair_that_leaves_its_half_space_survives(seed, n, degree, T, xs):
             for j, g in enumerate(G):
                 if sum(a * c for a, c in zip(g, point)) >= b[j]:
                     assert j in near[i], (h, i, j)
-
-
-# ---------------------------------------------------------------- the valid set, condition by condition
-
-
-def _mul(*ps):
-    out = [F(1)]
-    for p in ps:
-        out = poly_arithmetic.mul(out, [F(c) for c in p])
-    return out
-
-
-def _same(a, b):
-    return len(a) == len(b) and all(
-        x.lo.compare(y.lo) == 0 and x.hi.compare(y.hi) == 0 and (x.lo_closed, x.hi_closed) == (y.lo_closed, y.hi_closed)
-        for x, y in zip(a, b))
-
-
-def _plain(D, ineq, eq):
-    """The reference: one sweep over every positive root of every condition."""
-    return validset._valid_set(D, ineq, eq, len(ineq), None)
-
-
-roots = st.fractions(min_value=0, max_value=4, max_denominator=6)
-factor = st.one_of(
-    st.tuples(roots).map(lambda r: [-r[0], 1]),  # h - r
-    st.tuples(roots).map(lambda r: [r[0] ** 2, -2 * r[0], 1]),  # (h - r)^2: tangent
-    st.tuples(st.integers(1, 5), st.integers(-4, 4)).map(lambda t: [t[0] + t[1] ** 2, -2 * t[1], 1]),  # no real root
-)
-condition = st.tuples(st.sampled_from([1, -1]), st.lists(factor, min_size=1, max_size=3)).map(
-    lambda t: _mul([t[0]], *t[1]))
 
 
 @settings(max_examples=120, deadline=None)
@@ -256,25 +304,6 @@ def test_tangent_conditions_by_hand():
     assert [(str(i.lo), str(i.hi), i.lo_closed, i.hi_closed) for i in V] == [("1", "3", False, True)]
 
 
-# ------------------------------------------------- forged certificates, wrong only at a tangency
-
-
-def _certificate(numerator, intervals):
-    """x' = -x on P = [-1, 1], a polynomial method r with the given numerator: the conditions
-    are 1 - r(-h) >= 0 and 1 + r(-h) >= 0 (vertex 1; vertex -1 gives the same)."""
-    return {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": [["-1"]], "G": [["1"], ["-1"]], "b": ["1", "1"],
-                        "method": {"name": "custom", "numerator": numerator, "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths", "vertices": [["1"], ["-1"]], "rays": [], "lines": [],
-                        "intervals": [{"lo": lo, "hi": hi, "lo_closed": lc, "hi_closed": hc} for lo, hi, lc, hc in intervals]}]}
-
-
-# r(z) = 1 + z + 2z^2 + z^3: 1 - r(-h) = h (h - 1)^2 touches 0 at h = 1, 1 + r(-h) = 2 - h (h - 1)^2 ends the set at 2
-TOUCHING = ["1", "1", "2", "1"]
-# r(z) = 1 - z - 2z^2 - z^3: 1 - r(-h) = -h (h - 1)^2 <= 0, zero only at 0 and 1: the valid set is {0, 1}
-ISOLATED = ["1", "-1", "-2", "-1"]
-
-
 @pytest.mark.parametrize("numerator, truth, forgeries", [
     (TOUCHING, [("0", "2", True, True)],
      [[("0", "1", True, False), ("1", "2", False, True)], [("0", "1", True, True)], [("0", "2", True, False)]]),
@@ -311,27 +340,6 @@ def test_the_end_boxes_are_the_rounded_bound():
                 assert centre - spread >= box[n + k] >= centre - spread - 1 - K * F(2 * n * 64, 2**48)
 
 
-# ---------------------------------------------------- the paper's claims on large P: integers, sparse H
-
-
-def _ratio_reference(A, G, b, gens):
-    best = None
-    for kind, vectors in (("vertex", gens.vertices), ("ray", gens.rays), ("line", gens.lines)):
-        for x in vectors:
-            Ax = [sum(a * c for a, c in zip(row, x)) for row in A]
-            for g, beta in zip(G, b):
-                rate = sum(a * c for a, c in zip(g, Ax))
-                if kind == "line":
-                    eps = None if rate == 0 else F(0)
-                elif rate <= 0:
-                    eps = None
-                else:
-                    eps = ((beta if kind == "vertex" else 0) - sum(a * c for a, c in zip(g, x))) / rate
-                if eps is not None and (best is None or eps < best):
-                    best = eps
-    return best
-
-
 @settings(max_examples=80, deadline=None)
 @given(st.integers(0, 10**6), st.integers(1, 3))
 def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
@@ -346,11 +354,6 @@ def test_the_integer_ratio_tests_are_the_fraction_ones(seed, n):
                               for k in ("vertices", "rays", "lines")})
     problem = SimpleNamespace(A=A, G=G, b=b)
     assert claims_thresholds._ratio_tests(problem, gens) == _ratio_reference(A, G, b, gens)
-
-
-def _rows(H):
-    """The kernel's form of H (exactinv_check/sparse.py): per row, the (column, nonzero value) pairs."""
-    return [[(k, x) for k, x in enumerate(row) if x] for row in H]
 
 
 def test_a_sparse_H_is_checked_like_a_dense_one():
@@ -376,3 +379,7 @@ def test_a_sparse_H_is_checked_like_a_dense_one():
     swap = [[F(int(k in (i, i ^ 1))) for k in range(4)] for i in range(4)]
     with pytest.raises(CheckFailure, match="Hb"):
         check_H(zero, _rows(swap))
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

@@ -1,5 +1,6 @@
 """The trusted kernel stands alone: standard library only, runnable from a bare copy."""
 
+
 import ast
 import json
 import shutil
@@ -13,6 +14,18 @@ import exactinv_check
 
 KERNEL = Path(exactinv_check.__file__).parent
 
+
+def _bare_copy(tmp_path):
+    shutil.copytree(KERNEL, tmp_path / "exactinv_check", ignore=shutil.ignore_patterns("__pycache__"))
+    return tmp_path
+
+
+def _run(cwd, *args):
+    return subprocess.run([sys.executable, "-S", "-m", "exactinv_check", *args], cwd=cwd, capture_output=True,
+                          text=True, timeout=120, env={"PATH": "/usr/bin:/bin"})
+
+
+# ------------------------------------------------------------------ soundness
 
 def test_every_kernel_module_imports_only_the_standard_library():
     for path in sorted(KERNEL.rglob("*.py")):  # the routes package too
@@ -28,16 +41,6 @@ def test_every_kernel_module_imports_only_the_standard_library():
                 continue
             bad = [n for n in names if n not in sys.stdlib_module_names]
             assert not bad, f"{path.name} imports {bad}"
-
-
-def _bare_copy(tmp_path):
-    shutil.copytree(KERNEL, tmp_path / "exactinv_check", ignore=shutil.ignore_patterns("__pycache__"))
-    return tmp_path
-
-
-def _run(cwd, *args):
-    return subprocess.run([sys.executable, "-S", "-m", "exactinv_check", *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=120, env={"PATH": "/usr/bin:/bin"})
 
 
 def test_a_bare_copy_runs_under_python_minus_S(tmp_path):
@@ -71,3 +74,7 @@ def test_progress_is_reported_per_claim():
     assert exactinv_check.check(cert, progress=lambda k, total, kind: seen.append((k, total, kind))).ok
     assert [k for k, _, _ in seen] == list(range(len(cert["claims"])))
     assert [kind for _, _, kind in seen] == [c["type"] for c in cert["claims"]]
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

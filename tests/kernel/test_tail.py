@@ -4,6 +4,7 @@ Every claim prove_tail makes is re-checked here independently: c_j(kappa) = [w^j
 exact series division with Fractions, for j from N to well past it, at several rational kappa in [0, K].
 """
 
+
 import ast
 import random
 import re
@@ -55,25 +56,58 @@ def assert_tail_positive(g, h, K, N, extra=120):
 
 # (name, g, h, K, largest acceptable N)
 BACKWARD_EULER = (P(1), P(1, -1))
+
+
 DOUBLE_POLE = (P(1), P(1, -1, F(1, 4)))  # 1/(1 - z/2)^2: b_1 = 0 exactly, b_2 = 4
+
+
 TRAPEZOID = (P(1, F(1, 2)), P(1, F(-1, 2)))
+
+
 THETA = (P(1, F(2, 3)), P(1, F(-1, 3)))
+
+
 DOUBLE_WITH_ZERO = (P(1, F(1, 2)), pmul(P(1, F(-1, 4)), P(1, F(-1, 4))))  # 8/(z-4) + 48/(z-4)^2: b_1 = -8
+
+
 PRODUCT = (P(1), pmul(pmul(P(1, F(-1, 2)), P(1, F(-1, 2))), P(1, F(-1, 3))))  # b_{2,1} = -12 but a product
+
+
 FAR_PAIR = (P(1), pmul(P(1, -1), P(1, F(-4, 5), F(1, 5))))  # poles 1 and 2 +- i: Re > p*, always farther
+
+
 LEFT_PAIR = (P(1), pmul(P(1, -1), P(1, F(2, 5), F(1, 5))))  # poles 1 and -1 +- 2i: farther only for kappa < 1
+
+
 PAIR_DOUBLE_STAR = (P(1, F(1, 2)), pmul(pmul(P(1, -1), P(1, -1)), P(1, 0, F(1, 4))))  # 1 (mu=2), +-2i; kappa < 3/2
+
+
 DOUBLE_PAIR = (P(1), pmul(P(1, -1), pmul(P(1, 0, F(1, 9)), P(1, 0, F(1, 9)))))  # 1, +-3i double; kappa < 4
+
+
 CANCELLING = (pmul(P(1, 1), P(1, F(-1, 3))), pmul(P(1, -1), P(1, F(-1, 3))))  # (1+z)/(1-z) after cancellation
+
+
 NUMERATOR_HIGHER = (P(1, 1, 1), P(1, F(-1, 2)))  # -2z - 6 + 7/(1 - z/2): c_j = 14 (2+kappa)^-(j+1), j >= 2
+
+
 CLOSE_POLES = (P(1, F(1, 2)), pmul(P(1, -1), P(1, -1 / (1 + F(1, 10**9)))))  # poles 1, 1 + 10^-9; b_2 < 0
+
+
 CLOSE_PAIRS = (P(1, F(1, 3)), pmul(P(1, -1), pmul(P(1, F(-1, 2), F(1, 8)), P(1, F(-1, 2) * (1 + F(1, 10**8)),
                                                                            F(1, 8) * (1 + F(1, 10**8))))))
+
+
 PADE_13 = (P(1, F(1, 4)), P(1, F(-3, 4), F(1, 4), F(-1, 24)))  # complex pair ties with p* at kappa = 1.19582...
+
+
 DEGREE_15 = (P(1, F(1, 3)), [F(1), F(-1)])
+
+
 for _k in range(1, 8):  # pole 1 and seven complex pairs (2 + k) +- (k/2) i
     _n = F(2 + _k) ** 2 + F(_k, 2) ** 2
     DEGREE_15 = (DEGREE_15[0], pmul(DEGREE_15[1], [F(1), -2 * F(2 + _k) / _n, 1 / _n]))
+
 
 POSITIVE = [
     ("backward Euler", *BACKWARD_EULER, None, 1),
@@ -101,6 +135,31 @@ POSITIVE = [
     ("Pade(1,3) near the tie", *PADE_13, F(1195, 1000), 60),
 ]
 
+
+NEGATIVE = [
+    ("1/(1+z): no positive pole", P(1), P(1, 1), None, "no positive real pole"),
+    ("1/(1+z) K=1", P(1), P(1, 1), F(1), "no positive real pole"),
+    ("(1-2z)/(1-z): b < 0", P(1, -2), P(1, -1), F(1), "wrong sign"),
+    ("1/(1-z+z^2/2): no real pole", P(1), P(1, -1, F(1, 2)), F(1), "no positive real pole"),
+    ("Pade(1,2): complex poles", P(1, F(1, 3)), P(1, F(-2, 3), F(1, 6)), F(1), "no positive real pole"),
+    ("(1-z)(1+z+z^2): tie at kappa=0", P(1), pmul(P(1, -1), P(1, 1, 1)), F(0), "does not dominate"),
+    ("(1-z)(1+z+z^2) K=1", P(1), pmul(P(1, -1), P(1, 1, 1)), F(1), "does not dominate"),
+    ("left pair, K at the tie", *LEFT_PAIR, F(1), "does not dominate"),
+    ("Pade(1,3) beyond the tie 1.19582", *PADE_13, F(1196, 1000), "does not dominate"),
+    ("left pair, K beyond the tie", *LEFT_PAIR, F(2), "does not dominate"),
+    ("left pair K=oo", *LEFT_PAIR, None, "K = oo"),
+    ("far pair K=oo", *FAR_PAIR, None, "K = oo"),
+    ("(1+z/2)/(1-z/4)^2 K=oo", *DOUBLE_WITH_ZERO, None, "K = oo"),
+    ("polynomial after cancellation", P(1, -1), P(1, -1), F(1), "polynomial"),
+    ("h(0) < 0", P(-1), P(-1, 1), F(1), "h(0) > 0"),
+    ("r(0) != 1", P(2), P(1, -1), F(1), "r(0)"),
+    ("negative K", P(1), P(1, -1), F(-1), "K must be"),
+    ("float K", P(1), P(1, -1), 0.5, "K must be"),
+    ("float coefficient", [F(1), 0.5], P(1, -1), F(1), "exact rationals"),
+]
+
+
+# ------------------------------------------------------------------ soundness
 
 @pytest.mark.parametrize("name,g,h,K,N_max", POSITIVE, ids=[c[0] for c in POSITIVE])
 def test_proved_tails_are_positive(name, g, h, K, N_max):
@@ -161,29 +220,6 @@ def test_integer_K_is_accepted():
     assert prove_tail(*THETA, 1) == prove_tail(*THETA, F(1))
 
 
-NEGATIVE = [
-    ("1/(1+z): no positive pole", P(1), P(1, 1), None, "no positive real pole"),
-    ("1/(1+z) K=1", P(1), P(1, 1), F(1), "no positive real pole"),
-    ("(1-2z)/(1-z): b < 0", P(1, -2), P(1, -1), F(1), "wrong sign"),
-    ("1/(1-z+z^2/2): no real pole", P(1), P(1, -1, F(1, 2)), F(1), "no positive real pole"),
-    ("Pade(1,2): complex poles", P(1, F(1, 3)), P(1, F(-2, 3), F(1, 6)), F(1), "no positive real pole"),
-    ("(1-z)(1+z+z^2): tie at kappa=0", P(1), pmul(P(1, -1), P(1, 1, 1)), F(0), "does not dominate"),
-    ("(1-z)(1+z+z^2) K=1", P(1), pmul(P(1, -1), P(1, 1, 1)), F(1), "does not dominate"),
-    ("left pair, K at the tie", *LEFT_PAIR, F(1), "does not dominate"),
-    ("Pade(1,3) beyond the tie 1.19582", *PADE_13, F(1196, 1000), "does not dominate"),
-    ("left pair, K beyond the tie", *LEFT_PAIR, F(2), "does not dominate"),
-    ("left pair K=oo", *LEFT_PAIR, None, "K = oo"),
-    ("far pair K=oo", *FAR_PAIR, None, "K = oo"),
-    ("(1+z/2)/(1-z/4)^2 K=oo", *DOUBLE_WITH_ZERO, None, "K = oo"),
-    ("polynomial after cancellation", P(1, -1), P(1, -1), F(1), "polynomial"),
-    ("h(0) < 0", P(-1), P(-1, 1), F(1), "h(0) > 0"),
-    ("r(0) != 1", P(2), P(1, -1), F(1), "r(0)"),
-    ("negative K", P(1), P(1, -1), F(-1), "K must be"),
-    ("float K", P(1), P(1, -1), 0.5, "K must be"),
-    ("float coefficient", [F(1), 0.5], P(1, -1), F(1), "exact rationals"),
-]
-
-
 @pytest.mark.parametrize("name,g,h,K,reason", NEGATIVE, ids=[c[0] for c in NEGATIVE])
 def test_unprovable_tails_are_rejected(name, g, h, K, reason):
     with budget.account(limit=10**12, time_limit=None) as acc, pytest.raises(CheckFailure, match=re.escape(reason)):
@@ -217,3 +253,7 @@ def test_kernel_imports_only_the_standard_library(module):
                 # reals: a type, under TYPE_CHECKING
                 allowed = {"rationals", "failure", "poly_arithmetic", "polys", "tie", "disks", "reals", "format", "budget"}
                 assert node.level == 1 and node.module in allowed, node.module
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.

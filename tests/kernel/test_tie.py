@@ -2,6 +2,7 @@
 rejected -- a value that is not a root of the tie polynomial, a root where no pole ties, a tie that p*
 loses (its principal part is outweighed), a tie claimed after a coefficient already turned negative."""
 
+
 import copy
 import json
 from fractions import Fraction
@@ -32,6 +33,8 @@ def _kappa_A(method):
     with precision(256):
         return dominance_tie(pole_structure(method.numerator, method.denominator, p_star), method.h).kappa
 
+
+# ------------------------------------------------------------------ soundness
 
 @pytest.mark.parametrize("k", [2, 3, 4, 5, 6])
 def test_genuine_ties_verify(k):
@@ -116,7 +119,6 @@ def test_a_tie_on_a_method_with_only_real_positive_poles_is_rejected():
     _rejected(cert)
 
 
-# ------------------------------------------------------- the recomputation's filter and guard (claims_radius)
 @pytest.mark.parametrize("value", ["1/2", "11957/10000", "2"])
 def test_a_moved_coefficient_radius_is_rejected(value):
     """Pade(0,3): rho = 0.58446...  Below it (1/2) every d_j is positive on (0, K] and is set aside, so only
@@ -135,3 +137,7 @@ def test_the_guard_never_stands_in_for_rho():
     claim.update(value="0", binding=None)
     claim.pop("d", None)
     _rejected(cert)
+
+
+# ------------------------------------------------------------------ resource
+# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.
