@@ -142,6 +142,7 @@ def test_g_one_plus_z_is_one_by_c0():
     assert coefficients_at(g, h, F(1) + F(1, 10 ** 6), 1)[0] < 0
 
 
+@pytest.mark.workload  # python-flint and the kernel only (python-flint is one version in both CI stages)
 def test_an_unbalanced_pair_gives_a_finite_rho_with_a_witness():
     """c = 3/2: 1 + 3/2 cos t < 0 near t = pi, so f < 0 there for large t: rho < oo (the engine's exact sign of
     b_*^2 - 4|b|^2 in Q(p*) is -1), confirmed by the reference on both sides of rho."""
@@ -155,6 +156,7 @@ def test_an_unbalanced_pair_gives_a_finite_rho_with_a_witness():
     assert c[r.binding] < 0
 
 
+@pytest.mark.workload  # python-flint and the kernel only (python-flint is one version in both CI stages)
 def test_a_negative_constant_gives_the_root_of_r():
     """C = -1/2, c = 3/4: f >= 0 and c_0 = r(-kappa) decreases to -1/2: rho is the positive root of g(-kappa)."""
     g, h = conjugate_lines(2, 2, 1, F(3, 4), F(-1, 2))
@@ -217,6 +219,7 @@ def test_the_kernel_rejects_oo_for_touching_lines_with_a_negative_constant():
     assert not check(forged).ok
 
 
+@pytest.mark.workload  # python-flint and the kernel only (python-flint is one version in both CI stages)
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(a=st.integers(min_value=2, max_value=4), d=st.sampled_from([2, 3, 5]),
        y=st.fractions(min_value=F(1, 2), max_value=2, max_denominator=2),
