@@ -127,6 +127,7 @@ def run_chunk(tasks: Sequence[Task], limits: Limits) -> list[dict]:
     breaches a limit is recorded, the sandbox is replaced, and the rest of the chunk runs.  The
     records are :func:`run_task`'s, exact values and all; only the measurements differ.
 
+    >>> resident(_solve).close()  # a fresh child: this thread's may hold one from an earlier run
     >>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": %d}}'
     >>> chunk = [Task(f"t{p}", "certify", text=box % p) for p in (1, 2)] + [Task("bad", "certify", error="unread")]
     >>> [(r["id"], r["status"], r["values"]["largest_threshold"] if "values" in r else None)
