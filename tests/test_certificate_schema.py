@@ -139,18 +139,32 @@ def errors(instance, schema, root=SCHEMA, path="$"):
     return out
 
 
+_VALIDATORS: dict = {}
+
+
+def _validator(schema):
+    """jsonschema's validator for ``schema`` (resolved against the full schema), built once per schema
+    object: ``jsonschema.validate`` re-checks the schema itself on every call, 0.2 s each, which made the
+    kernel fuzz test spend most of its time here (the schema itself is checked once, in
+    test_the_schema_is_a_valid_draft_2020_12_schema below)."""
+    kept = _VALIDATORS.get(id(schema))
+    if kept is None or kept[0] is not schema:
+        kept = (schema, jsonschema.Draft202012Validator(SCHEMA if schema is SCHEMA else {**SCHEMA, **schema}))
+        _VALIDATORS[id(schema)] = kept
+    return kept[1]
+
+
 def assert_valid(instance, schema=SCHEMA, what="instance"):
     found = errors(instance, schema)
     assert not found, f"{what} is not valid against the schema:\n" + "\n".join(found[:20])
     if jsonschema is not None:
-        jsonschema.validate(instance, {**SCHEMA, **schema} if schema is not SCHEMA else SCHEMA,
-                            cls=jsonschema.Draft202012Validator)
+        _validator(schema).validate(instance)
 
 
 def is_valid(instance, schema=SCHEMA):
     ours = not errors(instance, schema)
     if jsonschema is not None:
-        theirs = jsonschema.Draft202012Validator({**SCHEMA, **schema}).is_valid(instance)
+        theirs = _validator(schema).is_valid(instance)
         assert ours == theirs, f"the test's validator ({ours}) and jsonschema ({theirs}) disagree on {instance!r:.200}"
     return ours
 
