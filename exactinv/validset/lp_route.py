@@ -83,11 +83,27 @@ from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
+from .lp_duals import DualCertificate, dual_piece, dual_target
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 
 _ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
 _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
+
+
+@dataclass(frozen=True)
+class DualPolicy:
+    """When the walk tries a dual piece (:mod:`exactinv.validset.lp_duals`): at the end a of a basis piece of
+    facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i);
+    after a failed try, the next ``backoff`` pieces of that facet try none.  A heuristic only: every dual
+    piece is exact, and a failed one falls back to basis pieces.  ``DUAL_POLICY = None`` turns dual pieces
+    off (tests force them on with ``DualPolicy(Fraction(0), 0)``)."""
+
+    slack: Fraction = Fraction(1, 4)
+    backoff: int = 3
+
+
+DUAL_POLICY: DualPolicy | None = DualPolicy()
 
 
 _TOUCH = ("an unbounded facet's ray conditions all vanish at h = {} (two rays of P change places there, or one "
@@ -103,12 +119,15 @@ class LPRouteDeclined(ExactinvException):
 class Piece:
     """[start, end] (end may be INF) on which ``basis`` (rows of G, sorted) is optimal; or, for a ray
     piece (``basis`` None), the open (start, end) on which the ray ``ray`` of P has
-    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated."""
+    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated; or, for a dual piece
+    (``dual`` set, ``basis`` and ``ray`` None), the closed [start, end] on which facet i is valid
+    (:mod:`exactinv.validset.lp_duals`)."""
 
     start: Real
     end: Real
     basis: tuple[int, ...] | None
     ray: tuple[Fraction, ...] | None = None
+    dual: DualCertificate | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -152,7 +171,8 @@ class LPRoute:
         T = 2, where facet 1's walk stops.)
         """
         out: dict = {"facets": [{"ends": [encode_real(p.end) for p in f.pieces],
-                                 "bases": [list(p.basis) if p.basis is not None else {"ray": vec(p.ray)}
+                                 "bases": [list(p.basis) if p.basis is not None else p.dual.record()
+                                           if p.dual is not None else {"ray": vec(p.ray)}
                                            for p in f.pieces]} for f in self.facets]}
         if self.point is not None:
             out["point"] = vec(self.point)
@@ -161,7 +181,12 @@ class LPRoute:
     @property
     def rays(self) -> int:
         """How many pieces are ray pieces (facet i violated on the open piece)."""
-        return sum(p.basis is None for f in self.facets for p in f.pieces)
+        return sum(p.ray is not None for f in self.facets for p in f.pieces)
+
+    @property
+    def duals(self) -> int:
+        """How many pieces are dual pieces (facet i valid on the piece, no condition)."""
+        return sum(p.dual is not None for f in self.facets for p in f.pieces)
 
 
 
@@ -655,12 +680,48 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     asked = range(P.m if walked is None else walked)
     T: Real = INF
     objectives = [P.objective(i) for i in range(P.m)]
-    walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
+    # per facet (piece, its condition -- None for a dual piece --, its point: x_B, or None for a ray piece)
+    walks: list[list[tuple[Piece, flint.fmpq_poly | None, tuple[Fraction, ...] | None]]] = [[] for _ in range(P.m)]
 
     last: list[_Step | None] = [None] * P.m
+    policy = DUAL_POLICY
+    backoff = [0] * P.m
+    targets: dict[int, flint.fmpq_mat] = {}
+
+    def try_dual(i: int, t: FiniteReal) -> bool:
+        """A dual piece of facet i from t (or from a rational just left of an algebraic t, the previous basis
+        piece cut there), when the previous piece is a basis piece and facet i is far from binding at t."""
+        before = last[i]
+        if policy is None or before is None or before.basis is None or isinstance(t, Infinity):
+            return False
+        if backoff[i] > 0:
+            backoff[i] -= 1
+            return False
+        piece, c, _ = walks[i][-1]
+        a = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
+        if not exact_lt(piece.start, a):
+            return False
+        b_i, x = P.cs.b[i], fmpq_of(a)
+        Da = P.D(x)
+        if not (b_i > 0 and Da != 0 and c(x) > fmpq_of(policy.slack) * Da * Da * fmpq_of(b_i)):
+            return False
+        if i not in targets:
+            targets[i] = dual_target(objectives[i], P.D)
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, P.exact, a, _cap(T))
+        if cert is None:
+            backoff[i] = policy.backoff
+            return False
+        if a != t:
+            walks[i][-1] = (replace(piece, end=a), c, walks[i][-1][2])
+        dual = Piece(a, cert.end, None, None, cert)
+        last[i] = _Step(dual, None, -1, None, True)
+        walks[i].append((dual, None, walks[i][-1][2]))
+        return True
 
     def step(i: int, t: FiniteReal) -> None:
         nonlocal T
+        if try_dual(i, t):
+            return
         found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
         before = last[i]
         if found.basis is None and before is not None and not before.covered:
@@ -714,13 +775,13 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
-    rays = any(piece.basis is None for walk in walks for piece, _, _ in walk)
+    rays = any(piece.ray is not None for walk in walks for piece, _, _ in walk)
     conditions, vertices, facets = [], [], []
     for i, walk in enumerate(walks[:len(asked)]):
         facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
         for piece, c, x in walk:
             vertices.append(x if x is not None else P.point)
-            if not never_binds(c.coeffs()):
+            if c is not None and not never_binds(c.coeffs()):
                 kind = Kind.VERTEX if piece.basis is not None else Kind.RAY
                 conditions.append(Condition(kind, len(vertices) - 1, i, c))
     t2 = time.perf_counter()

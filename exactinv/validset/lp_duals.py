@@ -1,0 +1,150 @@
+"""Dual pieces of the LP route: the paper's certificate (Theorem 2.2) carried along h (docs/design.md, "Dual pieces").
+
+Where facet i is far from binding, the optimal basis of max g_i A_d(h) x over P
+changes often while phi_i(h) stays well below b_i.  A *dual piece* [a, e] (a
+rational) skips those changes: vectors y_0, ..., y_K >= 0 indexed by the rows
+of G with
+
+    y(h) = sum_k (h - a)^k y_k,   G^T y(h) = D(h) N(h)^T g_i   (as polynomials),
+
+so y(h) >= 0 for every h >= a, and
+
+    q(h) = D(h)^2 b_i - y(h)^T b >= 0 on [a, e].
+
+For x in P and D(h) != 0, D g_i N x = y^T G x <= y^T b <= D^2 b_i, so
+g_i A_d(h) x <= b_i: facet i is valid on the whole piece, and the piece adds no
+condition.  The identity holds coefficient by coefficient: G^T y_k = d_k, the
+k-th Taylor coefficient at a of D N^T g_i.  y_0 is the optimal basis's dual at a
+(z_B(a) >= 0, exact); y_k for k >= 1 is B^-T d_k when that is >= 0, else the
+verified optimal dual of max d_k^T x over P from the exact LP chain
+(:class:`~exactinv.lp.solver.ExactLPSolver`: a float HiGHS hint rebuilt and
+verified in Q), so b^T y_k is as small as it can be.  The piece ends at a
+rational e at or below the first root of q beyond a (certified root isolation),
+or at the caller's cap.  Anything that fails returns None: the walk then goes on
+with basis pieces.  Every piece is re-proved by the kernel
+(:mod:`exactinv_check.routes.lp_duals`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from math import comb
+
+import flint
+
+from ..core.algebraic import Real, RealAlgebraic, exact_lt
+from ..core.flintq import exact_text, fmpq_of, fraction_of
+from ..core.real_signs import narrowed
+from ..core.roots import real_roots
+from ..core.scalars import INF
+from ..lp.solver import OPTIMAL, ExactLPSolver
+
+__all__ = ["DualCertificate", "dual_target", "dual_piece"]
+
+_ZERO = flint.fmpq(0)
+
+
+@dataclass(frozen=True)
+class DualCertificate:
+    """The vectors y_0, ..., y_K of a dual piece starting at ``start`` (each a tuple of (row, value > 0),
+    rows increasing) and the piece's ``end`` (a rational, or INF)."""
+
+    start: Fraction
+    end: Real
+    ys: tuple[tuple[tuple[int, Fraction], ...], ...]
+
+    def record(self) -> dict:
+        """The certificate's entry for the piece: ``{"dual": [y_0, ..., y_K]}``, each y_k as [row, value] pairs.
+
+        >>> DualCertificate(Fraction(1), INF, (((0, Fraction(1, 2)),), ())).record()
+        {'dual': [[[0, '1/2']], []]}
+        """
+        return {"dual": [[[r, exact_text(v)] for r, v in y] for y in self.ys]}
+
+
+def dual_target(C: flint.fmpq_mat, D: flint.fmpq_poly) -> flint.fmpq_mat:
+    """D(h) N(h)^T g_i as an n x W matrix of coefficients (row l: component l from h^0 up), from
+    C_i (column k: (g_i N_k)^T) and D.
+
+    >>> dual_target(flint.fmpq_mat([[1, 2]]), flint.fmpq_poly([1, 1]))
+    [1, 3, 2]
+    """
+    Dm = D.coeffs() or [_ZERO]
+    L = C.ncols()
+    W = L + len(Dm) - 1
+    S = flint.fmpq_mat(L, W, [Dm[j - k] if 0 <= j - k < len(Dm) else 0 for k in range(L) for j in range(W)])
+    return C * S
+
+
+def _taylor(T: flint.fmpq_mat, a: Fraction) -> flint.fmpq_mat:
+    """The Taylor coefficients at a of every row of T: column k = sum_j C(j, k) a^(j-k) T[:, j]."""
+    W = T.ncols()
+    x = fmpq_of(a)
+    S = flint.fmpq_mat(W, W, [comb(j, k) * x ** (j - k) if j >= k else 0 for j in range(W) for k in range(W)])
+    return T * S
+
+
+def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[tuple[int, Fraction], ...]:
+    """(row, value) for the nonzero entries of y (indexed by ``rows`` when given, else by position)."""
+    index = rows if rows is not None else range(len(y))
+    return tuple(sorted((r, fraction_of(v)) for r, v in zip(index, y) if v != 0))
+
+
+def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmpq_poly, target: flint.fmpq_mat,
+               rows: tuple[int, ...], inv_t: flint.fmpq_mat, solver: ExactLPSolver, a: Fraction,
+               cap: Fraction | None) -> DualCertificate | None:
+    """The dual piece of a facet from the rational a, with y_0 the dual of the basis ``rows`` (B^-T = ``inv_t``,
+    optimal at a), or None when one is not found or q(a) <= 0 (the facet binds at a): module docstring.
+    Exact throughout; the LP chain's floats are hints verified in Q."""
+    n, m = G.ncols(), G.nrows()
+    Tk = _taylor(target, a)
+    W = Tk.ncols()
+    ys: list[tuple[tuple[int, Fraction], ...]] = []
+    betas: list[flint.fmpq] = []
+    GT = G.transpose()
+    for k in range(W):
+        d = flint.fmpq_mat(n, 1, [Tk[l, k] for l in range(n)])
+        if all(v == 0 for v in d.entries()):
+            ys.append(())
+            betas.append(_ZERO)
+            continue
+        yB = (inv_t * d).entries()
+        if all(v >= 0 for v in yB):
+            y = _sparse(yB, rows)
+        elif k == 0:
+            return None  # the basis is not optimal at a
+        else:
+            res = solver.solve(d, b, (False,) * n)
+            if res.status != OPTIMAL or res.y_q is None:
+                return None  # unbounded in the direction d_k: no y_k >= 0 (Farkas)
+            full = res.y_q.entries()
+            if len(full) != m or any(v < 0 for v in full) or GT * res.y_q != d:
+                return None
+            y = _sparse(full)
+        ys.append(y)
+        betas.append(sum((fmpq_of(v) * b[r, 0] for r, v in y), _ZERO))
+    while len(ys) > 1 and not ys[-1]:
+        ys.pop()
+    shifted = flint.fmpq_poly([0])
+    step = flint.fmpq_poly([-fmpq_of(a), 1])
+    for beta in reversed(betas):
+        shifted = shifted * step + beta
+    q = D * D * fmpq_of(b_i) - shifted
+    x = fmpq_of(a)
+    if not q(x) > 0:
+        return None
+    end: Fraction | None = None  # None: q > 0 on all of [a, oo)
+    for root, _ in real_roots(q):
+        if exact_lt(a, root):
+            if isinstance(root, RealAlgebraic):
+                end = narrowed(root).lower  # type: ignore[union-attr]
+                # a rational at or below the first root beyond a
+            else:
+                end = Fraction(root)
+            break
+    if cap is not None and (end is None or cap < end):
+        end = cap
+    if end is not None and not end > a:
+        return None
+    return DualCertificate(a, INF if end is None else end, tuple(ys))
