@@ -94,13 +94,16 @@ _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giv
 @dataclass(frozen=True)
 class DualPolicy:
     """When the walk tries a dual piece (:mod:`exactinv.validset.lp_duals`): at the end a of a basis piece of
-    facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i);
-    after a failed try, the next ``backoff`` pieces of that facet try none.  A heuristic only: every dual
-    piece is exact, and a failed one falls back to basis pieces.  ``DUAL_POLICY = None`` turns dual pieces
-    off (tests force them on with ``DualPolicy(Fraction(0), 0)``)."""
+    facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i)
+    and the facet's last ``after`` pieces are all basis pieces (the optimal basis changes while the facet
+    is far from binding: what a dual piece skips); after a failed try, the next ``backoff`` pieces of that
+    facet try none.  A heuristic only: every dual piece is exact, and a failed one falls back to basis
+    pieces.  ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
+    ``DualPolicy(Fraction(0), 0, 1)``)."""
 
     slack: Fraction = Fraction(1, 4)
     backoff: int = 3
+    after: int = 3
 
 
 DUAL_POLICY: DualPolicy | None = DualPolicy()
@@ -696,6 +699,8 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             return False
         if backoff[i] > 0:
             backoff[i] -= 1
+            return False
+        if len(walks[i]) < policy.after or any(p.basis is None for p, _, _ in walks[i][-policy.after:]):
             return False
         piece, c, _ = walks[i][-1]
         a = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)

@@ -156,9 +156,10 @@ class DualChecker:
         p: list[Fraction] = [betas[-1]]
         for k in range(W - 2, -1, -1):
             p = [betas[k] - a * p[0]] + [p[j] - a * p[j + 1] for j in range(len(p) - 1)] + [p[-1]]
-        return poly_arithmetic.sub(poly_arithmetic.scale(poly_arithmetic.mul(self.D, self.D), b_i), p)
+        q: list[Fraction] = poly_arithmetic.sub(poly_arithmetic.scale(poly_arithmetic.mul(self.D, self.D), b_i), p)
+        return q
 
 
-def _bits(q: Any) -> int:
-    q = Fraction(q)
-    return q.numerator.bit_length() + q.denominator.bit_length()
+def _bits(x: Any) -> int:
+    q = Fraction(x)
+    return int(q.numerator.bit_length() + q.denominator.bit_length())

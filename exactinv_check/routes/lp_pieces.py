@@ -51,8 +51,7 @@ from types import SimpleNamespace
 from typing import Any, NoReturn
 
 from .. import poly_arithmetic, polys
-from ..budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
-from ..budget import MAX_LP_DUAL_ENTRIES
+from ..budget import LP_WORK_BUDGET, MAX_LP_DUAL_ENTRIES, PYTHON_OP, charge, descartes_node_cost, within_budget, words
 from ..budget import MAX_LP_PIECES as MAX_PIECES
 from ..conditions import condition_polynomials, method_matrices, rebuild_size
 from ..failure import CheckFailure, require, require_budget
@@ -67,7 +66,8 @@ from .lp_duals import DualChecker, DualPiece, parse_dual
 def parse(record: Any, m: Any, n: Any) -> Any:
     """([(ends, pieces)] per facet, point, lines), shape-checked: a piece is a basis (a tuple of n distinct
     rows of G' = G with the ``lines`` appended as rows m, m + 1, ...), a ray piece (a list of n rationals,
-    the ray d) or a dual piece (a :class:`~exactinv_check.routes.lp_duals.DualPiece`); ``point`` (a list of n rationals) is present exactly when some piece is a ray piece;
+    the ray d) or a dual piece (a :class:`~exactinv_check.routes.lp_duals.DualPiece`); ``point`` (a list of
+    n rationals) is present exactly when some piece is a ray piece;
     ``lines`` (a nonempty list of vectors, P with lines) may be absent (then [])."""
     require(isinstance(record, dict) and {"facets"} <= set(record) <= {"facets", "point", "lines"},
             "lp has the key facets (and point, with ray pieces; lines, for a P with lines)")
@@ -89,7 +89,7 @@ def parse(record: Any, m: Any, n: Any) -> Any:
                 f"lp facet {i}: as many ends as bases, at least one")
         total += len(ends)
         require(total <= MAX_PIECES, f"lp: more than {MAX_PIECES} pieces")
-        rows = []
+        rows: list[Any] = []
         for basis in bases:
             if isinstance(basis, dict) and "dual" in basis:
                 require(set(basis) == {"dual"}, f"lp facet {i}: a dual piece is {{\"dual\": [y_0, ..., y_K]}}")

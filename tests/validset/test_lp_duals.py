@@ -13,7 +13,6 @@ from hypothesis import strategies as st
 
 import exactinv as ei
 import exactinv_check
-from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.core.scalars import INF
 from exactinv.lp.solver import ExactLPSolver
 from exactinv.validset import lp_route as engine_lp
@@ -21,7 +20,7 @@ from exactinv.validset.lp_duals import DualCertificate, dual_piece, dual_target
 
 M = ei.methods
 F = Fraction
-FORCED = engine_lp.DualPolicy(F(0), 0)  # try a dual piece at the end of every basis piece
+FORCED = engine_lp.DualPolicy(F(0), 0, 1)  # try a dual piece at the end of every basis piece
 
 
 def _ends(V):
