@@ -500,7 +500,11 @@ def lp_conditions(problem: Any, record: Any) -> Any:
                     duals = DualChecker(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines), D, N)
                 what = f"lp facet {i} piece {k} (dual)"
                 q = duals.q(i, problem.b[i], basis, start.q, what)
-                _require_nonnegative(q, start, end, f"{what}: q(h) = D(h)^2 b_i - y(h)^T b")
+                if order_of_ends == 0:  # a point piece [a, a]: q(a) >= 0 alone
+                    if q and start.sign_of(poly_arithmetic.integer_coefficients(q)) < 0:
+                        _fail(f"{what}: q(h) = D(h)^2 b_i - y(h)^T b is negative at its point {start}")
+                else:
+                    _require_nonnegative(q, start, end, f"{what}: q(h) = D(h)^2 b_i - y(h)^T b")
                 left_open = False
                 points.append(zero)
                 rays.append(zero)

@@ -83,6 +83,21 @@ def test_a_point_dual_piece_and_a_dual_piece_touching_q_at_its_end():
     assert _set(RECORD) == [("0", "2", True, True)]
 
 
+def test_a_point_dual_piece_with_q_negative_is_rejected_and_q_touching_0_at_the_start_accepted():
+    """y_0 = (3/2, 1): G^T y_0 = 1/2 (the identity holds) but b^T y_0 = 5/2 > 1, so q(1/2) = -3/2: rejected
+    as a point piece [1/2, 1/2] (found: the general check bisected the point itself, a kernel fault); with
+    y_0 = (3/4, 1/4), q(h) = 1/2 - h is 0 at the point 1/2 (accepted: the facet is exactly valid there) and
+    negative right of it."""
+    bad = {"dual": [[[0, "3/2"], [1, "1"]], [[1, "1"]]]}
+    with pytest.raises(CheckFailure, match="negative at its point"):
+        _set(_forged(lambda f: f.update(ends=["1/2", "1/2", "1", "oo"], bases=[[0], bad, DUAL, [1]])))
+    touch = {"dual": [[[0, "3/4"], [1, "1/4"]], [[1, "1"]]]}
+    assert _set(_forged(lambda f: f.update(ends=["1/2", "1/2", "1", "oo"], bases=[[0], touch, DUAL, [1]]))) == \
+        [("0", "2", True, True)]
+    with pytest.raises(CheckFailure, match="negative inside"):
+        _set(_forged(lambda f: f.update(ends=["1/2", "1", "oo"], bases=[[0], touch, [1]])))
+
+
 @pytest.mark.parametrize("change, message", [
     (lambda f: f["bases"][1]["dual"].__setitem__(1, [[1, "-1"]]), "not positive"),
     (lambda f: f["bases"][1]["dual"].__setitem__(1, [[1, "0"]]), "not positive"),
