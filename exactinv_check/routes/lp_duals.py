@@ -34,7 +34,7 @@ from operator import mul
 from typing import Any
 
 from .. import poly_arithmetic
-from ..budget import MAX_DEGREE, PYTHON_OP, charge, words
+from ..budget import MAX_DEGREE, MAX_LP_DUAL_ENTRIES, PARSE_ENTRY, PYTHON_OP, charge, words
 from ..failure import CheckFailure, require
 from ..rationals import integer, rational
 
@@ -52,11 +52,16 @@ class DualPiece:
         return sum(len(y) for y in self.ys)
 
 
-def parse_dual(data: Any, rows_of_G: int, what: str) -> DualPiece:
+def parse_dual(data: Any, rows_of_G: int, what: str, room: int) -> DualPiece:
     """A dual piece's ``dual`` list, shape-checked: 1 to MAX_DEGREE + 1 vectors, each a list of [row, value]
-    with rows strictly increasing in [0, rows_of_G) and values positive rationals."""
+    with rows strictly increasing in [0, rows_of_G) and values positive rationals; at most ``room`` entries
+    in all, counted before any number is parsed (the record's bound :data:`MAX_LP_DUAL_ENTRIES`)."""
     require(isinstance(data, list) and 1 <= len(data) <= MAX_DEGREE + 1,
             f"{what}: a dual piece is {{\"dual\": [y_0, ..., y_K]}}, at least one vector")
+    require(all(isinstance(y, list) for y in data) and sum(len(y) for y in data) <= room,
+            f"{what}: vectors y_k are lists, and the record's dual pieces have at most {MAX_LP_DUAL_ENTRIES} "
+            "entries in all")
+    charge(PARSE_ENTRY * sum(len(y) for y in data), "parsing a dual piece")
     ys = []
     for k, y in enumerate(data):
         require(isinstance(y, list) and len(y) <= rows_of_G, f"{what} y_{k}: a list of [row, value], at most "

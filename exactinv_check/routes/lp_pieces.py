@@ -79,6 +79,8 @@ def parse(record: Any, m: Any, n: Any) -> Any:
     rows_of_G = m + len(lines)
     facets = record["facets"]
     require(isinstance(facets, list) and len(facets) == m, f"lp: one entry per facet ({m})")
+    require(_dual_entries(facets) <= MAX_LP_DUAL_ENTRIES,
+            f"lp: the dual pieces have more than {MAX_LP_DUAL_ENTRIES} entries in all")  # before any is parsed
     total = entries = 0
     out = []
     rays = False
@@ -93,9 +95,8 @@ def parse(record: Any, m: Any, n: Any) -> Any:
         for basis in bases:
             if isinstance(basis, dict) and "dual" in basis:
                 require(set(basis) == {"dual"}, f"lp facet {i}: a dual piece is {{\"dual\": [y_0, ..., y_K]}}")
-                dual = parse_dual(basis["dual"], rows_of_G, f"lp facet {i} dual piece")
+                dual = parse_dual(basis["dual"], rows_of_G, f"lp facet {i} dual piece", MAX_LP_DUAL_ENTRIES - entries)
                 entries += dual.entries
-                require(entries <= MAX_LP_DUAL_ENTRIES, f"lp: more than {MAX_LP_DUAL_ENTRIES} entries of dual pieces")
                 rows.append(dual)
                 continue
             if isinstance(basis, dict):
@@ -111,6 +112,13 @@ def parse(record: Any, m: Any, n: Any) -> Any:
     require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
     point = vector(record["point"], "lp point", n) if rays else None
     return out, point, lines
+
+
+def _dual_entries(facets: list[Any]) -> int:
+    """The entries of every dual piece's vectors, counted without parsing one (malformed parts count 0)."""
+    return sum(len(y) for f in facets if isinstance(f, dict) and isinstance(f.get("bases"), list)
+               for b in f["bases"] if isinstance(b, dict) and isinstance(b.get("dual"), list)
+               for y in b["dual"] if isinstance(y, list))
 
 
 def _require_lines(rows: Any, lines: Any) -> None:
