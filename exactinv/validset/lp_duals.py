@@ -27,6 +27,7 @@ with basis pieces.  Every piece is re-proved by the kernel
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from math import comb
@@ -91,12 +92,18 @@ def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[t
     return tuple(sorted((r, fraction_of(v)) for r, v in zip(index, y) if v != 0))
 
 
+Suggest = Callable[[int, flint.fmpq_mat], Iterable[tuple[tuple[int, ...], flint.fmpq_mat]]]
+
+
 def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmpq_poly, target: flint.fmpq_mat,
                rows: tuple[int, ...], inv_t: flint.fmpq_mat, solver: ExactLPSolver, a: Fraction,
-               cap: Fraction | None) -> DualCertificate | None:
+               cap: Fraction | None, suggest: Suggest | None = None,
+               used: Callable[[int, tuple[int, ...]], None] | None = None) -> DualCertificate | None:
     """The dual piece of a facet from the rational a, with y_0 the dual of the basis ``rows`` (B^-T = ``inv_t``,
     optimal at a), or None when one is not found or q(a) <= 0 (the facet binds at a): module docstring.
-    Exact throughout; the LP chain's floats are hints verified in Q."""
+    For k >= 1, ``suggest(k, d_k)`` may propose bases (rows, B^-T) first -- the one that served d_k last
+    time, a float LP's basis: each is taken only when B^-T d_k >= 0 exactly, and ``used(k, rows)`` is told
+    which one served -- before the exact LP chain.  Exact throughout; floats are hints verified in Q."""
     n, m = G.ncols(), G.nrows()
     Tk = _taylor(target, a)
     W = Tk.ncols()
@@ -110,12 +117,21 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
             betas.append(_ZERO)
             continue
         yB = (inv_t * d).entries()
+        y = None
         if all(v >= 0 for v in yB):
             y = _sparse(yB, rows)
         elif k == 0:
             return None  # the basis is not optimal at a
-        else:
-            res = solver.solve(d, b, (False,) * n)
+        elif suggest is not None:
+            for other, other_inv_t in suggest(k, d):
+                yO = (other_inv_t * d).entries()
+                if all(v >= 0 for v in yO):
+                    y = _sparse(yO, other)
+                    if used is not None:
+                        used(k, other)
+                    break
+        if y is None:
+            res = solver.solve(d, b, (False,) * n)  # the exact LP chain: a verified optimal dual
             if res.status != OPTIMAL or res.y_q is None:
                 return None  # unbounded in the direction d_k: no y_k >= 0 (Farkas)
             full = res.y_q.entries()

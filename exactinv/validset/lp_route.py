@@ -206,11 +206,27 @@ class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
     b - G x_B (exact, and their numerators over a positive common denominator)."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack")
+    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float")
 
     def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
         self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
         self.slack = slack_q.numer_denom()[0].entries()
+        self._inv_t_float: np.ndarray | None = None
+
+    def maybe_dual_feasible(self, d: np.ndarray | None) -> bool:
+        """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
+        the exact test would fail); True otherwise, or when the floats say nothing (out of range)."""
+        if d is None:
+            return True
+        if self._inv_t_float is None:
+            numerators, den = self.inv_t.numer_denom()
+            with np.errstate(all="ignore"):
+                M = np.array([float(v) for v in numerators.entries()], dtype=float) / float(den)
+            self._inv_t_float = M.reshape(self.inv_t.nrows(), self.inv_t.ncols())
+        with np.errstate(all="ignore"):
+            y = self._inv_t_float @ d
+            tol = 1e-9 * (float(np.abs(self._inv_t_float).max()) * float(np.abs(d).max()) + 1.0)
+        return not bool(np.all(np.isfinite(y))) or bool(y.min() >= -tol)
 
     @property
     def feasible(self) -> bool:
@@ -278,8 +294,9 @@ def _cost(C: flint.fmpq_mat, D: flint.fmpq_poly, s: Fraction) -> flint.fmpq_mat:
     return C * powers * D(x)
 
 
-def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
+def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> tuple[int, ...] | None:
     """The float LP's tight rows at this cost, when they are n of them (a vertex basis); None otherwise.
+    ``lp``: another float image of the same LP (its own warm start; default the walk's).
     A hint never raises: a cost beyond double range or a failed solve only gives no hint."""
     c = _floats(cost.entries())
     if c is None or P.b_float is None:
@@ -288,7 +305,7 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
     if not scale > 0:
         return None
     P.float_lps += 1
-    hint = P.float_lp.solve_floats(c / scale, P.b_float, (False,) * P.n)
+    hint = (lp or P.float_lp).solve_floats(c / scale, P.b_float, (False,) * P.n)
     if hint.status != OPTIMAL:
         return None
     basis = hint.fetch_basis()
@@ -690,6 +707,38 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     policy = DUAL_POLICY
     backoff = [0] * P.m
     targets: dict[int, flint.fmpq_mat] = {}
+    dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
+    served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
+
+    def suggest(i: int, k: int, d: flint.fmpq_mat):
+        """Bases for the direction d = d_k of facet i, cheapest first (each costs one exact product B^-T d
+        to test): those that served this facet (its Taylor coefficients point nearly along +-g_i), the
+        bases of its own walk (optimal near +g_i), then those that served any facet; then the float LP's
+        basis at d."""
+        seen = set()
+        walk = [p.basis for p, _, _ in reversed(walks[i]) if p.basis is not None]
+        d_float = _floats(d.entries())
+        for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
+            if rows not in seen:
+                seen.add(rows)
+                basis = P.basis(rows)
+                if basis is not None and basis.maybe_dual_feasible(d_float):
+                    yield rows, basis.inv_t
+        if not dual_lp:
+            dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
+        rows = _hint_rows(P, d, dual_lp[0])
+        if rows is not None and rows not in seen:
+            basis = P.basis(rows)
+            if basis is not None:
+                yield rows, basis.inv_t
+
+    def used(i: int, k: int, rows: tuple[int, ...]) -> None:
+        for key in (i, -1):
+            recent = served.setdefault(key, [])
+            if rows in recent:
+                recent.remove(rows)
+            recent.insert(0, rows)
+            del recent[4:]
 
     def try_dual(i: int, t: FiniteReal) -> bool:
         """A dual piece of facet i from t (or from a rational just left of an algebraic t, the previous basis
@@ -712,7 +761,8 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             return False
         if i not in targets:
             targets[i] = dual_target(objectives[i], P.D)
-        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, P.exact, a, _cap(T))
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, P.exact, a, _cap(T),
+                          lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
         if cert is None:
             backoff[i] = policy.backoff
             return False
