@@ -180,3 +180,16 @@ def test_forced_on_off_and_default_policies_agree_on_the_random_family(seed):
     sets = [_ends(_with(policy, S, P, method)) for policy in (FORCED, None, engine_lp.DualPolicy())]
     assert sets[0] == sets[1] == sets[2]
     assert isinstance(INF, type(INF))
+
+
+def test_explain_counts_dual_pieces_apart_from_ray_pieces():
+    """The selftest's octagon under Taylor-2 (every facet gets a dual piece from its breakpoint 1, where
+    A_d(1) = 0): explain names the dual pieces and no ray piece."""
+    from exactinv.interfaces.explain import explain
+    S = ei.LinearSystem([[-1, 1], [-1, -1]])
+    octagon = ei.Polyhedron([[1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]],
+                            [1, 1, 1, 1, "3/2", "3/2", "3/2", "3/2"])
+    V = _with(FORCED, S, octagon, M.taylor(2))
+    assert V.lp.duals == 8 and V.lp.rays == 0 and _ends(V) == [(0, F(3, 2), True, True)]
+    text = explain(V.certificate)
+    assert "8 dual pieces" in text and "ray piece" not in text
