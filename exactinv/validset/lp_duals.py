@@ -92,7 +92,7 @@ def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[t
     return tuple(sorted((r, fraction_of(v)) for r, v in zip(index, y) if v != 0))
 
 
-Suggest = Callable[[int, flint.fmpq_mat], Iterable[tuple[tuple[int, ...], flint.fmpq_mat]]]
+Suggest = Callable[[int, flint.fmpq_mat], Iterable[tuple[tuple[int, ...], list[flint.fmpq]]]]
 
 
 def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmpq_poly, target: flint.fmpq_mat,
@@ -101,8 +101,8 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
                used: Callable[[int, tuple[int, ...]], None] | None = None) -> DualCertificate | None:
     """The dual piece of a facet from the rational a, with y_0 the dual of the basis ``rows`` (B^-T = ``inv_t``,
     optimal at a), or None when one is not found or q(a) <= 0 (the facet binds at a): module docstring.
-    For k >= 1, ``suggest(k, d_k)`` may propose bases (rows, B^-T) first -- the one that served d_k last
-    time, a float LP's basis: each is taken only when B^-T d_k >= 0 exactly, and ``used(k, rows)`` is told
+    For k >= 1, ``suggest(k, d_k)`` may propose bases first, as (rows, B^-T d_k exactly) -- one that served
+    before, a float LP's basis: each is taken only when B^-T d_k >= 0, and ``used(k, rows)`` is told
     which one served -- before the exact LP chain.  Exact throughout; floats are hints verified in Q."""
     n, m = G.ncols(), G.nrows()
     Tk = _taylor(target, a)
@@ -123,8 +123,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
         elif k == 0:
             return None  # the basis is not optimal at a
         elif suggest is not None:
-            for other, other_inv_t in suggest(k, d):
-                yO = (other_inv_t * d).entries()
+            for other, yO in suggest(k, d):  # y_B = B^-T d_k for a basis B, exact
                 if all(v >= 0 for v in yO):
                     y = _sparse(yO, other)
                     if used is not None:

@@ -213,16 +213,17 @@ class _Basis:
         self.slack = slack_q.numer_denom()[0].entries()
         self._inv_t_float: np.ndarray | None = None
 
-    def maybe_dual_feasible(self, d: np.ndarray | None) -> bool:
+    def maybe_dual_feasible(self, d: np.ndarray | None, G_float: np.ndarray | None) -> bool:
         """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
-        the exact test would fail); True otherwise, or when the floats say nothing (out of range)."""
-        if d is None:
+        the exact test would fail); True otherwise, or when the floats say nothing (out of range, singular)."""
+        if d is None or G_float is None:
             return True
         if self._inv_t_float is None:
-            numerators, den = self.inv_t.numer_denom()
             with np.errstate(all="ignore"):
-                M = np.array([float(v) for v in numerators.entries()], dtype=float) / float(den)
-            self._inv_t_float = M.reshape(self.inv_t.nrows(), self.inv_t.ncols())
+                try:
+                    self._inv_t_float = np.linalg.inv(G_float[list(self.rows)]).T
+                except np.linalg.LinAlgError:
+                    return True
         with np.errstate(all="ignore"):
             y = self._inv_t_float @ d
             tol = 1e-9 * (float(np.abs(self._inv_t_float).max()) * float(np.abs(d).max()) + 1.0)
@@ -247,6 +248,8 @@ class _Problem:
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
         self.b_float = _floats(cs.b)
         self.G_rows = self.G.tolist()
+        G_float = _floats(self.G.entries())
+        self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
@@ -722,15 +725,17 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             if rows not in seen:
                 seen.add(rows)
                 basis = P.basis(rows)
-                if basis is not None and basis.maybe_dual_feasible(d_float):
-                    yield rows, basis.inv_t
+                if basis is not None and basis.maybe_dual_feasible(d_float, P.G_float):
+                    yield rows, (basis.inv_t * d).entries()
         if not dual_lp:
             dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
         rows = _hint_rows(P, d, dual_lp[0])
-        if rows is not None and rows not in seen:
-            basis = P.basis(rows)
-            if basis is not None:
-                yield rows, basis.inv_t
+        if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
+            Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in rows])
+            try:
+                yield rows, Bt.solve(d).entries()
+            except ZeroDivisionError:
+                return
 
     def used(i: int, k: int, rows: tuple[int, ...]) -> None:
         for key in (i, -1):
