@@ -41,7 +41,7 @@ from ..core.roots import real_roots
 from ..core.scalars import INF
 from ..lp.solver import OPTIMAL, ExactLPSolver
 
-__all__ = ["DualCertificate", "dual_target", "dual_piece"]
+__all__ = ["DualCertificate", "dual_target", "dual_piece", "simplest_between"]
 
 _ZERO = flint.fmpq(0)
 
@@ -76,6 +76,23 @@ def dual_target(C: flint.fmpq_mat, D: flint.fmpq_poly) -> flint.fmpq_mat:
     W = L + len(Dm) - 1
     S = flint.fmpq_mat(L, W, [Dm[j - k] if 0 <= j - k < len(Dm) else 0 for k in range(L) for j in range(W)])
     return C * S
+
+
+def simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
+    """The rational with the least denominator in the closed [lo, hi] (0 <= lo <= hi), by continued
+    fractions: short ends keep the Taylor coefficients at a piece's start (and the certificate) small.
+
+    >>> simplest_between(Fraction(31, 100), Fraction(1, 3)), simplest_between(Fraction(7, 5), Fraction(7, 5))
+    (Fraction(1, 3), Fraction(7, 5))
+    >>> simplest_between(Fraction(2, 7), Fraction(3, 10))
+    Fraction(2, 7)
+    """
+    floor = lo.numerator // lo.denominator
+    if floor == lo:
+        return Fraction(floor)
+    if floor + 1 <= hi:
+        return Fraction(floor + 1)
+    return floor + 1 / simplest_between(1 / (hi - floor), 1 / (lo - floor))
 
 
 def _taylor(T: flint.fmpq_mat, a: Fraction) -> flint.fmpq_mat:
@@ -152,11 +169,9 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     end: Fraction | None = None  # None: q > 0 on all of [a, oo)
     for root, _ in real_roots(q):
         if exact_lt(a, root):
-            if isinstance(root, RealAlgebraic):
-                end = narrowed(root).lower  # type: ignore[union-attr]
-                # a rational at or below the first root beyond a
-            else:
-                end = Fraction(root)
+            top = narrowed(root).lower if isinstance(root, RealAlgebraic) else Fraction(root)  # type: ignore[union-attr]
+            if top > a:  # a short rational at or below the first root beyond a, within 1/64 of the piece
+                end = simplest_between(top - (top - a) / 64, top)
             break
     if cap is not None and (end is None or cap < end):
         end = cap

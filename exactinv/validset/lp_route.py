@@ -83,7 +83,7 @@ from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
-from .lp_duals import DualCertificate, dual_piece, dual_target
+from .lp_duals import DualCertificate, dual_piece, dual_target, simplest_between
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 
@@ -206,12 +206,25 @@ class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
     b - G x_B (exact, and their numerators over a positive common denominator)."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float")
+    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float", "_inv_t_int")
 
     def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
         self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
         self.slack = slack_q.numer_denom()[0].entries()
         self._inv_t_float: np.ndarray | None = None
+        self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
+
+    def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
+        """B^-T d for d = d_int / d_den (d_den > 0), exactly, when it is >= 0; else None.  The sign test runs
+        on integers (B^-T = M / den with M integral, den > 0), the division only for a basis that serves."""
+        if self._inv_t_int is None:
+            self._inv_t_int = self.inv_t.numer_denom()
+        M, den = self._inv_t_int
+        Y = (M * d_int).entries()
+        if any(v < 0 for v in Y):
+            return None
+        scale = den * d_den
+        return [flint.fmpq(v, scale) for v in Y]
 
     def maybe_dual_feasible(self, d: np.ndarray | None, G_float: np.ndarray | None) -> bool:
         """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
@@ -721,12 +734,15 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         seen = set()
         walk = [p.basis for p, _, _ in reversed(walks[i]) if p.basis is not None]
         d_float = _floats(d.entries())
+        d_int, d_den = d.numer_denom()
         for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
             if rows not in seen:
                 seen.add(rows)
                 basis = P.basis(rows)
                 if basis is not None and basis.maybe_dual_feasible(d_float, P.G_float):
-                    yield rows, (basis.inv_t * d).entries()
+                    y = basis.dual_of(d_int, d_den)
+                    if y is not None:
+                        yield rows, y
         if not dual_lp:
             dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
         rows = _hint_rows(P, d, dual_lp[0])
@@ -760,6 +776,12 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         a = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
         if not exact_lt(piece.start, a):
             return False
+        if isinstance(t, RealAlgebraic):  # cut the basis piece at a short rational within 1/64 of it below t
+            low = _cap(piece.start)
+            assert low is not None
+            a = simplest_between(max(low, a - (a - low) / 64), a) if low < a else a
+            if not exact_lt(piece.start, a):
+                return False
         b_i, x = P.cs.b[i], fmpq_of(a)
         Da = P.D(x)
         if not (b_i > 0 and Da != 0 and c(x) > fmpq_of(policy.slack) * Da * Da * fmpq_of(b_i)):
