@@ -239,7 +239,7 @@ class _Basis:
                     return True
         with np.errstate(all="ignore"):
             y = self._inv_t_float @ d
-            tol = 1e-9 * (float(np.abs(self._inv_t_float).max()) * float(np.abs(d).max()) + 1.0)
+            tol = 1e-9 * (np.abs(self._inv_t_float).max() * np.abs(d).max() + 1.0)
         return not bool(np.all(np.isfinite(y))) or bool(y.min() >= -tol)
 
     @property
