@@ -27,10 +27,11 @@ with basis pieces.  Every piece is re-proved by the kernel
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from math import comb
+from typing import Protocol
 
 import flint
 
@@ -39,7 +40,7 @@ from ..core.flintq import exact_text, fmpq_of, fraction_of
 from ..core.real_signs import narrowed
 from ..core.roots import real_roots
 from ..core.scalars import INF
-from ..lp.solver import OPTIMAL, ExactLPSolver
+from ..lp.solver import OPTIMAL, LPResult
 
 __all__ = ["DualCertificate", "dual_target", "dual_piece", "simplest_between"]
 
@@ -109,11 +110,18 @@ def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[t
     return tuple(sorted((r, fraction_of(v)) for r, v in zip(index, y) if v != 0))
 
 
+class ExactSolve(Protocol):
+    """The exact LP chain's solve (:meth:`exactinv.lp.solver.ExactLPSolver.solve`), or a guard around it that
+    may decline (None)."""
+
+    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonnegative: Sequence[bool]) -> LPResult | None: ...
+
+
 Suggest = Callable[[int, flint.fmpq_mat], Iterable[tuple[tuple[int, ...], list[flint.fmpq]]]]
 
 
 def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmpq_poly, target: flint.fmpq_mat,
-               rows: tuple[int, ...], inv_t: flint.fmpq_mat, solver: ExactLPSolver, a: Fraction,
+               rows: tuple[int, ...], inv_t: flint.fmpq_mat, solver: ExactSolve, a: Fraction,
                cap: Fraction | None, suggest: Suggest | None = None,
                used: Callable[[int, tuple[int, ...]], None] | None = None) -> DualCertificate | None:
     """The dual piece of a facet from the rational a, with y_0 the dual of the basis ``rows`` (B^-T = ``inv_t``,
@@ -148,7 +156,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
                     break
         if y is None:
             res = solver.solve(d, b, (False,) * n)  # the exact LP chain: a verified optimal dual
-            if res.status != OPTIMAL or res.y_q is None:
+            if res is None or res.status != OPTIMAL or res.y_q is None:
                 return None  # unbounded in the direction d_k: no y_k >= 0 (Farkas)
             full = res.y_q.entries()
             if len(full) != m or any(v < 0 for v in full) or GT * res.y_q != d:

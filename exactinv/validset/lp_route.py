@@ -82,7 +82,7 @@ from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
-from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
+from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
 from .lp_duals import DualCertificate, dual_piece, dual_target, simplest_between
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
@@ -293,6 +293,18 @@ class _Problem:
                     out = None
             self._bases[rows] = out
         return self._bases[rows]
+
+
+class _GuardedExact:
+    """The exact LP chain for a dual piece's direction d_k, declined (None) when the float LP at d_k gave no
+    optimal basis: there it is mostly unbounded (P unbounded: no y_k >= 0 exists, Farkas), whose exact proof
+    (PPL) costs far more than the dual piece could save; the piece then just fails."""
+
+    def __init__(self, P: _Problem):
+        self.P, self.float_optimal = P, True
+
+    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonnegative) -> LPResult | None:
+        return self.P.exact.solve(c, b, nonnegative) if self.float_optimal else None
 
 
 def _floats(values) -> np.ndarray | None:
@@ -723,6 +735,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     policy = DUAL_POLICY
     backoff = [0] * P.m
     targets: dict[int, flint.fmpq_mat] = {}
+    guard = _GuardedExact(P)
     dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
     served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
 
@@ -746,6 +759,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         if not dual_lp:
             dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
         rows = _hint_rows(P, d, dual_lp[0])
+        guard.float_optimal = rows is not None
         if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
             Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in rows])
             try:
@@ -788,7 +802,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             return False
         if i not in targets:
             targets[i] = dual_target(objectives[i], P.D)
-        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, P.exact, a, _cap(T),
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, guard, a, _cap(T),
                           lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
         if cert is None:
             backoff[i] = policy.backoff
