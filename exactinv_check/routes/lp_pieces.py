@@ -32,6 +32,13 @@ Then for h in the conditions' set (D(h) != 0) and h <= E, each facet's piece hol
 (weak duality, as above) -- a ray piece would violate its condition at h (docs/design.md, "Unbounded P:
 rays and lines", Theorem').
 
+A *dual piece* {"dual": [y_0, ..., y_K]} (:mod:`exactinv_check.routes.lp_duals`) is a closed piece with a
+rational start a on which the paper's certificate y(h) = sum_k (h - a)^k y_k >= 0, G'^T y(h) = D N^T g_i,
+D^2 b_i - y(h)^T b' >= 0 proves facet i valid at every h of the piece with D(h) != 0: it adds no condition
+(its flat index keeps a generator slot with none) and decides its ends like a basis piece.  With it the
+argument above still holds: a facet's piece holding h is a basis piece (its condition holds), a dual piece
+(facet i valid at h), or a ray piece (excluded by its condition) (docs/design.md, "Dual pieces", Theorem D2).
+
 No vertex enumeration and no edge walk: the work is priced first, per piece one
 fraction-free n x n solve and n components of degree deg N + deg D.  What runs
 is cheaper where it can be, each step proved: adj B and det B exchanged one row
