@@ -97,13 +97,15 @@ class DualPolicy:
     facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i)
     and the facet's last ``after`` pieces are all basis pieces (the optimal basis changes while the facet
     is far from binding: what a dual piece skips); after a failed try, the next ``backoff`` pieces of that
-    facet try none.  A heuristic only: every dual piece is exact, and a failed one falls back to basis
-    pieces.  ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
-    ``DualPolicy(Fraction(0), 0, 1)``)."""
+    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none.
+    A heuristic only: every dual piece is exact, and a failed one falls back to basis pieces.
+    ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
+    ``DualPolicy(Fraction(0), 0, 1, 10**9)``)."""
 
     slack: Fraction = Fraction(1, 4)
     backoff: int = 3
     after: int = 3
+    give_up: int = 8  # after this many failed tries and no dual piece found at all, the walk tries no more
 
 
 DUAL_POLICY: DualPolicy | None = DualPolicy()
@@ -734,6 +736,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     last: list[_Step | None] = [None] * P.m
     policy = DUAL_POLICY
     backoff = [0] * P.m
+    tally = [0, 0]  # dual pieces found, tries failed
     targets: dict[int, flint.fmpq_mat] = {}
     guard = _GuardedExact(P)
     dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
@@ -784,6 +787,8 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         if backoff[i] > 0:
             backoff[i] -= 1
             return False
+        if tally[1] >= policy.give_up and not tally[0]:
+            return False  # e.g. an unbounded P whose Taylor directions d_k are all unbounded: no y_k >= 0
         if len(walks[i]) < policy.after or any(p.basis is None for p, _, _ in walks[i][-policy.after:]):
             return False
         piece, c, _ = walks[i][-1]
@@ -806,7 +811,9 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
                           lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
         if cert is None:
             backoff[i] = policy.backoff
+            tally[1] += 1
             return False
+        tally[0] += 1
         if a != t:
             walks[i][-1] = (replace(piece, end=a), c, walks[i][-1][2])
         dual = Piece(a, cert.end, None, None, cert)

@@ -24,9 +24,9 @@ OUT = ROOT / "exactinv_check" / "selftest_certificates"
 
 
 def _with_dual_pieces(make):
-    """The LP route with a dual piece tried at the end of every basis piece (engine_lp.DualPolicy(0, 0, 1))."""
+    """The LP route with a dual piece tried at the end of every basis piece (DualPolicy(0, 0, 1, 10**9))."""
     old = engine_lp.DUAL_POLICY
-    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(0, 0, 1)
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(0, 0, 1, 10**9)
     try:
         return make()
     finally:

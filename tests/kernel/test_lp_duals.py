@@ -52,7 +52,7 @@ def _forged(change):
 def _dual_certificates(seeds, n=4, m=12, method=None):
     """Genuine certificates of the random family with dual pieces forced on (every basis piece's end tried)."""
     old = engine_lp.DUAL_POLICY
-    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, 1)
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, 1, 10**9)
     try:
         out = []
         for seed in seeds:

@@ -20,7 +20,7 @@ from exactinv.validset.lp_duals import DualCertificate, dual_piece, dual_target
 
 M = ei.methods
 F = Fraction
-FORCED = engine_lp.DualPolicy(F(0), 0, 1)  # try a dual piece at the end of every basis piece
+FORCED = engine_lp.DualPolicy(F(0), 0, 1, 10**9)  # try a dual piece at the end of every basis piece
 
 
 def _ends(V):
