@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import random
 import sys
 import time
@@ -58,6 +59,7 @@ import exactinv_check
 from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.lp.highs import silent_highs
 from exactinv.model.record import certificate
+from exactinv.validset import lp_route as engine_lp
 
 SIZES = [(6, 12), (6, 36), (6, 60), (8, 16), (8, 32), (8, 48), (10, 40), (12, 60), (16, 100), (20, 200)]
 QUICK = [(6, 12), (8, 32), (10, 40)]
@@ -199,8 +201,10 @@ def float_bisection(S: ei.LinearSystem, P: ei.Polyhedron, method: ei.Method) -> 
 # ------------------------------------------------------------------ the run
 
 
-def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False, kind: str | None = None) -> dict:
+def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False, kind: str | None = None,
+        duals: bool = True, skip_float: bool = False) -> dict:
     S, P = FAMILIES[kind](n, m) if kind else family(n, m, unbounded=unbounded)
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy() if duals else None
     t0 = time.process_time()
     cs = ConditionSet(S, P, method)
     L = ei.largest_threshold(S, P, method, conditions=cs, route="lp")
@@ -211,14 +215,15 @@ def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False, k
     report = exactinv_check.check(cert)
     kernel = time.process_time() - t0
     t0 = time.process_time()
-    tau, lps = float_bisection(S, P, method)
-    flt = time.process_time() - t0
+    tau, lps = (math.nan, 0) if skip_float else float_bisection(S, P, method)
+    flt = time.process_time() - t0 if not skip_float else math.nan
     exact = float(L.value) if L.value != ei.INF else math.inf
     if not math.isfinite(exact):
         agree = 0.0 if tau == math.inf else 1.0
     else:  # relative difference; absolute when the exact threshold is 0 (P not invariant)
         agree = abs(tau - exact) / (abs(exact) if exact else 1.0)
-    return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "rays": V.lp.rays, "lps": V.lp.float_lps + V.lp.exact_lps,
+    return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "rays": V.lp.rays, "duals": V.lp.duals,
+            "lps": V.lp.float_lps + V.lp.exact_lps,
             "engine": engine, "kernel": kernel, "float": flt, "float_lps": lps, "ok": report.ok,
             "tau": L.value, "set": V.intervals, "agree": agree}
 
@@ -231,24 +236,32 @@ def main(argv=None) -> int:
     parser.add_argument("--unbounded", action="store_true", help="the unbounded variant of the family (ray pieces)")
     parser.add_argument("--family", choices=sorted(FAMILIES), default=None,
                         help="an unbounded family with a non-trivial valid set (module docstring)")
+    parser.add_argument("--duals", choices=("on", "off", "both"), default="on",
+                        help="dual pieces in the engine (both: each row without, then with them, in the same run)")
     args = parser.parse_args(argv)
+    print(f"load average before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
     sizes = QUICK if args.quick else SIZES
     if args.sizes:
         sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
-    print("| n | facets | method | pieces | engine LPs | engine s | kernel s | float s (LPs) | engine/float | "
+    print("| n | facets | method | pieces basis/dual | engine LPs | engine s | kernel s | float s (LPs) | engine/float | "
           "kernel/engine | kernel | tau (exact) | float vs exact |" + (" valid set |" if args.family else ""))
     print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|" + ("---|" if args.family else ""))
+    modes = {"on": [True], "off": [False], "both": [False, True]}[args.duals]
     for name in args.methods.split(","):
         for n, m in sizes:
-            r = row(n, m, name, METHODS[name], args.unbounded, args.family)
-            pieces = f"{r['pieces']} ({r['rays']} rays)" if args.unbounded or args.family else r["pieces"]
-            print(f"| {r['n']} | {r['m']} | {r['method']} | {pieces} | {r['lps']} | {r['engine']:.2f} | "
-                  f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
-                  f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
-                  f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "
-                  f"{r['agree']:.1e} |" + (f" {r['set']} |" if args.family else ""), flush=True)
+            for duals in modes:
+                _print_row(row(n, m, name, METHODS[name], args.unbounded, args.family, duals), args)
+    print(f"load average after: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
     return 0
 
+
+def _print_row(r: dict, args: argparse.Namespace) -> None:
+    pieces = f"{r['pieces'] - r['duals']}/{r['duals']}" + (f" ({r['rays']} rays)" if args.unbounded or args.family else "")
+    print(f"| {r['n']} | {r['m']} | {r['method']} | {pieces} | {r['lps']} | {r['engine']:.2f} | "
+          f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
+          f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
+          f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "
+          f"{r['agree']:.1e} |" + (f" {r['set']} |" if args.family else ""), flush=True)
 
 if __name__ == "__main__":
     sys.exit(main())

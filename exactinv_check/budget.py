@@ -282,6 +282,8 @@ MAX_PIN = 4000  # (line_poles) bisections to pin a rational root
 MAX_LP_PIECES = 200_000  # (lp_pieces) pieces over all facets: a bound before any parsing of their ends
 # (lp_pieces) all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
 LP_WORK_BUDGET = 50 * WORK_BUDGET
+PARSE_ENTRY = 2000  # (lp_duals) word operations to parse one [row, value] entry (measured: about 20 us)
+MAX_LP_DUAL_ENTRIES = 400_000  # (lp_duals) the nonzero entries of all dual pieces' vectors y_k of one record
 MAX_ROOT_BISECTIONS = 4000  # (polys)
 MAX_PACKED_BYTES = 1 << 27  # (pruning) the packed rows' table: every slot as wide as the widest row needs
 MAX_SLOT_TESTS = 4 * 10**8  # (pruning) vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)

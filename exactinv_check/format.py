@@ -494,12 +494,21 @@ def _value_defs() -> dict[str, Any]:
                     _object({"ray": _VECTOR}, description=(
                         "A ray piece: the open piece (start, end) on which the ray d of P (G d <= 0, d != 0) has "
                         "(g_i N(h) d) D(h) > 0, so max g_i A_d(h) x over P is unbounded and facet i is violated; its "
-                        "condition is the ray-facet condition -(g_i N d) D >= 0."))]}, 1)}))},
+                        "condition is the ray-facet condition -(g_i N d) D >= 0.")),
+                    _object({"dual": _array(_array({"type": "array",
+                                                    "prefixItems": [_INDEX, _ref("nonzero_rational")],
+                                                    "minItems": 2, "maxItems": 2}), 1)}, description=(
+                        "A dual piece: the closed piece [a, e] (a rational) on which facet i is valid, proved by "
+                        "the paper's certificate (Theorem 2.2) y(h) = sum_k (h - a)^k y_k: each y_k is given by its "
+                        "nonzero entries [row, value] (rows of G, or of G with the lines appended, strictly "
+                        "increasing; values > 0), G'^T y_k is the k-th Taylor coefficient at a of D(h) N(h)^T g_i, "
+                        "and q(h) = D(h)^2 b_i - y(h)^T b >= 0 on [a, e]. It adds no condition."))]}, 1)}))},
             required=["facets"], description=(
                 "The LP route's pieces (no vertex list): per facet i of G (one entry each, in order), consecutive "
                 "closed pieces [0, e_0], [e_0, e_1], ... with strictly increasing exact ends (the last may be oo) and "
-                "one basis per piece (n rows of G, or of G with the lines appended), or a ray piece {ray: d} "
-                "(P unbounded). The kernel proves each "
+                "one basis per piece (n rows of G, or of G with the lines appended), a ray piece {ray: d} "
+                "(P unbounded) or a dual piece {dual: [y_0, ..., y_K]} (facet i valid on the piece). The kernel "
+                "proves each "
                 "basis nonsingular with x_B = B^-1 b_B in P and z_B(h) = D(h) B^-T N(h)^T g_i >= 0 on its piece, "
                 "builds the vertex-facet condition of x_B and facet i (of a ray piece: d a ray of P, (g_i N d) D > 0 "
                 "on the open piece, the ray-facet condition; each finite end t > 0 decided by a basis piece or by a "

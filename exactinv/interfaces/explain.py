@@ -90,7 +90,11 @@ def _count(n: int, word: str) -> str:
 def _generators(c: dict) -> str:
     if "lp" in c:
         pieces = sum(len(f["bases"]) for f in c["lp"]["facets"])
-        rays = sum(isinstance(b, dict) for f in c["lp"]["facets"] for b in f["bases"])
+        rays = sum(isinstance(b, dict) and "ray" in b for f in c["lp"]["facets"] for b in f["bases"])
+        duals = sum(isinstance(b, dict) and "dual" in b for f in c["lp"]["facets"] for b in f["bases"])
+        dual = (f"; on {_count(duals, 'dual piece')} the facet is far from binding and holds by the paper's "
+                f"certificate y(dt) >= 0 with y^T G = g_i A_d(dt), y^T b <= b_i (Theorem 2.2) along the piece, "
+                f"no condition" if duals else "")
         unbounded = (f"; on {_count(rays, 'ray piece')} the LP is unbounded along a ray of P, whose ray-facet "
                      f"condition fails there" if rays else "")
         lines = c["lp"].get("lines", [])
@@ -98,7 +102,7 @@ def _generators(c: dict) -> str:
                  f"and every facet must satisfy g_i N(dt) l = 0 (the line equalities)" if lines else "")
         return (f"never listed: the LP route takes, per facet, the pieces of [0, oo) on which one basis of "
                 f"max g_i A_d(dt) x over P is optimal ({pieces} pieces in all, each proved by weak duality), and the "
-                f"vertex of each piece, which together decide every vertex{unbounded}{lined}")
+                f"vertex of each piece, which together decide every vertex{unbounded}{dual}{lined}")
     if "box" in c:
         lo, hi = c["box"]["lo"], c["box"]["hi"]
         count = 2 ** len(lo) if len(lo) <= 20 else f"2^{len(lo)}"

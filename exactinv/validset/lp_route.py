@@ -82,12 +82,33 @@ from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
-from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver
+from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
+from .lp_duals import DualCertificate, dual_piece, dual_target, simplest_between
 
 __all__ = ["LPRouteDeclined", "Piece", "FacetPieces", "LPRoute", "LPRouteCache", "lp_route", "vertex_bound"]
 
 _ZERO = flint.fmpz(0)  # fmpz compared with fmpz runs in C (with a Python int: through a conversion)
 _TRIES = 24  # widths w, w/16, w/256, ... tried right of a breakpoint before giving up
+
+
+@dataclass(frozen=True)
+class DualPolicy:
+    """When the walk tries a dual piece (:mod:`exactinv.validset.lp_duals`): at the end a of a basis piece of
+    facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i)
+    and the facet's last ``after`` pieces are all basis pieces (the optimal basis changes while the facet
+    is far from binding: what a dual piece skips); after a failed try, the next ``backoff`` pieces of that
+    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none.
+    A heuristic only: every dual piece is exact, and a failed one falls back to basis pieces.
+    ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
+    ``DualPolicy(Fraction(0), 0, 1, 10**9)``)."""
+
+    slack: Fraction = Fraction(1, 4)
+    backoff: int = 3
+    after: int = 3
+    give_up: int = 8  # after this many failed tries and no dual piece found at all, the walk tries no more
+
+
+DUAL_POLICY: DualPolicy | None = DualPolicy()
 
 
 _TOUCH = ("an unbounded facet's ray conditions all vanish at h = {} (two rays of P change places there, or one "
@@ -103,12 +124,15 @@ class LPRouteDeclined(ExactinvException):
 class Piece:
     """[start, end] (end may be INF) on which ``basis`` (rows of G, sorted) is optimal; or, for a ray
     piece (``basis`` None), the open (start, end) on which the ray ``ray`` of P has
-    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated."""
+    c_i(h)^T d D(h) > 0: the LP is unbounded there and facet i is violated; or, for a dual piece
+    (``dual`` set, ``basis`` and ``ray`` None), the closed [start, end] on which facet i is valid
+    (:mod:`exactinv.validset.lp_duals`)."""
 
     start: Real
     end: Real
     basis: tuple[int, ...] | None
     ray: tuple[Fraction, ...] | None = None
+    dual: DualCertificate | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -152,7 +176,8 @@ class LPRoute:
         T = 2, where facet 1's walk stops.)
         """
         out: dict = {"facets": [{"ends": [encode_real(p.end) for p in f.pieces],
-                                 "bases": [list(p.basis) if p.basis is not None else {"ray": vec(p.ray)}
+                                 "bases": [list(p.basis) if p.basis is not None else p.dual.record()
+                                           if p.dual is not None else {"ray": vec(p.ray)}
                                            for p in f.pieces]} for f in self.facets]}
         if self.point is not None:
             out["point"] = vec(self.point)
@@ -161,7 +186,12 @@ class LPRoute:
     @property
     def rays(self) -> int:
         """How many pieces are ray pieces (facet i violated on the open piece)."""
-        return sum(p.basis is None for f in self.facets for p in f.pieces)
+        return sum(p.ray is not None for f in self.facets for p in f.pieces)
+
+    @property
+    def duals(self) -> int:
+        """How many pieces are dual pieces (facet i valid on the piece, no condition)."""
+        return sum(p.dual is not None for f in self.facets for p in f.pieces)
 
 
 
@@ -178,11 +208,41 @@ class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
     b - G x_B (exact, and their numerators over a positive common denominator)."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack")
+    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float", "_inv_t_int")
 
     def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
         self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
         self.slack = slack_q.numer_denom()[0].entries()
+        self._inv_t_float: np.ndarray | None = None
+        self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
+
+    def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
+        """B^-T d for d = d_int / d_den (d_den > 0), exactly, when it is >= 0; else None.  The sign test runs
+        on integers (B^-T = M / den with M integral, den > 0), the division only for a basis that serves."""
+        if self._inv_t_int is None:
+            self._inv_t_int = self.inv_t.numer_denom()
+        M, den = self._inv_t_int
+        Y = (M * d_int).entries()
+        if any(v < 0 for v in Y):
+            return None
+        scale = den * d_den
+        return [flint.fmpq(v, scale) for v in Y]
+
+    def maybe_dual_feasible(self, d: np.ndarray | None, G_float: np.ndarray | None) -> bool:
+        """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
+        the exact test would fail); True otherwise, or when the floats say nothing (out of range, singular)."""
+        if d is None or G_float is None:
+            return True
+        if self._inv_t_float is None:
+            with np.errstate(all="ignore"):
+                try:
+                    self._inv_t_float = np.linalg.inv(G_float[list(self.rows)]).T
+                except np.linalg.LinAlgError:
+                    return True
+        with np.errstate(all="ignore"):
+            y = self._inv_t_float @ d
+            tol = 1e-9 * (np.abs(self._inv_t_float).max() * np.abs(d).max() + 1.0)
+        return not bool(np.all(np.isfinite(y))) or bool(y.min() >= -tol)
 
     @property
     def feasible(self) -> bool:
@@ -203,6 +263,8 @@ class _Problem:
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
         self.b_float = _floats(cs.b)
         self.G_rows = self.G.tolist()
+        G_float = _floats(self.G.entries())
+        self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
@@ -235,6 +297,18 @@ class _Problem:
         return self._bases[rows]
 
 
+class _GuardedExact:
+    """The exact LP chain for a dual piece's direction d_k, declined (None) when the float LP at d_k gave no
+    optimal basis: there it is mostly unbounded (P unbounded: no y_k >= 0 exists, Farkas), whose exact proof
+    (PPL) costs far more than the dual piece could save; the piece then just fails."""
+
+    def __init__(self, P: _Problem):
+        self.P, self.float_optimal = P, True
+
+    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonnegative) -> LPResult | None:
+        return self.P.exact.solve(c, b, nonnegative) if self.float_optimal else None
+
+
 def _floats(values) -> np.ndarray | None:
     try:
         out = np.array([float(v) for v in values], dtype=float)
@@ -250,8 +324,9 @@ def _cost(C: flint.fmpq_mat, D: flint.fmpq_poly, s: Fraction) -> flint.fmpq_mat:
     return C * powers * D(x)
 
 
-def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
+def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> tuple[int, ...] | None:
     """The float LP's tight rows at this cost, when they are n of them (a vertex basis); None otherwise.
+    ``lp``: another float image of the same LP (its own warm start; default the walk's).
     A hint never raises: a cost beyond double range or a failed solve only gives no hint."""
     c = _floats(cost.entries())
     if c is None or P.b_float is None:
@@ -260,7 +335,7 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat) -> tuple[int, ...] | None:
     if not scale > 0:
         return None
     P.float_lps += 1
-    hint = P.float_lp.solve_floats(c / scale, P.b_float, (False,) * P.n)
+    hint = (lp or P.float_lp).solve_floats(c / scale, P.b_float, (False,) * P.n)
     if hint.status != OPTIMAL:
         return None
     basis = hint.fetch_basis()
@@ -655,12 +730,101 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     asked = range(P.m if walked is None else walked)
     T: Real = INF
     objectives = [P.objective(i) for i in range(P.m)]
-    walks: list[list[tuple[Piece, flint.fmpq_poly, tuple[Fraction, ...]]]] = [[] for _ in range(P.m)]
+    # per facet (piece, its condition -- None for a dual piece --, its point: x_B, or None for a ray piece)
+    walks: list[list[tuple[Piece, flint.fmpq_poly | None, tuple[Fraction, ...] | None]]] = [[] for _ in range(P.m)]
 
     last: list[_Step | None] = [None] * P.m
+    policy = DUAL_POLICY
+    backoff = [0] * P.m
+    tally = [0, 0]  # dual pieces found, tries failed
+    targets: dict[int, flint.fmpq_mat] = {}
+    guard = _GuardedExact(P)
+    dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
+    served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
+
+    def suggest(i: int, k: int, d: flint.fmpq_mat):
+        """Bases for the direction d = d_k of facet i, cheapest first (each costs one exact product B^-T d
+        to test): those that served this facet (its Taylor coefficients point nearly along +-g_i), the
+        bases of its own walk (optimal near +g_i), then those that served any facet; then the float LP's
+        basis at d."""
+        seen = set()
+        walk = [p.basis for p, _, _ in reversed(walks[i]) if p.basis is not None]
+        d_float = _floats(d.entries())
+        d_int, d_den = d.numer_denom()
+        for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
+            if rows not in seen:
+                seen.add(rows)
+                basis = P.basis(rows)
+                if basis is not None and basis.maybe_dual_feasible(d_float, P.G_float):
+                    y = basis.dual_of(d_int, d_den)
+                    if y is not None:
+                        yield rows, y
+        if not dual_lp:
+            dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
+        rows = _hint_rows(P, d, dual_lp[0])
+        guard.float_optimal = rows is not None
+        if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
+            Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in rows])
+            try:
+                yield rows, Bt.solve(d).entries()
+            except ZeroDivisionError:
+                return
+
+    def used(i: int, k: int, rows: tuple[int, ...]) -> None:
+        for key in (i, -1):
+            recent = served.setdefault(key, [])
+            if rows in recent:
+                recent.remove(rows)
+            recent.insert(0, rows)
+            del recent[4:]
+
+    def try_dual(i: int, t: FiniteReal) -> bool:
+        """A dual piece of facet i from t (or from a rational just left of an algebraic t, the previous basis
+        piece cut there), when the previous piece is a basis piece and facet i is far from binding at t."""
+        before = last[i]
+        if policy is None or before is None or before.basis is None or isinstance(t, Infinity):
+            return False
+        if backoff[i] > 0:
+            backoff[i] -= 1
+            return False
+        if tally[1] >= policy.give_up and not tally[0]:
+            return False  # e.g. an unbounded P whose Taylor directions d_k are all unbounded: no y_k >= 0
+        if len(walks[i]) < policy.after or any(p.basis is None for p, _, _ in walks[i][-policy.after:]):
+            return False
+        piece, c, _ = walks[i][-1]
+        a = t.lower if isinstance(t, RealAlgebraic) else Fraction(t)
+        if not exact_lt(piece.start, a):
+            return False
+        if isinstance(t, RealAlgebraic):  # cut the basis piece at a short rational within 1/64 of it below t
+            low = _cap(piece.start)
+            assert low is not None
+            a = simplest_between(max(low, a - (a - low) / 64), a) if low < a else a
+            if not exact_lt(piece.start, a):
+                return False
+        b_i, x = P.cs.b[i], fmpq_of(a)
+        Da = P.D(x)
+        if not (b_i > 0 and Da != 0 and c(x) > fmpq_of(policy.slack) * Da * Da * fmpq_of(b_i)):
+            return False
+        if i not in targets:
+            targets[i] = dual_target(objectives[i], P.D)
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, guard, a, _cap(T),
+                          lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
+        if cert is None:
+            backoff[i] = policy.backoff
+            tally[1] += 1
+            return False
+        tally[0] += 1
+        if a != t:
+            walks[i][-1] = (replace(piece, end=a), c, walks[i][-1][2])
+        dual = Piece(a, cert.end, None, None, cert)
+        last[i] = _Step(dual, None, -1, None, True)
+        walks[i].append((dual, None, walks[i][-1][2]))
+        return True
 
     def step(i: int, t: FiniteReal) -> None:
         nonlocal T
+        if try_dual(i, t):
+            return
         found = _next_piece(P, i, objectives[i], t, _cap(T), last[i])
         before = last[i]
         if found.basis is None and before is not None and not before.covered:
@@ -714,13 +878,13 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
-    rays = any(piece.basis is None for walk in walks for piece, _, _ in walk)
+    rays = any(piece.ray is not None for walk in walks for piece, _, _ in walk)
     conditions, vertices, facets = [], [], []
     for i, walk in enumerate(walks[:len(asked)]):
         facets.append(FacetPieces(i, tuple(piece for piece, _, _ in walk)))
         for piece, c, x in walk:
             vertices.append(x if x is not None else P.point)
-            if not never_binds(c.coeffs()):
+            if c is not None and not never_binds(c.coeffs()):
                 kind = Kind.VERTEX if piece.basis is not None else Kind.RAY
                 conditions.append(Condition(kind, len(vertices) - 1, i, c))
     t2 = time.perf_counter()

@@ -12,6 +12,8 @@ rejects.  The modules, and the core check each one stands in for:
 * lp_pieces -- the LP route's pieces (bases proved optimal by weak duality on
   each piece) give the conditions without a vertex list; the core: the same
   valid set from the listed vertices.
+* lp_duals -- a dual piece of an lp record (the paper's certificate y(h) >= 0 along a piece) proves a
+  facet valid on the piece and adds no condition; the core: the same valid set from the listed vertices.
 * pruning -- vertex-facet pairs proved unable to bind on [0, T] by interval
   boxes around the secant chords (and the packed, batched integer test of many
   pairs at once) are left unbuilt; the core: every condition built.

@@ -32,6 +32,13 @@ Then for h in the conditions' set (D(h) != 0) and h <= E, each facet's piece hol
 (weak duality, as above) -- a ray piece would violate its condition at h (docs/design.md, "Unbounded P:
 rays and lines", Theorem').
 
+A *dual piece* {"dual": [y_0, ..., y_K]} (:mod:`exactinv_check.routes.lp_duals`) is a closed piece with a
+rational start a on which the paper's certificate y(h) = sum_k (h - a)^k y_k >= 0, G'^T y(h) = D N^T g_i,
+D^2 b_i - y(h)^T b' >= 0 proves facet i valid at every h of the piece with D(h) != 0: it adds no condition
+(its flat index keeps a generator slot with none) and decides its ends like a basis piece.  With it the
+argument above still holds: a facet's piece holding h is a basis piece (its condition holds), a dual piece
+(facet i valid at h), or a ray piece (excluded by its condition) (docs/design.md, "Dual pieces", Theorem D2).
+
 No vertex enumeration and no edge walk: the work is priced first, per piece one
 fraction-free n x n solve and n components of degree deg N + deg D.  What runs
 is cheaper where it can be, each step proved: adj B and det B exchanged one row
@@ -51,7 +58,7 @@ from types import SimpleNamespace
 from typing import Any, NoReturn
 
 from .. import poly_arithmetic, polys
-from ..budget import LP_WORK_BUDGET, PYTHON_OP, charge, descartes_node_cost, within_budget, words
+from ..budget import LP_WORK_BUDGET, MAX_LP_DUAL_ENTRIES, PYTHON_OP, charge, descartes_node_cost, within_budget, words
 from ..budget import MAX_LP_PIECES as MAX_PIECES
 from ..conditions import condition_polynomials, method_matrices, rebuild_size
 from ..failure import CheckFailure, require, require_budget
@@ -60,12 +67,14 @@ from ..rationals import integer, integer_matrix, integer_rows, vector
 from ..reals import Real, separate
 from ..text import rational_text
 from ..validset import valid_set
+from .lp_duals import DualChecker, DualPiece, parse_dual
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:
     """([(ends, pieces)] per facet, point, lines), shape-checked: a piece is a basis (a tuple of n distinct
-    rows of G' = G with the ``lines`` appended as rows m, m + 1, ...) or a ray piece (a list of n rationals,
-    the ray d); ``point`` (a list of n rationals) is present exactly when some piece is a ray piece;
+    rows of G' = G with the ``lines`` appended as rows m, m + 1, ...), a ray piece (a list of n rationals,
+    the ray d) or a dual piece (a :class:`~exactinv_check.routes.lp_duals.DualPiece`); ``point`` (a list of
+    n rationals) is present exactly when some piece is a ray piece;
     ``lines`` (a nonempty list of vectors, P with lines) may be absent (then [])."""
     require(isinstance(record, dict) and {"facets"} <= set(record) <= {"facets", "point", "lines"},
             "lp has the key facets (and point, with ray pieces; lines, for a P with lines)")
@@ -77,7 +86,9 @@ def parse(record: Any, m: Any, n: Any) -> Any:
     rows_of_G = m + len(lines)
     facets = record["facets"]
     require(isinstance(facets, list) and len(facets) == m, f"lp: one entry per facet ({m})")
-    total = 0
+    require(_dual_entries(facets) <= MAX_LP_DUAL_ENTRIES,
+            f"lp: the dual pieces have more than {MAX_LP_DUAL_ENTRIES} entries in all")  # before any is parsed
+    total = entries = 0
     out = []
     rays = False
     for i, f in enumerate(facets):
@@ -87,8 +98,14 @@ def parse(record: Any, m: Any, n: Any) -> Any:
                 f"lp facet {i}: as many ends as bases, at least one")
         total += len(ends)
         require(total <= MAX_PIECES, f"lp: more than {MAX_PIECES} pieces")
-        rows = []
+        rows: list[Any] = []
         for basis in bases:
+            if isinstance(basis, dict) and "dual" in basis:
+                require(set(basis) == {"dual"}, f"lp facet {i}: a dual piece is {{\"dual\": [y_0, ..., y_K]}}")
+                dual = parse_dual(basis["dual"], rows_of_G, f"lp facet {i} dual piece", MAX_LP_DUAL_ENTRIES - entries)
+                entries += dual.entries
+                rows.append(dual)
+                continue
             if isinstance(basis, dict):
                 require(set(basis) == {"ray"}, f"lp facet {i}: a ray piece is {{\"ray\": d}}")
                 rows.append(vector(basis["ray"], f"lp facet {i} ray", n))
@@ -102,6 +119,13 @@ def parse(record: Any, m: Any, n: Any) -> Any:
     require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
     point = vector(record["point"], "lp point", n) if rays else None
     return out, point, lines
+
+
+def _dual_entries(facets: list[Any]) -> int:
+    """The entries of every dual piece's vectors, counted without parsing one (malformed parts count 0)."""
+    return sum(len(y) for f in facets if isinstance(f, dict) and isinstance(f.get("bases"), list)
+               for b in f["bases"] if isinstance(b, dict) and isinstance(b.get("dual"), list)
+               for y in b["dual"] if isinstance(y, list))
 
 
 def _require_lines(rows: Any, lines: Any) -> None:
@@ -124,12 +148,14 @@ def _require_lines(rows: Any, lines: Any) -> None:
                 _fail(f"lp line {j} is not in ker G: row {k} of G times it is not 0 (not a line of P)")
 
 
-def _price(problem: Any, pieces: Any) -> None:
+def _price(problem: Any, pieces: Any, dual_entries: Any = 0) -> None:
     """Reject before any work.  One piece is one computation, priced against the kernel's budget of one
     (:func:`within_budget`): a Bareiss solve (n^3 w^2) and n components of degree d whose sign is decided
     on the piece (about d^2 w each); the rebuild of D and N likewise.  All pieces together are bounded by
     :data:`LP_WORK_BUDGET` (each piece is independent work, so the record's total is capped like the
-    vertex route's MAX_CONDITIONS: about a minute or two of checking for R^20 with 200 facets)."""
+    vertex route's MAX_CONDITIONS: about a minute or two of checking for R^20 with 200 facets).  A dual
+    piece is priced as one piece plus, per nonzero entry of its vectors y_k, one row of G' times it (n
+    products, :mod:`exactinv_check.routes.lp_duals`)."""
     n = problem.n
     cost, d, w = rebuild_size(problem.A, problem.method.numerator, problem.method.denominator)
     within_budget(cost, f"D(h) and N(h) of a {n} x {n} problem")
@@ -137,8 +163,9 @@ def _price(problem: Any, pieces: Any) -> None:
     gw = 1 + max(abs(x).bit_length() for row in Gi for x in row) * n // 64
     one = n ** 3 * gw * gw + n * (n + d) * (2 * d + 2) ** 2 * (w + gw)
     within_budget(one, f"one piece of the LP route ({n} x {n}, degree {d})")
-    require_budget(pieces * one <= LP_WORK_BUDGET, f"over the kernel's work budget: the LP route's {pieces} pieces "
-            f"(estimated {pieces * one:.2e} word operations > {LP_WORK_BUDGET:.0e})")
+    total = pieces * one + dual_entries * n * (PYTHON_OP + gw * gw)
+    require_budget(total <= LP_WORK_BUDGET, f"over the kernel's work budget: the LP route's {pieces} pieces "
+            f"(estimated {total:.2e} word operations > {LP_WORK_BUDGET:.0e})")
 
 
 class _Bases:
@@ -451,7 +478,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     proved in P, makes P nonempty, so every ray condition is necessary."""
     n, m = problem.n, problem.m
     facets, point, lines = parse(record, m, n)
-    _price(problem, sum(len(ends) for ends, _ in facets))
+    _price(problem, sum(len(ends) for ends, _ in facets),
+           sum(p.entries for _, pieces in facets for p in pieces if isinstance(p, DualPiece)))
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = poly_arithmetic.integer_coefficients(D)
@@ -461,7 +489,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     if point is not None:
         _require_in(bases.rows, point, "lp point")
     dN, N_int = integer_matrix([row for Nk in N for row in Nk])  # N_k = N_int[k n .. k n + n - 1] / dN
-    points, rays, facet_of, is_ray = [], [], [], []
+    points, rays, facet_of, is_ray, is_dual = [], [], [], [], []
+    duals = None
     horizon = None
     zero = [Fraction(0)] * n
     for i, (ends, rows) in enumerate(facets):
@@ -475,9 +504,29 @@ def lp_conditions(problem: Any, record: Any) -> Any:
         for k, (data, basis) in enumerate(zip(ends, rows)):
             end = Real.parse(data, f"lp facet {i} end {k}")
             order_of_ends = start.compare(end)
-            point_piece = order_of_ends == 0 and not isinstance(basis, list)  # a basis piece [t, t]
+            point_piece = order_of_ends == 0 and not isinstance(basis, list)  # a basis or dual piece [t, t]
             require(order_of_ends < 0 or point_piece, f"lp facet {i}: the ends are not increasing after piece {k}")
             require(not end.inf or k == len(ends) - 1, f"lp facet {i}: only the last piece may end at oo")
+            is_dual.append(isinstance(basis, DualPiece))
+            if isinstance(basis, DualPiece):  # facet i valid on the closed piece [start, end] (start rational)
+                require(not start.inf and start.poly is None,
+                        f"lp facet {i} piece {k}: a dual piece starts at a rational (its y(h) is in powers of h - a)")
+                if duals is None:
+                    duals = DualChecker(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines), D, N)
+                what = f"lp facet {i} piece {k} (dual)"
+                q = duals.q(i, problem.b[i], basis, start.q, what)
+                if order_of_ends == 0:  # a point piece [a, a]: q(a) >= 0 alone
+                    if q and start.sign_of(poly_arithmetic.integer_coefficients(q)) < 0:
+                        _fail(f"{what}: q(h) = D(h)^2 b_i - y(h)^T b is negative at its point {start}")
+                else:
+                    _require_nonnegative(q, start, end, f"{what}: q(h) = D(h)^2 b_i - y(h)^T b")
+                left_open = False
+                points.append(zero)
+                rays.append(zero)
+                is_ray.append(False)
+                facet_of.append(i)
+                start = end
+                continue
             if isinstance(basis, list):  # a ray piece: facet i is violated on the open piece
                 d = basis
                 what = f"lp facet {i} piece {k}: the ray"
@@ -533,7 +582,8 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)))
     D2, inequalities, equalities = condition_polynomials(
         problem.A, problem.G, problem.b, method.numerator, method.denominator, generators,
-        lambda kind, k: None if kind == "line" else [facet_of[k]] if (kind == "ray") == is_ray[k] else [])
+        lambda kind, k: None if kind == "line" else [] if is_dual[k] else [facet_of[k]] if (kind == "ray") == is_ray[k]
+        else [])
     return generators, D2, inequalities, equalities, horizon
 
 

@@ -15,11 +15,22 @@ from pathlib import Path
 
 import exactinv as ei
 import exactinv.conditions.pruning as engine_pruning
+import exactinv.validset.lp_route as engine_lp
 from exactinv.certificates import certificate, dumps
 
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "exactinv_check" / "selftest_certificates"
 
+
+
+def _with_dual_pieces(make):
+    """The LP route with a dual piece tried at the end of every basis piece (DualPolicy(0, 0, 1, 10**9))."""
+    old = engine_lp.DUAL_POLICY
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(0, 0, 1, 10**9)
+    try:
+        return make()
+    finally:
+        engine_lp.DUAL_POLICY = old
 
 
 def main():
@@ -37,6 +48,9 @@ def main():
          ei.largest_threshold(S, box, t4, route="vertex"), ei.valid_steplengths(S, box, t4)])
     certs["box-route-rk4"] = ei.largest_threshold(S, box, ei.methods.PRESETS["rk4"](), route="box").certificate
     certs["lp-route-taylor2"] = ei.largest_threshold(S, octagon, ei.methods.taylor(2), route="lp").certificate
+    certs["lp-dual-taylor2"] = _with_dual_pieces(lambda: certificate(S, octagon, ei.methods.taylor(2), [
+        ei.largest_threshold(S, octagon, ei.methods.taylor(2), route="lp"),
+        ei.valid_steplengths(S, octagon, ei.methods.taylor(2), route="lp")]))
     slab, feed = ei.Polyhedron([[1, 0], [-1, 0]], [1, 1]), ei.LinearSystem([[-1, 1], [0, -1]])  # P with a line
     certs["lp-lines-taylor2"] = certificate(feed, slab, ei.methods.taylor(2), [
         ei.largest_threshold(feed, slab, ei.methods.taylor(2), route="lp"),

@@ -200,7 +200,10 @@ def test_every_accepted_mutation_of_a_genuine_lp_record_gives_the_true_valid_set
 def test_the_fuzzer_finds_a_false_accept_in_a_kernel_that_skips_the_slacks(monkeypatch):
     """The fuzzer can fail: with the feasibility of x_B not checked (packed slacks said True, the row by
     row check never reached), a basis row mutated to an infeasible point is accepted and its conditions
-    give a wrong valid set -- which the fuzzer reports."""
+    give a wrong valid set -- which the fuzzer reports.  Basis pieces only (dual pieces off in the engine:
+    they replace the runs of bases whose rows the fuzzer mutates; tests/kernel/test_lp_duals.py forges those)."""
+    import exactinv.validset.lp_route as engine_lp
+    monkeypatch.setattr(engine_lp, "DUAL_POLICY", None)
     monkeypatch.setattr(lp_pieces._Bases, "packed_slacks", lambda self, x, d: True)
     _, _, bad = fuzz(seed=7, problems=10, mutations=12, dims=(2, 3))
     assert bad

@@ -50,7 +50,7 @@ def test_only_the_dispatch_points_import_routes():
 
 def test_routes_are_documented_and_exist():
     modules = sorted(p.stem for p in (PACKAGE / "routes").glob("*.py") if p.stem != "__init__")
-    assert modules == ["boxes", "lp_pieces", "polygon", "pruning", "pruning_rational"]
+    assert modules == ["boxes", "lp_duals", "lp_pieces", "polygon", "pruning", "pruning_rational"]
     for name in modules:
         assert f"* {name} -- " in routes.__doc__, name
 
