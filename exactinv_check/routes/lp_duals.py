@@ -29,12 +29,12 @@ integers (one common denominator per vector), every step charged.
 from __future__ import annotations
 
 from fractions import Fraction
-from math import lcm
+from math import gcd, lcm
 from operator import mul
 from typing import Any
 
 from .. import poly_arithmetic
-from ..budget import MAX_DEGREE, PYTHON_OP, charge, words
+from ..budget import MAX_DEGREE, PYTHON_OP, charge, content_cost, fraction_products_cost, words
 from ..failure import CheckFailure, require
 from ..rationals import integer, rational
 
@@ -80,6 +80,23 @@ def _common(values: Any) -> int:
     return lcm(1, *(v.denominator for v in values))
 
 
+def common_denominator(values: Any, what: str) -> int:
+    """The least positive common denominator of some rationals, each step charged before it runs (a gcd and
+    a product of the denominator so far by the next one: quadratic in the words, budget.content_cost).
+
+    Found (red team rt-dual): y_0 with 244 entries 1/d_r, the d_r distinct 3990-digit numbers (a 987 KB
+    certificate), made a common denominator of 3.2 million bits uncharged -- its gcds, then each entry times
+    it and y_0^T b in Fractions: 50 s of CPU before the first charge (past the kernel's clock, which is read
+    only at a charge).  Now the first few dozen steps overdraw the account."""
+    den = 1
+    for v in values:
+        d = v.denominator
+        if d != 1:
+            charge(content_cost(1, den.bit_length(), d.bit_length()), what)
+            den = den * d // gcd(den, d)
+    return den
+
+
 def _shift(ints: list[int], u: int, v: int) -> list[int]:
     """v^(W-1) p(u/v + y) in powers of y, for p of W integer coefficients (zeros on top allowed): Horner,
     r <- r (u + v y) + c_k v^(W-1-k), exact."""
@@ -96,6 +113,7 @@ class DualChecker:
 
     def __init__(self, G: Any, b: Any, D: Any, N: Any) -> None:
         self.b = list(b)
+        self.bbits = max(_bits(x) for x in self.b)
         self.dG = _common(x for row in G for x in row)
         self.Gc = [[int(x * self.dG) for x in row] for row in G]
         self.G = G
@@ -138,7 +156,10 @@ class DualChecker:
         betas = []
         for k in range(W):
             y = dual.ys[k] if k < K1 else []
-            e = _common(val for _, val in y)
+            e = common_denominator((val for _, val in y), f"{what}: the common denominator of y_{k}")
+            nbits = max((val.numerator.bit_length() for _, val in y), default=1)
+            charge(content_cost(len(y), e.bit_length(), nbits) + fraction_products_cost(
+                len(y), e.bit_length() + nbits + self.bbits), f"{what}: y_{k} in integers and y_{k}^T b")
             Y = [(r, int(val * e)) for r, val in y]
             ybits = max((abs(val).bit_length() for _, val in Y), default=1)
             charge((len(Y) + 1) * self.n * (PYTHON_OP + words(ybits + gbits) * words(scale.bit_length())),

@@ -109,6 +109,11 @@ def parse(record: Any, m: Any, n: Any) -> Any:
             rows.append(r)
         out.append((ends, rows))
     require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
+    # P nonempty must be proved (by a basis piece's x_B, or the point): on an empty P every step is valid, yet a
+    # record of dual pieces only (Farkas' y absorbs any target) kept the line equalities as conditions -- red
+    # team rt-dual, tests/kernel/test_lp_duals_attacks.py: {0} accepted as the valid set of an empty P
+    require(rays or any(isinstance(p, tuple) for _, rows in out for p in rows),
+            "lp: every piece is a dual piece, so nothing proves P nonempty (a basis or ray piece is needed)")
     point = vector(record["point"], "lp point", n) if rays else None
     return out, point, lines
 
