@@ -569,7 +569,10 @@ def lp_conditions(problem: Any, record: Any) -> Any:
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
     count = len(points)
-    generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)))
+    # ``dual``: the flat indices of dual pieces, whose slots hold the zero vector, no point of P (a binding may
+    # not name them: claims_sets.largest_threshold)
+    generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)),
+                                 dual=frozenset(k for k, d in enumerate(is_dual) if d))
     D2, inequalities, equalities = condition_polynomials(
         problem.A, problem.G, problem.b, method.numerator, method.denominator, generators,
         lambda kind, k: None if kind == "line" else [] if is_dual[k] else [facet_of[k]] if (kind == "ray") == is_ray[k]

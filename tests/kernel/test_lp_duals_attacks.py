@@ -200,6 +200,31 @@ def test_the_fuzzer_finds_a_false_accept_in_a_kernel_that_skips_q(monkeypatch):
     assert bad
 
 
+def test_a_binding_naming_a_dual_pieces_slot_is_rejected():
+    """Found: a largest_threshold's ``binding`` {kind vertex, generator k} with k a dual piece named the zero
+    vector in that slot -- no point of P -- and its "condition" -1 >= 0 (x' = x on P = [1, 2], forward Euler,
+    facet 1 (-x <= -1) valid on [0, oo) by y = 1 + h on row 1: q = h), which ends the first interval {0} at
+    tau = 0 as the kernel's first_end reads an empty set: accepted, though that condition fails at h = 0
+    where every step is valid.  Now a binding may not name a dual piece; the genuine binding (vertex 0 = x_B
+    = 2, facet 0: -2h >= 0) is still accepted."""
+    problem = {"A": [["1"]], "G": [["1"], ["-1"]], "b": ["2", "-1"],
+               "method": {"numerator": ["1", "1"], "denominator": ["1"]}}
+    lp = {"facets": [{"ends": ["oo"], "bases": [[0]]},
+                     {"ends": ["oo"], "bases": [{"dual": [[[1, "1"]], [[1, "1"]]]}]}]}
+    S = ei.valid_steplengths(ei.LinearSystem([[1]]), ei.Polyhedron([[1], [-1]], [2, -1]), ei.methods.taylor(1),
+                             route="vertex")
+    assert str(S.intervals) == "[0, 0]"
+
+    def cert(binding):
+        return {"format": "exactinv-certificate", "version": 2, "problem": problem,
+                "claims": [{"type": "largest_threshold", "value": "0", "attained": True, "lp": lp,
+                            "determinant": ["1"], "binding": binding}]}
+
+    report = check_within(cert({"kind": "vertex", "generator": 1, "facet": 1, "poly": ["-1"]}), 60)
+    assert not report.ok and "dual piece" in str(report), report
+    assert check_within(cert({"kind": "vertex", "generator": 0, "facet": 0, "poly": ["0", "-1"]}), 60).ok
+
+
 # ------------------------------------------------------------------ resources
 
 def _digits(rng, k):
