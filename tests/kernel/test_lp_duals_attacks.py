@@ -344,3 +344,24 @@ def test_dual_pieces_hold_by_exact_lps_at_their_starts_midpoints_and_rational_en
     # the check can fail: x' = -x on [-1, 1], forward Euler at h = 3 (A_d = -2): max -2x = 2 > 1
     Ad = _A_d(PROBLEM, F(3))
     assert _lp_max([[F(1)], [F(-1)]], [F(1), F(1)], [F(str(Ad[0, 0]))]) == 2
+
+
+def test_the_lines_denominators_in_G_prime_are_charged():
+    """G' = G with the record's lines: 40 lines, each one entry 1/d_j (distinct 300-digit d_j), make a
+    common denominator of 40 x 1000 bits and 40 quotients by it -- charged before they run, far above the same
+    G' with lines of denominator 1 (found with 220 such lines of 3600 digits: the price of one piece now stops
+    that first, tests/kernel/test_lp_duals_attacks.py's resource section)."""
+    from fractions import Fraction
+    rng = random.Random(7)
+    n = 41
+    G = [[Fraction(1)] + [Fraction(0)] * (n - 1), [Fraction(-1)] + [Fraction(0)] * (n - 1)]
+    lines = [[Fraction(0)] * (j + 1) + [Fraction(1, int(_digits(rng, 300)))] + [Fraction(0)] * (n - j - 2)
+             for j in range(n - 1)]
+    plain = [[Fraction(0)] * (j + 1) + [Fraction(1)] + [Fraction(0)] * (n - j - 2) for j in range(n - 1)]
+    spent = []
+    for L in (lines, plain):
+        with account(limit=10**30) as acc:
+            lp_duals.DualChecker(G + L, [Fraction(1), Fraction(1)] + [Fraction(0)] * len(L), [Fraction(1)],
+                                 [[[Fraction(int(i == j)) for j in range(n)] for i in range(n)]])
+            spent.append(acc.spent)
+    assert spent[0] > 100 * spent[1] > 0
