@@ -60,7 +60,7 @@ from ..rationals import integer, integer_matrix, integer_rows, vector
 from ..reals import Real, separate
 from ..text import rational_text
 from ..validset import valid_set
-from .lp_duals import DualChecker, DualPiece, parse_dual
+from .lp_duals import DualChecker, DualPiece, common_denominator, parse_dual
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:
@@ -473,6 +473,9 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = poly_arithmetic.integer_coefficients(D)
+    for j, line in enumerate(lines):  # each line's common denominator charged step by step before the
+        # uncharged integer_rows below builds it (one line of 179 entries 1/d_k, 3990 digits each: red team rt-dual)
+        common_denominator(line, f"lp line {j}: its common denominator")
     # P' = P with the rows l^T x <= 0 appended: its bases' points x_B are points of P, its rays rays of P
     bases = _Bases(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines))
     _require_lines(bases.rows[:m], lines)

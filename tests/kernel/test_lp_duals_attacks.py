@@ -366,3 +366,25 @@ def test_the_lines_denominators_in_G_prime_are_charged():
                                  [[[Fraction(int(i == j)) for j in range(n)] for i in range(n)]])
             spent.append(acc.spent)
     assert spent[0] > 100 * spent[1] > 0
+
+
+def test_a_line_of_distinct_huge_denominators_is_charged_before_the_rows_are_scaled():
+    """Found (the lines of an lp record, beside the dual pieces): one line (0, 1/d_1, ..., 1/d_184) in R^185,
+    the d_k distinct 3990-digit numbers (an 874 KB certificate), made the integer rows of G' and the check
+    of G l = 0 build its 2.4-million-bit common denominator twice uncharged: 49 s of CPU before the first
+    charge.  Now the line's common denominator is charged step by step first: over the budget in 2 s."""
+    rng = random.Random(5)
+    n = 185
+    lines = [[0] + ["1/" + _digits(rng, 3990) for _ in range(n - 1)]] + \
+        [[int(i == j) for i in range(n)] for j in range(2, n - 1)]
+    cert = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": [[-int(i == j) for j in range(n)] for i in range(n)],
+                        "G": [[1] + [0] * (n - 1), [-1] + [0] * (n - 1)], "b": [1, 1],
+                        "method": {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}},
+            "claims": [{"type": "valid_steplengths",
+                        "lp": {"facets": [{"ends": ["oo"], "bases": [list(range(n))]}] * 2, "lines": lines},
+                        "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
+    text = json.dumps(cert, separators=(",", ":"))
+    assert len(text) < 1_000_000
+    report = check_within(text, 20)  # was 49 s
+    assert report.kind == "over-budget" and "lp line 0" in str(report), report
