@@ -388,3 +388,20 @@ def test_a_line_of_distinct_huge_denominators_is_charged_before_the_rows_are_sca
     assert len(text) < 1_000_000
     report = check_within(text, 20)  # was 49 s
     assert report.kind == "over-budget" and "lp line 0" in str(report), report
+
+
+def test_a_problem_G_of_distinct_huge_denominators_is_charged_before_the_price_scales_it():
+    """Found (the LP route's price, dual pieces or not): 244 rows (1/d_j, 1) of G, the d_j distinct 3990-digit
+    numbers (a 985 KB certificate), made the price's integer_matrix(G) build a 3.2-million-bit common
+    denominator uncharged: 31 s of CPU before the price said no.  Now charged step by step: 1 s."""
+    rng = random.Random(5)
+    m = 244
+    cert = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"A": [[-1, 0], [0, -1]], "G": [["1/" + _digits(rng, 3990), "1"] for _ in range(m)],
+                        "b": [1] * m, "method": {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}},
+            "claims": [{"type": "valid_steplengths", "lp": {"facets": [{"ends": ["oo"], "bases": [[0, 1]]}] * m},
+                        "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
+    text = json.dumps(cert, separators=(",", ":"))
+    assert len(text) < 1_000_000
+    report = check_within(text, 20)  # was 31 s
+    assert report.kind == "over-budget" and "G's common denominator" in str(report), report
