@@ -197,6 +197,8 @@ def largest_threshold(problem: Any, claim: Any, context: Any) -> str | None:
         vectors = getattr(gens, field)
         i = integer(binding["generator"], "binding generator", 0, gens.counts[("vertex", "ray", "line").index(kind)])
         j = integer(binding["facet"], "binding facet", 0, problem.m)
+        require(kind == "line" or i not in getattr(gens, "dual", ()),
+                f"binding generator {i} is a dual piece of the lp record: its slot holds no point of P")
         one = SimpleNamespace(vertices=[], rays=[], lines=[])
         getattr(one, field).append(vectors[i])
         _, single, single_eq = condition_polynomials(problem.A, [problem.G[j]], [problem.b[j]],

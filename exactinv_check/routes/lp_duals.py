@@ -29,12 +29,12 @@ integers (one common denominator per vector), every step charged.
 from __future__ import annotations
 
 from fractions import Fraction
-from math import lcm
+from math import gcd
 from operator import mul
 from typing import Any
 
 from .. import poly_arithmetic
-from ..budget import MAX_DEGREE, MAX_LP_DUAL_ENTRIES, PARSE_ENTRY, PYTHON_OP, charge, words
+from ..budget import FRACTION_WEIGHT, MAX_DEGREE, MAX_LP_DUAL_ENTRIES, PARSE_ENTRY, PYTHON_OP, charge, content_cost, words
 from ..failure import CheckFailure, require
 from ..rationals import integer, rational
 
@@ -80,9 +80,30 @@ def parse_dual(data: Any, rows_of_G: int, what: str, room: int) -> DualPiece:
     return DualPiece(ys)
 
 
-def _common(values: Any) -> int:
-    """The least positive common denominator of some rationals (1 for none)."""
-    return lcm(1, *(v.denominator for v in values))
+def common_denominator(values: Any, what: str) -> int:
+    """The least positive common denominator of some rationals, each step charged before it runs (a gcd and
+    a product of the denominator so far by the next one: quadratic in the words, budget.content_cost).
+
+    Found (red team rt-dual): y_0 with 244 entries 1/d_r, the d_r distinct 3990-digit numbers (a 987 KB
+    certificate), made a common denominator of 3.2 million bits uncharged -- its gcds, then each entry times
+    it and y_0^T b in Fractions: 50 s of CPU before the first charge (past the kernel's clock, which is read
+    only at a charge).  The same for G' (G with the record's lines, each line one 1/d_j: 220 lines in a 988 KB
+    certificate).  Now the first few dozen steps overdraw the account."""
+    den = 1
+    for v in values:
+        d = v.denominator
+        if d != 1:
+            charge(content_cost(1, den.bit_length(), d.bit_length()), what)
+            den = den * d // gcd(den, d)
+    return den
+
+
+def _scaling_cost(values: Any, den: int, each: int) -> int:
+    """The price of x * den for each rational x (den a multiple of its denominator: one exact quotient of
+    den's words by x's, one product) plus ``each`` per value; and of their sum, which has den as its
+    common denominator (each Fraction sum a gcd of the same sizes)."""
+    w = words(den.bit_length())
+    return sum(each + 3 * w * words(x.numerator.bit_length() + x.denominator.bit_length()) for x in values)
 
 
 def _shift(ints: list[int], u: int, v: int) -> list[int]:
@@ -101,7 +122,10 @@ class DualChecker:
 
     def __init__(self, G: Any, b: Any, D: Any, N: Any) -> None:
         self.b = list(b)
-        self.dG = _common(x for row in G for x in row)
+        self.bbits = max(_bits(x) for x in self.b)
+        # G' holds the record's lines: their denominators are the record's, charged like y's (common_denominator)
+        self.dG = common_denominator((x for row in G for x in row), "the common denominator of G' (G and the lines)")
+        charge(_scaling_cost((x for row in G for x in row if x), self.dG, PYTHON_OP), "G' in integers")
         self.Gc = [[int(x * self.dG) for x in row] for row in G]
         self.G = G
         self.D = [Fraction(c) for c in D]
@@ -123,7 +147,7 @@ class DualChecker:
                 c = [sum(g[r] * Nk[r][col] for r in range(n) if g[r]) for Nk in self.N]
                 rows.append(poly_arithmetic.mul(c, self.D) if any(c) else [Fraction(0)])
             rows = [list(r) + [Fraction(0)] * (W - len(r)) for r in rows]
-            f = _common(x for row in rows for x in row)
+            f = common_denominator((x for row in rows for x in row), "the common denominator of D N^T g_i")
             self.targets[i] = f, [[int(x * f) for x in row] for row in rows]
         return self.targets[i]
 
@@ -143,7 +167,9 @@ class DualChecker:
         betas = []
         for k in range(W):
             y = dual.ys[k] if k < K1 else []
-            e = _common(val for _, val in y)
+            e = common_denominator((val for _, val in y), f"{what}: the common denominator of y_{k}")
+            charge(_scaling_cost((val for _, val in y), e, 2 * FRACTION_WEIGHT + words(self.bbits)),
+                   f"{what}: y_{k} in integers and y_{k}^T b")
             Y = [(r, int(val * e)) for r, val in y]
             ybits = max((abs(val).bit_length() for _, val in Y), default=1)
             charge((len(Y) + 1) * self.n * (PYTHON_OP + words(ybits + gbits) * words(scale.bit_length())),

@@ -67,7 +67,7 @@ from ..rationals import integer, integer_matrix, integer_rows, vector
 from ..reals import Real, separate
 from ..text import rational_text
 from ..validset import valid_set
-from .lp_duals import DualChecker, DualPiece, parse_dual
+from .lp_duals import DualChecker, DualPiece, common_denominator, parse_dual
 
 
 def parse(record: Any, m: Any, n: Any) -> Any:
@@ -117,6 +117,11 @@ def parse(record: Any, m: Any, n: Any) -> Any:
             rows.append(r)
         out.append((ends, rows))
     require(rays == ("point" in record), "lp: a point of P is given exactly when some piece is a ray piece")
+    # P nonempty must be proved (by a basis piece's x_B, or the point): on an empty P every step is valid, yet a
+    # record of dual pieces only (Farkas' y absorbs any target) kept the line equalities as conditions -- red
+    # team rt-dual, tests/kernel/test_lp_duals_attacks.py: {0} accepted as the valid set of an empty P
+    require(rays or any(isinstance(p, tuple) for _, rows in out for p in rows),
+            "lp: every piece is a dual piece, so nothing proves P nonempty (a basis or ray piece is needed)")
     point = vector(record["point"], "lp point", n) if rays else None
     return out, point, lines
 
@@ -159,6 +164,9 @@ def _price(problem: Any, pieces: Any, dual_entries: Any = 0) -> None:
     n = problem.n
     cost, d, w = rebuild_size(problem.A, problem.method.numerator, problem.method.denominator)
     within_budget(cost, f"D(h) and N(h) of a {n} x {n} problem")
+    # G's common denominator charged step by step first (244 rows (1/d_j, 1) of distinct 3990-digit d_j, a
+    # 985 KB certificate, ran 31 s in integer_matrix uncharged: red team rt-dual)
+    common_denominator((x for row in problem.G for x in row), "G's common denominator")
     _, Gi = integer_matrix(problem.G)
     gw = 1 + max(abs(x).bit_length() for row in Gi for x in row) * n // 64
     one = n ** 3 * gw * gw + n * (n + d) * (2 * d + 2) ** 2 * (w + gw)
@@ -483,6 +491,9 @@ def lp_conditions(problem: Any, record: Any) -> Any:
     method = problem.method
     D, N = method_matrices(problem.A, method.numerator, method.denominator)
     D_int = poly_arithmetic.integer_coefficients(D)
+    for j, line in enumerate(lines):  # each line's common denominator charged step by step before the
+        # uncharged integer_rows below builds it (one line of 179 entries 1/d_k, 3990 digits each: red team rt-dual)
+        common_denominator(line, f"lp line {j}: its common denominator")
     # P' = P with the rows l^T x <= 0 appended: its bases' points x_B are points of P, its rays rays of P
     bases = _Bases(list(problem.G) + lines, list(problem.b) + [Fraction(0)] * len(lines))
     _require_lines(bases.rows[:m], lines)
@@ -579,7 +590,10 @@ def lp_conditions(problem: Any, record: Any) -> Any:
         if horizon is None or start.compare(horizon) < 0:
             horizon = start
     count = len(points)
-    generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)))
+    # ``dual``: the flat indices of dual pieces, whose slots hold the zero vector, no point of P (a binding may
+    # not name them: claims_sets.largest_threshold)
+    generators = SimpleNamespace(vertices=points, rays=rays, lines=lines, counts=(count, count, len(lines)),
+                                 dual=frozenset(k for k, d in enumerate(is_dual) if d))
     D2, inequalities, equalities = condition_polynomials(
         problem.A, problem.G, problem.b, method.numerator, method.denominator, generators,
         lambda kind, k: None if kind == "line" else [] if is_dual[k] else [facet_of[k]] if (kind == "ray") == is_ray[k]
