@@ -254,6 +254,7 @@ MAX_BERNSTEIN_STEPS = 8000  # (bernstein) steps of the compact piece (the engine
 # (bernstein) step-size trials in all (a bounded verdict: each trial is a few disk operations per pole)
 MAX_BERNSTEIN_TRIALS = 40000
 MAX_BERNSTEIN_DEGREE = 16  # (bernstein) the largest deg h the general proof takes
+BERNSTEIN_REACH_TERMS = 24  # (bernstein) Taylor terms of f at 0 beyond its first nonzero one in the longer bound near 0
 MAX_RATIONAL_BISECTIONS = 4000  # (bernstein) bisections to pin a rational pole
 MAX_RATIONAL_POLE_EXPONENT = 2000  # (bernstein) the largest degree of F(u) for rational poles
 # (claims_control) the gain LP's rows recomputed: dense Fraction products (about 10-30 s at most)

@@ -324,7 +324,8 @@ def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
         how = "r = c prod (1 - z/p_k)^(-m_k) with every p_k > 0: a product of absolutely monotonic factors"
     elif reason == "bernstein":
         require(claim.get("tail_index") is None, "a bernstein claim has no tail index")
-        how = prove_completely_monotone(num, den)
+        hint = claim.get("pole")  # only a candidate modulus for Q(p*): bernstein._line_modulus tests it exactly
+        how = prove_completely_monotone(num, den, None if hint is None else Real.parse(hint, "pole").poly)
         rho, rho_attained, d = Real(inf=1), True, []
     elif reason == "bernstein-root":
         require(claim.get("tail_index") is None and claim.get("d") is None, "a bernstein-root claim has no tail index and no d")

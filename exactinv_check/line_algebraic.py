@@ -84,11 +84,14 @@ class AlgebraicLine:
             self.m = monic(divmod_(self.m, g)[0])
             require(self.alpha.sign_of(self.m) == 0, "line: the factor of p*'s polynomial lost p* (internal)")
         a = self._reduce(a)
-        n = len(self.m)
-        charge(fraction_products_cost(4 * n * n * n, 4 * (_bits(a) + _bits(self.m)) + n),
-               "an inversion in Q(p*) (the extended Euclid algorithm)")
-        r0, r1, s0, s1 = list(self.m), a, [], [Fraction(1)]  # invariant: r_i = s_i a (mod m)
+        s0: list[Fraction] = []
+        r0, r1, s1 = list(self.m), a, [Fraction(1)]  # invariant: r_i = s_i a (mod m)
         while len(r1) > 1:
+            # charged step by step, by the sizes of the numbers as they are (the former price, 4 n^3 products of
+            # 4 (bits of a and m) bits up front, ran 30 times high: a genuine degree-12 rho = oo went over budget)
+            charge(fraction_products_cost((len(r0) - len(r1) + 1) * (len(r1) + len(s1)) + len(s0),
+                                          max(_bits(r0), _bits(r1), _bits(s1))),
+                   "a step of an inversion in Q(p*) (the extended Euclid algorithm)")
             q, r = divmod_(r0, r1)
             r0, r1, s0, s1 = r1, list(r), s1, trim(sub(s0, mul(q, s1)))
         require(len(r1) == 1 and r1[0] != 0, "line: an element of Q(p*) is not invertible (internal)")
