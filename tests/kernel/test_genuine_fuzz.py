@@ -204,3 +204,19 @@ def test_descartes_is_charged_by_the_largest_coefficient():
             polys.descartes_variations(p, F(1, 3), F(2, 3))
         charged.append(acc.spent)
     assert charged[1] > 2 * charged[0]  # (read from the ends, both were charged alike)
+
+
+@pytest.mark.workload  # a kernel workload (about 10-20 s of CPU): left out at the lowest versions
+def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget():
+    """benchmarks/radius_undecided.py --family line-irrational, seed 1, case 162 (p* = 2 - sqrt 2... a pair on its
+    line, coefficient route, binding d_79 of degree 400 with 1441-bit coefficients): the kernel refused it up front
+    (d_0 .. d_79 estimated 1.35e9 > the scan gate 5e8), and past the gate spent 4.2e9 (27 s) -- two isolations of d_79
+    and a failed depth-4 Descartes pre-test before each.  Now: the gate is 2e9, d_79 (the claim's binding hint) is
+    isolated once and first, the rest cleared against its end: about 1.9e9, 11 s."""
+    g = [F(1), F(-708530257, 418834374), F(171180235, 179500446), F(-30281708, 209417187), F(-27387536, 628251561),
+         F(1139520, 69805729), F(-128, 90279)]
+    h = [F(1), F(-76418, 30093), F(33271, 12897), F(-40064, 30093), F(33056, 90279), F(-512, 10031), F(256, 90279)]
+    r = ei.absolute_monotonicity_radius(ei.methods.rational(g, h))
+    assert r.reason == "coefficient" and r.binding == 79
+    report = _verified(r.certificate)
+    assert report.work < budget.CERTIFICATE_BUDGET * 3 // 4
