@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
 
 from lp_route import family as lp_family  # noqa: E402
-from radius_undecided import _UNITS  # noqa: E402
+from radius_undecided import _UNITS, family_line_irrational  # noqa: E402
 
 
 def _verified(cert):
@@ -220,3 +220,27 @@ def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget():
     assert r.reason == "coefficient" and r.binding == 79
     report = _verified(r.certificate)
     assert report.work < budget.CERTIFICATE_BUDGET * 3 // 4
+
+
+def test_no_radius_certificate_of_the_fuzz_families_is_over_the_budget():
+    """The rule of issue 22 on the radius: every certificate the engine writes for these families gets the kernel's
+    verdict accepted -- none over the budget (the engine says Undecided instead: exactinv.monotonicity.kernel_price).
+    Families: random degree-5 r = g/h (seed 11), the line-irrational benchmark family (p* = a - sqrt d with a pair on
+    its line, seed 1), and 1/h for products of the shifted sextic (w^2 - d)((w^2 + d + y^2)^2 - 4dw^2)."""
+    from test_bernstein import _one_over, _sextic, _mul as mul
+    methods = []
+    rng = random.Random(11)
+    for _ in range(8):
+        methods.append(ei.methods.rational(*_degree5(rng)))
+    methods += [m for _, m in family_line_irrational(6, 1)]
+    methods += [_one_over(_sextic(F(2), F(2), F(1))), _one_over(mul(_sextic(F(5, 2), F(3), F(2)), _sextic(F(3), F(2), F(1, 2))))]
+    kinds = []
+    for method in methods:
+        try:
+            r = ei.absolute_monotonicity_radius(method)
+        except ei.Undecided:
+            continue
+        report = check(r.certificate)
+        kinds.append(report.kind)
+        assert report.kind == "accepted" and report.work <= budget.CERTIFICATE_BUDGET, (method.name, str(report))
+    assert len(kinds) >= len(methods) // 2
