@@ -227,7 +227,8 @@ def test_no_radius_certificate_of_the_fuzz_families_is_over_the_budget():
     verdict accepted -- none over the budget (the engine says Undecided instead: exactinv.monotonicity.kernel_price).
     Families: random degree-5 r = g/h (seed 11), the line-irrational benchmark family (p* = a - sqrt d with a pair on
     its line, seed 1), and 1/h for products of the shifted sextic (w^2 - d)((w^2 + d + y^2)^2 - 4dw^2)."""
-    from test_bernstein import _one_over, _sextic, _mul as mul
+    from test_bernstein import _mul as mul
+    from test_bernstein import _one_over, _sextic
     methods = []
     rng = random.Random(11)
     for _ in range(8):
