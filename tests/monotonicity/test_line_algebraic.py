@@ -308,24 +308,21 @@ def test_a_rational_pole_midway_between_conjugates_is_decided():
     assert not check(forged).ok
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.integers(2, 5), st.sampled_from([2, 3, 5, 6, 7]), st.fractions(min_value=-1, max_value=3, max_denominator=4),
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(2, 5), st.sampled_from([2, 3, 5, 6, 7]), st.fractions(min_value=F(1, 8), max_value=3, max_denominator=8),
        st.integers(1, 8), st.sampled_from([(F(1, 2), 0), (F(3, 10), F(2, 5)), (0, F(1, 2)), (F(1, 4), F(-1, 4)),
-                                           (F(-1, 2), F(1, 4))]),
+                                           (F(-5, 26), F(6, 13))]),
        st.sampled_from([0, F(1, 4)]))
 def test_symmetric_configurations_against_the_reference(a, d, c_a, y, beta, C):
-    """Poles a -+ sqrt d with pairs (touching, inside or outside 4|beta|^2 <= 1) and the rational pole a midway (any
-    residue): every radius the engine decides is verified by the kernel, and rho = oo is true by the slow exact
-    reference (c_j(kappa) >= 0 for j < 150 at four kappa)."""
+    """Poles a -+ sqrt d with pairs (touching, 4|beta|^2 = 1, or inside) and the rational pole a midway with a positive
+    residue: f >= 0 line by line, so rho = oo must be decided (line by line or by dominance), verified by the kernel,
+    and true by the slow exact reference (c_j(kappa) >= 0 for j < 150 at four kappa).  (A negative residue or
+    4|beta|^2 > 1 gives a finite rho by the coefficient route, up to 80 s of engine time: the forged claim of
+    test_a_rational_pole_midway_between_conjugates_is_decided covers it.)"""
     if a * a <= d:
         return
     g, h = symmetric_lines(a, d, c_a, sp.Integer(y), beta, C)
-    try:
-        r = _radius(g, h)
-    except ei.Undecided:
-        return
-    if r.value == INF:
-        for kappa in (F(0), F(1, 2), F(5), F(40)):
-            assert admissible(g, h, kappa, 150)
-    else:
-        assert admissible(g, h, _lower(r.value) * F(127, 128), 150)
+    r = _radius(g, h)
+    assert r.value == INF and r.reason == "bernstein"
+    for kappa in (F(0), F(1, 2), F(5), F(40)):
+        assert admissible(g, h, kappa, 150)
