@@ -232,7 +232,7 @@ def recompute(num: Any, den: Any, count: Any, K_is_infinite: bool, K: Fraction |
     early = live[:1] if K is not None else []
     if binding is not None and 0 <= binding < len(d) and d[binding]:
         early.append(d[binding])
-    rho, _ = first_end([Fraction(1)], live, [], first=early)
+    rho, _ = first_end([Fraction(1)], live, [], first=early, remember=True)
     attained = True
     if rho.is_zero():  # kappa = 0 is admissible iff every c_j(0) >= 0
         attained = all(poly_arithmetic.evaluate(p, Fraction(0)) >= 0 for p in d)
@@ -386,7 +386,7 @@ def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
     if claim.get("binding") is not None and d:
         j = integer(claim["binding"], "binding", 0, len(d))
         guard = [] if rho.inf else [[2 * rho.bounds()[1] + 1, Fraction(-1)]]  # bounds the isolation
-        end, _ = first_end([Fraction(1)], guard + ([d[j]] if d[j] else []), [], first=guard + [d[j]])
+        end, _ = first_end([Fraction(1)], guard + ([d[j]] if d[j] else []), [], first=guard + [d[j]], remember=True)
         require(end.compare(rho) == 0, f"c_{j} does not end the interval at rho")
     if claim.get("pole") is not None:
         pole = smallest_positive_root(den)

@@ -88,10 +88,10 @@ def test_a_first_sign_change_is_remembered_only_where_it_holds():
     base = pa.mul([F(-1), F(1)], [F(-3), F(1)])  # (x - 1)(x - 3)
     p = pa.mul(base, [F(1)] + [F(0)] * (MEMO_MIN_DEGREE + 4) + [F(1, 10 ** 6)])  # times 1 + x^(deg)/10^6 > 0
     with account() as acc:
-        first, _ = first_end([F(1)], [p], [], first=[p])
+        first, _ = first_end([F(1)], [p], [], first=[p], remember=True)
         assert first.compare(Real.rational(F(1))) == 0
         spent = acc.spent
-        again, _ = first_end([F(1)], [[F(8), F(-1)], p], [], first=[[F(8), F(-1)], p])
+        again, _ = first_end([F(1)], [[F(8), F(-1)], p], [], first=[[F(8), F(-1)], p], remember=True)
         assert again.compare(Real.rational(F(1))) == 0 and acc.spent - spent < spent
-        near, _ = first_end([F(1)], [[F(1, 2), F(-1)], p], [], first=[[F(1, 2), F(-1)]])
+        near, _ = first_end([F(1)], [[F(1, 2), F(-1)], p], [], first=[[F(1, 2), F(-1)]], remember=True)
         assert near.compare(Real.rational(F(1, 2))) == 0
