@@ -24,7 +24,12 @@ The proof of f >= 0:
    Re z_k > p* (inclusion disks, module disks), in three pieces:
    - near 0: f(t) = sum_n f_n t^n/n! with f_n = [x^(-n-1)] r(-x) exact rationals (r at infinity).  The first
      f_n0 != 0 (n0 < deg h, as f solves a linear ODE of order deg h) must be > 0; with B >= |f^(n0+1)| on
-     [0, 1], f(t) >= t^n0 (f_n0/n0! - t B/(n0+1)!) > 0 on (0, t_a], t_a = min(1, (n0+1) f_n0 / (2B)).
+     [0, 1], f(t) >= t^n0 (f_n0/n0! - t B/(n0+1)!) > 0 on (0, t_a], t_a = min(1, (n0+1) f_n0 / (2B)).  Further,
+     with N = n0 + 1 + BERNSTEIN_REACH_TERMS Taylor terms and B_N >= |f^(N)| on [0, T] (|e^(-z_k t)| <= 1 there):
+     f(t) >= t^n0 Q(t), Q(t) = sum_{n0 <= n < N} f_n t^(n-n0)/n! - B_N t^(N-n0)/N!, so f > 0 on (0, t] when Q(t) > 0
+     and Descartes' rule shows Q root-free on (0, t) (Q(0) = f_n0/n0! > 0); t_a is the largest such dyadic t <= 4
+     (T = 4).  An f vanishing to a high order at 0 (1/h, deg h = 6: f ~ t^5/5!) otherwise needs a march of tiny
+     steps (issue 22: 3,577 steps from 1/64, 54 s of CPU, for ((z-2)^2 - 2)((z-2)^4 - 2(z-2)^2 + 9)).
    - far: for t >= T, f(t) e^(p* t) (mu-1)!/t^(mu-1) = b_{*,mu} + sum_{m<mu} b_{*,m} (mu-1)!/(m-1)! t^(m-mu)
      + sum_{k != *} sum_m b_{k,m} (mu-1)!/(m-1)! t^(m-mu) e^(-(z_k - p*) t), and
      |e^(-(z_k - p*) t)| <= n!/(delta_k t)^n for any n >= 0, delta_k <= Re z_k - p*.  With n >= M_k - mu every
@@ -63,6 +68,7 @@ from fractions import Fraction
 from math import ceil, comb, factorial, gcd
 from typing import Any, Sequence
 
+from .budget import BERNSTEIN_REACH_TERMS as REACH_TERMS
 from .budget import (
     CERTIFICATE_BUDGET,
     MAX_RATIONAL_BISECTIONS,
@@ -83,13 +89,15 @@ from .failure import require
 from .line_algebraic import AlgebraicLine, lines_nonnegative
 from .line_poles import disk_on_line, line_density, line_gcd, line_part, nonnegative_on_line, rational_root, single_pair
 from .poly_arithmetic import evaluate, integer_coefficients, mul, trim
-from .polys import count_roots, positive_roots, sign_at, sign_right_of
+from .poly_arithmetic import gcd as poly_gcd
+from .polys import count_roots, no_root_between, positive_roots, sign_at, sign_right_of
 from .rationals import describe
 from .reals import Real
 from .tail import b_disks, factor_of, reduced, squarefree_decomposition, star_enclosure
 
 MIN_STEP = Fraction(1, 2 ** 50)
 TAYLOR_TERMS = 28
+TAYLOR_REACH_SPAN = Fraction(4)  # the longer bound near 0 is tried on (0, 4], (0, 2], ... (dyadic ends)
 
 __all__ = ["prove_completely_monotone", "prove_density_nonnegative", "density_at_zero"]
 
@@ -113,13 +121,29 @@ def density_at_zero(g: Sequence[Fraction], h: Sequence[Fraction], count: int) ->
     return s[0], s[1:]
 
 
-def prove_completely_monotone(numerator: Any, denominator: Any) -> Any:
-    """A sentence saying why rho = oo (c >= 0 and f >= 0 on (0, oo), module docstring), or CheckFailure."""
+def prove_completely_monotone(numerator: Any, denominator: Any, pole_poly: Any = None) -> Any:
+    """A sentence saying why rho = oo (c >= 0 and f >= 0 on (0, oo), module docstring), or CheckFailure.
+    ``pole_poly`` (optional, untrusted: the claim's recorded pole's polynomial) only speeds up the arithmetic in
+    Q(p*) for an irrational p* (:func:`_line_modulus`); it is never believed."""
     g, h = reduced(numerator, denominator)
     require(len(g) <= len(h), "bernstein: deg g > deg h, so r(-x) is unbounded and not completely monotone")
     c, _ = density_at_zero(g, h, 0)
     require(c >= 0, f"bernstein: r(-x) tends to c = {describe(c)} < 0")
-    return f"{_density_nonnegative(g, h)}, c = {describe(c)} >= 0 (Bernstein: r(-x) completely monotone)"
+    return f"{_density_nonnegative(g, h, pole_poly)}, c = {describe(c)} >= 0 (Bernstein: r(-x) completely monotone)"
+
+
+def _line_modulus(f_star: Any, iv: Any, pole_poly: Any) -> Any:
+    """p* (irrational) as a Real, and the squarefree polynomial m with m(p*) = 0 in which Q(p*) = Q[x]/(m) is
+    computed (exactinv_check.line_algebraic: any squarefree m with p* as a root is sound): gcd(f_star, pole_poly)
+    when it keeps p* as a root -- usually p*'s minimal polynomial, far smaller than f_star (a product of sextic
+    factors: the inversions modulo the degree-12 f_star cost 30 times those modulo p*'s quadratic) -- else f_star.
+    The hint is only a candidate: the gcd divides the squarefree f_star and p*'s sign on it is tested exactly."""
+    alpha = Real.root_in(f_star, *iv)
+    if pole_poly is not None and 2 < len(f_star):
+        m = trim(poly_gcd(list(f_star), list(pole_poly)))
+        if 2 <= len(m) < len(f_star) and alpha.sign_of(m) == 0:
+            return alpha, m
+    return alpha, f_star
 
 
 def prove_density_nonnegative(numerator: Any, denominator: Any) -> Any:
@@ -133,7 +157,7 @@ def prove_density_nonnegative(numerator: Any, denominator: Any) -> Any:
     return c, _density_nonnegative(g, h)
 
 
-def _density_nonnegative(g: Any, h: Any) -> Any:
+def _density_nonnegative(g: Any, h: Any, pole_poly: Any = None) -> Any:
     """A sentence saying why f >= 0 on (0, oo) and every pole has Re z > 0 (g, h reduced, deg g <= deg h)."""
     factors = squarefree_decomposition(h)
     poles = positive_roots(h)
@@ -183,7 +207,7 @@ def _density_nonnegative(g: Any, h: Any) -> Any:
                     on_line = disk_on_line(gcds[id(f)], z, p_exact)
                 elif p_exact is None and z[0] - z[2] <= P_hi and P_lo <= z[0] + z[2]:
                     if not algebraic:
-                        algebraic.append(AlgebraicLine(Real.root_in(f_star, *poles[0]), f_star))
+                        algebraic.append(AlgebraicLine(*_line_modulus(f_star, poles[0], pole_poly)))
                     if id(f) not in gcds:
                         gcds[id(f)] = algebraic[0].line_gcd(f)
                     on_line = algebraic[0].disk_on_line(gcds[id(f)], z)
@@ -388,6 +412,28 @@ def _exp_of(z: Any, t: Any) -> Any:
 
 
 # ----------------------------------------------------------------- f > 0 on (0, oo)
+def _taylor_reach(fs: Sequence[Fraction], n0: int, derivative_bound: Any, size: int, floor: Fraction) -> Fraction:
+    """The largest dyadic t_a in {TAYLOR_REACH_SPAN, .../2, ...} above ``floor`` with f > 0 on (0, t_a] proved by
+    the longer Taylor bound at 0 (module docstring, "near 0"), else ``floor``: with N = n0 + 1 + REACH_TERMS
+    and B >= |f^(N)| on [0, T] (every pole has Re z > 0, so |e^(-z t)| <= 1 there),
+        f(t) >= t^n0 Q(t),   Q(t) = sum_{n0 <= n < N} f_n t^(n - n0)/n! - B t^(N - n0)/N!,
+    and Q(0) = f_n0/n0! > 0 with Q(t_a) > 0 and no root of Q in (0, t_a) (Descartes' rule, priced) give Q > 0 on
+    [0, t_a].  A function that vanishes to a high order at 0 (f ~ t^n0) then needs no march of tiny steps there."""
+    N = n0 + 1 + REACH_TERMS
+    if len(fs) < N:
+        return floor
+    T = TAYLOR_REACH_SPAN
+    charge(disk_step_cost(size) * N, "the Taylor bound of the Bernstein density at 0")
+    B = derivative_bound(N, [Fraction(1)] * size, T)
+    Q = integer_coefficients([fs[n] / factorial(n) for n in range(n0, N)] + [-B / factorial(N)])
+    t = T
+    while t > floor:
+        if sign_at(Q, t) > 0 and no_root_between(Q, Fraction(0), t):
+            return t
+        t /= 2
+    return floor
+
+
 def _positive(g: Any, h: Any, terms: Any, mu: Any, P_hi: Any, rest: Any=None) -> Any:
     babs = [[ball_abs_upper(b) for b in bs] for _, _, bs, _, _ in terms]
     zabs = [ball_abs_upper(z) for z, _, _, _, _ in terms]
@@ -401,13 +447,14 @@ def _positive(g: Any, h: Any, terms: Any, mu: Any, P_hi: Any, rest: Any=None) ->
                 total += e[k] * babs[k][m - 1] * part
         return total
 
-    _, fs = density_at_zero(g, h, len(h))
+    _, fs = density_at_zero(g, h, len(h) + REACH_TERMS)
     n0 = next((n for n, v in enumerate(fs) if v != 0), None)
     require(n0 is not None, "bernstein: f vanishes to order deg h at 0")
     require(fs[n0] > 0, f"bernstein: f(t) ~ {fs[n0]} t^{n0}/{n0}! < 0 near t = 0")  # type: ignore[index]
     B = derivative_bound(n0 + 1, [Fraction(1)] * len(terms), Fraction(1))  # type: ignore[operator]
     t_a = min(Fraction(1), (n0 + 1) * fs[n0] / (2 * B)) if B else Fraction(1)  # type: ignore[index, operator]
     t_a = Fraction(1, 2 ** max(0, (1 / t_a).__ceil__().bit_length()))  # a dyadic <= t_a
+    t_a = max(t_a, _taylor_reach(fs, n0, derivative_bound, len(terms), t_a))  # type: ignore[arg-type]
 
     star = next(k for k, t in enumerate(terms) if t[3])
     b_mu = terms[star][2][mu - 1][0] - terms[star][2][mu - 1][2]

@@ -84,11 +84,14 @@ class AlgebraicLine:
             self.m = monic(divmod_(self.m, g)[0])
             require(self.alpha.sign_of(self.m) == 0, "line: the factor of p*'s polynomial lost p* (internal)")
         a = self._reduce(a)
-        n = len(self.m)
-        charge(fraction_products_cost(4 * n * n * n, 4 * (_bits(a) + _bits(self.m)) + n),
-               "an inversion in Q(p*) (the extended Euclid algorithm)")
-        r0, r1, s0, s1 = list(self.m), a, [], [Fraction(1)]  # invariant: r_i = s_i a (mod m)
+        s0: list[Fraction] = []
+        r0, r1, s1 = list(self.m), a, [Fraction(1)]  # invariant: r_i = s_i a (mod m)
         while len(r1) > 1:
+            # charged step by step, by the sizes of the numbers as they are (the former price, 4 n^3 products of
+            # 4 (bits of a and m) bits up front, ran 30 times high: a genuine degree-12 rho = oo went over budget)
+            charge(fraction_products_cost((len(r0) - len(r1) + 1) * (len(r1) + len(s1)) + len(s0),
+                                          max(_bits(r0), _bits(r1), _bits(s1))),
+                   "a step of an inversion in Q(p*) (the extended Euclid algorithm)")
             q, r = divmod_(r0, r1)
             r0, r1, s0, s1 = r1, list(r), s1, trim(sub(s0, mul(q, s1)))
         require(len(r1) == 1 and r1[0] != 0, "line: an element of Q(p*) is not invertible (internal)")
@@ -141,6 +144,28 @@ class AlgebraicLine:
             A, B = B, self._remainder(A, B)
         return self._monic(A)
 
+    def real_root_count(self, G: list[list[Fraction]]) -> int:
+        """The number of distinct real roots of G(alpha, .) (coefficients in Q(alpha)), by Sturm's theorem over the
+        ordered field Q(alpha): S_0 = G, S_1 = G', S_(k+1) = -rem(S_(k-1), S_k), each kept as sign(lc) times its monic
+        part (a positive multiple: the sign changes are unchanged), and the count is V(-oo) - V(+oo), the sign
+        changes of the leading coefficients' signs (times (-1)^degree at -oo).  Every sign is exact
+        (:meth:`sign`); every product and inversion is charged (:meth:`_mul`, :meth:`_inverse`)."""
+        A = self._trim([list(c) for c in G])
+        if len(A) <= 1:
+            return 0
+        dA = self._trim([[k * x for x in c] for k, c in enumerate(A)][1:])
+        seq = [(self.sign(A[-1]), len(A) - 1), (self.sign(dA[-1]), len(dA) - 1)]
+        A, B = self._monic(A), self._monic(dA)
+        s_a, s_b = seq[0][0], seq[1][0]
+        while len(B) > 1:
+            R = self._remainder(A, B)  # rem(S_(k-1), S_k) = s_(k-1) rem(A, B): S_(k+1) = -s_(k-1) R
+            if not R:
+                break
+            s_r = -s_a * self.sign(R[-1])
+            seq.append((s_r, len(R) - 1))
+            A, s_a, B, s_b = B, s_b, self._monic(R), s_r
+        return _changes([s * (-1) ** d for s, d in seq]) - _changes([s for s, _ in seq])
+
     def value_sign(self, G: list[list[Fraction]], y: Fraction) -> int:
         """The exact sign of G(alpha, y) for rational y."""
         value: list[Fraction] = []
@@ -168,6 +193,11 @@ class AlgebraicLine:
         if w <= 0 or y_lo <= 0 <= y_hi:
             return False
         return self.value_sign(G, y_lo) * self.value_sign(G, y_hi) <= 0
+
+
+def _changes(signs: Sequence[int]) -> int:
+    """Sign changes of a sequence of nonzero signs."""
+    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
 
 def _shift_coefficient(f: Sequence[Fraction], i: int) -> list[Fraction]:
@@ -205,8 +235,11 @@ def lines_nonnegative(g: Sequence[Fraction], h: Sequence[Fraction], squarefree_h
     """A sentence proving f >= 0 on (0, oo) line by line, or None (no claim).  Requires h squarefree (every pole
     simple; the caller says so from its squarefree decomposition) and, for every positive real root x_j of h
     (rational or algebraic: a Real isolated by positive_roots, m = h), G_j = gcd(U, V) of h on Re z = x_j equal
-    to y (x_j alone on its line) or to y^3 - Y_j y with Y_j(x_j) > 0 (one pair x_j +- i sqrt(Y_j)), the counts
-    1 or 3 adding up to deg h (so every pole lies on one of these lines, all with Re z > 0), and every line part
+    to y or with no other real root (x_j alone on its line: G's real roots y are exactly the poles x_j + iy, counted
+    by :meth:`AlgebraicLine.real_root_count`; a pole x_j + s with x_j - s a pole too, s real or not, makes a
+    non-real root of G: the rational pole 3 midway between 3 +- sqrt 2 has G = y(y^2 + 2)) or to y^3 - Y_j y with
+    Y_j(x_j) > 0 (one pair x_j +- i sqrt(Y_j)), the counts 1 or 3 adding up to deg h (so every pole lies on one of
+    these lines, all with Re z > 0), and every line part
     B_j(t) = b_j + 2 Re(beta_j e^(-i y_j t)) >= 0: b_j = -g(x_j)/h'(x_j) > 0 and b_j^2 >= 4|beta_j|^2, i.e.
     E = g^2 |h'(z)|^2 - 4 |g(z)|^2 h'^2 >= 0 at x_j (exact signs in Q(x_j)).  Then
     f(t) = sum_j e^(-x_j t) B_j(t) >= 0, also where f touches 0."""
@@ -221,11 +254,13 @@ def lines_nonnegative(g: Sequence[Fraction], h: Sequence[Fraction], squarefree_h
         signs = line.sign(list(g)) * line.sign(dh)
         if signs >= 0:  # b_j = -g(x_j)/h'(x_j) <= 0
             return None
-        if len(G) == 2 and line.is_zero(G[0]):  # G = y
-            count += 1
+        if not line.is_zero(G[0]):  # (internal: x_j is a root of h, so y = 0 is a root of G)
+            return None
+        if len(G) == 2 or line.real_root_count(G) == 1:  # G = y, or G's other roots are not real (e.g. G = y(y^2 + 2)
+            count += 1                                    # on Re z = 3 for the poles 3, 3 +- sqrt 2): x_j alone
             parts.append(f"{x}: b > 0")
             continue
-        if len(G) != 4 or not line.is_zero(G[0]) or not line.is_zero(G[2]) or G[3] != [Fraction(1)]:
+        if len(G) != 4 or not line.is_zero(G[2]) or G[3] != [Fraction(1)]:
             return None
         Y = line._reduce([-c for c in G[1]])
         if line.sign(Y) <= 0:

@@ -44,6 +44,8 @@ from .poles import PoleStructure
 __all__ = ["Verdict", "completely_monotone", "density_nonnegative", "density_at_zero", "coefficient_at"]
 
 _MAX_STEPS = 4000
+_REACH_TERMS = 24  # Taylor terms of f at 0 beyond its first nonzero one (the longer bound near 0)
+_REACH_SPAN = 4  # the longer bound near 0 is tried on (0, 4], (0, 2], ...
 _MAX_WITNESS_J = 1 << 13
 _SEARCH = ContextVar("exactinv_bernstein_witness_search", default=True)  # False: f's verdict only, no witness search
 
@@ -342,7 +344,7 @@ def _general(g, h, s: PoleStructure, bits: int, p_star=None) -> Verdict:
             far = _balanced_far(g, h, s, p_star)
             if isinstance(far, Verdict):
                 return far
-        _, fs = density_at_zero(g, h, len(h))
+        _, fs = density_at_zero(g, h, len(h) + _REACH_TERMS)
         n0 = next((n for n, v in enumerate(fs) if v != 0), None)
         if n0 is None:
             return Verdict(False, "f vanishes to order deg h at 0")
@@ -547,6 +549,33 @@ def _probes(a: Fraction, f: flint.arb, df: flint.arb) -> list[Fraction]:
     return [t for t in out if t > a]
 
 
+def _upper(x: flint.arb) -> Fraction:
+    """An exact Fraction >= every point of the Arb ball x."""
+    return _mid(x.upper())
+
+
+def _taylor_reach(s: PoleStructure, fs, n0: int, floor: Fraction) -> Fraction:
+    """The largest dyadic t_a in {4, 2, 1, ...} above ``floor`` with f > 0 on (0, t_a] by the longer Taylor bound
+    at 0, else ``floor``: with N = n0 + 1 + _REACH_TERMS and B >= |f^(N)| on [0, 4] (every pole has Re z > 0),
+    f(t) >= t^n0 Q(t), Q(t) = sum_{n0 <= n < N} f_n t^(n - n0)/n! - B t^(N - n0)/N!, and Q(0) = f_n0/n0! > 0, so f > 0
+    on (0, t_a] when Q has no root in (0, t_a] (exact isolation).  An f that vanishes to a high order at 0 (1/h,
+    deg h = 12: f ~ t^11) then needs no march of tiny steps near 0 (the kernel proves the same bound:
+    exactinv_check.bernstein._taylor_reach, by Descartes' rule)."""
+    N = n0 + 1 + _REACH_TERMS
+    if len(fs) < N:
+        return floor
+    B = _upper(_bound(s, N, flint.arb(0), flint.arb(_REACH_SPAN)))
+    Q = [fs[n] / factorial(n) for n in range(n0, N)] + [-B / factorial(N)]
+    positive = [r for r, _ in real_roots(flint.fmpq_poly([fmpq_of(c) for c in Q])) if r > 0]
+    first = min((r if isinstance(r, Fraction) else r.lower for r in positive), default=None)
+    t = Fraction(_REACH_SPAN)
+    while t > floor:
+        if first is None or t < first:
+            return t
+        t /= 2
+    return floor
+
+
 def _march(s: PoleStructure, fs, n0, far=None):
     """True (f > 0 on (0, oo) certified), a Fraction t0 with f(t0) < 0 (certified), or a reason string.  ``far(T)``
     proves f > 0 on [T, oo) (default: p*'s dominance bound)."""
@@ -556,6 +585,7 @@ def _march(s: PoleStructure, fs, n0, far=None):
         t_a /= 2
         if t_a < Fraction(1, 2 ** 60):
             return "f's Taylor bound at 0 is not conclusive"
+    t_a = max(t_a, _taylor_reach(s, fs, n0, t_a))
     a, d = t_a, t_a
     for _ in range(_MAX_STEPS):
         A = flint.arb(fmpq_of(a))

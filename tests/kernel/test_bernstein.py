@@ -8,13 +8,14 @@ import mpmath
 import pytest  # noqa: E402
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from radius_reference import from_partial_fractions  # noqa: E402
+from radius_reference import admissible, from_partial_fractions  # noqa: E402
 
 import exactinv as ei  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
 from exactinv.monotonicity.radius import absolute_monotonicity_radius  # noqa: E402
 from exactinv_check import (
     bernstein,
+    budget,
     check,  # noqa: E402
 )
 from exactinv_check.failure import CheckFailure  # noqa: E402
@@ -43,6 +44,35 @@ CASE_A = _terms(F(7, 2), F(9, 4), F(1, 2), [(F(11, 2), F(1))])  # the issue's CI
 
 
 CASE_B = _terms(F(7, 4), F(9, 4), F(1, 2), [(F(15, 4), F(1))])  # (b): c < 0, rho = the root of g(-kappa)
+
+
+def _mul(a, b):
+    out = [F(0)] * (len(a) + len(b) - 1)
+    for i, x in enumerate(a):
+        for j, y in enumerate(b):
+            out[i + j] += x * y
+    return out
+
+
+def _sextic(a, d, y):
+    """(w^2 - d)((w^2 + d + y^2)^2 - 4 d w^2), w = z - a: the poles a +- sqrt d (real) and a +- sqrt d +- iy (the pair
+    on each real pole's line; (2, 2, 1) is issue 22's ((z - 2)^2 - 2)((z - 2)^4 - 2(z - 2)^2 + 9))."""
+    from math import comb
+    q = [d + y * y, F(0), F(1)]
+    quartic = [u - v for u, v in zip(_mul(q, q), [F(0), F(0), 4 * d, F(0), F(0)])]
+    p = _mul([-d, F(0), F(1)], quartic)
+    out = [F(0)] * len(p)
+    for k, c in enumerate(p):  # p(z - a)
+        for i in range(k + 1):
+            out[i] += c * comb(k, i) * (-a) ** (k - i)
+    return out
+
+
+def _one_over(h):
+    return ei.methods.rational([F(1)], [c / h[0] for c in h])
+
+
+ISSUE_SEXTIC = _one_over(_sextic(F(2), F(2), F(1)))  # rho = oo; the kernel's march took 3,577 steps (54 s) before
 
 
 # ------------------------------------------------------------------ soundness
@@ -145,5 +175,104 @@ def test_the_balanced_line_proof_refuses_what_it_cannot_prove(terms, why):
     assert not check(_claim(method, value="oo", reason="bernstein")).ok
 
 
+def test_the_longer_taylor_bound_does_not_reach_past_a_dip():
+    """f = u (1 - 21u/5 + 43u^2/10) + a small pair, u = e^(-t): f(0) > 0 but f < 0 for t in about (0.57, 0.89), inside
+    the span (0, 4] of the longer Taylor bound at 0: rho = oo is refused, and the engine finds rho finite."""
+    terms = [((F(1), F(0)), (F(1), F(0))), ((F(2), F(0)), (F(-21, 5), F(0))), ((F(3), F(0)), (F(43, 10), F(0))),
+             ((F(5), F(1)), (F(1, 100), F(0))), ((F(5), F(-1)), (F(1, 100), F(0)))]
+    method = _method(terms)
+    with pytest.raises(CheckFailure):
+        bernstein.prove_density_nonnegative(method.numerator, method.denominator)
+    assert not check(_claim(method, value="oo", reason="bernstein")).ok
+    genuine = absolute_monotonicity_radius(method)
+    assert genuine.value != ei.INF and check(genuine.certificate).ok
+
+
+def _density(terms, t):
+    return sum(mpmath.mpf(u.numerator) / u.denominator * mpmath.exp(-(mpmath.mpf(x.numerator) / x.denominator) * t)
+               * mpmath.cos((mpmath.mpf(y.numerator) / y.denominator) * t)
+               + mpmath.mpf(v.numerator) / v.denominator * mpmath.exp(-(mpmath.mpf(x.numerator) / x.denominator) * t)
+               * mpmath.sin((mpmath.mpf(y.numerator) / y.denominator) * t)
+               for (x, y), (u, v) in terms)
+
+
+@settings(deadline=None, max_examples=40)
+@given(st.fractions(min_value=F(1, 4), max_value=3, max_denominator=8),
+       st.lists(st.tuples(st.fractions(min_value=F(1, 8), max_value=4, max_denominator=8),
+                          st.fractions(min_value=0, max_value=3, max_denominator=4),
+                          st.fractions(min_value=-2, max_value=2, max_denominator=8)), min_size=1, max_size=3))
+def test_an_accepted_density_is_nonnegative(p, others):
+    """Whatever the kernel proves f >= 0 for is >= 0 (mpmath, 30 digits, t on a grid to 12): p* = p with b_* = 1 and
+    poles p + dx (+- i y) with random residues -- densities that dip below 0 anywhere in (0, 4] (where the longer
+    Taylor bound at 0 reaches) included."""
+    terms = [((p, F(0)), (F(1), F(0)))]
+    for dx, y, b in others:
+        if y == 0:
+            terms.append(((p + dx, F(0)), (b, F(0))))
+        else:
+            terms += [((p + dx, y), (b, F(0))), ((p + dx, -y), (b, F(0)))]
+    zs = [z for z, _ in terms]
+    if len(set(zs)) < len(zs):
+        return
+    g, h = from_partial_fractions(terms)
+    try:
+        bernstein.prove_density_nonnegative(g, h)
+    except CheckFailure:
+        return
+    with mpmath.workdps(30):
+        assert all(_density(terms, mpmath.mpf(k) / 16) >= -mpmath.mpf(10) ** -25 for k in range(1, 193))
+
+
+@pytest.mark.parametrize("hint", [[F(-2), F(0), F(1)], [F(-1, 2), F(1)], [F(2), F(-4), F(1)],
+                                  [F(4), F(-12), F(12), F(-6), F(1)]])
+def test_the_pole_hint_is_never_believed(hint):
+    """The claim's recorded pole only offers a modulus for Q(p*): sqrt 2 and 1/2 (not poles), p*'s own quadratic, and
+    (x^2 - 4x + 2)(x^2 - 2x + 2), a product holding p* and two non-real non-poles: each leaves the proof of the issue's sextic
+    intact (rho = oo proved); a wrong recorded pole is still rejected by the claim (it must be the smallest pole)."""
+    g, h = ISSUE_SEXTIC.numerator, ISSUE_SEXTIC.denominator
+    assert "f > 0 on (0, oo)" in bernstein.prove_completely_monotone(g, h, hint)
+    cert = absolute_monotonicity_radius(ISSUE_SEXTIC).certificate
+    cert["claims"][-1]["pole"] = {"poly": ["-2", "0", "1"], "interval": ["1", "2"]}
+    report = check(cert)
+    assert not report.ok and "recorded pole" in str(report)
+
+
 # ------------------------------------------------------------------ resource
-# No test here is about this module's work limits: the certificate's account is tested in test_budget.py.
+
+
+def test_issue_sextic_is_verified_cheaply():
+    """1/h, h = ((z-2)^2 - 2)((z-2)^4 - 2(z-2)^2 + 9) (rho = oo): f ~ t^5/5! near 0, so the second-order march took
+    3,577 steps from t = 1/64 (1.6e9 charged, 54 s of CPU); the longer Taylor bound at 0 reaches t = 2, where p*'s
+    dominance holds: no step at all."""
+    r = absolute_monotonicity_radius(ISSUE_SEXTIC)
+    assert r.value == ei.INF and r.reason == "bernstein"
+    report = check(r.certificate)
+    assert report.ok, str(report)
+    assert report.work < 10 ** 8
+    assert "0 certified steps" in bernstein.prove_completely_monotone(ISSUE_SEXTIC.numerator, ISSUE_SEXTIC.denominator)
+
+
+@settings(deadline=None, max_examples=12)
+@given(st.lists(st.tuples(st.integers(1, 12), st.sampled_from([F(2), F(3), F(5), F(6), F(7), F(3, 4), F(5, 4)]),
+                          st.fractions(min_value=F(1, 2), max_value=6, max_denominator=2)), min_size=1, max_size=2))
+def test_products_of_shifted_sextics_are_verified_well_inside_the_budget(factors):
+    """Random products of the issue's sextic, shifted: (w^2 - d)((w^2 + d + y^2)^2 - 4dw^2), w = z - a, a > sqrt d.
+    Every rho = oo the engine claims is true by the exact reference (c_j(kappa) >= 0 for j < 40 at four kappa) and
+    verified by the kernel at under a tenth of the certificate's budget (the Taylor bound at 0 and p*'s quadratic
+    as Q(p*)'s modulus: before, degree 12 went over the budget in the inversions modulo the whole of h)."""
+    h = [F(1)]
+    for a4, d, y in factors:
+        a = F(a4, 4)
+        while a * a <= d:
+            a += F(1, 2)
+        h = _mul(h, _sextic(a, d, y))
+    method = _one_over(h)
+    try:
+        r = absolute_monotonicity_radius(method)
+    except ei.Undecided:
+        return
+    if r.value == ei.INF:
+        assert all(admissible(method.numerator, method.denominator, k, 40) for k in (F(0), F(1, 2), F(3), F(20)))
+    report = check(r.certificate)
+    assert report.ok, str(report)
+    assert report.work < budget.CERTIFICATE_BUDGET // 10
