@@ -125,7 +125,8 @@ def _perturbed_family(seed):
 def test_numerators_at_the_kernels_edge_are_true(seed):
     """g = 1 + lam z^k over a (product of) shifted sextic(s): lam bisected (8 times) to the kernel's own edge of
     acceptance; the last accepted lam is rho = oo by the references, the first refused one is probed too (no
-    assertion: the kernel may refuse what is true).  Here 3 families x 9 forged claims (the red team ran more, CHANGELOG), 0 false accepts."""
+    assertion: the kernel may refuse what is true).  Here 3 families x 9 forged claims (the red team ran more,
+    CHANGELOG), 0 false accepts."""
     h, k, sign = _perturbed_family(seed)
 
     def g(lam):
@@ -183,8 +184,8 @@ def _balance(y):
 @pytest.mark.parametrize("y", [F(13, 20), F(3, 5), F(29, 50), F(1, 2), F(1)])
 def test_a_trough_near_t_4_is_decided_right(y):
     """The first trough of e^(-t/2) cos(yt) at t = (pi - atan(1/(2y)))/y: about 3.82 (y = 13/20, just inside
-    (0, 4], the longer bound's reach), 4.08 and 4.24 (just after 4, where p*'s dominance begins), 4.71 and 2.68: c = c*(1 + 10^-9) (f < 0 at the trough) is rejected; c = c*(1 -
-    10^-3) is true and proved (f >= 0 alone: c = r(oo) < 0 here, so these are densities, not rho = oo claims).
+    (0, 4], the longer bound's reach), 4.08 and 4.19 (just after 4, where p*'s dominance begins), 4.71 and 2.68:
+    c = c*(1 + 10^-9) (f < 0 at the trough) is rejected; c = c*(1 - 10^-3) is true and proved (f >= 0 alone: c = r(oo) < 0 here, so these are densities, not rho = oo claims).
     5 forged densities, 0 accepted."""
     cstar, t = _balance(y)
     above = F(str(mpmath.nstr(cstar * (1 + mpmath.mpf(10) ** -9), 30)))
@@ -250,9 +251,8 @@ def test_mutated_genuine_certificates_are_true_when_accepted(seed):
     """The engine's certificate for 1/h, h a product of two shifted sextics (rho = oo), with one coefficient of the
     numerator or denominator moved by +-2^-k (k in 2..12): each accepted mutant is rho = oo by the references.
     2 x 4 mutants."""
-    from exactinv.monotonicity.radius import absolute_monotonicity_radius
-
     import exactinv as ei
+    from exactinv.monotonicity.radius import absolute_monotonicity_radius
     rng = random.Random(100 + seed)
     h = _mul(_sextic(F(2), F(2), F(1)), _sextic(F(2) + rng.choice([F(1, 2), F(1), F(2)]), F(2), F(1)))
     cert = absolute_monotonicity_radius(ei.methods.rational([F(1)], h)).certificate
