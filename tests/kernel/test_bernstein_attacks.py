@@ -185,7 +185,8 @@ def _balance(y):
 def test_a_trough_near_t_4_is_decided_right(y):
     """The first trough of e^(-t/2) cos(yt) at t = (pi - atan(1/(2y)))/y: about 3.82 (y = 13/20, just inside
     (0, 4], the longer bound's reach), 4.08 and 4.19 (just after 4, where p*'s dominance begins), 4.71 and 2.68:
-    c = c*(1 + 10^-9) (f < 0 at the trough) is rejected; c = c*(1 - 10^-3) is true and proved (f >= 0 alone: c = r(oo) < 0 here, so these are densities, not rho = oo claims).
+    c = c*(1 + 10^-9) (f < 0 at the trough) is rejected; c = c*(1 - 10^-3) is true and proved (f >= 0 alone:
+    c = r(oo) < 0 here, so these are densities, not rho = oo claims).
     5 forged densities, 0 accepted."""
     cstar, t = _balance(y)
     above = F(str(mpmath.nstr(cstar * (1 + mpmath.mpf(10) ** -9), 30)))
