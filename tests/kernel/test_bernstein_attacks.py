@@ -147,8 +147,8 @@ def test_numerators_at_the_kernels_edge_are_true(seed):
 def test_numerators_past_the_true_edge_are_rejected(seed):
     """The same families, lam bisected on the TRUTH (mpmath: min of f e^(p* t) < 0 on the grid) to 10^-6 of the
     true edge, lam's sign the one that keeps f > 0 right of 0: lam a hair past the edge has f < 0 at some t > 0
-    (here at t = 5/12, 4.8 and 13: inside (0, 4], where the longer Taylor bound at 0 reaches, and past it); the forged rho = oo is rejected, by the bound and by the
-    whole claim.  3 forged claims here, 0 accepted."""
+    (here at t = 5/12, 4.8 and 13: inside (0, 4], where the longer Taylor bound at 0 reaches, and past it); the
+    forged rho = oo is rejected, by the bound and by the whole claim.  3 forged claims here, 0 accepted."""
     h, k, _ = _perturbed_family(seed)
 
     def g(lam):
