@@ -61,8 +61,11 @@ DISK_STEP = 50000  # word operations per term of one step of the Bernstein posit
 CALL = 3000  # word operations of the fixed overhead of one Descartes test (measured: about 30 us)
 STURM_BUDGET = 5 * 10**12  # degree^4 bits^2 of one pseudo-remainder sequence (gcd, Sturm): up to about 20 s
 STURM_WORDS = 1000  # degree^4 bits^2 per metered word operation of a Sturm sequence (measured: 880 at degree 80)
-SCAN_BUDGET = 5 * WORK_BUDGET  # the estimate of the radius's coefficient polynomials d_0 .. d_(N-1) (claims_radius):
-# measured 2.6 s of CPU for 77 of them at 1.7e8 (a genuine certificate of the random tie family, tail index 77)
+SCAN_BUDGET = 20 * WORK_BUDGET  # the estimate of the radius's coefficient polynomials d_0 .. d_(N-1) (claims_radius):
+# measured 2.6 s of CPU for 77 of them at 1.7e8 (a genuine certificate of the random tie family, tail index 77); an
+# up-front gate on absurd sizes only (the estimate is the former Fraction algorithm's, 2-3x high; the Kronecker
+# products are charged as they run): at 5e8 a genuine line-irrational radius (d_0 .. d_79 estimated 1.35e9, charged
+# 5.3e8 in 3.9 s) was refused (issue 22)
 DESCARTES_BUDGET = 16 * STURM_BUDGET  # degree^4 bits^2 of one Descartes isolation (polys.isolate): its nodes are charged
 # to the certificate's account as they run (and the clock stands behind them), so this up-front gate only keeps absurd
 # sizes out; at the Sturm gate a genuine radius certificate (binding d_39 of degree 120, 426-bit coefficients)
@@ -284,6 +287,7 @@ MAX_LP_PIECES = 200_000  # (lp_pieces) pieces over all facets: a bound before an
 # (lp_pieces) all pieces of one record together (measured: ~5 ms a piece in R^16-R^20)
 LP_WORK_BUDGET = 50 * WORK_BUDGET
 MAX_ROOT_BISECTIONS = 4000  # (polys)
+MEMO_MIN_DEGREE = 32  # (validset) a polynomial's first sign change is remembered for the certificate above this degree
 MAX_PACKED_BYTES = 1 << 27  # (pruning) the packed rows' table: every slot as wide as the widest row needs
 MAX_SLOT_TESTS = 4 * 10**8  # (pruning) vertex-facet tests at the ends past the blocks (the 10,000-gon needs 1.3e8: 5 s)
 MAX_REFINEMENTS = 20000  # (reals)

@@ -217,16 +217,22 @@ def _positive_up_to(p: Sequence[Fraction], K: Fraction) -> bool:
         and polys.no_root_in(p, K, depth=1)
 
 
-def recompute(num: Any, den: Any, count: Any, K_is_infinite: bool, K: Fraction | None = None) -> Any:
+def recompute(num: Any, den: Any, count: Any, K_is_infinite: bool, K: Fraction | None = None,
+              binding: int | None = None) -> Any:
     """(rho, attained, ends) from d_0 .. d_{count-1} and the poles on the negative axis.  With a finite K
     the caller requires rho <= K: d_j proved positive on (0, K] cannot end the interval first and are set
-    aside, and a guard 2K + 1 - kappa (ending beyond K) bounds the root isolation of the others."""
+    aside, and a guard 2K + 1 - kappa (ending beyond K) bounds the root isolation of the others.  ``binding``
+    (the claim's, untrusted) only orders the work: d_binding is isolated first, so the others are mostly cleared
+    by one Descartes test against its tight end (the minimum is the same in any order)."""
     d = d_polynomials(num, den, count)
     live = [p for p in d if p]
     if K is not None:
         guard = [2 * K + 1, Fraction(-1)]
         live = [guard] + [p for p in live if not (K > 0 and _positive_up_to(p, K))]
-    rho, _ = first_end([Fraction(1)], live, [], first=live[:1] if K is not None else ())
+    early = live[:1] if K is not None else []
+    if binding is not None and 0 <= binding < len(d) and d[binding]:
+        early.append(d[binding])
+    rho, _ = first_end([Fraction(1)], live, [], first=early)
     attained = True
     if rho.is_zero():  # kappa = 0 is admissible iff every c_j(0) >= 0
         attained = all(poly_arithmetic.evaluate(p, Fraction(0)) >= 0 for p in d)
@@ -360,7 +366,8 @@ def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
         hint = 0 if hint is None else integer(hint, "tail_index", 0, MAX_COEFFICIENTS)
         N = prove_tail(num, den, K, hint)
         count = max(N, len(num), len(den), 1)
-        rho, rho_attained, d = recompute(num, den, count, K is None, K)
+        binding = claim.get("binding")
+        rho, rho_attained, d = recompute(num, den, count, K is None, K, binding if type(binding) is int else None)
         require(K is None and rho.inf == 1 or K is not None and rho.compare(Real.rational(K)) <= 0,
                 "the recomputed radius lies beyond the range where the tail is proved")
         how = f"tail j >= {N} proved positive on [0, {'oo' if K is None else K}], c_0 .. c_{count - 1} recomputed"
@@ -379,7 +386,7 @@ def absolute_monotonicity_radius(problem: Any, claim: Any, context: Any) -> Any:
     if claim.get("binding") is not None and d:
         j = integer(claim["binding"], "binding", 0, len(d))
         guard = [] if rho.inf else [[2 * rho.bounds()[1] + 1, Fraction(-1)]]  # bounds the isolation
-        end, _ = first_end([Fraction(1)], guard + ([d[j]] if d[j] else []), [], first=guard)
+        end, _ = first_end([Fraction(1)], guard + ([d[j]] if d[j] else []), [], first=guard + [d[j]])
         require(end.compare(rho) == 0, f"c_{j} does not end the interval at rho")
     if claim.get("pole") is not None:
         pole = smallest_positive_root(den)

@@ -144,6 +144,28 @@ class AlgebraicLine:
             A, B = B, self._remainder(A, B)
         return self._monic(A)
 
+    def real_root_count(self, G: list[list[Fraction]]) -> int:
+        """The number of distinct real roots of G(alpha, .) (coefficients in Q(alpha)), by Sturm's theorem over the
+        ordered field Q(alpha): S_0 = G, S_1 = G', S_(k+1) = -rem(S_(k-1), S_k), each kept as sign(lc) times its monic
+        part (a positive multiple: the sign changes are unchanged), and the count is V(-oo) - V(+oo), the sign
+        changes of the leading coefficients' signs (times (-1)^degree at -oo).  Every sign is exact
+        (:meth:`sign`); every product and inversion is charged (:meth:`_mul`, :meth:`_inverse`)."""
+        A = self._trim([list(c) for c in G])
+        if len(A) <= 1:
+            return 0
+        dA = self._trim([[k * x for x in c] for k, c in enumerate(A)][1:])
+        seq = [(self.sign(A[-1]), len(A) - 1), (self.sign(dA[-1]), len(dA) - 1)]
+        A, B = self._monic(A), self._monic(dA)
+        s_a, s_b = seq[0][0], seq[1][0]
+        while len(B) > 1:
+            R = self._remainder(A, B)  # rem(S_(k-1), S_k) = s_(k-1) rem(A, B): S_(k+1) = -s_(k-1) R
+            if not R:
+                break
+            s_r = -s_a * self.sign(R[-1])
+            seq.append((s_r, len(R) - 1))
+            A, s_a, B, s_b = B, s_b, self._monic(R), s_r
+        return _changes([s * (-1) ** d for s, d in seq]) - _changes([s for s, _ in seq])
+
     def value_sign(self, G: list[list[Fraction]], y: Fraction) -> int:
         """The exact sign of G(alpha, y) for rational y."""
         value: list[Fraction] = []
@@ -171,6 +193,11 @@ class AlgebraicLine:
         if w <= 0 or y_lo <= 0 <= y_hi:
             return False
         return self.value_sign(G, y_lo) * self.value_sign(G, y_hi) <= 0
+
+
+def _changes(signs: Sequence[int]) -> int:
+    """Sign changes of a sequence of nonzero signs."""
+    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
 
 def _shift_coefficient(f: Sequence[Fraction], i: int) -> list[Fraction]:
@@ -208,8 +235,11 @@ def lines_nonnegative(g: Sequence[Fraction], h: Sequence[Fraction], squarefree_h
     """A sentence proving f >= 0 on (0, oo) line by line, or None (no claim).  Requires h squarefree (every pole
     simple; the caller says so from its squarefree decomposition) and, for every positive real root x_j of h
     (rational or algebraic: a Real isolated by positive_roots, m = h), G_j = gcd(U, V) of h on Re z = x_j equal
-    to y (x_j alone on its line) or to y^3 - Y_j y with Y_j(x_j) > 0 (one pair x_j +- i sqrt(Y_j)), the counts
-    1 or 3 adding up to deg h (so every pole lies on one of these lines, all with Re z > 0), and every line part
+    to y or with no other real root (x_j alone on its line: G's real roots y are exactly the poles x_j + iy, counted
+    by :meth:`AlgebraicLine.real_root_count`; a pole x_j + s with x_j - s a pole too, s real or not, makes a
+    non-real root of G: the rational pole 3 midway between 3 +- sqrt 2 has G = y(y^2 + 2)) or to y^3 - Y_j y with
+    Y_j(x_j) > 0 (one pair x_j +- i sqrt(Y_j)), the counts 1 or 3 adding up to deg h (so every pole lies on one of
+    these lines, all with Re z > 0), and every line part
     B_j(t) = b_j + 2 Re(beta_j e^(-i y_j t)) >= 0: b_j = -g(x_j)/h'(x_j) > 0 and b_j^2 >= 4|beta_j|^2, i.e.
     E = g^2 |h'(z)|^2 - 4 |g(z)|^2 h'^2 >= 0 at x_j (exact signs in Q(x_j)).  Then
     f(t) = sum_j e^(-x_j t) B_j(t) >= 0, also where f touches 0."""
@@ -224,11 +254,13 @@ def lines_nonnegative(g: Sequence[Fraction], h: Sequence[Fraction], squarefree_h
         signs = line.sign(list(g)) * line.sign(dh)
         if signs >= 0:  # b_j = -g(x_j)/h'(x_j) <= 0
             return None
-        if len(G) == 2 and line.is_zero(G[0]):  # G = y
-            count += 1
+        if not line.is_zero(G[0]):  # (internal: x_j is a root of h, so y = 0 is a root of G)
+            return None
+        if len(G) == 2 or line.real_root_count(G) == 1:  # G = y, or G's other roots are not real (e.g. G = y(y^2 + 2)
+            count += 1                                    # on Re z = 3 for the poles 3, 3 +- sqrt 2): x_j alone
             parts.append(f"{x}: b > 0")
             continue
-        if len(G) != 4 or not line.is_zero(G[0]) or not line.is_zero(G[2]) or G[3] != [Fraction(1)]:
+        if len(G) != 4 or not line.is_zero(G[2]) or G[3] != [Fraction(1)]:
             return None
         Y = line._reduce([-c for c in G[1]])
         if line.sign(Y) <= 0:

@@ -29,7 +29,8 @@ from ..core.polys import integer_part, no_root_between, sign_at
 from ..core.real_algebraic import RealAlgebraic
 from ..core.roots import real_roots
 
-__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic", "algebraic_pair_balance", "lines_nonnegative"]
+__all__ = ["algebraic_line_gcd", "algebraic_sign", "on_line_indices_algebraic", "algebraic_pair_balance", "lines_nonnegative",
+           "real_root_count"]
 
 _MAX_REFINE = 4000  # bisections of alpha's interval for one sign (each halves the width)
 
@@ -112,6 +113,39 @@ def algebraic_line_gcd(h: flint.fmpq_poly, alpha: RealAlgebraic) -> list:
         B = _monic(B, m)
         A, B = B, _remainder(A, B, m)
     return _monic(A, m)
+
+
+def real_root_count(G: list, alpha: Any) -> int:
+    """The number of distinct real roots of G(alpha, .), G in Q(alpha)[y] (a list of fmpq_poly in x modulo alpha's
+    polynomial, low degree first), by Sturm's theorem over the ordered field Q(alpha): S_0 = G, S_1 = G',
+    S_(k+1) = -rem(S_(k-1), S_k), each kept as sign(lc) times its monic part; V(-oo) - V(+oo) from the exact signs of
+    the leading coefficients.  On Re z = 3 with poles 3 and 3 +- sqrt 2, G = y^3 + 2y has one real root (y = 0): the
+    poles 3 +- sqrt 2 are real, off the line.
+
+    >>> r2 = RealAlgebraic.from_isolating_interval([-2, 0, 1], 1, 2)
+    >>> [real_root_count([flint.fmpq_poly(c) for c in G], r2) for G in ([[0], [2], [0], [1]], [[0], [-1], [0], [1]],
+    ...                                                                  [[0], [0, -1], [0], [1]])]
+    [1, 3, 3]
+    """
+    m = flint.fmpq_poly(alpha.poly)
+    A = _trim([c % m for c in G])
+    if len(A) <= 1:
+        return 0
+    dA = _trim([(k * c) % m for k, c in enumerate(A)][1:])
+    seq = [(algebraic_sign(A[-1], alpha), len(A) - 1), (algebraic_sign(dA[-1], alpha), len(dA) - 1)]
+    A, B = _monic(A, m), _monic(dA, m)
+    s_a, s_b = seq[0][0], seq[1][0]
+    while len(B) > 1:
+        R = _remainder(A, B, m)  # rem(S_(k-1), S_k) = s_(k-1) rem(A, B): S_(k+1) = -s_(k-1) R
+        if not R:
+            break
+        s_r = -s_a * algebraic_sign(R[-1], alpha)
+        seq.append((s_r, len(R) - 1))
+        A, s_a, B, s_b = B, s_b, _monic(R, m), s_r
+
+    def changes(signs: list) -> int:
+        return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+    return changes([s_ * (-1) ** d for s_, d in seq]) - changes([s_ for s_, _ in seq])
 
 
 def _value_sign(G: list, y: Fraction, alpha: RealAlgebraic) -> int:
@@ -247,7 +281,9 @@ def lines_nonnegative(g: list, h: list) -> str | None:
         x: Any = _Rational(root) if isinstance(root, Fraction) else root
         m = flint.fmpq_poly(x.poly)
         G = algebraic_line_gcd(hq, x)
-        if len(G) == 2 and G[0].is_zero():  # y: x_j alone on its line
+        if not G[0].is_zero():  # (x_j is a root of h, so y = 0 is a root of G)
+            return None
+        if len(G) == 2 or real_root_count(G, x) == 1:  # y, or no other real root (3 between 3 +- sqrt 2): x_j alone
             count += 1
             if algebraic_sign(gq % m, x) * algebraic_sign(dh % m, x) >= 0:  # b_j = -g/h' <= 0
                 return None

@@ -77,6 +77,7 @@ from ..errors import Undecided
 from ..model.methods import Method
 from .balanced_tie import balanced_tie
 from .bernstein import completely_monotone
+from .kernel_price import priced
 from .line_algebraic import on_line_indices_algebraic
 from .line_poles import on_line_indices
 from .poles import PoleStructure, ambiguous_line_poles, dominance_tie, pole_structure, precision, tail_index
@@ -202,7 +203,7 @@ def rational_radius(method: Method) -> AbsoluteMonotonicityRadius:
         tie = dominance_tie(s, h, exact=False)
         if tie is not None and tie.kappa < 0:
             return _zero_radius(method, RadiusReason.DOMINANCE_AT_0, p_star)
-        return _decide(method, s, tie, p_star)
+        return priced(_decide(method, s, tie, p_star))
 
 
 def _with_line_poles(method: Method, p_star) -> PoleStructure:

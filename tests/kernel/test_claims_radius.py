@@ -404,6 +404,18 @@ def test_seeded_mutation_fuzzer():
     assert not stats["false"], stats["false"][:3]
 
 
+@pytest.mark.parametrize("binding", [0, 42, 44, 77, -1, 78, True, "43", 10 ** 9])
+def test_the_binding_index_only_orders_the_work(binding):
+    """Pade(1,3) (rho ~ 1.1955, binding d_43, tail index 78): the claim's binding index is handed to the recomputation
+    as a hint (d_binding isolated first); any other index -- another d_j, out of range, not an integer -- is still
+    rejected, and the genuine one accepted."""
+    import exactinv as ei
+    cert = ei.absolute_monotonicity_radius(ei.methods.pade(1, 3)).certificate
+    assert check(cert).ok
+    cert["claims"][-1]["binding"] = binding
+    assert not check(cert).ok
+
+
 # ------------------------------------------------------------------ resource
 
 def test_huge_pole_coordinates_get_a_quick_verdict():

@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
 
 from lp_route import family as lp_family  # noqa: E402
-from radius_undecided import _UNITS  # noqa: E402
+from radius_undecided import _UNITS, family_line_irrational  # noqa: E402
 
 
 def _verified(cert):
@@ -204,3 +204,44 @@ def test_descartes_is_charged_by_the_largest_coefficient():
             polys.descartes_variations(p, F(1, 3), F(2, 3))
         charged.append(acc.spent)
     assert charged[1] > 2 * charged[0]  # (read from the ends, both were charged alike)
+
+
+@pytest.mark.workload  # a kernel workload (about 10-20 s of CPU): left out at the lowest versions
+def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget():
+    """benchmarks/radius_undecided.py --family line-irrational, seed 1, case 162 (p* = 2 - sqrt 2... a pair on its
+    line, coefficient route, binding d_79 of degree 400 with 1441-bit coefficients): the kernel refused it up front
+    (d_0 .. d_79 estimated 1.35e9 > the scan gate 5e8), and past the gate spent 4.2e9 (27 s) -- two isolations of d_79
+    and a failed depth-4 Descartes pre-test before each.  Now: the gate is 2e9, d_79 (the claim's binding hint) is
+    isolated once and first, the rest cleared against its end: about 1.9e9, 11 s."""
+    g = [F(1), F(-708530257, 418834374), F(171180235, 179500446), F(-30281708, 209417187), F(-27387536, 628251561),
+         F(1139520, 69805729), F(-128, 90279)]
+    h = [F(1), F(-76418, 30093), F(33271, 12897), F(-40064, 30093), F(33056, 90279), F(-512, 10031), F(256, 90279)]
+    r = ei.absolute_monotonicity_radius(ei.methods.rational(g, h))
+    assert r.reason == "coefficient" and r.binding == 79
+    report = _verified(r.certificate)
+    assert report.work < budget.CERTIFICATE_BUDGET * 3 // 4
+
+
+def test_no_radius_certificate_of_the_fuzz_families_is_over_the_budget():
+    """The rule of issue 22 on the radius: every certificate the engine writes for these families gets the kernel's
+    verdict accepted -- none over the budget (the engine says Undecided instead: exactinv.monotonicity.kernel_price).
+    Families: random degree-5 r = g/h (seed 11), the line-irrational benchmark family (p* = a - sqrt d with a pair on
+    its line, seed 1), and 1/h for products of the shifted sextic (w^2 - d)((w^2 + d + y^2)^2 - 4dw^2)."""
+    from test_bernstein import _mul as mul
+    from test_bernstein import _one_over, _sextic
+    methods = []
+    rng = random.Random(11)
+    for _ in range(8):
+        methods.append(ei.methods.rational(*_degree5(rng)))
+    methods += [m for _, m in family_line_irrational(6, 1)]
+    methods += [_one_over(_sextic(F(2), F(2), F(1))), _one_over(mul(_sextic(F(5, 2), F(3), F(2)), _sextic(F(3), F(2), F(1, 2))))]
+    kinds = []
+    for method in methods:
+        try:
+            r = ei.absolute_monotonicity_radius(method)
+        except ei.Undecided:
+            continue
+        report = check(r.certificate)
+        kinds.append(report.kind)
+        assert report.kind == "accepted" and report.work <= budget.CERTIFICATE_BUDGET, (method.name, str(report))
+    assert len(kinds) >= len(methods) // 2

@@ -139,6 +139,54 @@ def test_forged_lines_are_rejected_for_their_reason():
         line.parts([F(1)] * (MAX_LINE_DEGREE + 2))
 
 
+@settings(max_examples=40, deadline=None)
+@given(nonsquare, st.lists(st.tuples(st.fractions(min_value=-6, max_value=6, max_denominator=4),
+                                     st.fractions(min_value=-3, max_value=3, max_denominator=4)), min_size=0, max_size=3),
+       st.sampled_from([(), (F(3, 2),)]))
+def test_the_sturm_count_over_q_alpha_counts_the_real_roots(n, factors, extra):
+    """G = y prod (y^2 - Y_k), Y_k = c_k + d_k sqrt n in Q(sqrt n) (distinct, nonzero): G has 1 + 2 #{Y_k > 0} real
+    roots, and :meth:`AlgebraicLine.real_root_count` (Sturm over the ordered field Q(sqrt n), alpha held as a root of a
+    reducible m) finds exactly that many."""
+    Ys = []
+    for c, d in factors:
+        if (c, d) != (0, 0) and (c, d) not in Ys:
+            Ys.append((c, d))
+    line = _sqrt_line(n, extra)
+    G = [[], [F(1)]]  # y, coefficients in Q(alpha) as polynomials in x
+    for c, d in Ys:
+        factor = [[-c, -d], [], [F(1)]]  # y^2 - (c + d x)
+        out = [[] for _ in range(len(G) + 2)]
+        for i, a in enumerate(G):
+            for j, b in enumerate(factor):
+                if a and b:
+                    out[i + j] = _add_q(out[i + j], line._mul(a, b))
+        G = out
+    expected = 1 + 2 * sum(1 for c, d in Ys if _sign_c_plus_d_sqrt(c, d, n) > 0)
+    assert line.real_root_count(G) == expected
+
+
+def _add_q(a, b):
+    n = max(len(a), len(b))
+    return [(a[i] if i < len(a) else F(0)) + (b[i] if i < len(b) else F(0)) for i in range(n)]
+
+
+def test_a_rational_pole_midway_between_conjugate_real_poles_is_alone_on_its_line():
+    """Poles 3 and 3 +- sqrt 2 (red team rt-lines): on Re z = 3, G = y(y^2 + 2) -- the roots y = +-i sqrt 2 are the
+    real poles 3 -+ sqrt 2, off the line -- so 3 is alone there (1 real root), and with every residue positive f > 0
+    line by line; a negative residue at 3 (b_3 < 0) is refused."""
+    h = _fractions(_flint([F(-3), F(1)]) * _flint([F(7), F(-6), F(1)]))  # (z - 3)((z - 3)^2 - 2)
+    three = Real.rational(F(3))
+    line = AlgebraicLine(Real.root_in(h, F(5, 2), F(7, 2)), h)
+    G = line.line_gcd(h)
+    assert [line.sign(c) for c in G] == [0, 1, 0, 1] and line.real_root_count(G) == 1
+    assert three.compare(line.alpha) == 0
+    # r = 1/(3 - z) + 1/(3 - sqrt 2 - z) + 1/(3 + sqrt 2 - z), times a constant: every b > 0
+    g = _fractions(_flint([F(7), F(-6), F(1)]) + 2 * _flint([F(-3), F(1)]) * _flint([F(-3), F(1)]))
+    h_neg = [-c for c in h]  # 1/(p - z) = -1/(z - p): r = -(...)/h
+    assert "b > 0" in lines_nonnegative(g, h_neg, True)
+    assert lines_nonnegative([-c for c in g], h_neg, True) is None
+
+
 # ------------------------------------------------------------------ resources
 def test_the_euclid_steps_in_q_alpha_are_charged_and_stop_at_the_limit():
     f = _fractions(_pair_polynomial(F(1, 3)) * _pair_polynomial(F(2)))

@@ -78,3 +78,20 @@ def test_the_work_is_charged_to_the_account_and_stops_at_its_limit():
     with account(limit=acc.spent // 10):
         with pytest.raises(OverBudget):
             valid_set([F(1)], conditions, [])
+
+
+def test_a_first_sign_change_is_remembered_only_where_it_holds():
+    """p = (x - 1)(x - 3) x^40 + ... of degree > MEMO_MIN_DEGREE: its first sign change (1) is remembered for the
+    certificate; a later call looking further (upper 8) reuses it, one looking only to 1/2 does not (p > 0 there), and
+    a polynomial with no sign change before 1/2 is not answered from a range it was not searched on."""
+    from exactinv_check.budget import MEMO_MIN_DEGREE
+    base = pa.mul([F(-1), F(1)], [F(-3), F(1)])  # (x - 1)(x - 3)
+    p = pa.mul(base, [F(1)] + [F(0)] * (MEMO_MIN_DEGREE + 4) + [F(1, 10 ** 6)])  # times 1 + x^(deg)/10^6 > 0
+    with account() as acc:
+        first, _ = first_end([F(1)], [p], [], first=[p])
+        assert first.compare(Real.rational(F(1))) == 0
+        spent = acc.spent
+        again, _ = first_end([F(1)], [[F(8), F(-1)], p], [], first=[[F(8), F(-1)], p])
+        assert again.compare(Real.rational(F(1))) == 0 and acc.spent - spent < spent
+        near, _ = first_end([F(1)], [[F(1, 2), F(-1)], p], [], first=[[F(1, 2), F(-1)]])
+        assert near.compare(Real.rational(F(1, 2))) == 0
