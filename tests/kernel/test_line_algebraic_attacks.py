@@ -142,5 +142,51 @@ def test_the_line_by_line_proof_against_the_exact_truth():
     assert claimed >= 2
 
 
+# ------------------------------------------------------------------ soundness: x_j alone by a Sturm count (d48d90e)
+
+def _random_midway(rng):
+    """Poles a - sqrt d, a, a + sqrt d (the rational pole midway: G = y(y^2 + d) on its line, non-real roots), each
+    with a pair on its line or not; residues and pairs random (the conjugate lines' data Galois conjugates)."""
+    a, d = rng.choice([(3, 2), (3, 5), (4, 3), (5, 7)])
+    u, v = sp.Rational(rng.choice([-1, 1, 2, 3, 4])), sp.Rational(rng.randint(-2, 2), 4)  # u +- v sqrt d != 0
+    lines = []
+    conj_pair = rng.random() < 0.5
+    c0, c1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
+    w0, w1 = sp.Rational(rng.randint(-4, 4), rng.choice([1, 2, 4])), sp.Rational(rng.randint(-1, 1), 2)
+    Ye = sp.Rational(rng.randint(1, 6))
+    for s in (1, -1):
+        pair = (c0 + s * c1 * sp.sqrt(d), w0 + s * w1 * sp.sqrt(d), Ye) if conj_pair else None
+        lines.append((a - s * sp.sqrt(d), u + s * v * sp.sqrt(d), pair, 0))
+    b = sp.Rational(rng.choice([-2, -1, 1, 2, 3, 4, 5, 6]), 2)  # != 0: a pole
+    mid_pair = None
+    if rng.random() < 0.5:  # a pair on the midway line (then G has the real roots +- sqrt Y too: not alone)
+        mid_pair = (sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.randint(-4, 4), 2), sp.Rational(rng.choice([1, 3, 7])))
+    lines.append((sp.Rational(a), b, mid_pair, 0))
+    return lines
+
+
+def test_midway_poles_line_by_line_against_the_exact_truth():
+    """Red team of d48d90e (a line whose gcd G has no real root but y = 0 holds x_j alone, by a Sturm count over
+    Q(alpha)): seeded random poles a, a +- sqrt d with random residues and pairs on their lines.  Whenever
+    lines_nonnegative claims f >= 0, every line part is >= 0 exactly (sympy); forged residues (b <= 0 on the midway
+    line, pairs past the balance) are never claimed.  14 drawn, the claims counted (not vacuous)."""
+    rng = random.Random(4805)
+    claimed = refused_false = 0
+    for _ in range(14):
+        lines = _random_midway(rng)
+        try:
+            g, h = _method(lines)
+        except AssertionError:
+            continue
+        verdict = lines_nonnegative(g, h, True)
+        truth = _truth(lines)
+        if verdict is not None:
+            claimed += 1
+            assert truth, lines
+        elif not truth:
+            refused_false += 1
+    assert claimed >= 2 and refused_false >= 2
+
+
 # ------------------------------------------------------------------ resource
 # No test here is about this module's work limits: the certificate's account is tested in test_budget.py.
