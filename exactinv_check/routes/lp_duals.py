@@ -34,7 +34,16 @@ from operator import mul
 from typing import Any
 
 from .. import poly_arithmetic
-from ..budget import FRACTION_WEIGHT, MAX_DEGREE, MAX_LP_DUAL_ENTRIES, PARSE_ENTRY, PYTHON_OP, charge, content_cost, words
+from ..budget import (
+    FRACTION_WEIGHT,
+    MAX_DEGREE,
+    MAX_LP_DUAL_ENTRIES,
+    PARSE_ENTRY,
+    PYTHON_OP,
+    charge,
+    content_cost,
+    words,
+)
 from ..failure import CheckFailure, require
 from ..rationals import integer, rational
 

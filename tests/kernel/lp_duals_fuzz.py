@@ -11,13 +11,10 @@ import json
 import random
 from fractions import Fraction as F
 
+from lp_record_sets import kernel_set, same
+
 import exactinv as ei
 from exactinv.validset import lp_route as engine_lp
-from exactinv_check.failure import CheckFailure
-from exactinv_check.kernel import Problem
-from exactinv_check.reals import Real
-from exactinv_check.routes import lp_pieces
-from exactinv_check.validset import valid_set
 
 M = ei.methods
 METHODS = [M.taylor(1), M.taylor(2), M.taylor(3), M.taylor(4), M.backward_euler(), M.pade(1, 1), M.pade(1, 2)]
@@ -50,30 +47,6 @@ def random_problem(rng, dims, shape):
         for i in range(k):
             A[i][n - 1] = F(0)  # A e_n in the line: P may stay invariant
     return A, rows, b, rng.choice(METHODS)
-
-
-def kernel_set(problem, record):
-    """The valid set the kernel derives from an lp record (equalities included), or None when it rejects."""
-    try:
-        p = Problem(problem)
-        _, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(p, record)
-        lp_pieces.require_horizon(D, inequalities, equalities, horizon, {}, "set")
-        return valid_set(D, list(inequalities), list(equalities))
-    except CheckFailure:
-        return None
-
-
-def same(W, intervals):
-    """The kernel's intervals equal a certificate's intervals (exact ends, closedness)."""
-    if len(W) != len(intervals):
-        return False
-    for w, t in zip(W, intervals):
-        lo, hi = Real.parse(t["lo"]), Real.parse(t["hi"])
-        if w.lo.compare(lo) or w.hi.compare(hi) or bool(w.lo_closed) != t["lo_closed"]:
-            return False
-        if not hi.inf and bool(w.hi_closed) != t["hi_closed"]:
-            return False
-    return True
 
 
 def _duals(facets):

@@ -12,16 +12,13 @@ from fractions import Fraction as F
 from math import factorial
 
 import pytest
+from lp_record_sets import kernel_set, same
 
 import exactinv as ei
 import exactinv_check
 from exactinv_check import polys
 from exactinv_check.budget import account
-from exactinv_check.failure import CheckFailure
-from exactinv_check.kernel import Problem
-from exactinv_check.reals import Real
 from exactinv_check.routes import lp_pieces
-from exactinv_check.validset import valid_set
 
 pytestmark = pytest.mark.workload  # the kernel's own workload: left out at the lowest versions (.ci/run stage 3)
 
@@ -60,30 +57,6 @@ def _random_problem(rng, dims):
     A = [[F(-rng.randint(0, 2) if i == j else 0) + F(rng.randint(-3, 3), rng.choice([1, 4, 12])) for j in range(n)]
          for i in range(n)]
     return A, G, b, rng.choice(_METHODS)
-
-
-def _kernel_set(cert):
-    """The valid set the kernel derives from the certificate's lp record (what it would accept as the
-    claim), or None when it rejects the record."""
-    try:
-        problem = Problem(cert["problem"])
-        _, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(problem, cert["claims"][0]["lp"])
-        lp_pieces.require_horizon(D, inequalities, equalities, horizon, {}, "set")
-        return valid_set(D, list(inequalities), [])
-    except CheckFailure:
-        return None
-
-
-def _same(W, intervals):
-    if len(W) != len(intervals):
-        return False
-    for w, t in zip(W, intervals):
-        lo, hi = Real.parse(t["lo"]), Real.parse(t["hi"])
-        if w.lo.compare(lo) or w.hi.compare(hi) or bool(w.lo_closed) != t["lo_closed"]:
-            return False
-        if not hi.inf and bool(w.hi_closed) != t["hi_closed"]:
-            return False
-    return True
 
 
 def _mutate(rng, cert, n, m):
@@ -172,7 +145,7 @@ def fuzz(seed, problems, mutations, dims=(2, 3, 4, 5)):
             c = _mutate(rng, cert, len(A), len(G))
             if c is None:
                 continue
-            W = _kernel_set(c)
+            W = kernel_set(c["problem"], c["claims"][0]["lp"])
             if W is None:
                 rejected += 1
                 continue
@@ -184,7 +157,7 @@ def fuzz(seed, problems, mutations, dims=(2, 3, 4, 5)):
                                              ei.Polyhedron([[F(x) for x in r] for r in p["G"]], [F(x) for x in p["b"]]),
                                              method, route="vertex")
                 truths[key] = truth.certificate["claims"][0]["intervals"]
-            if not _same(W, truths[key]):
+            if not same(W, truths[key]):
                 bad.append(c)
     return accepted, rejected, bad
 
