@@ -20,6 +20,12 @@ it one argument at a time (pickled, through a pipe) and reads the JSON reply
 After any outcome other than ``"ok"`` the child is killed and the next run
 forks a fresh one, so a run that breached a limit never leaves a damaged
 process behind; the child is also renewed every :data:`RENEW_AFTER` runs.
+An idle child that died between runs (killed from outside, a Ctrl-C sent to
+the process group, reaped by someone else) is noticed before the next job is
+sent -- ``wait4(WNOHANG)``, or a broken pipe when sending -- and replaced: the
+job runs in a fresh child.  Only a child that dies *while running* a job makes
+that job a ``"crash"`` (or ``"memory"``).  A fork of the parent inherits the
+:class:`Sandbox` object but not the child: there it is forgotten, never killed.
 ``seconds`` is the wall time of the run seen from the parent,
 ``cpu_seconds`` the child's CPU time for this run and ``peak_mb`` its peak
 resident memory during the run (Linux's ``VmHWM``, reset before each run
@@ -40,6 +46,7 @@ Linux (POSIX ``fork``, ``RLIMIT_AS``, ``/proc``).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -76,6 +83,7 @@ class Sandbox:
         self._stderr: Any = None
         self._runs = 0
         self._cpu = 0.0  # CPU seconds of the current child accounted to runs so far
+        self._owner = os.getpid()  # the process that forked the child (a fork of it inherits this object)
 
     def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
         """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
@@ -88,18 +96,25 @@ class Sandbox:
         ('crash', 2)
         >>> box.close()
         """
-        if self.pid is not None and self._runs >= RENEW_AFTER:
+        if self.pid is not None and (self._runs >= RENEW_AFTER or not self._alive()):
             self.close()
-        if self.pid is None:
-            self._spawn()
+        job = _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL))
+        while True:
+            if self.pid is None:
+                self._spawn()
+            said_from = os.fstat(self._stderr.fileno()).st_size
+            start = time.monotonic()
+            try:
+                _write_all(self._jobs, job)
+            except BrokenPipeError:  # the idle child died before it read the job (it never ran it)
+                fresh = self._runs == 0
+                wait_status, _, peak = self._reap()
+                if not fresh:  # a fresh child runs it; one that dies before its first job is a crash
+                    continue
+                return decode_exit(b"", wait_status, None, time.monotonic() - start, peak, self._said(said_from))
+            break
         self._runs += 1
-        said_from = os.fstat(self._stderr.fileno()).st_size
-        start = time.monotonic()
-        try:
-            _write_all(self._jobs, _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL)))
-            reply, timed_out = _read_frame(self._replies, None if timeout is None else start + timeout)
-        except BrokenPipeError:  # the child is gone: its wait status says why
-            reply, timed_out = None, False
+        reply, timed_out = _read_frame(self._replies, None if timeout is None else start + timeout)
         seconds = time.monotonic() - start
         if timed_out:
             os.kill(self.pid, signal.SIGKILL)
@@ -127,7 +142,7 @@ class Sandbox:
         >>> box.close(); box.pid is None
         True
         """
-        if self.pid is not None:
+        if self.pid is not None and self._alive():  # (a dead child is reaped, another process's forgotten)
             os.kill(self.pid, signal.SIGKILL)
             self._reap()
 
@@ -151,19 +166,46 @@ class Sandbox:
             _serve(self.fn, jobs_r, replies_w)
         os.close(jobs_r)
         os.close(replies_w)
-        self.pid, self._jobs, self._replies = pid, jobs_w, replies_r
+        self.pid, self._jobs, self._replies, self._owner = pid, jobs_w, replies_r, os.getpid()
         self.forks += 1
         self._runs, self._cpu = 0, 0.0
 
+    def _alive(self) -> bool:
+        """Is the idle child still there?  One ``wait4(WNOHANG)``: a child that died since its last run
+        (killed from outside, a signal to the process group) is reaped here and forgotten, so the next
+        run forks a fresh one instead of sending its job to the dead.  In a fork of the process that
+        forked it, the child is not ours: forgotten too."""
+        if self._owner != os.getpid():
+            self._forget()
+            return False
+        try:
+            pid, _, _ = os.wait4(self.pid, os.WNOHANG)
+        except ChildProcessError:  # already reaped by someone else (a waitpid(-1) in this process)
+            pid = self.pid
+        if pid == 0:
+            return True
+        self._forget()
+        return False
+
     def _reap(self) -> tuple[int, float, float]:
         """Wait for the dead (or killed) child; its wait status, the CPU seconds it spent since the
-        last accounted run, and its peak resident memory (MB) over its life."""
-        _, wait_status, usage = os.wait4(self.pid, 0)
-        for fd in (self._jobs, self._replies):
-            os.close(fd)
+        last accounted run, and its peak resident memory (MB) over its life (a child reaped by
+        someone else: status 0 and no measurements)."""
+        try:
+            _, wait_status, usage = os.wait4(self.pid, 0)
+        except ChildProcessError:
+            self._forget()
+            return 0, 0.0, 0.0
         cpu = max(usage.ru_utime + usage.ru_stime - self._cpu, 0.0)
-        self.pid, self._jobs, self._replies = None, -1, -1
+        self._forget()
         return wait_status, cpu, usage.ru_maxrss / 1024
+
+    def _forget(self) -> None:
+        """Close this side's pipes and drop the child's pid (it is reaped, or not ours)."""
+        for fd in (self._jobs, self._replies):
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self.pid, self._jobs, self._replies = None, -1, -1
 
     def _said(self, offset: int) -> str:
         """The child's standard error since ``offset`` (its last STDERR_TAIL bytes)."""
