@@ -119,7 +119,7 @@ class Sandbox:
                 wait_status, _, peak = self._reap()
                 if not fresh:  # a fresh child runs it; one that dies before its first job is a crash
                     continue
-                return decode_exit(b"", wait_status, memory_mb, time.monotonic() - start, peak,
+                return decode_exit(b"", wait_status, None, time.monotonic() - start, peak,  # no limit was set
                                    self._said(said_from))
             break
         self._runs += 1

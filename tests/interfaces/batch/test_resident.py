@@ -245,3 +245,15 @@ def test_the_inherited_heap_is_frozen_in_the_child_and_the_parents_gc_callbacks_
         gc.callbacks.remove(seen.append)
         box.close()
     assert gc.get_freeze_count() == 0  # the parent's own collector is untouched
+
+
+def test_a_child_that_cannot_take_its_first_job_is_a_crash_not_a_loop(monkeypatch):
+    from exactinv.interfaces.batch import resident
+
+    monkeypatch.setattr(resident, "_settle", lambda: os._exit(7))  # every fresh child dies at once
+    box = Sandbox(_work)
+    try:
+        out = box.run(("square", (1, 2)), timeout=30, memory_mb=100)
+        assert out.status == "crash" and "code 7" in out.message and box.forks == 1
+    finally:
+        box.close()
