@@ -147,6 +147,11 @@ def test_the_child_is_renewed_after_many_runs(monkeypatch):
         box.close()
 
 
+def _state(pid: int) -> str:
+    with open(f"/proc/{pid}/stat", encoding="ascii") as fh:
+        return fh.read().rsplit(") ", 1)[1][0]
+
+
 def _kill_idle(box: Sandbox, how: str) -> int:
     """Kill the idle child between two runs: left a zombie for the sandbox to notice, also reaped
     by someone else (a waitpid in this process, as a test or a library might), or just killed (it
@@ -156,7 +161,7 @@ def _kill_idle(box: Sandbox, how: str) -> int:
     if how == "reaped elsewhere":
         os.waitpid(pid, 0)
     elif how == "zombie":
-        while open(f"/proc/{pid}/stat").read().split(") ")[1][0] != "Z":  # dead, not yet reaped
+        while _state(pid) != "Z":  # dead, not yet reaped
             time.sleep(0.01)
     return pid
 
