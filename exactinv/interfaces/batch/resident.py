@@ -20,6 +20,14 @@ it one argument at a time (pickled, through a pipe) and reads the JSON reply
 After any outcome other than ``"ok"`` the child is killed and the next run
 forks a fresh one, so a run that breached a limit never leaves a damaged
 process behind; the child is also renewed every :data:`RENEW_AFTER` runs.
+An idle child that died between runs (killed from outside, a Ctrl-C sent to
+the process group, reaped by someone else) is noticed before the next job is
+sent (``wait4(WNOHANG)``) or, dying just then, because it never takes the job:
+the child answers each job with one byte the moment it has read it, so a broken
+pipe or an end of file before that byte means the job never ran, and it is sent
+again to a fresh child.  Only a child that dies *while running* a job (after
+that byte) makes that job a ``"crash"`` (or ``"memory"``).  A fork of the parent inherits the
+:class:`Sandbox` object but not the child: there it is forgotten, never killed.
 ``seconds`` is the wall time of the run seen from the parent,
 ``cpu_seconds`` the child's CPU time for this run and ``peak_mb`` its peak
 resident memory during the run (Linux's ``VmHWM``, reset before each run
@@ -40,6 +48,8 @@ Linux (POSIX ``fork``, ``RLIMIT_AS``, ``/proc``).
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import json
 import math
 import os
@@ -62,6 +72,7 @@ RENEW_AFTER = 2000
 """Runs after which a child is replaced by a fresh fork (bounds what a long life may accumulate)."""
 
 _HEADER = struct.Struct(">Q")
+_TAKEN = b"+"  # the child's first reply to a job: it has read it (a death from then on is the job's)
 
 
 class Sandbox:
@@ -76,6 +87,7 @@ class Sandbox:
         self._stderr: Any = None
         self._runs = 0
         self._cpu = 0.0  # CPU seconds of the current child accounted to runs so far
+        self._owner = os.getpid()  # the process that forked the child (a fork of it inherits this object)
 
     def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
         """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
@@ -88,18 +100,32 @@ class Sandbox:
         ('crash', 2)
         >>> box.close()
         """
-        if self.pid is not None and self._runs >= RENEW_AFTER:
+        if self.pid is not None and (self._runs >= RENEW_AFTER or not self._alive()):
             self.close()
-        if self.pid is None:
-            self._spawn()
+        job = _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL))
+        while True:
+            if self.pid is None:
+                self._spawn()
+            said_from = os.fstat(self._stderr.fileno()).st_size
+            start = time.monotonic()
+            deadline = None if timeout is None else start + timeout
+            try:
+                _write_all(self._jobs, job)
+                taken, timed_out = _read_exact(self._replies, 1, deadline)  # the child's "job in hand"
+            except BrokenPipeError:  # the child is gone and never read the job
+                taken, timed_out = None, False
+            if taken is None and not timed_out:  # it died before it took the job: the job never ran
+                fresh = self._runs == 0
+                wait_status, _, peak = self._reap()
+                if not fresh:  # a fresh child runs it; one that dies before its first job is a crash
+                    continue
+                return decode_exit(b"", wait_status, None, time.monotonic() - start, peak,  # no limit was set
+                                   self._said(said_from))
+            break
         self._runs += 1
-        said_from = os.fstat(self._stderr.fileno()).st_size
-        start = time.monotonic()
-        try:
-            _write_all(self._jobs, _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL)))
-            reply, timed_out = _read_frame(self._replies, None if timeout is None else start + timeout)
-        except BrokenPipeError:  # the child is gone: its wait status says why
-            reply, timed_out = None, False
+        reply = None
+        if not timed_out:
+            reply, timed_out = _read_frame(self._replies, deadline)
         seconds = time.monotonic() - start
         if timed_out:
             os.kill(self.pid, signal.SIGKILL)
@@ -127,7 +153,7 @@ class Sandbox:
         >>> box.close(); box.pid is None
         True
         """
-        if self.pid is not None:
+        if self.pid is not None and self._alive():  # (a dead child is reaped, another process's forgotten)
             os.kill(self.pid, signal.SIGKILL)
             self._reap()
 
@@ -151,19 +177,46 @@ class Sandbox:
             _serve(self.fn, jobs_r, replies_w)
         os.close(jobs_r)
         os.close(replies_w)
-        self.pid, self._jobs, self._replies = pid, jobs_w, replies_r
+        self.pid, self._jobs, self._replies, self._owner = pid, jobs_w, replies_r, os.getpid()
         self.forks += 1
         self._runs, self._cpu = 0, 0.0
 
+    def _alive(self) -> bool:
+        """Is the idle child still there?  One ``wait4(WNOHANG)``: a child that died since its last run
+        (killed from outside, a signal to the process group) is reaped here and forgotten, so the next
+        run forks a fresh one instead of sending its job to the dead.  In a fork of the process that
+        forked it, the child is not ours: forgotten too."""
+        if self._owner != os.getpid():
+            self._forget()
+            return False
+        try:
+            pid, _, _ = os.wait4(self.pid, os.WNOHANG)
+        except ChildProcessError:  # already reaped by someone else (a waitpid(-1) in this process)
+            pid = self.pid
+        if pid == 0:
+            return True
+        self._forget()
+        return False
+
     def _reap(self) -> tuple[int, float, float]:
         """Wait for the dead (or killed) child; its wait status, the CPU seconds it spent since the
-        last accounted run, and its peak resident memory (MB) over its life."""
-        _, wait_status, usage = os.wait4(self.pid, 0)
-        for fd in (self._jobs, self._replies):
-            os.close(fd)
+        last accounted run, and its peak resident memory (MB) over its life (a child reaped by
+        someone else: status 0 and no measurements)."""
+        try:
+            _, wait_status, usage = os.wait4(self.pid, 0)
+        except ChildProcessError:
+            self._forget()
+            return 0, 0.0, 0.0
         cpu = max(usage.ru_utime + usage.ru_stime - self._cpu, 0.0)
-        self.pid, self._jobs, self._replies = None, -1, -1
+        self._forget()
         return wait_status, cpu, usage.ru_maxrss / 1024
+
+    def _forget(self) -> None:
+        """Close this side's pipes and drop the child's pid (it is reaped, or not ours)."""
+        for fd in (self._jobs, self._replies):
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self.pid, self._jobs, self._replies = None, -1, -1
 
     def _said(self, offset: int) -> str:
         """The child's standard error since ``offset`` (its last STDERR_TAIL bytes)."""
@@ -195,28 +248,93 @@ def resident(fn: Callable[[Any], Any]) -> Sandbox:
 # --- the child ---------------------------------------------------------------------------------
 
 def _serve(fn: Callable[[Any], Any], jobs: int, replies: int) -> None:
-    """The child's loop: one job in, one reply out, until the parent closes the pipe."""
+    """The child's loop: one job in, one reply out, until the parent closes the pipe.
+
+    First, :func:`_settle`: the inherited heap leaves the child's garbage collector."""
     code = 0
     try:
         plain_fatal_signals()
         die_with_parent()
+        _settle()
+        proc = _ProcSelf()
         while True:
             job, _ = _read_frame(jobs, None)
             if job is None:
                 break
+            _write_all(replies, _TAKEN)  # from here on a death is this job's
             arg, timeout, memory_mb = pickle.loads(job)
-            _write_all(replies, _frame(_one(fn, arg, timeout, memory_mb)))
+            _write_all(replies, _frame(_one(fn, arg, timeout, memory_mb, proc)))
     except BaseException:
         code = 3
     finally:
         os._exit(code)  # skip the parent's atexit handlers and buffered output
 
 
-def _one(fn: Callable[[Any], Any], arg: Any, timeout: float | None, memory_mb: float | None) -> bytes:
+def _settle() -> None:
+    """In a fresh child: ``gc.freeze()`` -- every object inherited from the parent (a Dask worker:
+    Dask, exactinv, and the corpus's tasks when the worker was forked from `exactinv batch`) moves
+    to the permanent generation, so the child's full collections walk only the child's own objects
+    instead of the whole inherited heap, writing each object's GC header (a copy-on-write fault per
+    page) -- the standard cure for a forked server (Python's gc docs).  Inherited objects are still
+    freed by their reference counts; only cycles among them are never collected here (nor needed:
+    the child's life is bounded, :data:`RENEW_AFTER`).  And the parent's ``gc.callbacks`` (Dask's
+    worker registers a GC diagnosis that reads the process's memory and logs) are dropped: they
+    watch the parent, not the child."""
+    gc.freeze()
+    gc.callbacks.clear()
+
+
+class _ProcSelf:
+    """The child's /proc files, opened once and re-read with ``pread`` (opening and parsing
+    ``/proc/self/status`` by lines for every run cost 0.1-0.2 ms; a re-read costs a few µs):
+    ``clear_refs`` to reset the resident high-water mark, ``status`` for it (``VmHWM``),
+    ``statm`` for the address space (``VmSize``).  Where a file cannot be opened the measurement
+    falls back to :func:`.sandbox.address_space` and the life-long ``ru_maxrss``."""
+
+    def __init__(self) -> None:
+        self.clear_refs = _open("/proc/self/clear_refs", os.O_WRONLY)
+        self.status = _open("/proc/self/status", os.O_RDONLY)
+        self.statm = _open("/proc/self/statm", os.O_RDONLY)
+
+    def reset_peak(self) -> None:
+        """Reset this process's resident high-water mark (VmHWM; Linux 4.0 and later)."""
+        if self.clear_refs is not None:
+            with contextlib.suppress(OSError):
+                os.write(self.clear_refs, b"5")
+
+    def peak_mb(self) -> float:
+        """This process's resident high-water mark in MB: VmHWM, else the life-long ru_maxrss."""
+        if self.status is not None:
+            with contextlib.suppress(OSError, ValueError, IndexError):
+                text = os.pread(self.status, 1 << 16, 0)
+                at = text.index(b"VmHWM:")
+                return int(text[at + 6:text.index(b"kB", at)]) / 1024
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+    def address_space(self) -> int:
+        """This process's virtual memory size in bytes (statm's first field, in pages: VmSize)."""
+        if self.statm is not None:
+            with contextlib.suppress(OSError, ValueError, IndexError):
+                return int(os.pread(self.statm, 256, 0).split()[0]) * _PAGE
+        return address_space()
+
+
+_PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
+
+
+def _open(path: str, flags: int) -> int | None:
+    try:
+        return os.open(path, flags)
+    except OSError:
+        return None
+
+
+def _one(fn: Callable[[Any], Any], arg: Any, timeout: float | None, memory_mb: float | None,
+         proc: _ProcSelf) -> bytes:
     """One run under the limits: the JSON reply with the run's CPU seconds and peak memory."""
     cpu0 = _cpu()
-    _reset_peak()
-    _set_limits(timeout, memory_mb, cpu0)
+    proc.reset_peak()
+    limited = _set_limits(timeout, memory_mb, cpu0, proc)
     try:
         try:
             reply: dict = {"ok": fn(arg)}
@@ -226,8 +344,8 @@ def _one(fn: Callable[[Any], Any], arg: Any, timeout: float | None, memory_mb: f
         except BaseException as exc:  # the function's own bug: report it, never hang the batch
             reply = {"crash": f"{type(exc).__name__}: {exc}"}
     finally:
-        _lift_limits()
-    meta = {"cpu": _cpu() - cpu0, "peak": _peak_mb()}
+        _lift_limits(limited)
+    meta = {"cpu": _cpu() - cpu0, "peak": proc.peak_mb()}
     try:
         return json.dumps({**reply, **meta}).encode()
     except (TypeError, ValueError) as exc:
@@ -239,42 +357,26 @@ def _cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def _set_limits(timeout: float | None, memory_mb: float | None, cpu_now: float) -> None:
+def _set_limits(timeout: float | None, memory_mb: float | None, cpu_now: float, proc: _ProcSelf) -> tuple[int, ...]:
+    """Set the run's limits; the resources limited."""
+    limited = []
     if memory_mb is not None:
         _, hard = resource.getrlimit(resource.RLIMIT_AS)
-        soft = min(address_space() + int(memory_mb * 2**20), 2**62)
+        soft = min(proc.address_space() + int(memory_mb * 2**20), 2**62)
         resource.setrlimit(resource.RLIMIT_AS, (soft if hard == resource.RLIM_INFINITY else min(soft, hard), hard))
+        limited.append(resource.RLIMIT_AS)
     if timeout is not None:
         _, hard = resource.getrlimit(resource.RLIMIT_CPU)
         soft = int(math.ceil(cpu_now + timeout)) + CPU_GRACE
         resource.setrlimit(resource.RLIMIT_CPU, (soft if hard == resource.RLIM_INFINITY else min(soft, hard), hard))
+        limited.append(resource.RLIMIT_CPU)
+    return tuple(limited)
 
 
-def _lift_limits() -> None:
-    for which in (resource.RLIMIT_AS, resource.RLIMIT_CPU):
+def _lift_limits(limited: tuple[int, ...]) -> None:
+    for which in limited:
         _, hard = resource.getrlimit(which)
         resource.setrlimit(which, (hard, hard))
-
-
-def _reset_peak() -> None:
-    """Reset this process's resident high-water mark (VmHWM; Linux 4.0 and later)."""
-    try:
-        with open("/proc/self/clear_refs", "w", encoding="ascii") as fh:
-            fh.write("5")
-    except OSError:
-        pass
-
-
-def _peak_mb() -> float:
-    """This process's resident high-water mark in MB: VmHWM, else the life-long ru_maxrss."""
-    try:
-        with open("/proc/self/status", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024
-    except (OSError, ValueError):
-        pass
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 # --- frames ------------------------------------------------------------------------------------
@@ -289,23 +391,26 @@ def _write_all(fd: int, data: bytes) -> None:
         view = view[os.write(fd, view):]
 
 
+def _read_exact(fd: int, size: int, deadline: float | None) -> tuple[bytes | None, bool]:
+    """``size`` bytes from ``fd``: (data, False); (None, False) at end of file (the writer died);
+    (None, True) at the deadline."""
+    buf = bytearray()
+    while len(buf) < size:
+        if deadline is not None:
+            ready, _, _ = select.select([fd], [], [], max(deadline - time.monotonic(), 0))
+            if not ready:
+                return None, True
+        chunk = os.read(fd, min(size - len(buf), 1 << 20))
+        if not chunk:
+            return None, False
+        buf += chunk
+    return bytes(buf), False
+
+
 def _read_frame(fd: int, deadline: float | None) -> tuple[bytes | None, bool]:
     """One frame from ``fd``: (payload, False); (None, False) at end of file (also mid-frame: the
     writer died); (None, True) at the deadline."""
-    buf = bytearray()
-    need = _HEADER.size
-    header_done = False
-    while True:
-        while len(buf) < need:
-            if deadline is not None:
-                ready, _, _ = select.select([fd], [], [], max(deadline - time.monotonic(), 0))
-                if not ready:
-                    return None, True
-            chunk = os.read(fd, min(need - len(buf), 1 << 20))
-            if not chunk:
-                return None, False
-            buf += chunk
-        if header_done:
-            return bytes(buf[_HEADER.size:]), False
-        header_done = True
-        need = _HEADER.size + _HEADER.unpack(bytes(buf[:_HEADER.size]))[0]
+    header, timed_out = _read_exact(fd, _HEADER.size, deadline)
+    if header is None:
+        return None, timed_out
+    return _read_exact(fd, _HEADER.unpack(header)[0], deadline)

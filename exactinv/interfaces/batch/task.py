@@ -41,10 +41,10 @@ from ..oracle import judge_row
 from ..pipeline import certify
 from ..problem import load_problem
 from .corpus import Task
-from .resident import resident
+from .resident import Sandbox, resident
 from .sandbox import Outcome, run_limited
 
-__all__ = ["Limits", "STATUSES", "run_task", "run_chunk", "engine_version", "record_outcome"]
+__all__ = ["Limits", "STATUSES", "run_task", "run_chunk", "chunk_sandbox", "engine_version", "record_outcome"]
 
 STATUSES = ("ok", "rejected", "error", "timeout", "memory")
 """A record's status: the kernel verified the certificate (or, with
@@ -127,15 +127,24 @@ def run_chunk(tasks: Sequence[Task], limits: Limits) -> list[dict]:
     breaches a limit is recorded, the sandbox is replaced, and the rest of the chunk runs.  The
     records are :func:`run_task`'s, exact values and all; only the measurements differ.
 
-    >>> resident(_solve).close()  # a fresh child: this thread's may hold one from an earlier run
     >>> box = '{"system": {"A": [[-1]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": %d}}'
     >>> chunk = [Task(f"t{p}", "certify", text=box % p) for p in (1, 2)] + [Task("bad", "certify", error="unread")]
     >>> [(r["id"], r["status"], r["values"]["largest_threshold"] if "values" in r else None)
     ...  for r in run_chunk(chunk, Limits(timeout=60))]
     [('t1', 'ok', '2'), ('t2', 'ok', '2'), ('bad', 'error', None)]
     """
-    box = resident(_solve)
+    box = chunk_sandbox()
     return [_run(task, limits, box.run) for task in tasks]
+
+
+def chunk_sandbox() -> Sandbox:
+    """This thread's long-lived sandbox, in which :func:`run_chunk` runs its tasks (forked on first
+    use, kept for the thread's life; :func:`.resident.resident`).
+
+    >>> chunk_sandbox() is chunk_sandbox()
+    True
+    """
+    return resident(_solve)
 
 
 def _run(task: Task, limits: Limits, runner: Callable[..., Outcome]) -> dict:

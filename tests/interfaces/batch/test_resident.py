@@ -6,11 +6,13 @@ completes; each run's limit and measurements are its own."""
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
 import time
 
 import flint
+import pytest
 
 from exactinv.interfaces.batch.resident import Sandbox
 
@@ -44,6 +46,8 @@ def _work(job):
         raise ZeroDivisionError(x)
     if kind == "object":
         return object()
+    if kind == "gc":  # what the child's collector walks, and who watches it
+        return [gc.get_freeze_count(), len(gc.callbacks), len(gc.get_objects())]
     if kind == "spin":  # about x seconds of CPU
         end = time.process_time() + x
         while time.process_time() < end:
@@ -68,7 +72,7 @@ def test_a_timeout_mid_sequence_kills_the_child_and_the_next_job_runs_in_a_new_o
         first = box.run(("pid", None), timeout=30).value
         out = box.run(("forever", None), timeout=1)
         assert out.status == "timeout" and "1 s" in out.message and out.seconds >= 1
-        with __import__("pytest").raises(ChildProcessError):
+        with pytest.raises(ChildProcessError):
             os.waitpid(first, os.WNOHANG)  # reaped: the old child is gone
         after = box.run(("square", (2, 5)), timeout=30)
         assert after.status == "ok" and after.value == "4/25" and box.forks == 2
@@ -139,5 +143,122 @@ def test_the_child_is_renewed_after_many_runs(monkeypatch):
     try:
         pids = [box.run(("pid", None), timeout=30).value for _ in range(12)]
         assert pids[:5] == [pids[0]] * 5 and pids[5:10] == [pids[5]] * 5 and len(set(pids)) == 3
+    finally:
+        box.close()
+
+
+def _state(pid: int) -> str:
+    with open(f"/proc/{pid}/stat", encoding="ascii") as fh:
+        return fh.read().rsplit(") ", 1)[1][0]
+
+
+def _kill_idle(box: Sandbox, how: str) -> int:
+    """Kill the idle child between two runs: left a zombie for the sandbox to notice, also reaped
+    by someone else (a waitpid in this process, as a test or a library might), or just killed (it
+    may still hold the pipes when the next job is sent: dying as the job arrives)."""
+    pid = box.pid
+    os.kill(pid, signal.SIGKILL)
+    if how == "reaped elsewhere":
+        os.waitpid(pid, 0)
+    elif how == "zombie":
+        while _state(pid) != "Z":  # dead, not yet reaped
+            time.sleep(0.01)
+    return pid
+
+
+@pytest.mark.parametrize("how", ["zombie", "reaped elsewhere", "just killed"])
+def test_an_idle_child_killed_between_runs_is_replaced_and_the_next_job_runs(how):
+    box = Sandbox(_work)
+    try:
+        first = box.run(("pid", None), timeout=30).value
+        assert _kill_idle(box, how) == first
+        after = box.run(("square", (2, 7)), timeout=30)  # the job is not lost to the dead child
+        assert (after.status, after.value, box.forks) == ("ok", "4/49", 2)
+        assert box.run(("pid", None), timeout=30).value not in (first, os.getpid())
+    finally:
+        box.close()
+
+
+def test_a_child_that_dies_while_running_is_still_the_jobs_crash():
+    box = Sandbox(_work)
+    try:
+        box.run(("pid", None), timeout=30)
+        died = box.run(("segv", None), timeout=30)
+        assert died.status == "crash" and "SIGSEGV" in died.message
+        assert box.run(("square", (1, 5)), timeout=30).value == "1/25" and box.forks == 2
+    finally:
+        box.close()
+
+
+def test_a_fork_of_the_parent_never_kills_the_parents_child():
+    box = Sandbox(_work)
+    try:
+        child = box.run(("pid", None), timeout=30).value
+        pid = os.fork()
+        if pid == 0:  # a fork of this process (a Dask worker forked from the batch's process) drops the box
+            try:
+                box.close()
+                os._exit(0 if box.pid is None else 1)
+            finally:
+                os._exit(2)
+        assert os.waitpid(pid, 0)[1] == 0
+        assert box.run(("pid", None), timeout=30).value == child and box.forks == 1  # still alive, still used
+    finally:
+        box.close()
+
+
+def test_a_chunk_after_the_resident_child_died_is_exact_and_complete():
+    """batch.task.run_chunk on this thread's resident sandbox: the child is killed between two
+    chunks (as between two Dask tasks); the second chunk's records are those of each task run
+    alone (exact values; only the measurements differ), none an error."""
+    import json
+
+    from exactinv.interfaces.batch.corpus import Task
+    from exactinv.interfaces.batch.task import Limits, chunk_sandbox, run_chunk, run_task
+
+    def decay(c: int, taylor: int) -> Task:  # x' = -cx on [-1, 1]; Taylor-1 and -2: the largest threshold is 2/c
+        return Task(f"d{c}-{taylor}", "certify", text=json.dumps({
+            "system": {"A": [[-c]]}, "polyhedron": {"G": [[1], [-1]], "b": [1, 1]}, "method": {"taylor": taylor}}))
+
+    limits = Limits(timeout=60)
+    first = run_chunk([decay(1, 1), decay(2, 2)], limits)
+    box = chunk_sandbox()
+    forks = box.forks
+    _kill_idle(box, "just killed")
+    second = [decay(3, 1), decay(4, 2), decay(5, 2)]
+    records = run_chunk(second, limits)
+    assert box.forks == forks + 1
+    assert [r["status"] for r in first + records] == ["ok"] * 5, [r.get("error") for r in first + records]
+    assert [r["values"]["largest_threshold"] for r in records] == ["2/3", "1/2", "2/5"]
+    drop = ("seconds", "cpu_seconds", "peak_mb")
+    assert [{k: v for k, v in r.items() if k not in drop} for r in records] == [
+        {k: v for k, v in run_task(t, limits).items() if k not in drop} for t in second]
+
+
+def test_the_inherited_heap_is_frozen_in_the_child_and_the_parents_gc_callbacks_dropped():
+    # a parent with 50,000 tracked objects of its own (a corpus of tasks) and a GC callback (Dask's
+    # worker registers one): the child's collector walks neither those objects nor calls that callback
+    corpus = [[k] for k in range(50_000)]
+    seen: list = []
+    gc.callbacks.append(seen.append)
+    box = Sandbox(_work)
+    try:
+        frozen, callbacks, walked = box.run(("gc", None), timeout=30).value
+        assert frozen >= len(corpus) and callbacks == 0 and walked < len(corpus)
+        assert box.run(("square", (2, 3)), timeout=30).value == "4/9"
+    finally:
+        gc.callbacks.remove(seen.append)
+        box.close()
+    assert gc.get_freeze_count() == 0  # the parent's own collector is untouched
+
+
+def test_a_child_that_cannot_take_its_first_job_is_a_crash_not_a_loop(monkeypatch):
+    from exactinv.interfaces.batch import resident
+
+    monkeypatch.setattr(resident, "_settle", lambda: os._exit(7))  # every fresh child dies at once
+    box = Sandbox(_work)
+    try:
+        out = box.run(("square", (1, 2)), timeout=30, memory_mb=100)
+        assert out.status == "crash" and "code 7" in out.message and box.forks == 1
     finally:
         box.close()
