@@ -61,12 +61,16 @@ ZERO_REASONS = {"no-positive-pole", "principal-part-sign", "dominance-at-0", "ne
 
 
 def scan_cost(num: Sequence[Fraction], den: Sequence[Fraction], count: int) -> Any:
-    """Estimated word operations of d_0 .. d_{count-1}: d_j has degree about (j + 1) deg h and numbers of
-    about j (deg h) (bits of g, h) bits, and costs about j (deg h)^3 Fraction products whose gcds grow with
-    those numbers (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work)."""
-    dh = max(len(den) - 1, len(num) - 1, 1)
+    """Estimated word operations of d_0 .. d_{count-1}: d_j has degree about (j + 1) d, d = max(deg g, deg h), and
+    numbers of about j d (bits of g, h) bits; the series division by h costs about j (deg h)^3 products of them
+    (calibrated on Pade(2, 3) and Pade(6, 5): 10^8 is a few seconds of work), the shifts G_j of g about deg g + 1
+    products each.  (Charging the division by deg g too priced a polynomial method of degree 25, NodePy's
+    SSPRK3(25), at 4.8e10 where its d_j take 0.06 s; a polynomial has no division, only its shifts.)"""
+    dg, dh = len(num) - 1, len(den) - 1
     bits = max(abs(c).bit_length() for c in poly_arithmetic.integer_coefficients(num) + poly_arithmetic.integer_coefficients(den))
-    return count * count * dh ** 3 * (FRACTION_WEIGHT + count * dh * bits // 8) // 2
+    division = count * count * dh ** 3 * (FRACTION_WEIGHT + count * max(dg, dh, 1) * bits // 8) // 2
+    shifts = count * (dg + 1) * (FRACTION_WEIGHT + words(bits + count))
+    return division + shifts
 
 
 def d_polynomials(num: Any, den: Any, count: Any) -> Any:

@@ -34,10 +34,8 @@ def priced(result: AbsoluteMonotonicityRadius) -> AbsoluteMonotonicityRadius:
     >>> priced(absolute_monotonicity_radius(methods.pade(1, 3))).tail_index
     78
     """
-    if result.tail_index is None:
-        return result
     num, den = list(result.method.numerator), list(result.method.denominator)
-    count = max(result.tail_index, len(num), len(den), 1)
+    count = max(result.tail_index or 0, len(num), len(den), 1)
     estimate = scan_cost(num, den, count)
     if estimate > SCAN_BUDGET:
         raise Undecided(f"absolute monotonicity of {result.method.name}: rho = {result.value} ({result.reason}, tail index "

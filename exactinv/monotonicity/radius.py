@@ -34,6 +34,7 @@ from ..core.roots import nonnegative_until
 from ..core.scalars import INF
 from ..model.methods import Method
 from ..model.validate import check_method
+from .kernel_price import priced
 from .result import AbsoluteMonotonicityRadius
 from .tail import coefficient_polynomials, rational_radius
 
@@ -83,5 +84,5 @@ def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:
     coeffs = tuple(tuple(fraction_of(c) for c in p.coeffs()) for p in d)
     reason = RadiusReason.ALL_COEFFICIENTS if value == INF else RadiusReason.COEFFICIENT
     attained = value != 0 or all(c[0] >= 0 if c else True for c in coeffs)  # rho = 0 may fail at kappa = 0 itself
-    return AbsoluteMonotonicityRadius(value, attained, reason, method, None if value == INF else binding,
-                                      coefficients=coeffs)
+    return priced(AbsoluteMonotonicityRadius(value, attained, reason, method, None if value == INF else binding,
+                                             coefficients=coeffs))

@@ -114,7 +114,18 @@ class ExactSolve(Protocol):
     """The exact LP chain's solve (:meth:`exactinv.lp.solver.ExactLPSolver.solve`), or a guard around it that
     may decline (None)."""
 
-    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonnegative: Sequence[bool]) -> LPResult | None: ...
+    def solve(self, c: flint.fmpq_mat, b: flint.fmpq_mat, nonnegative: Sequence[bool]) -> LPResult | None:
+        """max c^T x subject to G x <= b, exactly (verified optimum, primal and dual), or None (declined).
+
+        The exact LP chain is one: max 3x on -1 <= x <= 1 is 3, at x = 1.
+
+        >>> from exactinv.lp.solver import ExactLPSolver
+        >>> G = flint.fmpq_mat(2, 1, [1, -1])
+        >>> result = ExactLPSolver(G, (False, False)).solve(flint.fmpq_mat(1, 1, [3]), flint.fmpq_mat(2, 1, [1, 1]), (False,))
+        >>> result.status.value, result.value
+        ('optimal', Fraction(3, 1))
+        """
+        ...
 
 
 Suggest = Callable[[int, flint.fmpq_mat], Iterable[tuple[tuple[int, ...], list[flint.fmpq]]]]
@@ -128,7 +139,18 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     optimal at a), or None when one is not found or q(a) <= 0 (the facet binds at a): module docstring.
     For k >= 1, ``suggest(k, d_k)`` may propose bases first, as (rows, B^-T d_k exactly) -- one that served
     before, a float LP's basis: each is taken only when B^-T d_k >= 0, and ``used(k, rows)`` is told
-    which one served -- before the exact LP chain.  Exact throughout; floats are hints verified in Q."""
+    which one served -- before the exact LP chain.  Exact throughout; floats are hints verified in Q.
+
+    Forward Euler on x' = -x, P = [-1, 1], facet x <= 1 from a = 1/2: c(h) = 1 - h = c(a) - (h - a), so
+    y_0 = 1/2 on the facet's row (its dual at a) and y_1 = 1 on the row -x <= 1 (G^T y_1 = -1), and
+    q(h) = 1 - y(h)^T b = 1 - (1/2 + (h - 1/2)) = 1 - h >= 0 up to the end h = 1:
+
+    >>> from exactinv.lp.solver import ExactLPSolver
+    >>> G, b = flint.fmpq_mat(2, 1, [1, -1]), flint.fmpq_mat(2, 1, [1, 1])
+    >>> dual_piece(G, b, Fraction(1), flint.fmpq_poly([1]), flint.fmpq_mat(1, 2, [1, -1]), (0,),
+    ...            flint.fmpq_mat(1, 1, [1]), ExactLPSolver(G, (False, False)), Fraction(1, 2), None)
+    DualCertificate(start=Fraction(1, 2), end=Fraction(1, 1), ys=(((0, Fraction(1, 2)),), ((1, Fraction(1, 1)),)))
+    """
     n, m = G.ncols(), G.nrows()
     Tk = _taylor(target, a)
     W = Tk.ncols()

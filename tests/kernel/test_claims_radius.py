@@ -12,8 +12,10 @@ Q(i).  The last test is a seeded mutation fuzzer over genuine engine certificate
 import json
 import random
 from fractions import Fraction as F
+from math import comb, factorial
 
 import pytest
+from kernel_deadline import check_within
 from radius_reference import coefficients_at
 
 from exactinv_check import check
@@ -416,7 +418,34 @@ def test_the_binding_index_only_orders_the_work(binding):
     assert not check(cert).ok
 
 
+def test_polynomials_of_high_degree_are_verified_and_their_radius_is_exact():
+    """A polynomial has no series division: its d_j are shifts of g.  The up-front gate charged the division by
+    deg g all the same and refused every one of these (4e10 to 6e10 estimated; each verifies in under a second):
+    (1 + z/20)^25 (rho = 20, the shape of NodePy's SSPRK3(25)), (1 + z/64)^64 (rho = 64) and Taylor-64 (rho = 1).
+    Each value is checked against the exact reference: every c_j >= 0 at rho, and some c_j < 0 just beyond."""
+    import exactinv as ei
+
+    for num, rho in (([F(comb(25, k), 20 ** k) for k in range(26)], 20),
+                     ([F(comb(64, k), 64 ** k) for k in range(65)], 64),
+                     ([F(1, factorial(k)) for k in range(65)], 1)):
+        r = ei.absolute_monotonicity_radius(ei.methods.polynomial(num))
+        assert r.value == rho
+        assert check(r.certificate).ok
+        assert min(coefficients_at(num, [F(1)], F(rho), len(num))) >= 0
+        assert min(coefficients_at(num, [F(1)], F(rho) + F(1, 10**6), len(num))) < 0
+
+
 # ------------------------------------------------------------------ resource
+def test_a_polynomial_with_long_coefficients_gets_a_verdict_within_the_promise():
+    """The gate lets a polynomial's shifts through, so a forged degree-64 numerator with 600-digit coefficients
+    reaches the series: its products are charged as they run, and the verdict (over budget) comes well inside the
+    60 s promise (about 18 s of CPU here)."""
+    rng = random.Random(5)
+    num = [F(1)] + [F(rng.randrange(10**599, 10**600), rng.randrange(10**599, 10**600)) for _ in range(64)]
+    report = check_within(json.loads(json.dumps(_cert(num, [F(1)], dict(value="1", reason="coefficient",
+                                                                        attained=True, binding=0)))), 55)
+    assert not report.ok and "budget" in str(report), str(report)
+
 
 def test_huge_pole_coordinates_get_a_quick_verdict():
     """15 simple poles whose coordinates have about 800 bits (p* = 1, a = -3 and 13 real poles above 1 with long
