@@ -151,6 +151,57 @@ def test_seeded_mutations_of_coefficient_claims():
     assert mutated > 60
 
 
+def _random_polynomial(rng):
+    """r = g, g(0) = 1, degree 2 to 8, small rational coefficients (mostly positive, so rho > 0 is common)."""
+    from exactinv import methods as M
+    return M.polynomial([F(1)] + [_frac(rng, -1, 3, (1, 2, 3, 5)) for _ in range(rng.randint(2, 8))])
+
+
+def test_forged_radii_of_polynomials_are_rejected_after_the_gate_change():
+    """721b618 priced a polynomial's d_j by its shifts only; the recomputation behind the gate is unchanged, so a
+    forged rho must still fail.  (1 + z/64)^64 (rho = 64: every c_j(64) >= 0 and some c_j < 0 just beyond, by the
+    reference) and seeded random polynomials: every genuine claim accepted, every accepted mutation is the genuine rho
+    and flag.  (rt-gate: 14 genuine polynomial claims, 119 mutations, 0 false accepts.)"""
+    import random
+
+    import exactinv as ei
+    from exactinv_check.reals import Real
+    num = [F(comb(64, k), 64 ** k) for k in range(65)]
+    assert min(coefficients_at(num, [F(1)], F(64), 65)) >= 0
+    assert min(coefficients_at(num, [F(1)], F(64) + F(1, 10**30), 65)) < 0
+    base = {"format": "exactinv-certificate", "version": 2,
+            "problem": {"method": {"name": "rt-gate", "numerator": [str(c) for c in num], "denominator": ["1"]}}}
+    claim = {"type": "absolute_monotonicity_radius", "value": "64", "attained": True, "reason": "coefficient"}
+    assert check(dict(base, claims=[claim])).ok
+    for forged in _mutations(claim):
+        if F(forged["value"]) != 64 or not forged["attained"]:  # short_above(64) is 64 itself: genuine
+            assert not check(dict(base, claims=[forged])).ok, forged
+    rng, genuine, mutated = random.Random(23), 0, 0
+    while genuine < 14:
+        m = _random_polynomial(rng)
+        try:
+            r = ei.absolute_monotonicity_radius(m)
+        except ei.Undecided:
+            continue
+        cert = json.loads(json.dumps(r.certificate))
+        claim = cert["claims"][0]
+        assert check(cert).ok, claim
+        if r.reason != "coefficient":
+            continue
+        truth = Real.parse(claim["value"])
+        lo, hi = truth.bounds()
+        num = list(m.numerator)
+        if lo > 0:  # the reference: every c_j >= 0 just below rho, some c_j < 0 just above
+            assert min(coefficients_at(num, [F(1)], lo * (1 - F(1, 10**6)), len(num))) >= 0
+        assert min(coefficients_at(num, [F(1)], hi * (1 + F(1, 10**6)) + F(1, 10**9), len(num))) < 0
+        genuine += 1
+        for mc in _mutations(claim):
+            mutated += 1
+            if check(json.loads(json.dumps(dict(cert, claims=[mc])))).ok:
+                assert Real.parse(mc["value"]).compare(truth) == 0 and mc["attained"] == claim["attained"], mc
+    assert mutated > 60
+
+
 # ------------------------------------------------------------------ resource
 
 def test_sign_at_zero_is_charged_as_it_runs():
@@ -211,3 +262,37 @@ def test_bisections_charged_by_the_largest_coefficient():
         for _ in range(20):
             real.bisect()
     assert acc.spent > 20 * 4 * 10**4, f"{acc.spent:.2e}"  # before: 20 x 9e3 (lo, hi of 6 to 26 bits)
+
+
+def _gate_attempts():
+    """rt-gate's strongest short attacks on the radius gate (721b618): a degree-64 polynomial whose d_j all end
+    near one kappa (coefficients C(64, k)/a^k perturbed, a of 10 digits: every d_j isolated, none cleared), a
+    degree-64 polynomial with coefficients 1/q_k (q_k of 1500 digits: a common denominator L of about 320000 bits,
+    so D_j = L^(j+1) d_j), and a rational g/(1 - z/2), g of degree 64 with 20-digit coefficients, count 190 by
+    tail_index (just under the gate)."""
+    import random
+    rng = random.Random(3)
+    a = F(10**10 + 7, 10**9 + 3)
+    near = [F(1)] + [F(comb(64, k)) / a**k * (1 + F(rng.randrange(1, 10**6), 10**16)) for k in range(1, 65)]
+    inv = [F(1)] + [F(1, rng.randrange(10**1499, 10**1500)) for _ in range(64)]
+    prat = [F(1)] + [F(rng.randrange(10**19, 10**20)) for _ in range(64)]
+    return [(near, [F(1)], dict(value="1", reason="coefficient", attained=True)),
+            (inv, [F(1)], dict(value="1", reason="coefficient", attained=True)),
+            (prat, [F(1), F(-1, 2)], dict(value="1000000", reason="coefficient", attained=True, tail_index=190))]
+
+
+def test_the_polynomial_gate_attempts_get_a_verdict_within_the_promise():
+    """rt-gate (721b618's gate: a polynomial's division no longer charged).  No certificate under 1 MB ran past
+    60 s of CPU: 23 certificates tried, worst 23.4 s to the verdict (degree 64, fractions of two 150-digit
+    integers: refused by the Kronecker products' charges at 4.27e9 of 4e9).  Measured: a balanced product of n
+    64-bit words runs 1.27e8 (n = 1e4), 1.10e8 (1e5), 8.7e7 (3e5) charged units a second, and the polynomial
+    route's products are lopsided (G_j times L^j, charged as if balanced at the wider of the two), so the account
+    stops them near 1.7e8 to 2.3e8 units a second.  The three below are the short ones (under 20 s together)."""
+    from kernel_deadline import check_within
+    for num, den, claim in _gate_attempts():
+        cert = json.loads(json.dumps({"format": "exactinv-certificate", "version": 2,
+                                      "problem": {"method": {"name": "rt-gate", "numerator": [str(c) for c in num],
+                                                             "denominator": [str(c) for c in den]}},
+                                      "claims": [{"type": "absolute_monotonicity_radius", **claim}]}))
+        assert len(json.dumps(cert)) < 10**6
+        assert not check_within(cert, 60).ok
