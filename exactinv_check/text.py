@@ -26,6 +26,10 @@ from .rationals import SHOWN_DIGITS
 __all__ = ["significant_digits", "decimal_text", "rational_text", "root_text", "poly_text", "algebraic_text"]
 
 TIDY_DIGITS = 12  # decimals of the printed isolating interval (as the engine's RealAlgebraic.tidy)
+PRINTABLE_DIGITS = 4000  # decimal_text's digits at most (its denominator's bits bound the decimals)
+PRINTABLE_BITS = 13000  # integers printed digit by digit have at most this many bits (about 3900 digits): Python's
+# int -> str stops at 4300 digits (ValueError), and a radius's d_j over a common denominator of three 1999-digit
+# denominators has 6000-digit coefficients; longer numbers are described by their size (red team rt-gate)
 
 
 def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> Any:
@@ -61,6 +65,8 @@ def significant_digits(lo: Fraction, hi: Fraction, digits: int = 17) -> Any:
 def decimal_text(q: Fraction) -> str:
     """q as an exact decimal when its denominator divides a power of ten, else as a fraction."""
     q = Fraction(q)
+    if q.numerator.bit_length() * 3 // 10 + q.denominator.bit_length() > PRINTABLE_DIGITS:  # k <= bits of d
+        return rational_text(q)
     d, twos, fives = q.denominator, 0, 0
     while d % 2 == 0:
         d, twos = d // 2, twos + 1
@@ -97,6 +103,9 @@ def root_text(digits: str, poly: str, lower: Fraction, upper: Fraction) -> str:
 def poly_text(coeffs: Sequence[int], var: str = "x") -> str:
     """Plain text of a polynomial (rational coefficients from the constant term up), highest degree first."""
     cs = [Fraction(c) for c in coeffs]
+    bits = max((max(c.numerator.bit_length(), c.denominator.bit_length()) for c in cs), default=0)
+    if bits > PRINTABLE_BITS:  # too long to print digit by digit (and to read)
+        return f"a polynomial of degree {len(cs) - 1} with coefficients of up to {bits} bits"
     terms = []
     for k in range(len(cs) - 1, -1, -1):
         c = cs[k]

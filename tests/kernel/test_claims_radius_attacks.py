@@ -296,3 +296,35 @@ def test_the_polynomial_gate_attempts_get_a_verdict_within_the_promise():
                                       "claims": [{"type": "absolute_monotonicity_radius", **claim}]}))
         assert len(json.dumps(cert)) < 10**6
         assert not check_within(cert, 60).ok
+
+
+def test_a_radius_with_long_coefficients_is_rejected_not_a_kernel_fault():
+    """Found (rt-gate): r = 1 + g_1 z + g_2 z^2 + g_3 z^3 with g_k of 1999-digit numerators and denominators (a 12 KB
+    certificate, no work to speak of): rho is the root of d_0 = g(-kappa) whose integer coefficients (over the common
+    denominator) have about 6000 digits, and the message "rho is ..., not 1" printed them with str(), past Python's
+    4300-digit int -> str limit: ValueError, reported as a kernel fault instead of a rejection.  Now the kernel's
+    text describes such numbers by their size (exactinv_check.text)."""
+    import random
+    rng = random.Random(1)
+    num = [F(1), F(rng.randrange(10**1998, 10**1999), rng.randrange(10**1995, 10**1996))] + \
+        [F(rng.randrange(10**1998, 10**1999), rng.randrange(10**1998, 10**1999)) for _ in range(2)]
+    cert = json.loads(json.dumps({"format": "exactinv-certificate", "version": 2,
+                                  "problem": {"method": {"name": "rt-gate", "numerator": [str(c) for c in num],
+                                                         "denominator": ["1"]}},
+                                  "claims": [{"type": "absolute_monotonicity_radius", "value": "1", "attained": True,
+                                              "reason": "coefficient"}]}))
+    report = check(cert)
+    assert not report.ok
+    text = str(report)
+    assert "kernel fault" not in text and "rho is" in text and "not 1" in text, text[:400]
+
+
+def test_the_kernel_text_of_numbers_past_the_int_str_limit():
+    """The texts behind that message: a 6000-digit coefficient and a dyadic end 3/2^7000 (4900 decimals) raised
+    ValueError in str(); now they are described by their size, and short ones print exactly as before."""
+    from exactinv_check.text import decimal_text, poly_text
+    assert poly_text([-12, 12, -6, 0, 1]) == "x^4 - 6x^2 + 12x - 12"
+    assert decimal_text(F(3, 2**10)) == "0.0029296875"
+    long = 10**6000 + 1
+    assert poly_text([long, 1]) == "a polynomial of degree 1 with coefficients of up to 19932 bits"
+    assert decimal_text(F(3, 2**7000)).startswith("a 2108-digit rational")
