@@ -288,7 +288,8 @@ def test_the_polynomial_gate_attempts_get_a_verdict_within_the_promise():
     of two 150-digit integers: refused by the Kronecker products' charges at 4.27e9 of 4e9).  Measured: a balanced
     product of n 64-bit words runs 1.27e8 (n = 1e4), 1.10e8 (1e5), 8.7e7 (3e5) charged units a second, a Fraction's
     gcd 3.5e8 (n = 5e3 to 2e4), and the polynomial route's products are lopsided (G_j times L^j, charged as if
-    balanced at the wider of the two), so the account stops them near 1.7e8 to 2.3e8 units a second.  The three below are the short ones (under 20 s together)."""
+    balanced at the wider of the two), so the account stops them near 1.7e8 to 2.3e8 units a
+    second.  The three below are the short ones (under 20 s together)."""
     from kernel_deadline import check_within
     for num, den, claim in _gate_attempts():
         cert = json.loads(json.dumps({"format": "exactinv-certificate", "version": 2,
