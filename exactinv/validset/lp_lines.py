@@ -40,7 +40,7 @@ from ..conditions.polyhedron import Condition, ConditionSet, Kind
 from ..core.encode import vec
 from ..core.flintq import fraction_of
 from ..model.polyhedron import Polyhedron
-from .lp_route import LPRoute, LPRouteDeclined, walk_facets
+from .lp_route import LPRoute, LPRouteDeclined, remembered, walk_facets
 
 __all__ = ["lineality_basis", "LPLinesRoute", "LPLinesCache", "line_conditions", "lp_lines"]
 
@@ -143,16 +143,7 @@ def lp_lines(cs: ConditionSet) -> tuple[list[Condition], list[Condition], LPLine
     >>> [c.poly for c in inequalities], equalities
     ([(Fraction(2, 1), Fraction(-1, 1)), (Fraction(2, 1), Fraction(-1, 1))], [])
     """
-    cache = cs.cache(LPLinesCache)
-    if cache.found is None and cache.declined is None:
-        try:
-            cache.found = _build(cs)
-        except LPRouteDeclined as exc:
-            cache.declined = exc
-    if cache.declined is not None:
-        raise cache.declined
-    assert cache.found is not None
-    return cache.found
+    return remembered(cs.cache(LPLinesCache), lambda: _build(cs))
 
 
 def _build(cs: ConditionSet) -> tuple[list[Condition], list[Condition], LPLinesRoute]:

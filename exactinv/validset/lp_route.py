@@ -59,6 +59,7 @@ import math
 import time
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
+from typing import Any, Callable, TypeVar
 
 import flint
 import numpy as np
@@ -193,6 +194,41 @@ class LPRoute:
         """How many pieces are dual pieces (facet i valid on the piece, no condition)."""
         return sum(p.dual is not None for f in self.facets for p in f.pieces)
 
+
+
+T = TypeVar("T")
+
+
+def remembered(cache: Any, build: Callable[[], T]) -> T:
+    """``build()``'s result, remembered in ``cache.found``; or the :class:`LPRouteDeclined` it raised,
+    remembered in ``cache.declined`` and raised again on every call (the LP routes' caches on one
+    :class:`ConditionSet`: :class:`LPRouteCache`, :class:`exactinv.validset.lp_lines.LPLinesCache`).
+
+    >>> from types import SimpleNamespace
+    >>> cache, calls = SimpleNamespace(found=None, declined=None), []
+    >>> [remembered(cache, lambda: calls.append(1) or "pieces") for _ in range(2)], len(calls)
+    (['pieces', 'pieces'], 1)
+    >>> def refuse():
+    ...     raise LPRouteDeclined("rank G < n")
+    >>> cache = SimpleNamespace(found=None, declined=None)
+    >>> remembered(cache, refuse)
+    Traceback (most recent call last):
+      ...
+    exactinv.validset.lp_route.LPRouteDeclined: rank G < n
+    >>> remembered(cache, lambda: "never built")
+    Traceback (most recent call last):
+      ...
+    exactinv.validset.lp_route.LPRouteDeclined: rank G < n
+    """
+    if cache.found is None and cache.declined is None:
+        try:
+            cache.found = build()
+        except LPRouteDeclined as exc:
+            cache.declined = exc
+    if cache.declined is not None:
+        raise cache.declined
+    assert cache.found is not None
+    return cache.found
 
 
 @dataclass
@@ -694,16 +730,7 @@ def lp_route(cs: ConditionSet) -> tuple[list[Condition], LPRoute]:
     >>> [(c.generator, c.facet, c.poly) for c in conditions]
     [(1, 0, (Fraction(2, 1), Fraction(-1, 1))), (3, 1, (Fraction(2, 1), Fraction(-1, 1)))]
     """
-    cache = cs.cache(LPRouteCache)
-    if cache.found is None and cache.declined is None:
-        try:
-            cache.found = _build(cs)
-        except LPRouteDeclined as exc:
-            cache.declined = exc
-    if cache.declined is not None:
-        raise cache.declined
-    assert cache.found is not None
-    return cache.found
+    return remembered(cs.cache(LPRouteCache), lambda: _build(cs))
 
 
 def walk_facets(cs: ConditionSet, facets: int) -> tuple[list[Condition], LPRoute]:
