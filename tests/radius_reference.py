@@ -85,3 +85,14 @@ def product(*factors):
                 nxt[i + j] += a * Fraction(b)
         out = nxt
     return out
+
+
+def sextic(a, d, y):
+    """(w^2 - d)((w^2 + d + y^2)^2 - 4 d w^2) with w = z - a, normalised to the value 1 at z = 0: the poles
+    a +- sqrt d (real) and a +- sqrt d +- iy (a pair on each real pole's vertical line).  (2, 2, 1) is issue 22's
+    ((z - 2)^2 - 2)((z - 2)^4 - 2(z - 2)^2 + 9)."""
+    q = [d + y * y, Fraction(0), Fraction(1)]
+    quartic = [u - v for u, v in zip(product(q, q), [0, 0, 4 * d, 0, 0])]
+    p = product([-d, 0, 1], quartic)
+    out = [sum(c * comb(k, i) * (-a) ** (k - i) for k, c in enumerate(p) if k >= i) for i in range(len(p))]
+    return [c / out[0] for c in out]

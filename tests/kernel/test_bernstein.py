@@ -8,7 +8,7 @@ import mpmath
 import pytest  # noqa: E402
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from radius_reference import admissible, from_partial_fractions  # noqa: E402
+from radius_reference import admissible, from_partial_fractions, product, sextic  # noqa: E402
 
 import exactinv as ei  # noqa: E402
 from exactinv.core.encode import encode_real  # noqa: E402
@@ -46,33 +46,11 @@ CASE_A = _terms(F(7, 2), F(9, 4), F(1, 2), [(F(11, 2), F(1))])  # the issue's CI
 CASE_B = _terms(F(7, 4), F(9, 4), F(1, 2), [(F(15, 4), F(1))])  # (b): c < 0, rho = the root of g(-kappa)
 
 
-def _mul(a, b):
-    out = [F(0)] * (len(a) + len(b) - 1)
-    for i, x in enumerate(a):
-        for j, y in enumerate(b):
-            out[i + j] += x * y
-    return out
-
-
-def _sextic(a, d, y):
-    """(w^2 - d)((w^2 + d + y^2)^2 - 4 d w^2), w = z - a: the poles a +- sqrt d (real) and a +- sqrt d +- iy (the pair
-    on each real pole's line; (2, 2, 1) is issue 22's ((z - 2)^2 - 2)((z - 2)^4 - 2(z - 2)^2 + 9))."""
-    from math import comb
-    q = [d + y * y, F(0), F(1)]
-    quartic = [u - v for u, v in zip(_mul(q, q), [F(0), F(0), 4 * d, F(0), F(0)])]
-    p = _mul([-d, F(0), F(1)], quartic)
-    out = [F(0)] * len(p)
-    for k, c in enumerate(p):  # p(z - a)
-        for i in range(k + 1):
-            out[i] += c * comb(k, i) * (-a) ** (k - i)
-    return out
-
-
 def _one_over(h):
     return ei.methods.rational([F(1)], [c / h[0] for c in h])
 
 
-ISSUE_SEXTIC = _one_over(_sextic(F(2), F(2), F(1)))  # rho = oo; the kernel's march took 3,577 steps (54 s) before
+ISSUE_SEXTIC = _one_over(sextic(F(2), F(2), F(1)))  # rho = oo; the kernel's march took 3,577 steps (54 s) before
 
 
 # ------------------------------------------------------------------ soundness
@@ -265,7 +243,7 @@ def test_products_of_shifted_sextics_are_verified_well_inside_the_budget(factors
         a = F(a4, 4)
         while a * a <= d:
             a += F(1, 2)
-        h = _mul(h, _sextic(a, d, y))
+        h = product(h, sextic(a, d, y))
     method = _one_over(h)
     try:
         r = absolute_monotonicity_radius(method)

@@ -23,37 +23,16 @@ import functools
 import random
 import sys
 from fractions import Fraction as F
-from math import comb
 from pathlib import Path
 
 import mpmath
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from radius_reference import admissible, from_partial_fractions  # noqa: E402
+from radius_reference import admissible, from_partial_fractions, product, sextic  # noqa: E402
 
 from exactinv_check import bernstein, check  # noqa: E402
 from exactinv_check.failure import CheckFailure  # noqa: E402
-
-
-def _mul(a, b):
-    out = [F(0)] * (len(a) + len(b) - 1)
-    for i, x in enumerate(a):
-        for j, y in enumerate(b):
-            out[i + j] += x * y
-    return out
-
-
-def _sextic(a, d, y):
-    """(w^2 - d)((w^2 + d + y^2)^2 - 4 d w^2), w = z - a: poles a +- sqrt d and a +- sqrt d +- iy."""
-    q = [d + y * y, F(0), F(1)]
-    quartic = [u - v for u, v in zip(_mul(q, q), [F(0), F(0), 4 * d, F(0), F(0)])]
-    p = _mul([-d, F(0), F(1)], quartic)
-    out = [F(0)] * len(p)
-    for k, c in enumerate(p):
-        for i in range(k + 1):
-            out[i] += c * comb(k, i) * (-a) ** (k - i)
-    return [c / out[0] for c in out]
 
 
 @functools.lru_cache(maxsize=64)
@@ -115,9 +94,9 @@ SEXTICS = [(F(2), F(2), F(1)), (F(5, 2), F(2), F(1)), (F(3), F(5), F(1, 2)), (F(
 def _perturbed_family(seed):
     rng = random.Random(seed)
     a, d, y = rng.choice(SEXTICS)
-    h = _sextic(a, d, y)
+    h = sextic(a, d, y)
     if rng.random() < 0.15:
-        h = _mul(h, _sextic(a + rng.choice([F(1, 2), F(1), F(3)]), F(2), F(1)))
+        h = product(h, sextic(a + rng.choice([F(1, 2), F(1), F(3)]), F(2), F(1)))
     return h, rng.randint(1, 5), rng.choice([1, -1])
 
 
@@ -202,7 +181,7 @@ def test_a_trough_near_t_4_is_decided_right(y):
     assert _min_scaled_density(g, h, GRID)[0] >= 0
 
 
-ISSUE = _sextic(F(2), F(2), F(1))  # ((z-2)^2 - 2)((z-2)^4 - 2(z-2)^2 + 9), normalised h(0) = 1
+ISSUE = sextic(F(2), F(2), F(1))  # ((z-2)^2 - 2)((z-2)^4 - 2(z-2)^2 + 9), normalised h(0) = 1
 PSTAR_QUADRATIC = [F(2), F(-4), F(1)]
 
 
@@ -215,13 +194,13 @@ def _cofactor():
 
 
 HINTS = {
-    "p*'s factor squared": lambda: _mul(PSTAR_QUADRATIC, PSTAR_QUADRATIC),
-    "p*'s factor times a foreign cubic": lambda: _mul(PSTAR_QUADRATIC, [F(-7), F(0), F(1, 3), F(1)]),
+    "p*'s factor squared": lambda: product(PSTAR_QUADRATIC, PSTAR_QUADRATIC),
+    "p*'s factor times a foreign cubic": lambda: product(PSTAR_QUADRATIC, [F(-7), F(0), F(1, 3), F(1)]),
     "the other factor (poles off the real line)": _cofactor,
-    "the other factor squared": lambda: _mul(_cofactor(), _cofactor()),
+    "the other factor squared": lambda: product(_cofactor(), _cofactor()),
     "all of h": lambda: list(ISSUE),
     "coprime to h": lambda: [F(-3), F(0), F(1)],
-    "p*'s factor times z": lambda: _mul(PSTAR_QUADRATIC, [F(0), F(1)]),
+    "p*'s factor times z": lambda: product(PSTAR_QUADRATIC, [F(0), F(1)]),
 }
 
 
@@ -258,7 +237,7 @@ def test_mutated_genuine_certificates_are_true_when_accepted(seed):
     import exactinv as ei
     from exactinv.monotonicity.radius import absolute_monotonicity_radius
     rng = random.Random(100 + seed)
-    h = _mul(_sextic(F(2), F(2), F(1)), _sextic(F(2) + rng.choice([F(1, 2), F(1), F(2)]), F(2), F(1)))
+    h = product(sextic(F(2), F(2), F(1)), sextic(F(2) + rng.choice([F(1, 2), F(1), F(2)]), F(2), F(1)))
     cert = absolute_monotonicity_radius(ei.methods.rational([F(1)], h)).certificate
     assert check(cert).ok
     for _ in range(4):
