@@ -123,32 +123,46 @@ def test_seeded_mutations_of_coefficient_claims():
 
     from radius_reference import admissible
 
-    import exactinv as ei
-    from exactinv_check.reals import Real
-    rng, genuine, mutated = random.Random(7), 0, 0
-    while genuine < 12:
-        m = _random_method(rng)
-        try:
-            r = ei.absolute_monotonicity_radius(m)
-        except ei.Undecided:
-            continue
-        if r.reason != "coefficient":
-            continue
-        cert = json.loads(json.dumps(r.certificate))
-        claim = cert["claims"][0]
-        assert check(cert).ok, claim
-        truth = Real.parse(claim["value"])
+    mutated = 0
+    for m, cert, claim, truth in _genuine_coefficient_claims(_random_method, random.Random(7), 12):
         below = truth.bounds()[0] * (1 - F(1, 10**6))
         assert below <= 0 or admissible(m.numerator, m.denominator, below, 60)
         if claim.get("binding") is not None:  # just above rho the binding c_j is negative
             above = truth.bounds()[1] * (1 + F(1, 10**6))
             assert not admissible(m.numerator, m.denominator, above, claim["binding"] + 1)
-        genuine += 1
-        for mc in _mutations(claim):
-            mutated += 1
-            if check(json.loads(json.dumps(dict(cert, claims=[mc])))).ok:
-                assert Real.parse(mc["value"]).compare(truth) == 0 and mc["attained"] == claim["attained"], mc
+        mutated += _accepted_mutations_keep_the_truth(cert, claim, truth)
     assert mutated > 60
+
+
+def _genuine_coefficient_claims(draw, rng, count):
+    """(method, certificate, claim, exact rho) for the first ``count`` methods from ``draw(rng)`` whose radius
+    the engine decides by a coefficient; every certificate the engine writes on the way is accepted."""
+    import exactinv as ei
+    from exactinv_check.reals import Real
+    while count > 0:
+        m = draw(rng)
+        try:
+            r = ei.absolute_monotonicity_radius(m)
+        except ei.Undecided:
+            continue
+        cert = json.loads(json.dumps(r.certificate))
+        claim = cert["claims"][0]
+        assert check(cert).ok, claim
+        if r.reason == "coefficient":
+            count -= 1
+            yield m, cert, claim, Real.parse(claim["value"])
+
+
+def _accepted_mutations_keep_the_truth(cert, claim, truth):
+    """Checks every mutation of ``claim``: the kernel accepts one only if it states the exact rho ``truth`` and
+    the genuine attained flag.  Returns the number of mutations tried."""
+    from exactinv_check.reals import Real
+    tried = 0
+    for mc in _mutations(claim):
+        tried += 1
+        if check(json.loads(json.dumps(dict(cert, claims=[mc])))).ok:
+            assert Real.parse(mc["value"]).compare(truth) == 0 and mc["attained"] == claim["attained"], mc
+    return tried
 
 
 def _random_polynomial(rng):
@@ -164,8 +178,6 @@ def test_forged_radii_of_polynomials_are_rejected_after_the_gate_change():
     and flag.  (rt-gate: 14 genuine polynomial claims, 119 mutations, 0 false accepts.)"""
     import random
 
-    import exactinv as ei
-    from exactinv_check.reals import Real
     num = [F(comb(64, k), 64 ** k) for k in range(65)]
     assert min(coefficients_at(num, [F(1)], F(64), 65)) >= 0
     assert min(coefficients_at(num, [F(1)], F(64) + F(1, 10**30), 65)) < 0
@@ -176,29 +188,14 @@ def test_forged_radii_of_polynomials_are_rejected_after_the_gate_change():
     for forged in _mutations(claim):
         if F(forged["value"]) != 64 or not forged["attained"]:  # short_above(64) is 64 itself: genuine
             assert not check(dict(base, claims=[forged])).ok, forged
-    rng, genuine, mutated = random.Random(23), 0, 0
-    while genuine < 14:
-        m = _random_polynomial(rng)
-        try:
-            r = ei.absolute_monotonicity_radius(m)
-        except ei.Undecided:
-            continue
-        cert = json.loads(json.dumps(r.certificate))
-        claim = cert["claims"][0]
-        assert check(cert).ok, claim
-        if r.reason != "coefficient":
-            continue
-        truth = Real.parse(claim["value"])
+    mutated = 0
+    for m, cert, claim, truth in _genuine_coefficient_claims(_random_polynomial, random.Random(23), 14):
         lo, hi = truth.bounds()
         num = list(m.numerator)
         if lo > 0:  # the reference: every c_j >= 0 just below rho, some c_j < 0 just above
             assert min(coefficients_at(num, [F(1)], lo * (1 - F(1, 10**6)), len(num))) >= 0
         assert min(coefficients_at(num, [F(1)], hi * (1 + F(1, 10**6)) + F(1, 10**9), len(num))) < 0
-        genuine += 1
-        for mc in _mutations(claim):
-            mutated += 1
-            if check(json.loads(json.dumps(dict(cert, claims=[mc])))).ok:
-                assert Real.parse(mc["value"]).compare(truth) == 0 and mc["attained"] == claim["attained"], mc
+        mutated += _accepted_mutations_keep_the_truth(cert, claim, truth)
     assert mutated > 60
 
 

@@ -35,6 +35,16 @@ RECORD = {"facets": [{"ends": ["1/2", "1", "oo"], "bases": [[0], DUAL, [1]]},
                      {"ends": ["1", "2"], "bases": [[1], [0]]}]}
 
 
+TAYLOR_1 = {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}
+
+
+def _valid_set_certificate(problem, record, hi="1"):
+    """A v2 certificate claiming the valid set [0, hi] by the LP record ``record``."""
+    return {"format": "exactinv-certificate", "version": 2, "problem": problem,
+            "claims": [{"type": "valid_steplengths", "lp": record,
+                        "intervals": [{"lo": "0", "hi": hi, "lo_closed": True, "hi_closed": True}]}]}
+
+
 def _conditions(problem, record):
     return lp_pieces.lp_conditions(Problem(problem), record)
 
@@ -68,10 +78,7 @@ def test_a_record_of_dual_pieces_only_on_an_empty_P_with_lines_is_rejected():
                              route="vertex")
     with pytest.raises(CheckFailure, match="nothing proves P nonempty"):
         _conditions(EMPTY, EMPTY_RECORD)
-    cert = {"format": "exactinv-certificate", "version": 2, "problem": EMPTY,
-            "claims": [{"type": "valid_steplengths", "lp": EMPTY_RECORD,
-                        "intervals": [{"lo": "0", "hi": "0", "lo_closed": True, "hi_closed": True}]}]}
-    assert not check_within(cert, 60).ok
+    assert not check_within(_valid_set_certificate(EMPTY, EMPTY_RECORD, hi="0"), 60).ok
     # the same without lines (then the kernel's set [0, oo) happens to be the vacuous truth): still rejected
     plain = {"facets": [{"ends": ["oo"], "bases": [{"dual": [[[0, "1"]], [[1, "1"]]]}]},
                         {"ends": ["oo"], "bases": [{"dual": [[[1, "1"]], [[0, "1"]]]}]}]}
@@ -241,11 +248,8 @@ def test_a_vector_of_distinct_huge_denominators_is_charged_before_its_common_den
     y0 = [[r, "1/" + _digits(rng, 3990)] for r in range(len(G))]
     facets = [{"ends": ["1/2", "oo"], "bases": [[0, 1], {"dual": [y0]}]}] + \
         [{"ends": ["oo"], "bases": [[0, 1]]} for _ in range(len(G) - 1)]
-    cert = {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": [[-1, 0], [0, -1]], "G": G, "b": [1] * len(G),
-                        "method": {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths", "lp": {"facets": facets},
-                        "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
+    cert = _valid_set_certificate({"A": [[-1, 0], [0, -1]], "G": G, "b": [1] * len(G), "method": TAYLOR_1},
+                                  {"facets": facets})
     text = json.dumps(cert, separators=(",", ":"))
     assert len(text) < 1_000_000
     report = check_within(text, 20)  # was 50 s
@@ -377,13 +381,9 @@ def test_a_line_of_distinct_huge_denominators_is_charged_before_the_rows_are_sca
     n = 185
     lines = [[0] + ["1/" + _digits(rng, 3990) for _ in range(n - 1)]] + \
         [[int(i == j) for i in range(n)] for j in range(2, n - 1)]
-    cert = {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": [[-int(i == j) for j in range(n)] for i in range(n)],
-                        "G": [[1] + [0] * (n - 1), [-1] + [0] * (n - 1)], "b": [1, 1],
-                        "method": {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths",
-                        "lp": {"facets": [{"ends": ["oo"], "bases": [list(range(n))]}] * 2, "lines": lines},
-                        "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
+    cert = _valid_set_certificate({"A": [[-int(i == j) for j in range(n)] for i in range(n)],
+                                   "G": [[1] + [0] * (n - 1), [-1] + [0] * (n - 1)], "b": [1, 1], "method": TAYLOR_1},
+                                  {"facets": [{"ends": ["oo"], "bases": [list(range(n))]}] * 2, "lines": lines})
     text = json.dumps(cert, separators=(",", ":"))
     assert len(text) < 1_000_000
     report = check_within(text, 20)  # was 49 s
@@ -396,11 +396,9 @@ def test_a_problem_G_of_distinct_huge_denominators_is_charged_before_the_price_s
     denominator uncharged: 31 s of CPU before the price said no.  Now charged step by step: 1 s."""
     rng = random.Random(5)
     m = 244
-    cert = {"format": "exactinv-certificate", "version": 2,
-            "problem": {"A": [[-1, 0], [0, -1]], "G": [["1/" + _digits(rng, 3990), "1"] for _ in range(m)],
-                        "b": [1] * m, "method": {"name": "taylor", "numerator": ["1", "1"], "denominator": ["1"]}},
-            "claims": [{"type": "valid_steplengths", "lp": {"facets": [{"ends": ["oo"], "bases": [[0, 1]]}] * m},
-                        "intervals": [{"lo": "0", "hi": "1", "lo_closed": True, "hi_closed": True}]}]}
+    cert = _valid_set_certificate({"A": [[-1, 0], [0, -1]], "G": [["1/" + _digits(rng, 3990), "1"] for _ in range(m)],
+                                   "b": [1] * m, "method": TAYLOR_1},
+                                  {"facets": [{"ends": ["oo"], "bases": [[0, 1]]}] * m})
     text = json.dumps(cert, separators=(",", ":"))
     assert len(text) < 1_000_000
     report = check_within(text, 20)  # was 31 s

@@ -32,6 +32,16 @@ from exactinv_check.reals import Real
 _z = sp.symbols("z")
 
 
+def _normalised(S, C):
+    """(g, h), h(0) = 1, of r = C + (1 - C) S/S(0) for a sympy sum of partial fractions S in z (exact)."""
+    S = sp.together(sp.expand(S))
+    r = sp.Rational(C) + (1 - sp.Rational(C)) * S / sp.nsimplify(S.subs(_z, 0))
+    num, den = sp.fraction(sp.cancel(sp.together(r)))
+    g = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(num), _z).all_coeffs())]
+    h = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(den), _z).all_coeffs())]
+    return [x / h[0] for x in g], [x / h[0] for x in h]
+
+
 def conjugate_lines(a, d, y, c, C=0, v=0):
     """(g, h), h(0) = 1, of the module docstring's r (sympy, exact); v != 0 gives the pair the residue
     beta = (c + 2iv)/2: B(t) = 1 + 2 Re(beta e^(-iyt)) >= 0 iff c^2 + 4v^2 <= 1 (the pair's two partial fractions
@@ -40,12 +50,7 @@ def conjugate_lines(a, d, y, c, C=0, v=0):
     for s in (1, -1):
         p = a - s * sp.sqrt(d)
         S += 1 / (p - _z) + (c * (p - _z) + 2 * sp.Rational(v) * y) / ((p - _z) ** 2 + y ** 2)
-    S = sp.together(sp.expand(S))
-    r = sp.Rational(C) + (1 - sp.Rational(C)) * S / sp.nsimplify(S.subs(_z, 0))
-    num, den = sp.fraction(sp.cancel(sp.together(r)))
-    g = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(num), _z).all_coeffs())]
-    h = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(den), _z).all_coeffs())]
-    return [x / h[0] for x in g], [x / h[0] for x in h]
+    return _normalised(S, C)
 
 
 def _radius(g, h):
@@ -282,12 +287,7 @@ def symmetric_lines(a, d, c_a, y=None, beta=(0, 0), C=0):
         S += 1 / (p - _z)
         if y is not None:
             S += (2 * sp.Rational(beta[0]) * (p - _z) + 2 * sp.Rational(beta[1]) * y) / ((p - _z) ** 2 + y ** 2)
-    S = sp.together(sp.expand(S))
-    r = sp.Rational(C) + (1 - sp.Rational(C)) * S / sp.nsimplify(S.subs(_z, 0))
-    num, den = sp.fraction(sp.cancel(sp.together(r)))
-    g = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(num), _z).all_coeffs())]
-    h = [F(str(sp.nsimplify(x))) for x in reversed(sp.Poly(sp.expand(den), _z).all_coeffs())]
-    return [x / h[0] for x in g], [x / h[0] for x in h]
+    return _normalised(S, C)
 
 
 def test_a_rational_pole_midway_between_conjugates_is_decided():
