@@ -52,6 +52,15 @@ def test_huge_rationals_are_described_by_size_alike():
     assert engine.rational_text(q) == kernel.rational_text(q) == "a 5001-digit rational  (= 3.3333333333333333e4999...)"
 
 
+def test_huge_polynomials_are_described_by_size_alike():
+    """Found by red team rt-gate in the kernel (a 6,000-digit coefficient made str() raise); the engine's printer
+    had the same limit."""
+    coeffs = [Fraction(1, 3), 0, Fraction(10**5000 + 1, 7)]
+    assert poly_text(coeffs) == kernel.poly_text(coeffs) == "a polynomial of degree 2 with coefficients of up to 16610 bits"
+    short = [Fraction(2**12999 - 1, 3), 1]  # at the limit: still printed digit by digit
+    assert poly_text(short) == kernel.poly_text(short) and "bits" not in poly_text(short)
+
+
 @given(st.integers(2, 10**9).filter(lambda k: isqrt(k) ** 2 != k), st.integers(-12, 12))
 def test_algebraic_numbers_print_alike(k, e):
     """sqrt(k) 10^e from one isolating interval: the same digits and polynomial, and each

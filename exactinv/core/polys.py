@@ -232,6 +232,9 @@ def interpolate(points: Iterable[Any], values: Iterable[Any]) -> flint.fmpq_poly
     return total
 
 
+PRINTABLE_BITS = 13000  # coefficients printed digit by digit have at most this many bits (as the kernel's text.py)
+
+
 def poly_text(coeffs: Any, var: str = "x") -> str:
     """Plain text of a polynomial (an fmpz/fmpq poly or rational coefficients
     from the constant term up), highest degree first.
@@ -240,11 +243,16 @@ def poly_text(coeffs: Any, var: str = "x") -> str:
     'x^4 - 6x^2 + 12x - 12'
     >>> poly_text(["1", "-1", "1/2", "-1/6"], "t")
     '-t^3/6 + t^2/2 - t + 1'
+    >>> poly_text([1, 0, 10**5000])
+    'a polynomial of degree 2 with coefficients of up to 16610 bits'
     """
     if hasattr(coeffs, "coeffs"):
         coeffs = coeffs.coeffs()
     cs = [to_rational(c, "coefficient") if not isinstance(c, (flint.fmpz, flint.fmpq)) else Fraction(int(c.p), int(c.q))
           if isinstance(c, flint.fmpq) else Fraction(int(c)) for c in coeffs]
+    bits = max((max(c.numerator.bit_length(), c.denominator.bit_length()) for c in cs), default=0)
+    if bits > PRINTABLE_BITS:  # Python's int -> str stops at 4300 digits; nobody reads such a polynomial
+        return f"a polynomial of degree {len(cs) - 1} with coefficients of up to {bits} bits"
     terms = []
     for k in range(len(cs) - 1, -1, -1):
         c = cs[k]
