@@ -22,6 +22,7 @@ records the argument; the kernel re-proves it (exactinv_check.tail, .tie).
 
 from __future__ import annotations
 
+import time
 from itertools import islice
 
 import flint
@@ -34,7 +35,7 @@ from ..core.roots import nonnegative_until
 from ..core.scalars import INF
 from ..model.methods import Method
 from ..model.validate import check_method
-from .kernel_price import priced
+from .kernel_price import kernel_tried, priced
 from .result import AbsoluteMonotonicityRadius
 from .tail import coefficient_polynomials, rational_radius
 
@@ -71,9 +72,9 @@ def absolute_monotonicity_radius(method: Method) -> AbsoluteMonotonicityRadius:
     (INF, 'product')
     """
     check_method(method)
-    if method.is_polynomial:
-        return _polynomial_radius(method)
-    return rational_radius(method)
+    start = time.process_time()
+    result = _polynomial_radius(method) if method.is_polynomial else rational_radius(method)
+    return kernel_tried(result, time.process_time() - start)
 
 
 def _polynomial_radius(method: Method) -> AbsoluteMonotonicityRadius:

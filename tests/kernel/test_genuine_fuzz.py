@@ -227,14 +227,14 @@ def test_no_radius_certificate_of_the_fuzz_families_is_over_the_budget():
     verdict accepted -- none over the budget (the engine says Undecided instead: exactinv.monotonicity.kernel_price).
     Families: random degree-5 r = g/h (seed 11), the line-irrational benchmark family (p* = a - sqrt d with a pair on
     its line, seed 1), and 1/h for products of the shifted sextic (w^2 - d)((w^2 + d + y^2)^2 - 4dw^2)."""
-    from test_bernstein import _mul as mul
-    from test_bernstein import _one_over, _sextic
+    from radius_reference import product, sextic
+    from test_bernstein import _one_over
     methods = []
     rng = random.Random(11)
     for _ in range(8):
         methods.append(ei.methods.rational(*_degree5(rng)))
     methods += [m for _, m in family_line_irrational(6, 1)]
-    methods += [_one_over(_sextic(F(2), F(2), F(1))), _one_over(mul(_sextic(F(5, 2), F(3), F(2)), _sextic(F(3), F(2), F(1, 2))))]
+    methods += [_one_over(sextic(F(2), F(2), F(1))), _one_over(product(sextic(F(5, 2), F(3), F(2)), sextic(F(3), F(2), F(1, 2))))]
     kinds = []
     for method in methods:
         try:

@@ -35,3 +35,35 @@ def test_both_outcomes_are_reached():
     method = ei.methods.pade(1, 3)
     num, den = list(method.numerator), list(method.denominator)
     assert scan_cost(num, den, 78) <= SCAN_BUDGET < scan_cost(num, den, 2000)
+
+
+def _random_degree_64(seed):
+    """1 + sum_k c_k z^k, k = 1..64, c_k = p/q with p, q uniform in [1, 2^100]: inside every up-front gate."""
+    import random
+    from fractions import Fraction
+    rng = random.Random(seed)
+    return ei.methods.polynomial([Fraction(1)] + [Fraction(rng.randint(1, 2**100), rng.randint(1, 2**100))
+                                                  for _ in range(64)])
+
+
+def test_a_certificate_past_the_gates_but_over_the_kernels_budget_is_undecided():
+    """Session 5's residual: the engine answered this polynomial (rho from a coefficient) in about 1.5 s and the
+    kernel refused the certificate after about 8 s of isolation, over its budget.  Now the engine, having spent
+    more than TRIAL_SECONDS, asks the kernel first and says Undecided, naming the kernel's refusal."""
+    method = _random_degree_64(1)
+    num = list(method.numerator)
+    assert scan_cost(num, [1], len(num)) <= SCAN_BUDGET  # the up-front gate admits it
+    with pytest.raises(ei.Undecided, match="refuses its certificate as over its budget"):
+        absolute_monotonicity_radius(method)
+
+
+def test_a_kernel_rejection_of_an_engine_certificate_is_an_engine_bug_not_undecided():
+    """A slow result whose claim the kernel rejects (a wrong rho) raises VerificationFailed: never returned, never
+    hidden as Undecided."""
+    from exactinv.monotonicity.kernel_price import TRIAL_SECONDS, kernel_tried
+    good = absolute_monotonicity_radius(ei.methods.taylor(4))
+    assert kernel_tried(good, TRIAL_SECONDS * 2) is good
+    wrong = replace(good, value=good.value + 1)
+    assert kernel_tried(wrong, TRIAL_SECONDS / 2) is wrong  # a fast result is not tried (the rule, stated)
+    with pytest.raises(ei.VerificationFailed, match="rejects the engine's certificate"):
+        kernel_tried(wrong, TRIAL_SECONDS * 2)
