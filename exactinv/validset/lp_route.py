@@ -81,6 +81,8 @@ from ..core.real_signs import (
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
+from ..lp.backends import HighsHint
+from ..lp.dual_form import DualFormHint
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
@@ -285,6 +287,47 @@ class _Basis:
         return not any(v < _ZERO for v in self.slack)
 
 
+class _DirectionBasis:
+    """A basis B (rows of G) asked only for duals B^-T d of a dual piece's directions d (no x_B, no slacks,
+    no inverse in Q): a float B^-T rejects the clearly negative ones, the others get one exact solve
+    B^T y = d."""
+
+    __slots__ = ("rows", "_Bt", "_inv_t_float")
+
+    def __init__(self, rows: tuple[int, ...]):
+        self.rows = rows
+        self._Bt: flint.fmpq_mat | None = None
+        self._inv_t_float: np.ndarray | None | bool = None  # False: no float image (singular, out of range)
+
+    def dual_of(self, P: _Problem, d: flint.fmpq_mat, d_float: np.ndarray | None) -> list[flint.fmpq] | None:
+        """B^-T d exactly when it is >= 0 (and B nonsingular); else None.  A float test that fails only
+        skips the exact one: it never accepts."""
+        if self._inv_t_float is None:
+            self._inv_t_float = False
+            if P.G_float is not None:
+                with np.errstate(all="ignore"):
+                    try:
+                        inv = np.linalg.inv(P.G_float[list(self.rows)]).T
+                        if np.all(np.isfinite(inv)):
+                            self._inv_t_float = inv
+                    except np.linalg.LinAlgError:
+                        pass
+        inv = self._inv_t_float
+        if d_float is not None and inv is not False:
+            with np.errstate(all="ignore"):
+                y = inv @ d_float
+                tol = 1e-9 * (np.abs(inv).max() * np.abs(d_float).max() + 1.0)
+                if np.all(np.isfinite(y)) and y.min() < -tol:
+                    return None
+        if self._Bt is None:
+            self._Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in self.rows])
+        try:
+            y_q = self._Bt.solve(d).entries()
+        except ZeroDivisionError:
+            return None
+        return None if any(v < 0 for v in y_q) else y_q
+
+
 class _Problem:
     """G, b, D and the facets' objective matrices, the float LP and the exact LP chain, shared by all facets."""
 
@@ -294,15 +337,25 @@ class _Problem:
         self.b = flint.fmpq_mat(self.m, 1, cs.b)
         self.D = cs.D
         self.L = len(cs.N)
-        self.float_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
         self._exact: ExactLPSolver | None = None
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
+        self._directions: dict[tuple[int, ...], _DirectionBasis] = {}
         self.b_float = _floats(cs.b)
         self.G_rows = self.G.tolist()
         G_float = _floats(self.G.entries())
         self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
+        self.float_lp = self.hint_model()
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
+
+    def hint_model(self) -> FloatLP | DualFormHint:
+        """A float model of max c^T x over P for basis hints, warm-started across its solves: HiGHS on the
+        LP's dual form (:mod:`exactinv.lp.dual_form`: a basis of dimension n, not m) under the default
+        HiGHS hint backend, else the configured backend through :class:`FloatLP`."""
+        backend = resolve_hint_backend(None)
+        if isinstance(backend, HighsHint) and self.G_float is not None and self.b_float is not None:
+            return DualFormHint(self.G_float, self.b_float)
+        return FloatLP(self.G, (False,) * self.m, backend)
 
     @property
     def exact(self) -> ExactLPSolver:
@@ -314,6 +367,12 @@ class _Problem:
         """C_i: the n x L matrix whose column k is (g_i N_k)^T, so c_i(h) = C_i (1, h, h^2, ..)^T."""
         GN = self.cs.GN
         return flint.fmpq_mat(self.n, self.L, [GN[k][i][l] for l in range(self.n) for k in range(self.L)])
+
+    def direction_basis(self, rows: tuple[int, ...]) -> _DirectionBasis:
+        """The basis of these rows for a dual piece's directions only (:class:`_DirectionBasis`).  Cached."""
+        if rows not in self._directions:
+            self._directions[rows] = _DirectionBasis(rows)
+        return self._directions[rows]
 
     def basis(self, rows: tuple[int, ...]) -> _Basis | None:
         """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
@@ -360,7 +419,7 @@ def _cost(C: flint.fmpq_mat, D: flint.fmpq_poly, s: Fraction) -> flint.fmpq_mat:
     return C * powers * D(x)
 
 
-def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> tuple[int, ...] | None:
+def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | DualFormHint | None = None) -> tuple[int, ...] | None:
     """The float LP's tight rows at this cost, when they are n of them (a vertex basis); None otherwise.
     ``lp``: another float image of the same LP (its own warm start; default the walk's).
     A hint never raises: a cost beyond double range or a failed solve only gives no hint."""
@@ -371,7 +430,10 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> 
     if not scale > 0:
         return None
     P.float_lps += 1
-    hint = (lp or P.float_lp).solve_floats(c / scale, P.b_float, (False,) * P.n)
+    model = lp or P.float_lp
+    if isinstance(model, DualFormHint):
+        return model.basis_rows(c / scale)
+    hint = model.solve_floats(c / scale, P.b_float, (False,) * P.n)
     if hint.status != OPTIMAL:
         return None
     basis = hint.fetch_basis()
@@ -766,7 +828,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     tally = [0, 0]  # dual pieces found, tries failed
     targets: dict[int, flint.fmpq_mat] = {}
     guard = _GuardedExact(P)
-    dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
+    dual_lp: list[FloatLP | DualFormHint] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
     served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
 
     def suggest(i: int, k: int, d: flint.fmpq_mat):
@@ -781,21 +843,23 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
             if rows not in seen:
                 seen.add(rows)
-                basis = P.basis(rows)
-                if basis is not None and basis.maybe_dual_feasible(d_float, P.G_float):
+                basis = P._bases.get(rows)  # a walk's basis: B^-T known in Q; else only B^T y = d is solved
+                if basis is None:
+                    y = P.direction_basis(rows).dual_of(P, d, d_float)
+                elif basis.maybe_dual_feasible(d_float, P.G_float):
                     y = basis.dual_of(d_int, d_den)
-                    if y is not None:
-                        yield rows, y
+                else:
+                    y = None
+                if y is not None:
+                    yield rows, y
         if not dual_lp:
-            dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
+            dual_lp.append(P.hint_model())
         rows = _hint_rows(P, d, dual_lp[0])
         guard.float_optimal = rows is not None
         if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
-            Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in rows])
-            try:
-                yield rows, Bt.solve(d).entries()
-            except ZeroDivisionError:
-                return
+            y = P.direction_basis(rows).dual_of(P, d, None)
+            if y is not None:
+                yield rows, y
 
     def used(i: int, k: int, rows: tuple[int, ...]) -> None:
         for key in (i, -1):
