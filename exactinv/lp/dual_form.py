@@ -85,7 +85,11 @@ class DualFormHint:
             self.solves += 1
             if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
                 return None
-            basis = h.getBasis()
+            y = np.asarray(h.getSolution().col_value)
+            positive = np.flatnonzero(y > 0)  # basic: a nonbasic y_r sits at its bound 0
+            if len(positive) == self.n:
+                return tuple(int(r) for r in positive)
+            basis = h.getBasis()  # degenerate (a basic y_r at 0): the statuses tell the basis
             if not basis.valid:
                 return None
             basic = highspy.HighsBasisStatus.kBasic

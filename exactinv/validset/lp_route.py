@@ -244,13 +244,12 @@ class LPRouteCache:
 
 class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
-    b - G x_B (exact, and their numerators over a positive common denominator)."""
+    b - G x_B times a positive integer (exact integers: their signs and ratios are the slacks')."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float", "_inv_t_int")
+    __slots__ = ("rows", "inv_t", "x", "slack", "_inv_t_float", "_inv_t_int")
 
-    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
-        self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
-        self.slack = slack_q.numer_denom()[0].entries()
+    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list[flint.fmpz]):
+        self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
         self._inv_t_float: np.ndarray | None = None
         self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
 
@@ -292,16 +291,19 @@ class _DirectionBasis:
     no inverse in Q): a float B^-T rejects the clearly negative ones, the others get one exact solve
     B^T y = d."""
 
-    __slots__ = ("rows", "_Bt", "_inv_t_float")
+    __slots__ = ("rows", "_Bt", "_inv_t_float", "_inv_max")
 
     def __init__(self, rows: tuple[int, ...]):
         self.rows = rows
         self._Bt: flint.fmpq_mat | None = None
         self._inv_t_float: np.ndarray | None | bool = None  # False: no float image (singular, out of range)
+        self._inv_max = 0.0
 
-    def dual_of(self, P: _Problem, d: flint.fmpq_mat, d_float: np.ndarray | None) -> list[flint.fmpq] | None:
-        """B^-T d exactly when it is >= 0 (and B nonsingular); else None.  A float test that fails only
-        skips the exact one: it never accepts."""
+    def dual_of(self, P: _Problem, d: flint.fmpq_mat, d_float: np.ndarray | None, d_max: float = 0.0
+                ) -> list[flint.fmpq] | None:
+        """B^-T d exactly when it is >= 0 (and B nonsingular); else None.  ``d_float``: d in floats (None: out of
+        range), ``d_max`` its largest |entry|.  A float test that fails only skips the exact one: it never
+        accepts."""
         if self._inv_t_float is None:
             self._inv_t_float = False
             if P.G_float is not None:
@@ -309,14 +311,14 @@ class _DirectionBasis:
                     try:
                         inv = np.linalg.inv(P.G_float[list(self.rows)]).T
                         if np.all(np.isfinite(inv)):
-                            self._inv_t_float = inv
+                            self._inv_t_float, self._inv_max = inv, float(np.abs(inv).max())
                     except np.linalg.LinAlgError:
                         pass
         inv = self._inv_t_float
         if d_float is not None and inv is not False:
             with np.errstate(all="ignore"):
                 y = inv @ d_float
-                tol = 1e-9 * (np.abs(inv).max() * np.abs(d_float).max() + 1.0)
+                tol = 1e-9 * (self._inv_max * d_max + 1.0)
                 if np.all(np.isfinite(y)) and y.min() < -tol:
                     return None
         if self._Bt is None:
@@ -345,6 +347,10 @@ class _Problem:
         G_float = _floats(self.G.entries())
         self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
         self.float_lp = self.hint_model()
+        G_num, G_den = self.G.numer_denom()
+        b_num, b_den = self.b.numer_denom()
+        # G and b integral (the slacks of a vertex then come from integer products): G and b as fmpz_mat
+        self.Gb_int = (G_num, b_num) if G_den == 1 and b_den == 1 else None
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
@@ -385,7 +391,13 @@ class _Problem:
                 inv = None
             if inv is not None:
                 x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
-                out = _Basis(rows, inv.transpose(), x, self.b - self.G * x)
+                if self.Gb_int is not None:  # x_den (b - G x) = x_den b - G x_num, on integers
+                    x_num, x_den = x.numer_denom()
+                    G_int, b_int = self.Gb_int
+                    slack = (b_int * x_den - G_int * x_num).entries()
+                else:
+                    slack = (self.b - self.G * x).numer_denom()[0].entries()
+                out = _Basis(rows, inv.transpose(), x, slack)
                 if not out.feasible:
                     out = None
             self._bases[rows] = out
@@ -493,22 +505,56 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     :class:`_Ray`), the certificate of a ray piece."""
     P.pivots += 1
     d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
-    numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
-    Gd = numerators.entries()
     s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
-    for r in range(P.m):
-        if Gd[r] > _ZERO and r not in basis.rows:
-            if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
-                best, enter = r, [r]
-            elif s[r] * Gd[best] == s[best] * Gd[r]:
-                enter.append(r)
+    near = _near_ratio_rows(P, basis, d)
+    if near is not None:  # the exact ratio test on the rows the float one left near the least ratio
+        Gq = [sum((P.G[r, l] * d[l, 0] for l in range(P.n)), flint.fmpq(0)) for r in near]
+        best, enter = _ratio_test(near, Gq, s, basis.rows)
+    if best is None:  # no float image, or it missed: the exact ratio test on every row
+        numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
+        best, enter = _ratio_test(range(P.m), numerators.entries(), s, basis.rows)
     if best is None:
         if P.point is None:
             P.point = tuple(fraction_of(v) for v in basis.x.entries())
         return [_Ray(_primitive(d.entries()))]
     out = basis.rows[:leaving] + basis.rows[leaving + 1:]
     return [tuple(sorted(out + (r,))) for r in enter]
+
+
+def _ratio_test(rows, Gd: list, s: list, basis: tuple[int, ...]) -> tuple[int | None, list[int]]:
+    """(the first row, every row tied with it) among ``rows`` not in the basis with Gd_r > 0 (Gd listed in the
+    order of ``rows``), by the least ratio s_r / Gd_r, exactly (cross-multiplied: s and Gd are exact, each
+    up to a positive factor of its own); (None, []) when no row has Gd_r > 0."""
+    best, enter, g_best = None, [], None
+    for r, g in zip(rows, Gd):
+        if g > 0 and r not in basis:
+            if best is None or s[r] * g_best < s[best] * g:
+                best, enter, g_best = r, [r], g
+            elif s[r] * g_best == s[best] * g:
+                enter.append(r)
+    return best, enter
+
+
+def _near_ratio_rows(P: _Problem, basis: _Basis, d: flint.fmpq_mat) -> list[int] | None:
+    """A float ratio test (a hint): the rows whose ratio slack_r / (G d)_r is within a relative 1e-6 of the
+    least, and the rows whose (G d)_r is too small for floats to sign (|(G d)_r| <= tol) but whose ratio could
+    still be the least (slack_r <= least * tol); None when floats say nothing (out of range, no row with
+    (G d)_r clearly > 0)."""
+    d_f, s_f = _floats(d.entries()), _floats(basis.slack)
+    if d_f is None or s_f is None or P.G_float is None:
+        return None
+    with np.errstate(all="ignore"):
+        Gd = P.G_float @ d_f
+        tol = 1e-9 * float(np.abs(P.G_float).max() * np.abs(d_f).max())
+        definite = np.flatnonzero(Gd > tol)
+        if not len(definite) or not np.all(np.isfinite(Gd)):
+            return None
+        ratios = s_f[definite] / Gd[definite]
+        least = float(ratios.min())
+        near = definite[ratios <= least + 1e-6 * abs(least) + 1e-300]
+        unsure = np.flatnonzero((np.abs(Gd) <= tol) & (s_f <= (least + 1e-6 * abs(least)) * tol))
+    return sorted(set(int(r) for r in near) | set(int(r) for r in unsure))
 
 
 def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[float]:
@@ -839,13 +885,14 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         seen = set()
         walk = [p.basis for p, _, _ in reversed(walks[i]) if p.basis is not None]
         d_float = _floats(d.entries())
+        d_max = 0.0 if d_float is None else float(np.abs(d_float).max())
         d_int, d_den = d.numer_denom()
         for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
             if rows not in seen:
                 seen.add(rows)
                 basis = P._bases.get(rows)  # a walk's basis: B^-T known in Q; else only B^T y = d is solved
                 if basis is None:
-                    y = P.direction_basis(rows).dual_of(P, d, d_float)
+                    y = P.direction_basis(rows).dual_of(P, d, d_float, d_max)
                 elif basis.maybe_dual_feasible(d_float, P.G_float):
                     y = basis.dual_of(d_int, d_den)
                 else:
