@@ -505,56 +505,22 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     :class:`_Ray`), the certificate of a ray piece."""
     P.pivots += 1
     d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
+    numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
+    Gd = numerators.entries()
     s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
-    near = _near_ratio_rows(P, basis, d)
-    if near is not None:  # the exact ratio test on the rows the float one left near the least ratio
-        Gq = [sum((P.G[r, l] * d[l, 0] for l in range(P.n)), flint.fmpq(0)) for r in near]
-        best, enter = _ratio_test(near, Gq, s, basis.rows)
-    if best is None:  # no float image, or it missed: the exact ratio test on every row
-        numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
-        best, enter = _ratio_test(range(P.m), numerators.entries(), s, basis.rows)
+    for r in range(P.m):
+        if Gd[r] > _ZERO and r not in basis.rows:
+            if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
+                best, enter = r, [r]
+            elif s[r] * Gd[best] == s[best] * Gd[r]:
+                enter.append(r)
     if best is None:
         if P.point is None:
             P.point = tuple(fraction_of(v) for v in basis.x.entries())
         return [_Ray(_primitive(d.entries()))]
     out = basis.rows[:leaving] + basis.rows[leaving + 1:]
     return [tuple(sorted(out + (r,))) for r in enter]
-
-
-def _ratio_test(rows, Gd: list, s: list, basis: tuple[int, ...]) -> tuple[int | None, list[int]]:
-    """(the first row, every row tied with it) among ``rows`` not in the basis with Gd_r > 0 (Gd listed in the
-    order of ``rows``), by the least ratio s_r / Gd_r, exactly (cross-multiplied: s and Gd are exact, each
-    up to a positive factor of its own); (None, []) when no row has Gd_r > 0."""
-    best, enter, g_best = None, [], None
-    for r, g in zip(rows, Gd):
-        if g > 0 and r not in basis:
-            if best is None or s[r] * g_best < s[best] * g:
-                best, enter, g_best = r, [r], g
-            elif s[r] * g_best == s[best] * g:
-                enter.append(r)
-    return best, enter
-
-
-def _near_ratio_rows(P: _Problem, basis: _Basis, d: flint.fmpq_mat) -> list[int] | None:
-    """A float ratio test (a hint): the rows whose ratio slack_r / (G d)_r is within a relative 1e-6 of the
-    least, and the rows whose (G d)_r is too small for floats to sign (|(G d)_r| <= tol) but whose ratio could
-    still be the least (slack_r <= least * tol); None when floats say nothing (out of range, no row with
-    (G d)_r clearly > 0)."""
-    d_f, s_f = _floats(d.entries()), _floats(basis.slack)
-    if d_f is None or s_f is None or P.G_float is None:
-        return None
-    with np.errstate(all="ignore"):
-        Gd = P.G_float @ d_f
-        tol = 1e-9 * float(np.abs(P.G_float).max() * np.abs(d_f).max())
-        definite = np.flatnonzero(Gd > tol)
-        if not len(definite) or not np.all(np.isfinite(Gd)):
-            return None
-        ratios = s_f[definite] / Gd[definite]
-        least = float(ratios.min())
-        near = definite[ratios <= least + 1e-6 * abs(least) + 1e-300]
-        unsure = np.flatnonzero((np.abs(Gd) <= tol) & (s_f <= (least + 1e-6 * abs(least)) * tol))
-    return sorted(set(int(r) for r in near) | set(int(r) for r in unsure))
 
 
 def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[float]:
