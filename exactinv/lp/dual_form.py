@@ -19,8 +19,6 @@ beyond double range, a HiGHS error) gives None, and nothing here raises.
 
 from __future__ import annotations
 
-from typing import Sequence
-
 import highspy
 import numpy as np
 
@@ -69,9 +67,9 @@ class DualFormHint:
         h.passModel(lp)
         return h
 
-    def basis_rows(self, c: np.ndarray, start: Sequence[int] | None = None) -> tuple[int, ...] | None:
-        """The rows of G of an optimal basis of max c^T x over P (sorted), or None.  ``start``: rows of a
-        basis to start from (a warm start only; the model's last basis otherwise)."""
+    def basis_rows(self, c: np.ndarray) -> tuple[int, ...] | None:
+        """The rows of G of an optimal basis of max c^T x over P (sorted), or None.  HiGHS starts from the
+        model's last basis (still dual feasible for the new c: a vertex of P)."""
         if len(c) != self.n or not np.all(np.isfinite(c)) or not np.all(np.isfinite(self.cost)):
             return None
         try:
@@ -79,8 +77,6 @@ class DualFormHint:
                 self._highs = self._build()
             h = self._highs
             h.changeRowsBounds(self.n, self._idx, c, c)
-            if start is not None:
-                self._start(start)
             h.run()
             self.solves += 1
             if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
@@ -98,15 +94,3 @@ class DualFormHint:
             self._highs = None  # a model in an odd state is rebuilt next time
             return None
         return rows if len(rows) == self.n else None
-
-    def _start(self, rows: Sequence[int]) -> None:
-        chosen = set(int(r) for r in rows)
-        if len(chosen) != self.n or not all(0 <= r < self.m for r in chosen):
-            return
-        S = highspy.HighsBasisStatus
-        basis = highspy.HighsBasis()
-        basis.col_status = [S.kBasic if r in chosen else S.kLower for r in range(self.m)]
-        basis.row_status = [S.kLower] * self.n
-        basis.valid = True
-        assert self._highs is not None
-        self._highs.setBasis(basis)

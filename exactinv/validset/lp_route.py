@@ -246,11 +246,10 @@ class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
     b - G x_B times a positive integer (exact integers: their signs and ratios are the slacks')."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack", "_inv_t_float", "_inv_t_int")
+    __slots__ = ("rows", "inv_t", "x", "slack", "_inv_t_int")
 
     def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list[flint.fmpz]):
         self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
-        self._inv_t_float: np.ndarray | None = None
         self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
 
     def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
@@ -265,31 +264,15 @@ class _Basis:
         scale = den * d_den
         return [flint.fmpq(v, scale) for v in Y]
 
-    def maybe_dual_feasible(self, d: np.ndarray | None, G_float: np.ndarray | None) -> bool:
-        """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
-        the exact test would fail); True otherwise, or when the floats say nothing (out of range, singular)."""
-        if d is None or G_float is None:
-            return True
-        if self._inv_t_float is None:
-            with np.errstate(all="ignore"):
-                try:
-                    self._inv_t_float = np.linalg.inv(G_float[list(self.rows)]).T
-                except np.linalg.LinAlgError:
-                    return True
-        with np.errstate(all="ignore"):
-            y = self._inv_t_float @ d
-            tol = 1e-9 * (np.abs(self._inv_t_float).max() * np.abs(d).max() + 1.0)
-        return not bool(np.all(np.isfinite(y))) or bool(y.min() >= -tol)
-
     @property
     def feasible(self) -> bool:
         return not any(v < _ZERO for v in self.slack)
 
 
 class _DirectionBasis:
-    """A basis B (rows of G) asked only for duals B^-T d of a dual piece's directions d (no x_B, no slacks,
-    no inverse in Q): a float B^-T rejects the clearly negative ones, the others get one exact solve
-    B^T y = d."""
+    """A basis B (rows of G) asked for duals B^-T d of a dual piece's directions d: a float B^-T tells how
+    negative B^-T d is (a clearly negative one is not tested), and one exact solve B^T y = d tests the
+    others (no x_B, no slacks, no inverse in Q)."""
 
     __slots__ = ("rows", "_Bt", "_inv_t_float", "_inv_max")
 
@@ -299,11 +282,9 @@ class _DirectionBasis:
         self._inv_t_float: np.ndarray | None | bool = None  # False: no float image (singular, out of range)
         self._inv_max = 0.0
 
-    def dual_of(self, P: _Problem, d: flint.fmpq_mat, d_float: np.ndarray | None, d_max: float = 0.0
-                ) -> list[flint.fmpq] | None:
-        """B^-T d exactly when it is >= 0 (and B nonsingular); else None.  ``d_float``: d in floats (None: out of
-        range), ``d_max`` its largest |entry|.  A float test that fails only skips the exact one: it never
-        accepts."""
+    def margin(self, P: _Problem, d_float: np.ndarray | None, d_max: float) -> float | None:
+        """A float hint: the least component of B^-T d relative to |B^-T| |d| (clearly negative: the exact
+        test would fail), or None when floats say nothing (B singular in floats, d or B^-T out of range)."""
         if self._inv_t_float is None:
             self._inv_t_float = False
             if P.G_float is not None:
@@ -315,12 +296,16 @@ class _DirectionBasis:
                     except np.linalg.LinAlgError:
                         pass
         inv = self._inv_t_float
-        if d_float is not None and inv is not False:
-            with np.errstate(all="ignore"):
-                y = inv @ d_float
-                tol = 1e-9 * (self._inv_max * d_max + 1.0)
-                if np.all(np.isfinite(y)) and y.min() < -tol:
-                    return None
+        if d_float is None or inv is False:
+            return None
+        with np.errstate(all="ignore"):
+            y = inv @ d_float
+            if not np.all(np.isfinite(y)):
+                return None
+            return float(y.min()) / (self._inv_max * d_max + 1.0)
+
+    def dual_of(self, P: _Problem, d: flint.fmpq_mat) -> list[flint.fmpq] | None:
+        """B^-T d exactly, by one solve B^T y = d, when it is >= 0 (and B nonsingular); else None."""
         if self._Bt is None:
             self._Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in self.rows])
         try:
@@ -856,13 +841,12 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
             if rows not in seen:
                 seen.add(rows)
-                basis = P._bases.get(rows)  # a walk's basis: B^-T known in Q; else only B^T y = d is solved
-                if basis is None:
-                    y = P.direction_basis(rows).dual_of(P, d, d_float, d_max)
-                elif basis.maybe_dual_feasible(d_float, P.G_float):
-                    y = basis.dual_of(d_int, d_den)
-                else:
-                    y = None
+                direction = P.direction_basis(rows)
+                margin = direction.margin(P, d_float, d_max)
+                if margin is not None and margin < -1e-9:
+                    continue  # clearly negative: the exact test would fail
+                basis = P._bases.get(rows)  # a walk's basis: B^-T known in Q; else one solve B^T y = d
+                y = basis.dual_of(d_int, d_den) if basis is not None else direction.dual_of(P, d)
                 if y is not None:
                     yield rows, y
         if not dual_lp:
@@ -870,7 +854,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         rows = _hint_rows(P, d, dual_lp[0])
         guard.float_optimal = rows is not None
         if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
-            y = P.direction_basis(rows).dual_of(P, d, None)
+            y = P.direction_basis(rows).dual_of(P, d)
             if y is not None:
                 yield rows, y
 
