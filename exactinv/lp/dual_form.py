@@ -39,6 +39,11 @@ class DualFormHint:
     True
     >>> hint.basis_rows(np.array([-1.0, 0.0]))   # the vertex (-1, 1)
     (1, 2)
+    >>> hint.basis_rows(np.array([0.0, 1.0])) in {(0, 1), (1, 2)}  # y = e_1 alone: completed by a row tight at x
+    True
+    >>> square = DualFormHint(np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]), np.ones(4))
+    >>> square.basis_rows(np.array([1.0, 0.0])), square.degenerate  # x = (1, 0): inside the face x1 = 1
+    (None, True)
     >>> DualFormHint(np.array([[1.0]]), np.array([1.0])).basis_rows(np.array([-1.0]))  # unbounded: no basis
     """
 
@@ -51,6 +56,7 @@ class DualFormHint:
         self._highs: highspy.Highs | None = None
         self._idx = np.arange(self.n, dtype=np.int32)
         self.solves = 0
+        self.degenerate = False  # the last solve was optimal but named no vertex basis (ask the primal form)
 
     def _build(self) -> highspy.Highs:
         h = silent_highs()
@@ -69,7 +75,11 @@ class DualFormHint:
 
     def basis_rows(self, c: np.ndarray) -> tuple[int, ...] | None:
         """The rows of G of an optimal basis of max c^T x over P (sorted), or None.  HiGHS starts from the
-        model's last basis (still dual feasible for the new c: a vertex of P)."""
+        model's last basis (still dual feasible for the new c: a vertex of P).  When the optimum is found but
+        its basis has a logical column and the optimal x (the dual form's row duals, a point of the optimal
+        face, not always a vertex) has too few tight rows to complete it, ``degenerate`` is set: the
+        primal form's simplex, which ends at a vertex, may still name one."""
+        self.degenerate = False
         if len(c) != self.n or not np.all(np.isfinite(c)) or not np.all(np.isfinite(self.cost)):
             return None
         try:
@@ -90,7 +100,26 @@ class DualFormHint:
                 return None
             basic = highspy.HighsBasisStatus.kBasic
             rows = tuple(r for r, st in enumerate(basis.col_status) if st == basic)
+            if len(rows) < self.n:  # a logical is basic: complete by rows tight at the optimal x
+                rows = self._completed(rows, np.asarray(h.getSolution().row_dual))
+                self.degenerate = rows is None
         except Exception:  # noqa: BLE001 -- a hint never raises: a failed solve only gives no hint
             self._highs = None  # a model in an odd state is rebuilt next time
             return None
-        return rows if len(rows) == self.n else None
+        return rows if rows is not None and len(rows) == self.n else None
+
+    def _completed(self, rows: tuple[int, ...], x: np.ndarray) -> tuple[int, ...] | None:
+        """``rows`` (independent, y_r > 0 on them) completed to n independent rows of G tight at x, the
+        optimal point of max c^T x (the dual form's row duals), the tightest first; None if there are not n."""
+        if len(x) != self.n or not np.all(np.isfinite(x)):
+            return None
+        G = self.GT.T
+        slack = self.cost - G @ x
+        tight = [int(r) for r in np.argsort(slack) if slack[r] <= 1e-9 * (1.0 + abs(self.cost[r])) and r not in rows]
+        chosen = list(rows)
+        for r in tight:
+            if len(chosen) == self.n:
+                break
+            if np.linalg.matrix_rank(G[chosen + [r]]) == len(chosen) + 1:
+                chosen.append(r)
+        return tuple(sorted(chosen)) if len(chosen) == self.n else None

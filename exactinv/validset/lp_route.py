@@ -307,7 +307,7 @@ class _DirectionBasis:
     def dual_of(self, P: _Problem, d: flint.fmpq_mat) -> list[flint.fmpq] | None:
         """B^-T d exactly, by one solve B^T y = d, when it is >= 0 (and B nonsingular); else None."""
         if self._Bt is None:
-            self._Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in self.rows])
+            self._Bt = flint.fmpq_mat(P.n, P.n, [v for r in self.rows for v in P.G_rows[r]]).transpose()
         try:
             y_q = self._Bt.solve(d).entries()
         except ZeroDivisionError:
@@ -325,6 +325,7 @@ class _Problem:
         self.D = cs.D
         self.L = len(cs.N)
         self._exact: ExactLPSolver | None = None
+        self._primal_lp: FloatLP | None = None
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
         self._directions: dict[tuple[int, ...], _DirectionBasis] = {}
         self.b_float = _floats(cs.b)
@@ -347,6 +348,13 @@ class _Problem:
         if isinstance(backend, HighsHint) and self.G_float is not None and self.b_float is not None:
             return DualFormHint(self.G_float, self.b_float)
         return FloatLP(self.G, (False,) * self.m, backend)
+
+    def primal_lp(self) -> FloatLP:
+        """The float LP max c^T x s.t. G x <= b itself (its simplex ends at a vertex basis): asked where the dual
+        form's optimum names no vertex (:attr:`DualFormHint.degenerate`)."""
+        if self._primal_lp is None:
+            self._primal_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
+        return self._primal_lp
 
     @property
     def exact(self) -> ExactLPSolver:
@@ -429,7 +437,10 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | DualFormHint | N
     P.float_lps += 1
     model = lp or P.float_lp
     if isinstance(model, DualFormHint):
-        return model.basis_rows(c / scale)
+        rows = model.basis_rows(c / scale)
+        if rows is not None or not model.degenerate:
+            return rows
+        model = P.primal_lp()  # an optimal face the dual form named no vertex of
     hint = model.solve_floats(c / scale, P.b_float, (False,) * P.n)
     if hint.status != OPTIMAL:
         return None
@@ -825,7 +836,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     tally = [0, 0]  # dual pieces found, tries failed
     targets: dict[int, flint.fmpq_mat] = {}
     guard = _GuardedExact(P)
-    dual_lp: list[FloatLP | DualFormHint] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
+    dual_lp: dict[int, FloatLP | DualFormHint] = {}  # the dual pieces' float LP: its own warm start, apart from the walk's
     served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
 
     def suggest(i: int, k: int, d: flint.fmpq_mat):
@@ -849,9 +860,9 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
                 y = basis.dual_of(d_int, d_den) if basis is not None else direction.dual_of(P, d)
                 if y is not None:
                     yield rows, y
-        if not dual_lp:
-            dual_lp.append(P.hint_model())
-        rows = _hint_rows(P, d, dual_lp[0])
+        if k not in dual_lp:
+            dual_lp[k] = P.hint_model()
+        rows = _hint_rows(P, d, dual_lp[k])
         guard.float_optimal = rows is not None
         if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
             y = P.direction_basis(rows).dual_of(P, d)
@@ -960,9 +971,10 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             T = bound
         walks[i].append((found.piece, c, point))
 
-    for i in asked:  # the first piece of every facet: an early horizon
+    order = _nearby_order(P, asked)
+    for i in order:  # the first piece of every facet: an early horizon
         step(i, Fraction(0))
-    for i in asked:  # on to the horizon, and past a ray piece's end that it leaves undecided
+    for i in order:  # on to the horizon, and past a ray piece's end that it leaves undecided
         while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
@@ -979,6 +991,30 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     route = LPRoute(tuple(facets), tuple(vertices), P.float_lps, P.exact_lps,
                     (("pieces", t1 - t0), ("conditions", t2 - t1)), P.point if rays else None)
     return conditions, route
+
+
+def _nearby_order(P: _Problem, asked: range) -> list[int]:
+    """The facets in an order where each row g_i is close in angle to the one before (greedy nearest
+    neighbour on the float rows): the float LPs of consecutive facets then have nearby costs, and HiGHS'
+    warm start from the last basis is short.  Only an order: every facet is walked to the horizon all the
+    same (index order when floats say nothing)."""
+    facets = list(asked)
+    if P.G_float is None or len(facets) < 3:
+        return facets
+    with np.errstate(all="ignore"):
+        rows = P.G_float[facets]
+        rows = rows / np.linalg.norm(rows, axis=1)[:, None]
+        if not np.all(np.isfinite(rows)):
+            return facets
+        cosines = rows @ rows.T
+    order, left = [0], np.ones(len(facets), dtype=bool)
+    left[0] = False
+    for _ in range(len(facets) - 1):
+        near = np.where(left, cosines[order[-1]], -np.inf)
+        k = int(near.argmax())
+        order.append(k)
+        left[k] = False
+    return [facets[k] for k in order]
 
 
 def vertex_bound(n: int, m: int) -> int:
