@@ -19,6 +19,8 @@ beyond double range, a HiGHS error) gives None, and nothing here raises.
 
 from __future__ import annotations
 
+from typing import Any
+
 import highspy
 import numpy as np
 
@@ -85,7 +87,7 @@ class DualFormHint:
         try:
             if self._highs is None:
                 self._highs = self._build()
-            h = self._highs
+            h: Any = self._highs  # highspy's stubs lack the change* methods
             h.changeRowsBounds(self.n, self._idx, c, c)
             h.run()
             self.solves += 1
@@ -99,8 +101,8 @@ class DualFormHint:
             if not basis.valid:
                 return None
             basic = highspy.HighsBasisStatus.kBasic
-            rows = tuple(r for r, st in enumerate(basis.col_status) if st == basic)
-            if len(rows) < self.n:  # a logical is basic: complete by rows tight at the optimal x
+            rows: tuple[int, ...] | None = tuple(r for r, st in enumerate(basis.col_status) if st == basic)
+            if rows is not None and len(rows) < self.n:  # a logical is basic: complete by rows tight at the optimal x
                 rows = self._completed(rows, np.asarray(h.getSolution().row_dual))
                 self.degenerate = rows is None
         except Exception:  # noqa: BLE001 -- a hint never raises: a failed solve only gives no hint
