@@ -1006,14 +1006,13 @@ def _nearby_order(P: _Problem, asked: range) -> list[int]:
         rows = rows / np.linalg.norm(rows, axis=1)[:, None]
         if not np.all(np.isfinite(rows)):
             return facets
-        cosines = rows @ rows.T
-    order, left = [0], np.ones(len(facets), dtype=bool)
-    left[0] = False
-    for _ in range(len(facets) - 1):
-        near = np.where(left, cosines[order[-1]], -np.inf)
-        k = int(near.argmax())
-        order.append(k)
-        left[k] = False
+        order, left = [0], np.ones(len(facets), dtype=bool)
+        left[0] = False
+        for _ in range(len(facets) - 1):  # O(m n) memory: one row of cosines at a time
+            near = np.where(left, rows @ rows[order[-1]], -np.inf)
+            k = int(near.argmax())
+            order.append(k)
+            left[k] = False
     return [facets[k] for k in order]
 
 
