@@ -34,19 +34,8 @@ class DualFormHint:
 
     ``G`` (m x n) and ``b`` (m) are floats; the rows are scaled to max-norm 1 for the model only.
 
-    >>> hint = DualFormHint(np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, -1.0]]), np.array([1.0, 1.0, 0.0]))
-    >>> hint.basis_rows(np.array([1.0, 2.0]))    # the vertex (1, 1): rows 0 and 1 tight
+    >>> DualFormHint(np.array([[2.0, 0.0], [0.0, 1.0], [-1.0, -1.0]]), np.array([2.0, 1.0, 0.0])).basis_rows(np.array([1.0, 1.0]))
     (0, 1)
-    >>> hint.basis_rows(np.array([-1.0, -1.0])) in {(0, 2), (1, 2)}  # the optimal face x1 + x2 = 0: either end
-    True
-    >>> hint.basis_rows(np.array([-1.0, 0.0]))   # the vertex (-1, 1)
-    (1, 2)
-    >>> hint.basis_rows(np.array([0.0, 1.0])) in {(0, 1), (1, 2)}  # y = e_1 alone: completed by a row tight at x
-    True
-    >>> square = DualFormHint(np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]), np.ones(4))
-    >>> square.basis_rows(np.array([1.0, 0.0])), square.degenerate  # x = (1, 0): inside the face x1 = 1
-    (None, True)
-    >>> DualFormHint(np.array([[1.0]]), np.array([1.0])).basis_rows(np.array([-1.0]))  # unbounded: no basis
     """
 
     def __init__(self, G: np.ndarray, b: np.ndarray):
@@ -80,7 +69,22 @@ class DualFormHint:
         model's last basis (still dual feasible for the new c: a vertex of P).  When the optimum is found but
         its basis has a logical column and the optimal x (the dual form's row duals, a point of the optimal
         face, not always a vertex) has too few tight rows to complete it, ``degenerate`` is set: the
-        primal form's simplex, which ends at a vertex, may still name one."""
+        primal form's simplex, which ends at a vertex, may still name one.
+
+        >>> hint = DualFormHint(np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, -1.0]]), np.array([1.0, 1.0, 0.0]))
+        >>> hint.basis_rows(np.array([1.0, 2.0]))    # the vertex (1, 1): rows 0 and 1 tight
+        (0, 1)
+        >>> hint.basis_rows(np.array([-1.0, -1.0])) in {(0, 2), (1, 2)}  # the optimal face x1 + x2 = 0: either end
+        True
+        >>> hint.basis_rows(np.array([-1.0, 0.0]))   # the vertex (-1, 1)
+        (1, 2)
+        >>> hint.basis_rows(np.array([0.0, 1.0])) in {(0, 1), (1, 2)}  # y = e_1 alone: completed by a row tight at x
+        True
+        >>> square = DualFormHint(np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]), np.ones(4))
+        >>> square.basis_rows(np.array([1.0, 0.0])), square.degenerate  # x = (1, 0): inside the face x1 = 1
+        (None, True)
+        >>> DualFormHint(np.array([[1.0]]), np.array([1.0])).basis_rows(np.array([-1.0]))  # unbounded: no basis
+        """
         self.degenerate = False
         if len(c) != self.n or not np.all(np.isfinite(c)) or not np.all(np.isfinite(self.cost)):
             return None
