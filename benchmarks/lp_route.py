@@ -18,6 +18,7 @@ Columns, on each instance:
              is the least over the facets.  A float answer, no certificate, and
              it only brackets the first interval's end.
 
+``load`` is the 1-minute load average at the end of the row (the machine is shared).
 ``float vs exact`` compares the float threshold with the exact largest
 threshold (relative difference; absolute when that is 0).  Times are CPU seconds of this process
 (``time.process_time``, HiGHS' threads included): the project machine is
@@ -225,7 +226,7 @@ def row(n: int, m: int, name: str, method: ei.Method, unbounded: bool = False, k
     return {"n": n, "m": m, "method": name, "pieces": V.lp.pieces, "rays": V.lp.rays, "duals": V.lp.duals,
             "lps": V.lp.float_lps + V.lp.exact_lps,
             "engine": engine, "kernel": kernel, "float": flt, "float_lps": lps, "ok": report.ok,
-            "tau": L.value, "set": V.intervals, "agree": agree}
+            "tau": L.value, "set": V.intervals, "agree": agree, "load": os.getloadavg()[0]}
 
 
 def main(argv=None) -> int:
@@ -244,8 +245,8 @@ def main(argv=None) -> int:
     if args.sizes:
         sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     print("| n | facets | method | pieces basis/dual | engine LPs | engine s | kernel s | float s (LPs) | engine/float | "
-          "kernel/engine | kernel | tau (exact) | float vs exact |" + (" valid set |" if args.family else ""))
-    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|" + ("---|" if args.family else ""))
+          "kernel/engine | kernel | tau (exact) | float vs exact | load |" + (" valid set |" if args.family else ""))
+    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|" + ("---|" if args.family else ""))
     modes = {"on": [True], "off": [False], "both": [False, True]}[args.duals]
     for name in args.methods.split(","):
         for n, m in sizes:
@@ -261,7 +262,7 @@ def _print_row(r: dict, args: argparse.Namespace) -> None:
           f"{r['kernel']:.2f} | {r['float']:.2f} ({r['float_lps']}) | {r['engine'] / r['float']:.2f} | "
           f"{r['kernel'] / r['engine']:.2f} | {'ok' if r['ok'] else 'REJECTED'} | "
           f"{r['tau'] if isinstance(r['tau'], Fraction) else format(float(r['tau']), '.6g')} | "
-          f"{r['agree']:.1e} |" + (f" {r['set']} |" if args.family else ""), flush=True)
+          f"{r['agree']:.1e} | {r['load']:.2f} |" + (f" {r['set']} |" if args.family else ""), flush=True)
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -104,10 +104,10 @@ def _taylor(T: flint.fmpq_mat, a: Fraction) -> flint.fmpq_mat:
     return T * S
 
 
-def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[tuple[int, Fraction], ...]:
+def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[tuple[int, flint.fmpq], ...]:
     """(row, value) for the nonzero entries of y (indexed by ``rows`` when given, else by position)."""
     index = rows if rows is not None else range(len(y))
-    return tuple(sorted((r, fraction_of(v)) for r, v in zip(index, y) if v != 0))
+    return tuple(sorted((r, v) for r, v in zip(index, y) if v != 0))
 
 
 class ExactSolve(Protocol):
@@ -154,7 +154,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     n, m = G.ncols(), G.nrows()
     Tk = _taylor(target, a)
     W = Tk.ncols()
-    ys: list[tuple[tuple[int, Fraction], ...]] = []
+    ys: list[tuple[tuple[int, flint.fmpq], ...]] = []  # as Fractions only in a piece that is found
     betas: list[flint.fmpq] = []
     GT = G.transpose()
     for k in range(W):
@@ -185,7 +185,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
                 return None
             y = _sparse(full)
         ys.append(y)
-        betas.append(sum((fmpq_of(v) * b[r, 0] for r, v in y), _ZERO))
+        betas.append(sum((v * b[r, 0] for r, v in y), _ZERO))
     while len(ys) > 1 and not ys[-1]:
         ys.pop()
     shifted = flint.fmpq_poly([0])
@@ -207,4 +207,5 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
         end = cap
     if end is not None and not end > a:
         return None
-    return DualCertificate(a, INF if end is None else end, tuple(ys))
+    return DualCertificate(a, INF if end is None else end,
+                           tuple(tuple((r, fraction_of(v)) for r, v in y) for y in ys))

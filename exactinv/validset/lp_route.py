@@ -81,6 +81,8 @@ from ..core.real_signs import (
 from ..core.roots import real_roots
 from ..core.scalars import INF, Infinity
 from ..errors import ExactinvException
+from ..lp.backends import HighsHint
+from ..lp.dual_form import DualFormHint
 from ..lp.floatlp import FloatLP
 from ..lp.hint import resolve_hint_backend
 from ..lp.solver import OPTIMAL, UNBOUNDED, ExactLPSolver, LPResult
@@ -242,14 +244,12 @@ class LPRouteCache:
 
 class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
-    b - G x_B (exact, and their numerators over a positive common denominator)."""
+    b - G x_B times a positive integer (exact integers: their signs and ratios are the slacks')."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack_q", "slack", "_inv_t_float", "_inv_t_int")
+    __slots__ = ("rows", "inv_t", "x", "slack", "_inv_t_int")
 
-    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack_q: flint.fmpq_mat):
-        self.rows, self.inv_t, self.x, self.slack_q = rows, inv_t, x, slack_q
-        self.slack = slack_q.numer_denom()[0].entries()
-        self._inv_t_float: np.ndarray | None = None
+    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list[flint.fmpz]):
+        self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
         self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
 
     def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
@@ -264,25 +264,55 @@ class _Basis:
         scale = den * d_den
         return [flint.fmpq(v, scale) for v in Y]
 
-    def maybe_dual_feasible(self, d: np.ndarray | None, G_float: np.ndarray | None) -> bool:
-        """A float hint: is B^-T d >= 0 plausible?  False only when some component is clearly negative (then
-        the exact test would fail); True otherwise, or when the floats say nothing (out of range, singular)."""
-        if d is None or G_float is None:
-            return True
-        if self._inv_t_float is None:
-            with np.errstate(all="ignore"):
-                try:
-                    self._inv_t_float = np.linalg.inv(G_float[list(self.rows)]).T
-                except np.linalg.LinAlgError:
-                    return True
-        with np.errstate(all="ignore"):
-            y = self._inv_t_float @ d
-            tol = 1e-9 * (np.abs(self._inv_t_float).max() * np.abs(d).max() + 1.0)
-        return not bool(np.all(np.isfinite(y))) or bool(y.min() >= -tol)
-
     @property
     def feasible(self) -> bool:
         return not any(v < _ZERO for v in self.slack)
+
+
+class _DirectionBasis:
+    """A basis B (rows of G) asked for duals B^-T d of a dual piece's directions d: a float B^-T tells how
+    negative B^-T d is (a clearly negative one is not tested), and one exact solve B^T y = d tests the
+    others (no x_B, no slacks, no inverse in Q)."""
+
+    __slots__ = ("rows", "_Bt", "_inv_t_float", "_inv_max")
+
+    def __init__(self, rows: tuple[int, ...]):
+        self.rows = rows
+        self._Bt: flint.fmpq_mat | None = None
+        self._inv_t_float: np.ndarray | None | bool = None  # False: no float image (singular, out of range)
+        self._inv_max = 0.0
+
+    def margin(self, P: _Problem, d_float: np.ndarray | None, d_max: float) -> float | None:
+        """A float hint: the least component of B^-T d relative to |B^-T| |d| (clearly negative: the exact
+        test would fail), or None when floats say nothing (B singular in floats, d or B^-T out of range)."""
+        if self._inv_t_float is None:
+            self._inv_t_float = False
+            if P.G_float is not None:
+                with np.errstate(all="ignore"):
+                    try:
+                        inv = np.linalg.inv(P.G_float[list(self.rows)]).T
+                        if np.all(np.isfinite(inv)):
+                            self._inv_t_float, self._inv_max = inv, float(np.abs(inv).max())
+                    except np.linalg.LinAlgError:
+                        pass
+        inv = self._inv_t_float
+        if d_float is None or inv is False:
+            return None
+        with np.errstate(all="ignore"):
+            y = inv @ d_float
+            if not np.all(np.isfinite(y)):
+                return None
+            return float(y.min()) / (self._inv_max * d_max + 1.0)
+
+    def dual_of(self, P: _Problem, d: flint.fmpq_mat) -> list[flint.fmpq] | None:
+        """B^-T d exactly, by one solve B^T y = d, when it is >= 0 (and B nonsingular); else None."""
+        if self._Bt is None:
+            self._Bt = flint.fmpq_mat(P.n, P.n, [v for r in self.rows for v in P.G_rows[r]]).transpose()
+        try:
+            y_q = self._Bt.solve(d).entries()
+        except ZeroDivisionError:
+            return None
+        return None if any(v < 0 for v in y_q) else y_q
 
 
 class _Problem:
@@ -294,15 +324,37 @@ class _Problem:
         self.b = flint.fmpq_mat(self.m, 1, cs.b)
         self.D = cs.D
         self.L = len(cs.N)
-        self.float_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
         self._exact: ExactLPSolver | None = None
+        self._primal_lp: FloatLP | None = None
         self._bases: dict[tuple[int, ...], _Basis | None] = {}
+        self._directions: dict[tuple[int, ...], _DirectionBasis] = {}
         self.b_float = _floats(cs.b)
         self.G_rows = self.G.tolist()
         G_float = _floats(self.G.entries())
         self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
+        self.float_lp = self.hint_model()
+        G_num, G_den = self.G.numer_denom()
+        b_num, b_den = self.b.numer_denom()
+        # G and b integral (the slacks of a vertex then come from integer products): G and b as fmpz_mat
+        self.Gb_int = (G_num, b_num) if G_den == 1 and b_den == 1 else None
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
+
+    def hint_model(self) -> FloatLP | DualFormHint:
+        """A float model of max c^T x over P for basis hints, warm-started across its solves: HiGHS on the
+        LP's dual form (:mod:`exactinv.lp.dual_form`: a basis of dimension n, not m) under the default
+        HiGHS hint backend, else the configured backend through :class:`FloatLP`."""
+        backend = resolve_hint_backend(None)
+        if isinstance(backend, HighsHint) and self.G_float is not None and self.b_float is not None:
+            return DualFormHint(self.G_float, self.b_float)
+        return FloatLP(self.G, (False,) * self.m, backend)
+
+    def primal_lp(self) -> FloatLP:
+        """The float LP max c^T x s.t. G x <= b itself (its simplex ends at a vertex basis): asked where the dual
+        form's optimum names no vertex (:attr:`DualFormHint.degenerate`)."""
+        if self._primal_lp is None:
+            self._primal_lp = FloatLP(self.G, (False,) * self.m, resolve_hint_backend(None))
+        return self._primal_lp
 
     @property
     def exact(self) -> ExactLPSolver:
@@ -315,6 +367,12 @@ class _Problem:
         GN = self.cs.GN
         return flint.fmpq_mat(self.n, self.L, [GN[k][i][l] for l in range(self.n) for k in range(self.L)])
 
+    def direction_basis(self, rows: tuple[int, ...]) -> _DirectionBasis:
+        """The basis of these rows for a dual piece's directions only (:class:`_DirectionBasis`).  Cached."""
+        if rows not in self._directions:
+            self._directions[rows] = _DirectionBasis(rows)
+        return self._directions[rows]
+
     def basis(self, rows: tuple[int, ...]) -> _Basis | None:
         """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
         if rows not in self._bases:
@@ -326,7 +384,13 @@ class _Problem:
                 inv = None
             if inv is not None:
                 x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
-                out = _Basis(rows, inv.transpose(), x, self.b - self.G * x)
+                if self.Gb_int is not None:  # x_den (b - G x) = x_den b - G x_num, on integers
+                    x_num, x_den = x.numer_denom()
+                    G_int, b_int = self.Gb_int
+                    slack = (b_int * x_den - G_int * x_num).entries()
+                else:
+                    slack = (self.b - self.G * x).numer_denom()[0].entries()
+                out = _Basis(rows, inv.transpose(), x, slack)
                 if not out.feasible:
                     out = None
             self._bases[rows] = out
@@ -360,7 +424,7 @@ def _cost(C: flint.fmpq_mat, D: flint.fmpq_poly, s: Fraction) -> flint.fmpq_mat:
     return C * powers * D(x)
 
 
-def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> tuple[int, ...] | None:
+def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | DualFormHint | None = None) -> tuple[int, ...] | None:
     """The float LP's tight rows at this cost, when they are n of them (a vertex basis); None otherwise.
     ``lp``: another float image of the same LP (its own warm start; default the walk's).
     A hint never raises: a cost beyond double range or a failed solve only gives no hint."""
@@ -371,7 +435,13 @@ def _hint_rows(P: _Problem, cost: flint.fmpq_mat, lp: FloatLP | None = None) -> 
     if not scale > 0:
         return None
     P.float_lps += 1
-    hint = (lp or P.float_lp).solve_floats(c / scale, P.b_float, (False,) * P.n)
+    model = lp or P.float_lp
+    if isinstance(model, DualFormHint):
+        rows = model.basis_rows(c / scale)
+        if rows is not None or not model.degenerate:
+            return rows
+        model = P.primal_lp()  # an optimal face the dual form named no vertex of
+    hint = model.solve_floats(c / scale, P.b_float, (False,) * P.n)
     if hint.status != OPTIMAL:
         return None
     basis = hint.fetch_basis()
@@ -766,7 +836,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     tally = [0, 0]  # dual pieces found, tries failed
     targets: dict[int, flint.fmpq_mat] = {}
     guard = _GuardedExact(P)
-    dual_lp: list[FloatLP] = []  # the dual pieces' float LP: its own warm start, apart from the walk's
+    dual_lp: dict[int, FloatLP | DualFormHint] = {}  # the dual pieces' float LP: its own warm start, apart from the walk's
     served: dict[int, list[tuple[int, ...]]] = {}  # facet (or -1: any) -> the bases whose duals served, latest first
 
     def suggest(i: int, k: int, d: flint.fmpq_mat):
@@ -777,25 +847,27 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         seen = set()
         walk = [p.basis for p, _, _ in reversed(walks[i]) if p.basis is not None]
         d_float = _floats(d.entries())
+        d_max = 0.0 if d_float is None else float(np.abs(d_float).max())
         d_int, d_den = d.numer_denom()
         for rows in served.get(i, []) + walk[:4] + served.get(-1, []):
             if rows not in seen:
                 seen.add(rows)
-                basis = P.basis(rows)
-                if basis is not None and basis.maybe_dual_feasible(d_float, P.G_float):
-                    y = basis.dual_of(d_int, d_den)
-                    if y is not None:
-                        yield rows, y
-        if not dual_lp:
-            dual_lp.append(FloatLP(P.G, (False,) * P.m, resolve_hint_backend(None)))
-        rows = _hint_rows(P, d, dual_lp[0])
+                direction = P.direction_basis(rows)
+                margin = direction.margin(P, d_float, d_max)
+                if margin is not None and margin < -1e-9:
+                    continue  # clearly negative: the exact test would fail
+                basis = P._bases.get(rows)  # a walk's basis: B^-T known in Q; else one solve B^T y = d
+                y = basis.dual_of(d_int, d_den) if basis is not None else direction.dual_of(P, d)
+                if y is not None:
+                    yield rows, y
+        if k not in dual_lp:
+            dual_lp[k] = P.hint_model()
+        rows = _hint_rows(P, d, dual_lp[k])
         guard.float_optimal = rows is not None
         if rows is not None and rows not in seen:  # one exact solve B^T y = d (no inverse, no feasibility)
-            Bt = flint.fmpq_mat(P.n, P.n, [P.G[r, l] for l in range(P.n) for r in rows])
-            try:
-                yield rows, Bt.solve(d).entries()
-            except ZeroDivisionError:
-                return
+            y = P.direction_basis(rows).dual_of(P, d)
+            if y is not None:
+                yield rows, y
 
     def used(i: int, k: int, rows: tuple[int, ...]) -> None:
         for key in (i, -1):
@@ -899,9 +971,10 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             T = bound
         walks[i].append((found.piece, c, point))
 
-    for i in asked:  # the first piece of every facet: an early horizon
+    order = _nearby_order(P, asked)
+    for i in order:  # the first piece of every facet: an early horizon
         step(i, Fraction(0))
-    for i in asked:  # on to the horizon, and past a ray piece's end that it leaves undecided
+    for i in order:  # on to the horizon, and past a ray piece's end that it leaves undecided
         while exact_lt(walks[i][-1][0].end, T) or not (last[i].covered or isinstance(walks[i][-1][0].end, Infinity)):
             step(i, walks[i][-1][0].end)  # type: ignore[arg-type]
     t1 = time.perf_counter()
@@ -918,6 +991,29 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
     route = LPRoute(tuple(facets), tuple(vertices), P.float_lps, P.exact_lps,
                     (("pieces", t1 - t0), ("conditions", t2 - t1)), P.point if rays else None)
     return conditions, route
+
+
+def _nearby_order(P: _Problem, asked: range) -> list[int]:
+    """The facets in an order where each row g_i is close in angle to the one before (greedy nearest
+    neighbour on the float rows): the float LPs of consecutive facets then have nearby costs, and HiGHS'
+    warm start from the last basis is short.  Only an order: every facet is walked to the horizon all the
+    same (index order when floats say nothing)."""
+    facets = list(asked)
+    if P.G_float is None or len(facets) < 3:
+        return facets
+    with np.errstate(all="ignore"):
+        rows = P.G_float[facets]
+        rows = rows / np.linalg.norm(rows, axis=1)[:, None]
+        if not np.all(np.isfinite(rows)):
+            return facets
+        order, left = [0], np.ones(len(facets), dtype=bool)
+        left[0] = False
+        for _ in range(len(facets) - 1):  # O(m n) memory: one row of cosines at a time
+            near = np.where(left, rows @ rows[order[-1]], -np.inf)
+            k = int(near.argmax())
+            order.append(k)
+            left[k] = False
+    return [facets[k] for k in order]
 
 
 def vertex_bound(n: int, m: int) -> int:

@@ -178,7 +178,9 @@ def test_the_fuzzer_finds_a_false_accept_in_a_kernel_that_skips_the_slacks(monke
     import exactinv.validset.lp_route as engine_lp
     monkeypatch.setattr(engine_lp, "DUAL_POLICY", None)
     monkeypatch.setattr(lp_pieces._Bases, "packed_slacks", lambda self, x, d: True)
-    _, _, bad = fuzz(seed=7, problems=10, mutations=12, dims=(2, 3))
+    # seed 10: the engine's genuine records depend on its walk (the facets' order, its float hints); with
+    # lp-speed3's records seed 7 mutated no basis row to an infeasible point any more, seeds 8-12 do
+    _, _, bad = fuzz(seed=10, problems=10, mutations=12, dims=(2, 3))
     assert bad
 
 
