@@ -104,6 +104,28 @@ def _taylor(T: flint.fmpq_mat, a: Fraction) -> flint.fmpq_mat:
     return T * S
 
 
+def _rational_in(a: Fraction, root: Real) -> Fraction | None:
+    """A rational in (a, root] for a real root > a: the root itself when rational, else the lower end of its
+    isolating interval, refined until it passes a (None if that takes more than 200 bits).  Found by hypothesis:
+    a piece starting 1.1e-16 below the root 3 - sqrt 5 of q, whose 2^-44 enclosure reached below a; the piece was
+    then taken to end at the cap, past the root, and the kernel rejected q < 0 inside it.
+
+    >>> alpha = RealAlgebraic.from_isolating_interval([4, -6, 1], 0, 1)     # 3 - sqrt 5 = 0.7639320225002103...
+    >>> _rational_in(Fraction(215027748241771, 2**48), alpha) > Fraction(215027748241771, 2**48)
+    True
+    >>> _rational_in(Fraction(1, 2), Fraction(3, 4))
+    Fraction(3, 4)
+    """
+    if not isinstance(root, RealAlgebraic):
+        return Fraction(root)  # type: ignore[arg-type]
+    alpha = narrowed(root)
+    for bits in range(48, 201, 8):
+        if alpha.lower > a:  # type: ignore[union-attr]
+            return alpha.lower  # type: ignore[union-attr]
+        alpha = alpha.refine(bits)  # type: ignore[union-attr]
+    return None
+
+
 def _sparse(y: list[flint.fmpq], rows: tuple[int, ...] | None = None) -> tuple[tuple[int, flint.fmpq], ...]:
     """(row, value) for the nonzero entries of y (indexed by ``rows`` when given, else by position)."""
     index = rows if rows is not None else range(len(y))
@@ -199,9 +221,10 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     end: Fraction | None = None  # None: q > 0 on all of [a, oo)
     for root, _ in real_roots(q):
         if exact_lt(a, root):
-            top = narrowed(root).lower if isinstance(root, RealAlgebraic) else Fraction(root)  # type: ignore[union-attr]
-            if top > a:  # a short rational at or below the first root beyond a, within 1/64 of the piece
-                end = simplest_between(top - (top - a) / 64, top)
+            top = _rational_in(a, root)
+            if top is None:
+                return None  # the root is within 2^-200 of a: no piece worth having
+            end = simplest_between(top - (top - a) / 64, top)  # short, at most the root, within 1/64 of the piece
             break
     if cap is not None and (end is None or cap < end):
         end = cap

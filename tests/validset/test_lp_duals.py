@@ -102,6 +102,25 @@ def test_the_random_family_gets_dual_pieces_and_the_same_set(forced):
     assert (L_on.value, L_on.attained) == (L_vertex.value, L_vertex.attained)
 
 
+BOX3 = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]
+
+
+@pytest.mark.parametrize("A, G, b, method", [
+    ([[0, 1, 1], [1, -3, 0], [0, 0, 2]], BOX3, [2] * 6, M.pade(1, 1)),
+    ([[-2, 3, 3], [1, 3, F(-1, 2)], [1, 2, F(-1, 2)]], BOX3 + [[-2, -2, 1], [-1, 1, -1]], [2] * 6 + [1, 4],
+     M.backward_euler())], ids=["pade11", "backward-euler"])
+def test_a_dual_piece_starting_a_hair_below_a_root_of_q_ends_before_it(A, G, b, method):
+    """Found by hypothesis (session 6), dual pieces forced.  In the first, a dual piece of facet 1 started at
+    a = 215027748241771/2^48, 1.1e-16 below the root 3 - sqrt 5 of its q; the root's 2^-44 enclosure reached
+    below a, the engine took q > 0 up to the cap and wrote a piece the kernel rejected (q < 0 at 3.68).  Now the
+    root's enclosure is refined until it passes a."""
+    S, P, m = ei.LinearSystem(A), ei.Polyhedron(G, b), method
+    V_on = _with(FORCED, S, P, m)
+    report = exactinv_check.check(V_on.certificate)
+    assert report.ok, report
+    assert _ends(V_on) == _ends(ei.valid_steplengths(S, P, m, route="vertex"))
+
+
 # ------------------------------------------------------------------ properties, dual pieces forced on
 
 METHODS = [M.taylor(p) for p in range(1, 6)] + [M.backward_euler(), M.pade(1, 1), M.pade(2, 2), M.theta("1/3")]
