@@ -94,7 +94,7 @@ def measure(texts: list[str], configs: list[str], rounds: int, block: int, idle:
                 box.run(("pin", cpus[-1]), timeout=60)
     for text in texts[:3]:
         solve(text)  # warm this process too
-    results: dict[str, dict] = {c: {f: [] for f in FIELDS} | {"parent": 0.0, "wall": 0.0, "n": 0} for c in configs}
+    results: dict[str, dict] = {c: {f: [] for f in FIELDS} | {"parent": 0.0, "wakeups": 0, "wall": 0.0, "n": 0} for c in configs}
     for r in range(rounds):
         for start in range(0, len(texts), block):
             part = texts[start:start + block]
@@ -103,7 +103,7 @@ def measure(texts: list[str], configs: list[str], rounds: int, block: int, idle:
                 pin_parent = config in ("child-same-cpu", "child-other-cpu")
                 if pin_parent:
                     os.sched_setaffinity(0, {mine})
-                t0, p0 = time.perf_counter(), _usage()[0]
+                t0, u0 = time.perf_counter(), _usage()
                 if config in ("loop", "loop-idle"):
                     got = []
                     for text in part:
@@ -114,15 +114,18 @@ def measure(texts: list[str], configs: list[str], rounds: int, block: int, idle:
                     got = [o.value for o in boxes[config].run_all([("solve", t) for t in part], timeout=600)]
                 else:
                     got = [boxes[config].run(("solve", t), timeout=600).value for t in part]
-                wall, parent = time.perf_counter() - t0, _usage()[0] - p0
+                wall, u1 = time.perf_counter() - t0, _usage()
+                parent, wakeups = u1[0] - u0[0], u1[2] - u0[2]
                 if pin_parent:
                     os.sched_setaffinity(0, parent_affinity)
                 res = results[config]
+                res.setdefault("blocks", []).append(sum(g["cpu"] for g in got))
                 for g in got:
                     for f in FIELDS:
                         res[f].append(g[f])
                 if config.startswith("child"):
                     res["parent"] += parent
+                    res["wakeups"] += wakeups
                 res["wall"] += wall
                 res["n"] += len(part)
     for box in boxes.values():
@@ -133,17 +136,30 @@ def measure(texts: list[str], configs: list[str], rounds: int, block: int, idle:
 def report(results: dict[str, dict], header: str) -> str:
     base = sum(results["loop"]["cpu"]) / len(results["loop"]["cpu"]) if "loop" in results else None
     lines = [header, "",
-             "| configuration | CPU ms / problem (x loop) | median ms | parent CPU ms / problem | wall ms / problem "
-             "| minor faults / problem | voluntary / involuntary switches per problem |",
-             "|---|---:|---:|---:|---:|---:|---:|"]
+             "| configuration | CPU ms / problem (x loop) | median ms | parent CPU ms / problem | parent sleeps / problem "
+             "| wall ms / problem | minor faults / problem | voluntary / involuntary switches per problem |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for config, res in results.items():
         n = res["n"]
         cpu = sum(res["cpu"]) / n
         ratio = f" ({cpu / base:.3f})" if base else ""
         parent = f"{1000 * res['parent'] / n:.3f}" if config.startswith("child") else "-"
+        sleeps = f"{res['wakeups'] / n:.2f}" if config.startswith("child") else "-"
         lines.append(f"| {config} | {1000 * cpu:.2f}{ratio} | {1000 * statistics.median(res['cpu']):.2f} | {parent} | "
+                     f"{sleeps} | "
                      f"{1000 * res['wall'] / n:.2f} | {sum(res['minflt']) / n:.1f} | "
                      f"{sum(res['nvcsw']) / n:.2f} / {sum(res['nivcsw']) / n:.2f} |")
+    if "loop" in results:
+        base_blocks = results["loop"]["blocks"]
+        lines.append("")
+        for config, res in results.items():
+            if config == "loop":
+                continue
+            ratios = [b / a for a, b in zip(base_blocks, res["blocks"])]
+            mean = statistics.fmean(ratios)
+            half = 2 * statistics.stdev(ratios) / len(ratios) ** 0.5 if len(ratios) > 1 else float("nan")
+            lines.append(f"{config} / loop, paired by block ({len(ratios)} blocks of the same problems): "
+                         f"{mean:.3f} +- {half:.3f} (two standard errors)")
     return "\n".join(lines)
 
 
