@@ -17,6 +17,13 @@ it one argument at a time (pickled, through a pipe) and reads the JSON reply
   the child's CPU time so far guards against the parent itself dying, and
   ``PR_SET_PDEATHSIG`` ends the child with the thread that forked it.
 
+A sequence of runs (:meth:`Sandbox.run_all`, what a batch chunk uses) is
+*pipelined*: as soon as the child has taken job k (its one-byte answer), job
+k + 1 is written to its pipe, so the child goes from one job to the next
+without waiting for the parent to read the reply and send again (the parent
+is asleep in ``select`` on the replies meanwhile, never polling).  Job k + 1's
+clock starts when job k's reply is read (the child is then free to take it).
+
 After any outcome other than ``"ok"`` the child is killed and the next run
 forks a fresh one, so a run that breached a limit never leaves a damaged
 process behind; the child is also renewed every :data:`RENEW_AFTER` runs.
@@ -25,7 +32,8 @@ the process group, reaped by someone else) is noticed before the next job is
 sent (``wait4(WNOHANG)``) or, dying just then, because it never takes the job:
 the child answers each job with one byte the moment it has read it, so a broken
 pipe or an end of file before that byte means the job never ran, and it is sent
-again to a fresh child.  Only a child that dies *while running* a job (after
+again to a fresh child -- so is a job queued behind one that breached a limit
+(its child is killed before the parent reads that byte).  Only a child that dies *while running* a job (after
 that byte) makes that job a ``"crash"`` (or ``"memory"``).  A fork of the parent inherits the
 :class:`Sandbox` object but not the child: there it is forgotten, never killed.
 ``seconds`` is the wall time of the run seen from the parent,

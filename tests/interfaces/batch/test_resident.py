@@ -361,3 +361,28 @@ def test_run_all_renews_the_child_after_many_runs(monkeypatch):
         assert pids[:5] == [pids[0]] * 5 and pids[5:10] == [pids[5]] * 5 and len(set(pids)) == 3
     finally:
         box.close()
+
+
+def test_an_interrupt_in_the_parent_mid_pipeline_leaves_no_child_holding_a_job():
+    """Ctrl-C (here a SIGALRM handler raising KeyboardInterrupt) while the parent waits on a job with
+    another queued behind it: the child is killed and reaped, and the next runs start afresh --
+    no stale reply or one-byte answer of the interrupted jobs is ever read as theirs."""
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    box = Sandbox(_work)
+    old = signal.signal(signal.SIGALRM, interrupt)
+    try:
+        first = box.run(("pid", None), timeout=30).value
+        signal.setitimer(signal.ITIMER_REAL, 0.3)
+        with pytest.raises(KeyboardInterrupt):
+            box.run_all([("spin", 2.0), ("square", (1, 2)), ("spin", 2.0)], timeout=30)
+        assert box.pid is None
+        with pytest.raises(ChildProcessError):
+            os.waitpid(first, os.WNOHANG)  # killed and reaped
+        outcomes = box.run_all([("square", (5, 6)), ("pid", None)], timeout=30)
+        assert [o.value for o in outcomes][0] == "25/36" and outcomes[1].value != first and box.forks == 2
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+        box.close()
