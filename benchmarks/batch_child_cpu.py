@@ -23,8 +23,10 @@ Configurations (``--configs``, comma-separated):
 
 Per configuration and per problem: the function's CPU (user + system, ms) in the process that
 ran it, its minor page faults, voluntary and involuntary context switches; for the child
-configurations also the parent's CPU per problem (this process, while it waits) and the wall
-time per problem.  Ratios are against ``loop``.  The load average is printed.
+configurations also the parent's CPU and sleeps (voluntary switches) per problem (this process,
+while it waits); the wall time per problem; and the idle gap from the end of one problem to the
+start of the next in the process that runs them (``CLOCK_MONOTONIC`` is the machine's clock).
+Ratios are against ``loop``, per block of the same problems (paired), and of the sums.  The load average is printed.
 
 Run:  python benchmarks/batch_child_cpu.py [--n 200] [--rounds 4] [--block 25] [--configs ...]
       [--in-dask]   (the whole measurement inside a 1-worker LocalCluster with the batch's
@@ -60,12 +62,12 @@ def _usage() -> tuple[float, int, int, int]:
 
 def solve(text: str) -> dict[str, float]:
     """``certify(load_problem(text))`` and what it cost this process (CPU s, faults, switches)."""
-    before = _usage()
+    start, before = time.monotonic(), _usage()
     ok = certify(load_problem(text)).ok
-    after = _usage()
+    after, end = _usage(), time.monotonic()
     if not ok:
         raise AssertionError("the kernel rejected a certificate")
-    return dict(zip(FIELDS, (a - b for a, b in zip(after, before))))
+    return {**dict(zip(FIELDS, (a - b for a, b in zip(after, before)))), "start": start, "end": end}
 
 
 def _pin(job: Any) -> Any:
@@ -120,6 +122,9 @@ def measure(texts: list[str], configs: list[str], rounds: int, block: int, idle:
                     os.sched_setaffinity(0, parent_affinity)
                 res = results[config]
                 res.setdefault("blocks", []).append(sum(g["cpu"] for g in got))
+                # the idle gap: from the end of one problem to the start of the next, in the process that runs
+                # them (CLOCK_MONOTONIC is the machine's: comparable across processes)
+                res.setdefault("gaps", []).extend(b["start"] - a["end"] for a, b in zip(got, got[1:]))
                 for g in got:
                     for f in FIELDS:
                         res[f].append(g[f])
@@ -137,8 +142,9 @@ def report(results: dict[str, dict], header: str) -> str:
     base = sum(results["loop"]["cpu"]) / len(results["loop"]["cpu"]) if "loop" in results else None
     lines = [header, "",
              "| configuration | CPU ms / problem (x loop) | median ms | parent CPU ms / problem | parent sleeps / problem "
-             "| wall ms / problem | minor faults / problem | voluntary / involuntary switches per problem |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+             "| wall ms / problem | idle gap between problems, median / mean ms | minor faults / problem "
+             "| voluntary / involuntary switches per problem |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for config, res in results.items():
         n = res["n"]
         cpu = sum(res["cpu"]) / n
@@ -146,8 +152,8 @@ def report(results: dict[str, dict], header: str) -> str:
         parent = f"{1000 * res['parent'] / n:.3f}" if config.startswith("child") else "-"
         sleeps = f"{res['wakeups'] / n:.2f}" if config.startswith("child") else "-"
         lines.append(f"| {config} | {1000 * cpu:.2f}{ratio} | {1000 * statistics.median(res['cpu']):.2f} | {parent} | "
-                     f"{sleeps} | "
-                     f"{1000 * res['wall'] / n:.2f} | {sum(res['minflt']) / n:.1f} | "
+                     f"{sleeps} | {1000 * res['wall'] / n:.2f} | {1000 * statistics.median(res['gaps']):.3f} / "
+                     f"{1000 * statistics.fmean(res['gaps']):.3f} | {sum(res['minflt']) / n:.1f} | "
                      f"{sum(res['nvcsw']) / n:.2f} / {sum(res['nivcsw']) / n:.2f} |")
     if "loop" in results:
         base_blocks = results["loop"]["blocks"]

@@ -216,6 +216,16 @@ def main() -> None:
         print(f"\nloop: {1000 * loop1_cpu / args.n:.1f} and {1000 * loop2_cpu / args.n:.1f} ms of CPU per problem "
               f"(before and after the batches; the ratios use the mean, {loop:.2f} s wall, {loop_cpu:.2f} s CPU); "
               f"load average now {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
+        own = {label: sum(parts.values()) - child for label, _, parts, _, _, child in rows if child is not None}
+        if own:
+            t = 1000 * loop_cpu / args.n
+            print("the batch's own CPU (everything but the sandbox children: client, scheduler, nannies, workers, the "
+                  "sandbox's parent side), ms per problem, and what it gives on free cores with the children doing the "
+                  "loop's work (docs/scale.md's model; 1 worker: t + o against t, 2 workers: 2 t / (t + o)): " + "; ".join(
+                      f"{label}: {1000 * o / args.n:.2f} ("
+                      + (f"1 worker / loop {1 + o / loop_cpu:.3f})" if " 1 worker" in label or "workers 1 " in label
+                         else f"2 over 1 {2 * t / (t + 1000 * o / args.n):.3f})")
+                      for label, o in own.items()))
         for mode, name in (("e2e", "end to end"), ("run", "running cluster")):
             if (mode, 1) in walls and (mode, 2) in walls:
                 (w1, p1), (w2, p2) = walls[mode, 1], walls[mode, 2]

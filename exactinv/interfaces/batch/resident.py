@@ -21,7 +21,11 @@ A sequence of runs (:meth:`Sandbox.run_all`, what a batch chunk uses) is
 *pipelined*: as soon as the child has taken job k (its one-byte answer), job
 k + 1 is written to its pipe, so the child goes from one job to the next
 without waiting for the parent to read the reply and send again (the parent
-is asleep in ``select`` on the replies meanwhile, never polling).  Job k + 1's
+is asleep in ``select`` on the replies meanwhile, never polling); and the
+child, finding job k + 1 waiting when it finishes job k, takes it and writes
+job k's reply and job k + 1's one-byte answer in one ``write``: one wake-up of
+the parent per job, not two (each wake-up of the parent may preempt the child
+on its CPU).  Job k + 1's
 clock starts when job k's reply is read (the child is then free to take it).
 
 After any outcome other than ``"ok"`` the child is killed and the next run
@@ -322,13 +326,20 @@ def _serve(fn: Callable[[Any], Any], jobs: int, replies: int) -> None:
         _settle()
         proc = _ProcSelf()
         reader = _Reader(jobs)
-        while True:
-            job, _ = reader.read_frame(None)
-            if job is None:
-                break
+        job, _ = reader.read_frame(None)
+        if job is not None:
             _write_all(replies, _TAKEN)  # from here on a death is this job's
+        while job is not None:
             arg, timeout, memory_mb = pickle.loads(job)
-            _write_all(replies, _frame(_one(fn, arg, timeout, memory_mb, proc)))
+            reply = _frame(_one(fn, arg, timeout, memory_mb, proc))
+            job = reader.ready_frame()  # pipelined: the next job is usually waiting already
+            if job is not None:  # the reply and "the next job in hand" in one write: one wake-up of the parent
+                _write_all(replies, reply + _TAKEN)
+                continue
+            _write_all(replies, reply)
+            job, _ = reader.read_frame(None)
+            if job is not None:
+                _write_all(replies, _TAKEN)
     except BaseException:
         code = 3
     finally:
@@ -489,6 +500,23 @@ class _Reader:
         data = bytes(self.buf[:size])
         del self.buf[:size]
         return data, False
+
+    def ready_frame(self) -> bytes | None:
+        """A whole frame if one is here already (buffered, or in the pipe), without waiting; else None
+        (also at end of file or on an error: a blocking :meth:`read_frame` then says which)."""
+        try:
+            while True:
+                if len(self.buf) >= _HEADER.size and len(self.buf) >= _HEADER.size + _HEADER.unpack_from(self.buf)[0]:
+                    return self.read_frame(None)[0]
+                ready, _, _ = select.select([self.fd], [], [], 0)
+                if not ready:
+                    return None
+                chunk = os.read(self.fd, 1 << 16)
+                if not chunk:
+                    return None
+                self.buf += chunk
+        except (OSError, ValueError):
+            return None
 
     def read_frame(self, deadline: float | None) -> tuple[bytes | None, bool]:
         """One frame: (payload, False); (None, False) at end of file (also mid-frame: the writer
