@@ -25,8 +25,8 @@ is asleep in ``select`` on the replies meanwhile, never polling); and the
 child, finding job k + 1 waiting when it finishes job k, takes it and writes
 job k's reply and job k + 1's one-byte answer in one ``write``: one wake-up of
 the parent per job, not two (each wake-up of the parent may preempt the child
-on its CPU).  Job k + 1's
-clock starts when job k's reply is read (the child is then free to take it).
+on its CPU).  Job k + 1's clock starts when job k's reply is read (the child
+is then free to take it).
 
 After any outcome other than ``"ok"`` the child is killed and the next run
 forks a fresh one, so a run that breached a limit never leaves a damaged
@@ -37,8 +37,9 @@ sent (``wait4(WNOHANG)``) or, dying just then, because it never takes the job:
 the child answers each job with one byte the moment it has read it, so a broken
 pipe or an end of file before that byte means the job never ran, and it is sent
 again to a fresh child -- so is a job queued behind one that breached a limit
-(its child is killed before the parent reads that byte).  Only a child that dies *while running* a job (after
-that byte) makes that job a ``"crash"`` (or ``"memory"``).  A fork of the parent inherits the
+(its child is killed before the parent reads that byte).  Only a child that
+dies *while running* a job (after that byte) makes that job a ``"crash"`` (or
+``"memory"``).  A fork of the parent inherits the
 :class:`Sandbox` object but not the child: there it is forgotten, never killed.
 ``seconds`` is the wall time of the run seen from the parent,
 ``cpu_seconds`` the child's CPU time for this run and ``peak_mb`` its peak
