@@ -386,3 +386,28 @@ def test_an_interrupt_in_the_parent_mid_pipeline_leaves_no_child_holding_a_job()
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, old)
         box.close()
+
+
+def test_pipelined_the_parent_wakes_once_per_job_one_by_one_twice():
+    """The child that finds the next job waiting writes its reply and the next job's one-byte answer
+    in one write, so the parent sleeps (a voluntary context switch) once per job; run one by one,
+    it sleeps for the answer and again for the reply.  Jobs of 20 ms of CPU: the parent is asleep
+    long before each reply."""
+    import resource
+
+    def sleeps() -> int:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_nvcsw
+
+    box = Sandbox(_work)
+    try:
+        box.run(("pid", None), timeout=30)
+        before = sleeps()
+        piped = box.run_all([("spin", 0.02)] * 40, timeout=30)
+        pipelined = (sleeps() - before) / 40
+        before = sleeps()
+        single = [box.run(("spin", 0.02), timeout=30) for _ in range(40)]
+        one_by_one = (sleeps() - before) / 40
+        assert [o.status for o in piped + single] == ["ok"] * 80 and box.forks == 1
+        assert pipelined <= 1.3 and one_by_one >= 1.7, (pipelined, one_by_one)
+    finally:
+        box.close()
