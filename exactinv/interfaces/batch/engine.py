@@ -5,7 +5,7 @@ The scheduling is Dask's: by default a ``LocalCluster`` with one
 single-threaded worker process per core of this machine; with ``scheduler``
 an existing Dask cluster (``dask scheduler`` / ``dask worker``, dask-jobqueue,
 dask-kubernetes; docs/scale.md).  A Dask task is a chunk of problems, sized
-from the durations measured so far to last about a second (:mod:`.chunks`);
+from the durations measured so far to last about two seconds (:mod:`.chunks`);
 a worker thread runs its chunks' problems one after another in one
 long-lived forked sandbox, each under its own time and memory limits
 (:mod:`.resident`), so a runaway problem is stopped and recorded, its
@@ -62,7 +62,7 @@ class BatchInterrupted(KeyboardInterrupt):
         super().__init__(f"interrupted: {done} done, resumable")
         self.done, self.out = done, out
 
-_WINDOW = 2  # chunks in flight per worker thread: one running, one queued behind it (chunks last about a second)
+_WINDOW = 2  # chunks in flight per worker thread: one running, one queued behind it (chunks last about two seconds)
 _CONNECT_TIMEOUT = "30s"  # to reach an existing scheduler
 _RECOUNT = 2.0  # seconds between counts of the worker threads (a cluster may grow, e.g. SLURM jobs starting)
 

@@ -17,6 +17,17 @@ it one argument at a time (pickled, through a pipe) and reads the JSON reply
   the child's CPU time so far guards against the parent itself dying, and
   ``PR_SET_PDEATHSIG`` ends the child with the thread that forked it.
 
+A sequence of runs (:meth:`Sandbox.run_all`, what a batch chunk uses) is
+*pipelined*: as soon as the child has taken job k (its one-byte answer), job
+k + 1 is written to its pipe, so the child goes from one job to the next
+without waiting for the parent to read the reply and send again (the parent
+is asleep in ``select`` on the replies meanwhile, never polling); and the
+child, finding job k + 1 waiting when it finishes job k, takes it and writes
+job k's reply and job k + 1's one-byte answer in one ``write``: one wake-up of
+the parent per job, not two (each wake-up of the parent may preempt the child
+on its CPU).  Job k + 1's clock starts when job k's reply is read (the child
+is then free to take it).
+
 After any outcome other than ``"ok"`` the child is killed and the next run
 forks a fresh one, so a run that breached a limit never leaves a damaged
 process behind; the child is also renewed every :data:`RENEW_AFTER` runs.
@@ -25,8 +36,10 @@ the process group, reaped by someone else) is noticed before the next job is
 sent (``wait4(WNOHANG)``) or, dying just then, because it never takes the job:
 the child answers each job with one byte the moment it has read it, so a broken
 pipe or an end of file before that byte means the job never ran, and it is sent
-again to a fresh child.  Only a child that dies *while running* a job (after
-that byte) makes that job a ``"crash"`` (or ``"memory"``).  A fork of the parent inherits the
+again to a fresh child -- so is a job queued behind one that breached a limit
+(its child is killed before the parent reads that byte).  Only a child that
+dies *while running* a job (after that byte) makes that job a ``"crash"`` (or
+``"memory"``).  A fork of the parent inherits the
 :class:`Sandbox` object but not the child: there it is forgotten, never killed.
 ``seconds`` is the wall time of the run seen from the parent,
 ``cpu_seconds`` the child's CPU time for this run and ``peak_mb`` its peak
@@ -49,6 +62,7 @@ Linux (POSIX ``fork``, ``RLIMIT_AS``, ``/proc``).
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import gc
 import json
 import math
@@ -62,7 +76,7 @@ import tempfile
 import threading
 import time
 from dataclasses import replace
-from typing import Any, Callable
+from typing import Any, Callable, Iterable
 
 from .sandbox import CPU_GRACE, STDERR_TAIL, Outcome, address_space, decode_exit, die_with_parent, plain_fatal_signals
 
@@ -88,6 +102,9 @@ class Sandbox:
         self._runs = 0
         self._cpu = 0.0  # CPU seconds of the current child accounted to runs so far
         self._owner = os.getpid()  # the process that forked the child (a fork of it inherits this object)
+        self._reader = _Reader(-1)  # the child's replies, buffered
+        self._capacity = 0  # bytes the jobs pipe holds: a queued job must fit (or the write would block)
+        self._said_at = 0  # the child's stderr size when a queued job's clock started
 
     def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
         """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
@@ -100,50 +117,101 @@ class Sandbox:
         ('crash', 2)
         >>> box.close()
         """
-        if self.pid is not None and (self._runs >= RENEW_AFTER or not self._alive()):
+        return self.run_all([arg], timeout, memory_mb)[0]
+
+    def run_all(self, args: Iterable[Any], timeout: float | None = None,
+                memory_mb: float | None = None) -> list[Outcome]:
+        """The outcomes of ``fn(arg)`` for each of ``args``, in order: each exactly what :meth:`run`
+        gives for it (its own limits, its own measurements; a breach replaces the child and the next
+        argument runs in a fresh one), but *pipelined*: the next job is written to the child's pipe
+        as soon as the child has taken the current one (its one-byte answer), so the child goes from
+        one job to the next without waiting for the parent to read the reply and send again.  A
+        queued job the child never took (it died, breached a limit or was killed first) is sent again
+        to a fresh child; a job's clock starts when the child is free to take it (the previous reply
+        read), its ``timeout`` counts from there.
+
+        >>> box = Sandbox(abs)
+        >>> [o.value for o in box.run_all([-1, 2, -3], timeout=30)], box.forks
+        ([1, 2, 3], 1)
+        >>> [o.status for o in box.run_all([-1, "x", -3], timeout=30)], box.forks  # abs("x") raises
+        (['ok', 'crash', 'ok'], 2)
+        >>> box.close()
+        """
+        jobs = [_frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL)) for arg in args]
+        outcomes: list[Outcome] = []
+        queued = False  # jobs[k] is already in the current child's pipe (sent while k - 1 ran)
+        free_at = 0.0  # when the current child became free to take a queued job (its previous reply read)
+        try:
+            for k, job in enumerate(jobs):
+                outcome, queued, free_at = self._one(job, jobs[k + 1] if k + 1 < len(jobs) else None, queued,
+                                                     free_at, timeout, memory_mb)
+                outcomes.append(outcome)
+        except BaseException:  # (Ctrl-C in the parent): never leave a child holding a job nobody reads
             self.close()
-        job = _frame(pickle.dumps((arg, timeout, memory_mb), pickle.HIGHEST_PROTOCOL))
+            raise
+        return outcomes
+
+    def _one(self, job: bytes, after: bytes | None, queued: bool, free_at: float, timeout: float | None,
+             memory_mb: float | None) -> tuple[Outcome, bool, float]:
+        """Run ``job`` (already in the pipe if ``queued``), queueing ``after`` once it is taken;
+        (its outcome, whether ``after`` is queued in the current child, when that child became free)."""
         while True:
-            if self.pid is None:
-                self._spawn()
-            said_from = os.fstat(self._stderr.fileno()).st_size
-            start = time.monotonic()
+            if not queued:
+                if self.pid is not None and (self._runs >= RENEW_AFTER or not self._alive()):
+                    self.close()
+                if self.pid is None:
+                    self._spawn()
+                start = time.monotonic()
+                said_from = os.fstat(self._stderr.fileno()).st_size
+            else:
+                start, said_from = free_at, self._said_at
             deadline = None if timeout is None else start + timeout
             try:
-                _write_all(self._jobs, job)
-                taken, timed_out = _read_exact(self._replies, 1, deadline)  # the child's "job in hand"
+                if not queued:
+                    _write_all(self._jobs, job)
+                taken, timed_out = self._reader.read_exact(1, deadline)  # the child's "job in hand"
             except BrokenPipeError:  # the child is gone and never read the job
                 taken, timed_out = None, False
+            queued = False
             if taken is None and not timed_out:  # it died before it took the job: the job never ran
                 fresh = self._runs == 0
                 wait_status, _, peak = self._reap()
                 if not fresh:  # a fresh child runs it; one that dies before its first job is a crash
                     continue
                 return decode_exit(b"", wait_status, None, time.monotonic() - start, peak,  # no limit was set
-                                   self._said(said_from))
+                                   self._said(said_from)), False, 0.0
             break
         self._runs += 1
         reply = None
         if not timed_out:
-            reply, timed_out = _read_frame(self._replies, deadline)
-        seconds = time.monotonic() - start
+            if after is not None and self._runs < RENEW_AFTER and len(after) <= self._capacity:
+                try:  # the next job waits in the pipe (which is empty: the child has read this one whole)
+                    _write_all(self._jobs, after)
+                    queued = True
+                except BrokenPipeError:  # the child died: this job's reply says how; the next is resent
+                    pass
+            reply, timed_out = self._reader.read_frame(deadline)
+        now = time.monotonic()
+        seconds = now - start
         if timed_out:
             os.kill(self.pid, signal.SIGKILL)
         if reply is None:  # killed at the deadline, or died by itself
             wait_status, cpu, peak = self._reap()
             if timed_out:
                 return Outcome("timeout", None, seconds, peak, f"stopped after {timeout:g} s (the --timeout limit)",
-                               cpu)
+                               cpu), False, 0.0
             return replace(decode_exit(b"", wait_status, memory_mb, seconds, peak, self._said(said_from)),
-                           cpu_seconds=cpu)
+                           cpu_seconds=cpu), False, 0.0
         answer = json.loads(reply)
         cpu, peak = answer["cpu"], answer["peak"]
         self._cpu += cpu
         if "ok" in answer:
-            return Outcome("ok", answer["ok"], seconds, peak, cpu_seconds=cpu)
-        self.close()  # a breach or a bug: never reuse that process
+            if queued:
+                self._said_at = os.fstat(self._stderr.fileno()).st_size
+            return Outcome("ok", answer["ok"], seconds, peak, cpu_seconds=cpu), queued, now
+        self.close()  # a breach or a bug: never reuse that process (a queued job is resent to the next)
         status = "memory" if "memory" in answer else "crash"
-        return Outcome(status, None, seconds, peak, answer[status], cpu_seconds=cpu)
+        return Outcome(status, None, seconds, peak, answer[status], cpu_seconds=cpu), False, 0.0
 
     def close(self) -> None:
         """Kill and reap the child, if any; the next run forks a new one.
@@ -178,6 +246,7 @@ class Sandbox:
         os.close(jobs_r)
         os.close(replies_w)
         self.pid, self._jobs, self._replies, self._owner = pid, jobs_w, replies_r, os.getpid()
+        self._reader, self._capacity = _Reader(replies_r), _pipe_capacity(jobs_w)
         self.forks += 1
         self._runs, self._cpu = 0, 0.0
 
@@ -257,13 +326,21 @@ def _serve(fn: Callable[[Any], Any], jobs: int, replies: int) -> None:
         die_with_parent()
         _settle()
         proc = _ProcSelf()
-        while True:
-            job, _ = _read_frame(jobs, None)
-            if job is None:
-                break
+        reader = _Reader(jobs)
+        job, _ = reader.read_frame(None)
+        if job is not None:
             _write_all(replies, _TAKEN)  # from here on a death is this job's
+        while job is not None:
             arg, timeout, memory_mb = pickle.loads(job)
-            _write_all(replies, _frame(_one(fn, arg, timeout, memory_mb, proc)))
+            reply = _frame(_one(fn, arg, timeout, memory_mb, proc))
+            job = reader.ready_frame()  # pipelined: the next job is usually waiting already
+            if job is not None:  # the reply and "the next job in hand" in one write: one wake-up of the parent
+                _write_all(replies, reply + _TAKEN)
+                continue
+            _write_all(replies, reply)
+            job, _ = reader.read_frame(None)
+            if job is not None:
+                _write_all(replies, _TAKEN)
     except BaseException:
         code = 3
     finally:
@@ -391,26 +468,61 @@ def _write_all(fd: int, data: bytes) -> None:
         view = view[os.write(fd, view):]
 
 
-def _read_exact(fd: int, size: int, deadline: float | None) -> tuple[bytes | None, bool]:
-    """``size`` bytes from ``fd``: (data, False); (None, False) at end of file (the writer died);
-    (None, True) at the deadline."""
-    buf = bytearray()
-    while len(buf) < size:
-        if deadline is not None:
-            ready, _, _ = select.select([fd], [], [], max(deadline - time.monotonic(), 0))
-            if not ready:
-                return None, True
-        chunk = os.read(fd, min(size - len(buf), 1 << 20))
-        if not chunk:
-            return None, False
-        buf += chunk
-    return bytes(buf), False
+def _pipe_capacity(fd: int) -> int:
+    """How many bytes the pipe ``fd`` holds (Linux ``F_GETPIPE_SZ``; POSIX guarantees PIPE_BUF)."""
+    try:
+        return fcntl.fcntl(fd, fcntl.F_GETPIPE_SZ)
+    except (OSError, AttributeError):
+        return select.PIPE_BUF
 
 
-def _read_frame(fd: int, deadline: float | None) -> tuple[bytes | None, bool]:
-    """One frame from ``fd``: (payload, False); (None, False) at end of file (also mid-frame: the
-    writer died); (None, True) at the deadline."""
-    header, timed_out = _read_exact(fd, _HEADER.size, deadline)
-    if header is None:
-        return None, timed_out
-    return _read_exact(fd, _HEADER.unpack(header)[0], deadline)
+class _Reader:
+    """Exact reads from a pipe through a buffer: one ``read`` takes whatever is there (a reply and
+    the next job's one-byte answer, a job's header and payload), so a frame costs one system call,
+    not two or three.  With a deadline the wait is a ``select`` on the descriptor: the process
+    sleeps until the child writes, dies or the deadline passes (never a polling loop)."""
+
+    def __init__(self, fd: int):
+        self.fd = fd
+        self.buf = bytearray()
+
+    def read_exact(self, size: int, deadline: float | None) -> tuple[bytes | None, bool]:
+        """``size`` bytes: (data, False); (None, False) at end of file (the writer died);
+        (None, True) at the deadline."""
+        while len(self.buf) < size:
+            if deadline is not None:
+                ready, _, _ = select.select([self.fd], [], [], max(deadline - time.monotonic(), 0))
+                if not ready:
+                    return None, True
+            chunk = os.read(self.fd, max(size - len(self.buf), 1 << 16))
+            if not chunk:
+                return None, False
+            self.buf += chunk
+        data = bytes(self.buf[:size])
+        del self.buf[:size]
+        return data, False
+
+    def ready_frame(self) -> bytes | None:
+        """A whole frame if one is here already (buffered, or in the pipe), without waiting; else None
+        (also at end of file or on an error: a blocking :meth:`read_frame` then says which)."""
+        try:
+            while True:
+                if len(self.buf) >= _HEADER.size and len(self.buf) >= _HEADER.size + _HEADER.unpack_from(self.buf)[0]:
+                    return self.read_frame(None)[0]
+                ready, _, _ = select.select([self.fd], [], [], 0)
+                if not ready:
+                    return None
+                chunk = os.read(self.fd, 1 << 16)
+                if not chunk:
+                    return None
+                self.buf += chunk
+        except (OSError, ValueError):
+            return None
+
+    def read_frame(self, deadline: float | None) -> tuple[bytes | None, bool]:
+        """One frame: (payload, False); (None, False) at end of file (also mid-frame: the writer
+        died); (None, True) at the deadline."""
+        header, timed_out = self.read_exact(_HEADER.size, deadline)
+        if header is None:
+            return None, timed_out
+        return self.read_exact(_HEADER.unpack(header)[0], deadline)

@@ -30,7 +30,7 @@ import sys
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any, Sequence
 
 from ...core.encode import dumps, encode_real
 from ...core.real_algebraic import RealAlgebraic
@@ -117,13 +117,17 @@ def run_task(task: Task, limits: Limits) -> dict:
     >>> run_task(Task("bad", "certify", error="bad.json: cannot read"), Limits())["status"]
     'error'
     """
-    return _run(task, limits, lambda job, timeout, memory_mb: run_limited(_solve, job, timeout, memory_mb))
+    if task.error:
+        return _unreadable(task)
+    return _record(task, run_limited(_solve, (task, limits), limits.timeout, limits.memory_mb))
 
 
 def run_chunk(tasks: Sequence[Task], limits: Limits) -> list[dict]:
     """The records of ``tasks``, in order, each run under ``limits`` as :func:`run_task` runs it,
     but one after another in this thread's long-lived sandbox (:mod:`.resident`): one fork for
-    the whole chunk (and for every later chunk of this thread), not one per task.  A task that
+    the whole chunk (and for every later chunk of this thread), not one per task, and pipelined
+    (:meth:`.resident.Sandbox.run_all`: the next task waits in the child's pipe while one runs,
+    so the child never waits for this thread between tasks).  A task that
     breaches a limit is recorded, the sandbox is replaced, and the rest of the chunk runs.  The
     records are :func:`run_task`'s, exact values and all; only the measurements differ.
 
@@ -133,8 +137,9 @@ def run_chunk(tasks: Sequence[Task], limits: Limits) -> list[dict]:
     ...  for r in run_chunk(chunk, Limits(timeout=60))]
     [('t1', 'ok', '2'), ('t2', 'ok', '2'), ('bad', 'error', None)]
     """
-    box = chunk_sandbox()
-    return [_run(task, limits, box.run) for task in tasks]
+    runnable = [task for task in tasks if not task.error]
+    outcomes = iter(chunk_sandbox().run_all([(task, limits) for task in runnable], limits.timeout, limits.memory_mb))
+    return [_unreadable(task) if task.error else _record(task, next(outcomes)) for task in tasks]
 
 
 def chunk_sandbox() -> Sandbox:
@@ -147,11 +152,15 @@ def chunk_sandbox() -> Sandbox:
     return resident(_solve)
 
 
-def _run(task: Task, limits: Limits, runner: Callable[..., Outcome]) -> dict:
+def _unreadable(task: Task) -> dict:
+    """The record of a task whose input could not be read (nothing runs)."""
+    return {"id": task.id, "kind": task.kind, "source": task.source, "status": "error", "outcome": "bad_input",
+            "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
+
+
+def _record(task: Task, outcome: Outcome) -> dict:
+    """The record of a task from the outcome of its run."""
     head = {"id": task.id, "kind": task.kind, "source": task.source}
-    if task.error:
-        return {**head, "status": "error", "outcome": "bad_input", "error": task.error, "seconds": 0.0, "peak_mb": 0.0}
-    outcome = runner((task, limits), limits.timeout, limits.memory_mb)
     record = dict(outcome.value) if outcome.status == "ok" else {
         "status": "error" if outcome.status == "crash" else outcome.status, "outcome": "error",
         "error": outcome.message}

@@ -12,7 +12,7 @@ import random
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exactinv.interfaces.batch.chunks import ChunkSizer
+from exactinv.interfaces.batch.chunks import FIRST, FLOOR_SECONDS, SHARE, TARGET_SECONDS, ChunkSizer
 from exactinv.interfaces.batch.corpus import Task
 from exactinv.interfaces.batch.task import Limits, run_chunk, run_task
 
@@ -26,25 +26,43 @@ SEGMENT = {"G": [[1], [-1]], "b": [1, 1]}
 def test_chunks_cover_the_corpus_and_respect_the_fair_share(total, threads, durations):
     sizer = ChunkSizer()
     sizer.observe({"seconds": d} for d in durations)
+    mean = max(sum(durations) / len(durations), 1e-4) if durations else None
     remaining, sizes = total, []
     while remaining:
         size = sizer.next_size(remaining, threads)
         assert 1 <= size <= remaining
-        assert size <= max(1, -(-remaining // (threads * 8)))  # never more than the fair share of what is left
-        if durations and sum(durations) > 0:
-            assert size * (sum(durations) / len(durations)) <= 1.0 or size == 1  # about a second at most
+        if mean is None:
+            assert size == min(FIRST, remaining)
+        else:
+            fair = -(-remaining // (threads * SHARE))
+            floor = max(int(FLOOR_SECONDS / mean), 1)
+            # never more than the fair share of what is left, unless that is under the floor's length
+            assert size <= max(fair, floor)
+            assert size == remaining or size >= floor  # never under the floor while more is left
+            assert size * mean <= TARGET_SECONDS or size == 1  # about two seconds at most
         sizes.append(size)
         remaining -= size
     assert sum(sizes) == total
+
+
+def test_the_tail_of_a_corpus_goes_in_chunks_of_a_quarter_second_not_one_by_one():
+    sizer = ChunkSizer()
+    sizer.observe([{"seconds": 0.02}] * 10)  # 20 ms problems: the floor is 12 of them
+    remaining, sizes = 1000, []
+    while remaining:
+        sizes.append(sizer.next_size(remaining, 2))
+        remaining -= sizes[-1]
+    assert sizes[0] == 100 and min(sizes[:-1]) == 12 and sizes[-1] >= 1  # 2 s chunks first, never one by one
+    assert len(sizes) <= 30 and sizes == sorted(sizes, reverse=True)
 
 
 def test_chunk_size_follows_the_measured_duration():
     sizer = ChunkSizer()
     assert sizer.next_size(10**6, 2) == 2  # nothing measured
     sizer.observe([{"seconds": 0.01}] * 10)
-    assert sizer.next_size(10**6, 2) == 100  # 100 problems of 10 ms: a second
+    assert sizer.next_size(10**6, 2) == 200  # 200 problems of 10 ms: two seconds
     sizer.observe([{"seconds": 0.19}] * 10)  # the mean is now 0.1 s
-    assert sizer.next_size(10**6, 2) == 10
+    assert sizer.next_size(10**6, 2) == 20
     sizer.observe([{"seconds": "x"}, {}, {"seconds": float("inf")}])  # no measurement: ignored
     assert sizer.count == 20
 

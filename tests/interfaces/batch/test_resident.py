@@ -6,10 +6,12 @@ completes; each run's limit and measurements are its own."""
 
 from __future__ import annotations
 
+import fcntl
 import gc
 import os
 import signal
 import time
+from fractions import Fraction
 
 import flint
 import pytest
@@ -48,6 +50,17 @@ def _work(job):
         return object()
     if kind == "gc":  # what the child's collector walks, and who watches it
         return [gc.get_freeze_count(), len(gc.callbacks), len(gc.get_objects())]
+    if kind == "len":
+        return len(x)
+    if kind == "deaf":  # close the child's end of the jobs pipe: it replies, then cannot read the next job
+        for fd in map(int, os.listdir("/proc/self/fd")):
+            try:
+                pipe = os.readlink(f"/proc/self/fd/{fd}").startswith("pipe:")
+                if fd > 2 and pipe and fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE == os.O_RDONLY:
+                    os.close(fd)
+            except OSError:
+                pass
+        return os.getpid()
     if kind == "spin":  # about x seconds of CPU
         end = time.process_time() + x
         while time.process_time() < end:
@@ -260,5 +273,141 @@ def test_a_child_that_cannot_take_its_first_job_is_a_crash_not_a_loop(monkeypatc
     try:
         out = box.run(("square", (1, 2)), timeout=30, memory_mb=100)
         assert out.status == "crash" and "code 7" in out.message and box.forks == 1
+    finally:
+        box.close()
+
+
+# --- run_all: the pipelined protocol (job k + 1 in the pipe while job k runs) ---------------------
+
+def test_run_all_is_run_one_by_one_in_one_child():
+    box = Sandbox(_work)
+    try:
+        jobs = [("square", (k, 7)) for k in range(1, 30)] + [("pid", None)] * 5
+        outcomes = box.run_all(jobs, timeout=30)
+        assert [o.value for o in outcomes[:29]] == [str(Fraction(k, 7) ** 2) for k in range(1, 30)]
+        assert len({o.value for o in outcomes[29:]}) == 1 and box.forks == 1
+        assert all(o.status == "ok" and o.seconds > 0 for o in outcomes)
+    finally:
+        box.close()
+
+
+@pytest.mark.parametrize("culprit, memory_mb, status", [
+    (("forever", None), None, "timeout"), (("bytes", 2 * 10**9), 200, "memory"), (("flint", 10**10), 200, "memory"),
+    (("tls", None), 200, "memory"), (("segv", None), None, "crash"), (("raise", "x"), 200, "crash")])
+def test_a_breach_mid_pipeline_is_the_culprits_and_the_queued_job_runs_in_a_fresh_child(culprit, memory_mb, status):
+    """The culprit is the job the child had taken (its one-byte answer); the job queued behind it
+    in the pipe was never taken by the dead child, so it is resent, and the rest completes."""
+    box = Sandbox(_work)
+    try:
+        jobs = [("pid", None), ("square", (1, 2)), culprit, ("pid", None), ("square", (2, 3)), ("pid", None)]
+        outcomes = box.run_all(jobs, timeout=2, memory_mb=memory_mb)
+        assert [o.status for o in outcomes] == ["ok", "ok", status, "ok", "ok", "ok"], [o.message for o in outcomes]
+        assert outcomes[1].value == "1/4" and outcomes[4].value == "4/9"
+        assert outcomes[0].value != outcomes[3].value == outcomes[5].value and box.forks == 2
+    finally:
+        box.close()
+
+
+def test_a_child_that_dies_before_taking_the_queued_job_never_has_it_recorded_against_it():
+    """'deaf' replies, then the child cannot read its pipe and exits: the job queued behind it was
+    never taken (no one-byte answer), so it runs in a fresh child and is ok."""
+    box = Sandbox(_work)
+    try:
+        outcomes = box.run_all([("deaf", None), ("square", (3, 4)), ("pid", None)], timeout=30)
+        assert [(o.status, o.message) for o in outcomes] == [("ok", "")] * 3
+        assert outcomes[1].value == "9/16" and outcomes[2].value != outcomes[0].value and box.forks == 2
+    finally:
+        box.close()
+
+
+def test_each_pipelined_job_has_its_own_clock():
+    """Three jobs of 0.6 s of CPU under a 1.5 s limit: the queued job's clock starts when the
+    child is free to take it, not when it was written to the pipe (0.6 s earlier)."""
+    box = Sandbox(_work)
+    try:
+        outcomes = box.run_all([("spin", 0.6)] * 3, timeout=1.5)
+        assert [o.status for o in outcomes] == ["ok"] * 3 and box.forks == 1
+        assert all(0.55 < o.seconds < 1.5 for o in outcomes) and all(o.cpu_seconds >= 0.59 for o in outcomes)
+    finally:
+        box.close()
+
+
+def test_jobs_larger_than_the_pipe_are_sent_when_the_child_is_free():
+    box = Sandbox(_work)
+    try:
+        big = "x" * (box_capacity() * 3)
+        outcomes = box.run_all([("len", big), ("len", big), ("len", "abc")], timeout=30)
+        assert [o.value for o in outcomes] == [len(big), len(big), 3] and box.forks == 1
+    finally:
+        box.close()
+
+
+def box_capacity() -> int:
+    read, write = os.pipe()
+    try:
+        return fcntl.fcntl(write, fcntl.F_GETPIPE_SZ)
+    finally:
+        os.close(read)
+        os.close(write)
+
+
+def test_run_all_renews_the_child_after_many_runs(monkeypatch):
+    from exactinv.interfaces.batch import resident
+
+    monkeypatch.setattr(resident, "RENEW_AFTER", 5)
+    box = Sandbox(_work)
+    try:
+        pids = [o.value for o in box.run_all([("pid", None)] * 12, timeout=30)]
+        assert pids[:5] == [pids[0]] * 5 and pids[5:10] == [pids[5]] * 5 and len(set(pids)) == 3
+    finally:
+        box.close()
+
+
+def test_an_interrupt_in_the_parent_mid_pipeline_leaves_no_child_holding_a_job():
+    """Ctrl-C (here a SIGALRM handler raising KeyboardInterrupt) while the parent waits on a job with
+    another queued behind it: the child is killed and reaped, and the next runs start afresh --
+    no stale reply or one-byte answer of the interrupted jobs is ever read as theirs."""
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    box = Sandbox(_work)
+    old = signal.signal(signal.SIGALRM, interrupt)
+    try:
+        first = box.run(("pid", None), timeout=30).value
+        signal.setitimer(signal.ITIMER_REAL, 0.3)
+        with pytest.raises(KeyboardInterrupt):
+            box.run_all([("spin", 2.0), ("square", (1, 2)), ("spin", 2.0)], timeout=30)
+        assert box.pid is None
+        with pytest.raises(ChildProcessError):
+            os.waitpid(first, os.WNOHANG)  # killed and reaped
+        outcomes = box.run_all([("square", (5, 6)), ("pid", None)], timeout=30)
+        assert [o.value for o in outcomes][0] == "25/36" and outcomes[1].value != first and box.forks == 2
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+        box.close()
+
+
+def test_pipelined_the_parent_wakes_once_per_job_one_by_one_twice():
+    """The child that finds the next job waiting writes its reply and the next job's one-byte answer
+    in one write, so the parent sleeps (a voluntary context switch) once per job; run one by one,
+    it sleeps for the answer and again for the reply.  Jobs of 20 ms of CPU: the parent is asleep
+    long before each reply."""
+    import resource
+
+    def sleeps() -> int:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_nvcsw
+
+    box = Sandbox(_work)
+    try:
+        box.run(("pid", None), timeout=30)
+        before = sleeps()
+        piped = box.run_all([("spin", 0.02)] * 40, timeout=30)
+        pipelined = (sleeps() - before) / 40
+        before = sleeps()
+        single = [box.run(("spin", 0.02), timeout=30) for _ in range(40)]
+        one_by_one = (sleeps() - before) / 40
+        assert [o.status for o in piped + single] == ["ok"] * 80 and box.forks == 1
+        assert pipelined <= 1.3 and one_by_one >= 1.7, (pipelined, one_by_one)
     finally:
         box.close()
