@@ -8,7 +8,7 @@ import pytest
 import exactinv as ei
 from exactinv.core import tags
 from exactinv.core.tags import BisectionStep, CounterexampleKind
-from exactinv.lp.hint import LPStatus
+from exactinv.lp.hint_types import LPStatus
 from exactinv.lp.solver import LPPath
 from exactinv.model.record import certificate
 from exactinv.thresholds.bisection import paper_bisection
