@@ -104,7 +104,7 @@ class Sandbox:
         self._owner = os.getpid()  # the process that forked the child (a fork of it inherits this object)
         self._reader = _Reader(-1)  # the child's replies, buffered
         self._capacity = 0  # bytes the jobs pipe holds: a queued job must fit (or the write would block)
-        self._said_at = 0  # the child's stderr size when a queued job's clock started
+        self._said_at = 0  # the child's stderr size when a queued job was written to its pipe
 
     def run(self, arg: Any, timeout: float | None = None, memory_mb: float | None = None) -> Outcome:
         """``fn(arg)`` in the child, stopped after ``timeout`` seconds and denied memory beyond
@@ -185,9 +185,13 @@ class Sandbox:
         reply = None
         if not timed_out:
             if after is not None and self._runs < RENEW_AFTER and len(after) <= self._capacity:
+                # the next job's stderr starts here: the child is busy with this job, so nothing of the next is
+                # written yet (read after this job's reply, the size may already hold the next job's first words:
+                # a queued job that wrote its failure at once was decoded without it)
+                said_at = os.fstat(self._stderr.fileno()).st_size
                 try:  # the next job waits in the pipe (which is empty: the child has read this one whole)
                     _write_all(self._jobs, after)
-                    queued = True
+                    queued, self._said_at = True, said_at
                 except BrokenPipeError:  # the child died: this job's reply says how; the next is resent
                     pass
             reply, timed_out = self._reader.read_frame(deadline)
@@ -206,8 +210,6 @@ class Sandbox:
         cpu, peak = answer["cpu"], answer["peak"]
         self._cpu += cpu
         if "ok" in answer:
-            if queued:
-                self._said_at = os.fstat(self._stderr.fileno()).st_size
             return Outcome("ok", answer["ok"], seconds, peak, cpu_seconds=cpu), queued, now
         self.close()  # a breach or a bug: never reuse that process (a queued job is resent to the next)
         status = "memory" if "memory" in answer else "crash"

@@ -291,6 +291,31 @@ def test_run_all_is_run_one_by_one_in_one_child():
         box.close()
 
 
+def test_a_queued_job_that_fails_at_once_keeps_its_stderr(monkeypatch):
+    """Found by CI (stage 3, a loaded machine): glibc's thread-local abort queued behind a job was decoded as a
+    plain crash ("code 127 without a result"), because the parent took the stderr size where the queued job's
+    output starts after reading the previous reply, by which time the child had already taken the job and
+    written.  A parent slowed after each reply makes that order certain; the size is now taken before the
+    job is queued."""
+    from exactinv.interfaces.batch import resident
+
+    read_frame = resident._Reader.read_frame
+
+    def slow(self, deadline):
+        frame = read_frame(self, deadline)
+        time.sleep(0.3)  # the child takes the queued job and writes meanwhile
+        return frame
+
+    monkeypatch.setattr(resident._Reader, "read_frame", slow)
+    box = Sandbox(_work)
+    try:
+        outcomes = box.run_all([("square", (1, 2)), ("tls", None), ("square", (1, 3))], timeout=30, memory_mb=200)
+        assert [o.status for o in outcomes] == ["ok", "memory", "ok"], [o.message for o in outcomes]
+        assert "thread-local" in outcomes[1].message
+    finally:
+        box.close()
+
+
 @pytest.mark.parametrize("culprit, memory_mb, status", [
     (("forever", None), None, "timeout"), (("bytes", 2 * 10**9), 200, "memory"), (("flint", 10**10), 200, "memory"),
     (("tls", None), 200, "memory"), (("segv", None), None, "crash"), (("raise", "x"), 200, "crash")])
