@@ -21,6 +21,7 @@ from radius_reference import admissible, from_partial_fractions
 
 import exactinv as ei
 from exactinv.certificates import certificate
+from exactinv.monotonicity import kernel_price
 from exactinv_check import budget, check, poly_arithmetic, polys
 from exactinv_check.claims_radius import d_polynomials, kronecker_mul
 from exactinv_check.poly_arithmetic import power
@@ -129,11 +130,12 @@ def test_lp_route_pade_certificates_are_verified(n, m, method):
 
 
 @pytest.mark.workload  # a kernel workload (about 40-60 s of CPU): left out at the lowest versions
-def test_radius_of_degree_272_is_certified_and_verified():
+def test_radius_of_degree_272_is_certified_and_verified(monkeypatch):
     """The line_poles example the engine refused ("degree 272 > 200, beyond the kernel's polynomial bound"): rho is
     the first end of c_135, a root of an irreducible polynomial of degree 272 with 1044-bit coefficients."""
     p, y, b_star, u, v = F(13, 4), F(1, 4), F(15, 4), F(-5, 4), F(5, 3)
     g, h = from_partial_fractions([((p, F(0)), (b_star, F(0))), ((p, y), (u, v)), ((p, -y), (u, -v))])
+    monkeypatch.setattr(kernel_price, "TRIAL_SECONDS", float("inf"))  # the kernel runs once, here, with its work measured
     r = ei.absolute_monotonicity_radius(ei.methods.rational(g, h))
     assert r.reason == "coefficient" and r.binding == 135 and r.value.poly.degree() == 272
     kernel_alone = getattr(check, "unvalidated", check)  # the schema validation of the 9 MB certificate takes minutes
@@ -207,7 +209,7 @@ def test_descartes_is_charged_by_the_largest_coefficient():
 
 
 @pytest.mark.workload  # a kernel workload (about 10-20 s of CPU): left out at the lowest versions
-def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget():
+def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget(monkeypatch):
     """benchmarks/radius_undecided.py --family line-irrational, seed 1, case 162 (p* = 2 - sqrt 2... a pair on its
     line, coefficient route, binding d_79 of degree 400 with 1441-bit coefficients): the kernel refused it up front
     (d_0 .. d_79 estimated 1.35e9 > the scan gate 5e8), and past the gate spent 4.2e9 (27 s) -- two isolations of d_79
@@ -216,6 +218,7 @@ def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget():
     g = [F(1), F(-708530257, 418834374), F(171180235, 179500446), F(-30281708, 209417187), F(-27387536, 628251561),
          F(1139520, 69805729), F(-128, 90279)]
     h = [F(1), F(-76418, 30093), F(33271, 12897), F(-40064, 30093), F(33056, 90279), F(-512, 10031), F(256, 90279)]
+    monkeypatch.setattr(kernel_price, "TRIAL_SECONDS", float("inf"))  # the kernel runs once, here, with its work measured
     r = ei.absolute_monotonicity_radius(ei.methods.rational(g, h))
     assert r.reason == "coefficient" and r.binding == 79
     report = _verified(r.certificate)

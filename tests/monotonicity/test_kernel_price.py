@@ -46,6 +46,7 @@ def _random_degree_64(seed):
                                                   for _ in range(64)])
 
 
+@pytest.mark.workload  # the kernel spends its whole budget (about 8 s): stage 2 of CI only
 def test_a_certificate_past_the_gates_but_over_the_kernels_budget_is_undecided():
     """Session 5's residual: the engine answered this polynomial (rho from a coefficient) in about 1.5 s and the
     kernel refused the certificate after about 8 s of isolation, over its budget.  Now the engine, having spent
@@ -67,3 +68,12 @@ def test_a_kernel_rejection_of_an_engine_certificate_is_an_engine_bug_not_undeci
     assert kernel_tried(wrong, TRIAL_SECONDS / 2) is wrong  # a fast result is not tried (the rule, stated)
     with pytest.raises(ei.VerificationFailed, match="rejects the engine's certificate"):
         kernel_tried(wrong, TRIAL_SECONDS * 2)
+
+
+def test_a_slow_result_the_kernel_refuses_over_budget_is_undecided_naming_the_refusal():
+    """The rule of kernel_tried without the kernel's whole budget: Pade(1,3)'s result with its tail index raised
+    past the scan gate, as if the engine had spent long on it -- the kernel refuses it over budget at once."""
+    from exactinv.monotonicity.kernel_price import TRIAL_SECONDS, kernel_tried
+    over = replace(absolute_monotonicity_radius(ei.methods.pade(1, 3)), tail_index=2000)
+    with pytest.raises(ei.Undecided, match="refuses its certificate as over its budget"):
+        kernel_tried(over, TRIAL_SECONDS * 2)
