@@ -29,6 +29,7 @@ def _require(module: str) -> None:
         (pytest.fail if os.environ.get("CI") else pytest.skip)(message)
 
 
+@pytest.mark.heavy
 def test_docs_build_without_warnings(tmp_path):
     _require("sphinx")
     _require("myst_nb")

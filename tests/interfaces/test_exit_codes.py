@@ -28,6 +28,7 @@ UNDECIDED = {"rational": {"num": ["1", "-61/28", "53/21", "-107/84", "2/7", "-1/
                           "den": ["1", "-58/17", "157/34", "-64/17", "28/17", "-6/17", "1/34"]}}
 
 
+@pytest.mark.heavy
 def test_the_rule_reads_the_same_everywhere():
     readme = (ROOT / "README.md").read_text()
     section = readme[readme.index("## Command line"):]

@@ -71,6 +71,7 @@ def _big_witness_cert(bits=300, D=64, j=796):
 
 # ------------------------------------------------------------------ soundness
 
+@pytest.mark.heavy
 def test_genuine_bernstein_with_many_steps_still_verified():
     """The same family with faster dominance (a_k = 1 + 1/(100 + k)): 1197 steps, 1.35e9 word operations."""
     num, den = slow_bernstein(pairs=3, delta_den=100)

@@ -436,6 +436,7 @@ def test_polynomials_of_high_degree_are_verified_and_their_radius_is_exact():
 
 
 # ------------------------------------------------------------------ resource
+@pytest.mark.heavy
 def test_a_polynomial_with_long_coefficients_gets_a_verdict_within_the_promise():
     """The gate lets a polynomial's shifts through, so a forged degree-64 numerator with 600-digit coefficients
     reaches the series: its products are charged as they run, and the verdict (over budget) comes well inside the

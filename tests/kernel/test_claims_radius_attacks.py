@@ -213,6 +213,7 @@ def test_sign_at_zero_is_charged_as_it_runs():
     assert time.process_time() - start < 8
 
 
+@pytest.mark.heavy
 def test_a_long_witness_is_charged_more_than_its_price():
     """The whole recurrence for j = 1355 with 100-digit coefficients: charged several times its up-front price
     (about 2.4e8 + 1e8 for 7 s of CPU; the up-front price alone was 1e8)."""
@@ -278,6 +279,7 @@ def _gate_attempts():
             (prat, [F(1), F(-1, 2)], dict(value="1000000", reason="coefficient", attained=True, tail_index=190))]
 
 
+@pytest.mark.heavy
 def test_the_polynomial_gate_attempts_get_a_verdict_within_the_promise():
     """rt-gate (721b618's gate: a polynomial's division no longer charged).  No certificate under 1 MB ran past
     60 s of CPU: 38 certificates tried (polynomials of degree 3 to 64 with 5- to 4000-digit coefficients,

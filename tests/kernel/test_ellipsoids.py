@@ -385,6 +385,7 @@ def test_H2_large_forward_euler_condition_is_rejected_quickly():
 # Since the cost model's calibration (issue 22) the isolation is no longer refused by its size up front: it runs,
 # charged node by node, and the certificate's account stops it (over budget after about 22 s of CPU, measured):
 # a bounded verdict within the 60 s promise, no longer "quickly".
+@pytest.mark.heavy
 @pytest.mark.workload
 def test_H3_high_degree_method_with_long_coefficients_is_rejected_within_the_promise():
     rng = random.Random(1)

@@ -83,6 +83,7 @@ def _results(S, P, m):
 
 # ------------------------------------------------------------------ soundness
 
+@pytest.mark.heavy
 def test_the_kernel_accepts_every_certificate_the_engine_writes(capsys):
     rng = random.Random(7)
     written = undecided = 0

@@ -129,6 +129,7 @@ def test_lp_route_pade_certificates_are_verified(n, m, method):
     _verified(certificate(S, P, method, [V]))
 
 
+@pytest.mark.heavy
 @pytest.mark.workload  # a kernel workload (about 40-60 s of CPU): left out at the lowest versions
 def test_radius_of_degree_272_is_certified_and_verified(monkeypatch):
     """The line_poles example the engine refused ("degree 272 > 200, beyond the kernel's polynomial bound"): rho is
@@ -208,6 +209,7 @@ def test_descartes_is_charged_by_the_largest_coefficient():
     assert charged[1] > 2 * charged[0]  # (read from the ends, both were charged alike)
 
 
+@pytest.mark.heavy
 @pytest.mark.workload  # a kernel workload (about 10-20 s of CPU): left out at the lowest versions
 def test_the_line_irrational_coefficient_radius_is_verified_within_the_budget(monkeypatch):
     """benchmarks/radius_undecided.py --family line-irrational, seed 1, case 162 (p* = 2 - sqrt 2... a pair on its

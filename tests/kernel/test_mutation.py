@@ -153,6 +153,7 @@ def _claim_is_true(cert, claim):
 
 # ------------------------------------------------------------------ soundness
 
+@pytest.mark.heavy
 def test_accepted_mutants_are_true(capsys):
     rng = random.Random(20261122)
     tried = rejected = accepted_true = 0

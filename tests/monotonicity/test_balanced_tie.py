@@ -4,6 +4,7 @@ re-proved by the kernel and every radius checked against the slow exact referenc
 
 from fractions import Fraction as F
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from radius_reference import admissible, coefficients_at, from_partial_fractions
@@ -71,6 +72,7 @@ def test_outweighing_residues_are_not_a_balanced_tie():
     assert r.value < 1 and r.reason == "coefficient"
 
 
+@pytest.mark.heavy
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(R=st.integers(2, 9), kappa=st.fractions(min_value=F(1, 4), max_value=F(3, 2), max_denominator=4),
        shape=st.sampled_from(["pair", "negative+pair", "two pairs"]),

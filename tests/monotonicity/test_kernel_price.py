@@ -46,6 +46,7 @@ def _random_degree_64(seed):
                                                   for _ in range(64)])
 
 
+@pytest.mark.heavy
 @pytest.mark.workload  # the kernel spends its whole budget (about 8 s): stage 2 of CI only
 def test_a_certificate_past_the_gates_but_over_the_kernels_budget_is_undecided():
     """Session 5's residual: the engine answered this polynomial (rho from a coefficient) in about 1.5 s and the

@@ -215,6 +215,7 @@ def test_the_slowest_decaying_pair_off_the_line_is_undecided_for_f_and_says_why(
     assert not v.infinite and not v.finite and "non-real pair" in v.how
 
 
+@pytest.mark.heavy
 @pytest.mark.workload  # python-flint and the kernel only (python-flint is one version in both CI stages)
 @settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @example(p=F(7, 2), y=F(9, 4), b_star=F(1), u=F(1, 2), v=F(0), extra="real")  # CI failure (a): was Undecided

@@ -132,6 +132,7 @@ def polyhedral_problems(draw):
     return draw(systems(n)), P, draw(st.sampled_from(METHODS)), kind
 
 
+@pytest.mark.heavy
 @settings(max_examples=60, deadline=None)
 @given(polyhedral_problems())
 def test_every_accepting_route_gives_the_same_valid_set(problem):
