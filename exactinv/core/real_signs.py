@@ -97,42 +97,60 @@ def _newton(p: flint.fmpz_poly, lower: Fraction, upper: Fraction) -> RealAlgebra
     return None
 
 
-def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
+def interval_signs(M: flint.fmpq_mat | flint.fmpz_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
     """For each row of M (the coefficients, constant first, of a polynomial p): +1 if Descartes'
     rule proves p > 0 on the open interval (lo, hi) (hi None: (lo, oo)) or p = 0, -1 if it proves
     p < 0 there, 0 if it proves nothing.  All rows at once: p(lo + y) by one product with the
     Taylor-shift matrix, then for a finite hi = lo + H the coefficients of
     (1 + y)^d p(lo + H y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
-    (as in :func:`exactinv.core.polys.positive_below`).  Exact.
+    (as in :func:`exactinv.core.polys.positive_below`).  Exact: on integers (M's numerators and the
+    transform's, each over one positive common denominator, which changes no sign).
 
     >>> M = flint.fmpq_mat([[2, -3, 1], [-2, 0, 1], [0, 0, 0], [-1, 0, -1]])  # (x-1)(x-2), x^2-2, 0, -1-x^2
     >>> # (x-1)(x-2) > 0 and x^2 - 2 < 0 on (0, 1); beyond 2 every one keeps its sign
     >>> interval_signs(M, Fraction(0), Fraction(1)), interval_signs(M, Fraction(2), None)
     ([1, -1, 1, -1], [1, 1, 1, -1])
+    >>> interval_signs(flint.fmpz_mat([[2, -3, 1], [-2, 0, 1]]), Fraction(0), Fraction(1))
+    [1, -1]
     """
     W = M.ncols()
-    d = W - 1
-    x = flint.fmpq(lo.numerator, lo.denominator)
-    if hi is None:  # p(lo + y): row k of T is (lo + y)^k
-        base, one = flint.fmpq_poly([x, 1]), flint.fmpq_poly([1])
-    else:  # (1 + y)^d p(lo + H y/(1 + y)): row k is (lo + (lo + H) y)^k (1 + y)^(d - k)
-        H = hi - lo
-        base, one = flint.fmpq_poly([x, x + flint.fmpq(H.numerator, H.denominator)]), flint.fmpq_poly([1, 1])
-    rows = []
-    for k in range(W):
-        c = ((base ** k) * (one ** (d - k))).coeffs()
-        rows.extend(c + [0] * (W - len(c)))
-    T = flint.fmpq_mat(W, W, rows)
+    if isinstance(M, flint.fmpq_mat):
+        M = M.numer_denom()[0]  # a positive common denominator: the same signs
+    T = _descartes_matrix(W, lo, hi)
+    entries = (M * T).entries()
     out = []
-    numerators, _ = (M * T).numer_denom()  # a positive common denominator: the signs of the numerators
-    entries = numerators.entries()
     zero = flint.fmpz(0)  # fmpz against fmpz: compared in C
     for r in range(M.nrows()):
         row = entries[r * W:(r + 1) * W]
-        positive = any(c > zero for c in row)
-        negative = any(c < zero for c in row)
+        positive = negative = False
+        for c in row:
+            if c > zero:
+                positive = True
+            elif c < zero:
+                negative = True
         out.append(0 if positive and negative else -1 if negative else 1)
     return out
+
+
+def _descartes_matrix(W: int, lo: Fraction, hi: Fraction | None) -> flint.fmpz_mat:
+    """The W x W integer matrix T (times a positive integer) of :func:`interval_signs`: row k holds the
+    coefficients of (lo + y)^k (hi None), or of (lo + hi y)^k (1 + y)^(d - k), d = W - 1."""
+    d = W - 1
+    if hi is None:  # (a + q y)^k / q^k for lo = a/q: times q^d, row k is (a + q y)^k q^(d - k)
+        a, q = lo.numerator, lo.denominator
+        base, one = flint.fmpz_poly([a, q]), flint.fmpz_poly([q])
+    else:  # lo = a/q, hi = c/r: (lo + hi y)^k (1 + y)^(d-k) times (q r)^d: (a r + c q y)^k ((1 + y) q r)^(d-k)
+        a, q, c, r = lo.numerator, lo.denominator, hi.numerator, hi.denominator
+        base, one = flint.fmpz_poly([a * r, c * q]), flint.fmpz_poly([q * r, q * r])
+    rows: list = []
+    power, other = flint.fmpz_poly([1]), [flint.fmpz_poly([1])]
+    for _ in range(d):
+        other.append(other[-1] * one)
+    for k in range(W):
+        c = (power * other[d - k]).coeffs()
+        rows.extend(c + [0] * (W - len(c)))
+        power = power * base
+    return flint.fmpz_mat(W, W, rows)
 
 
 def _sign_at_algebraic(r: flint.fmpz_poly, alpha: RealAlgebraic) -> int:

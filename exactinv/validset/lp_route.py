@@ -243,20 +243,60 @@ class LPRouteCache:
 
 
 class _Basis:
-    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P: B^-T, x_B and the slacks
-    b - G x_B times a positive integer (exact integers: their signs and ratios are the slacks')."""
+    """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P, kept in integers: the
+    rows of G scaled to integers (row r times a positive lambda_r; the same P, the same x_B), B_int and
+    x_B, and the slacks b - G x_B times positive integers per row (their signs, and the ratios of the dual
+    simplex step's ratio test, are the slacks').  No inverse: B_int^-T C and the columns of B_int^-1 come from
+    exact solves when asked; B^-T itself (in Q, of the unscaled rows) only for a dual piece (:attr:`inv_t`)."""
 
-    __slots__ = ("rows", "inv_t", "x", "slack", "_inv_t_int")
+    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inv_t", "_inv_t_int", "_G_rows")
 
-    def __init__(self, rows: tuple[int, ...], inv_t: flint.fmpq_mat, x: flint.fmpq_mat, slack: list[flint.fmpz]):
-        self.rows, self.inv_t, self.x, self.slack = rows, inv_t, x, slack
+    def __init__(self, rows: tuple[int, ...], B: flint.fmpz_mat, x: flint.fmpq_mat, slack: list[flint.fmpz],
+                 G_rows: list):
+        self.rows, self._B, self.x, self.slack, self._G_rows = rows, B, x, slack, G_rows
+        self._Bt: flint.fmpz_mat | None = None
+        self._inv_t: flint.fmpq_mat | None = None
         self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
+
+    @property
+    def inv_t(self) -> flint.fmpq_mat:
+        """B^-T in Q (B: the rows of G as given), computed once when first asked."""
+        if self._inv_t is None:
+            n = len(self.rows)
+            self._inv_t = flint.fmpq_mat(n, n, [v for r in self.rows for v in self._G_rows[r]]).inv().transpose()
+        return self._inv_t
+
+    def transposed(self) -> flint.fmpz_mat:
+        """B_int^T (the scaled rows, transposed)."""
+        if self._Bt is None:
+            self._Bt = self._B.transpose()
+        return self._Bt
+
+    def components(self, C: flint.fmpz_mat) -> flint.fmpz_mat:
+        """B_int^-T C times a positive integer, for an integer matrix C: one exact solve.  Row l is
+        B^-T C's row l times lambda_(rows[l]) and that integer, so its signs and roots are B^-T C's."""
+        return self.transposed().solve(C).numer_denom()[0]
+
+    def column(self, l: int) -> flint.fmpz_mat:
+        """Column l of B_int^-1 times a positive integer (one exact solve B_int d = e_l): column l of B^-1
+        times a positive number (B = Lambda^-1 B_int, B^-1 = B_int^-1 Lambda)."""
+        n = len(self.rows)
+        return self._B.solve(flint.fmpz_mat(n, 1, [int(k == l) for k in range(n)])).numer_denom()[0]
 
     def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
         """B^-T d for d = d_int / d_den (d_den > 0), exactly, when it is >= 0; else None.  The sign test runs
-        on integers (B^-T = M / den with M integral, den > 0), the division only for a basis that serves."""
+        on integers (B^-T = M / den with M integral, den > 0), the division only for a basis that serves.
+        Without B^-T at hand, one exact solve B^T y = d (no inverse)."""
+        if self._inv_t_int is None and self._inv_t is not None:
+            self._inv_t_int = self._inv_t.numer_denom()
         if self._inv_t_int is None:
-            self._inv_t_int = self.inv_t.numer_denom()
+            n = len(self.rows)
+            Bt = flint.fmpq_mat(n, n, [v for r in self.rows for v in self._G_rows[r]]).transpose()
+            try:
+                y = Bt.solve(flint.fmpq_mat(d_int) / d_den).entries()
+            except ZeroDivisionError:  # cannot happen: B is nonsingular
+                return None
+            return None if any(v < 0 for v in y) else y
         M, den = self._inv_t_int
         Y = (M * d_int).entries()
         if any(v < 0 for v in Y):
@@ -333,10 +373,17 @@ class _Problem:
         G_float = _floats(self.G.entries())
         self.G_float = None if G_float is None else G_float.reshape(self.m, self.n)
         self.float_lp = self.hint_model()
-        G_num, G_den = self.G.numer_denom()
-        b_num, b_den = self.b.numer_denom()
-        # G and b integral (the slacks of a vertex then come from integer products): G and b as fmpz_mat
-        self.Gb_int = (G_num, b_num) if G_den == 1 and b_den == 1 else None
+        # each row of (G | b) times a positive integer lambda_r (1 for an integral row): the same P, the same
+        # vertices, integer bases; the slacks and a basis's components only scale by positive numbers
+        G_int_rows, b_int_list = [], []
+        for g, beta in zip(self.G_rows, cs.b):
+            lam = math.lcm(beta.denominator, *(int(v.q) for v in g))
+            G_int_rows.append([int(v.p) * (lam // int(v.q)) for v in g])
+            b_int_list.append(beta.numerator * (lam // beta.denominator))
+        self.G_int_rows, self.b_int_list = G_int_rows, b_int_list
+        self.Gb_int = (flint.fmpz_mat(G_int_rows) if self.m else flint.fmpz_mat(0, self.n),
+                       flint.fmpz_mat(self.m, 1, b_int_list))
+        self._components: dict[int, tuple[flint.fmpq_mat, flint.fmpz_mat]] = {}
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
@@ -374,28 +421,39 @@ class _Problem:
         return self._directions[rows]
 
     def basis(self, rows: tuple[int, ...]) -> _Basis | None:
-        """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached."""
+        """The basis of these rows when B is nonsingular and x_B = B^-1 b_B is in P; else None.  Cached.
+        Integers throughout: B_int x = b_int (one exact solve), the slacks b_int x_den - G_int x_num."""
         if rows not in self._bases:
-            B = flint.fmpq_mat(self.n, self.n, [v for r in rows for v in self.G_rows[r]])
+            G_int, b_int = self.Gb_int
+            B = flint.fmpz_mat(self.n, self.n, [v for r in rows for v in self.G_int_rows[r]])
             out = None
             try:
-                inv = B.inv()
+                x = B.solve(flint.fmpz_mat(self.n, 1, [self.b_int_list[r] for r in rows]))
             except ZeroDivisionError:
-                inv = None
-            if inv is not None:
-                x = inv * flint.fmpq_mat(self.n, 1, [self.cs.b[r] for r in rows])
-                if self.Gb_int is not None:  # x_den (b - G x) = x_den b - G x_num, on integers
-                    x_num, x_den = x.numer_denom()
-                    G_int, b_int = self.Gb_int
-                    slack = (b_int * x_den - G_int * x_num).entries()
-                else:
-                    slack = (self.b - self.G * x).numer_denom()[0].entries()
-                out = _Basis(rows, inv.transpose(), x, slack)
+                x = None
+            if x is not None:
+                x_num, x_den = x.numer_denom()
+                out = _Basis(rows, B, x, (b_int * x_den - G_int * x_num).entries(), self.G_rows)
                 if not out.feasible:
                     out = None
             self._bases[rows] = out
         return self._bases[rows]
 
+    def components_matrix(self, C: flint.fmpq_mat) -> flint.fmpz_mat:
+        """The n x W integer matrix whose row l holds, times one positive integer, the coefficients of
+        c_i's component l times D (c_i(h) = C (1, h, ..)^T): B_int^-T of it gives z_B's components up to
+        positive factors per row.  Cached per objective."""
+        found = self._components.get(id(C))
+        if found is None or found[0] is not C:
+            Z = C
+            if self.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
+                Dm = self.D.coeffs()
+                W0, W = C.ncols(), C.ncols() + len(Dm) - 1
+                Z = C * flint.fmpq_mat(W0, W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
+                                               for k in range(W0) for m in range(W)])
+            found = (C, Z.numer_denom()[0])  # a positive common denominator: the same signs and roots
+            self._components[id(C)] = found
+        return found[1]
 
 class _GuardedExact:
     """The exact LP chain for a dual piece's direction d_k, declined (None) when the float LP at d_k gave no
@@ -500,9 +558,8 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     with c_i^T d D = -z_leaving > 0 just past the breakpoint: the one candidate is that ray (a
     :class:`_Ray`), the certificate of a ray piece."""
     P.pivots += 1
-    d = flint.fmpq_mat(P.n, 1, [-basis.inv_t[leaving, k] for k in range(P.n)])
-    numerators, _ = (P.G * d).numer_denom()  # G d times a positive integer
-    Gd = numerators.entries()
+    d = -basis.column(leaving)  # minus column l of B^-1, times a positive integer
+    Gd = (P.Gb_int[0] * d).entries()  # G d, row r times lambda_r > 0 (as the slacks)
     s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
     for r in range(P.m):
@@ -519,15 +576,14 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     return [tuple(sorted(out + (r,))) for r in enter]
 
 
-def _first_negative(Y: flint.fmpq_mat, lo: Fraction, span: Fraction) -> list[float]:
-    """For each row of Y (a polynomial's coefficients), the first point of a float grid on
+def _first_negative(Y: flint.fmpz_mat, lo: Fraction, span: Fraction) -> list[float]:
+    """For each row of Y (a polynomial's integer coefficients), the first point of a float grid on
     (lo, lo + span], denser near lo, where it is negative (inf if none): a guess that only
     chooses which component's roots are computed first, and never raises."""
     n, W = Y.nrows(), Y.ncols()
     try:
         with np.errstate(all="ignore"):
-            numerators, _ = Y.numer_denom()  # a positive common factor: the same first negative points
-            M = np.array([float(v) for v in numerators.entries()], dtype=float).reshape(n, W)
+            M = np.array([float(v) for v in Y.entries()], dtype=float).reshape(n, W)
             M /= np.abs(M).max() or 1.0
             grid = float(lo) + float(span) * (np.arange(1, 65) / 64.0) ** 2
             values = M @ np.vstack([grid ** k for k in range(W)])
@@ -546,19 +602,15 @@ def _tight(e: Real) -> Real:
     return e
 
 
-def _row(Y: flint.fmpq_mat, l: int) -> flint.fmpq_poly:
-    return flint.fmpq_poly([Y[l, k] for k in range(Y.ncols())])
+def _row(Y: flint.fmpz_mat, l: int) -> flint.fmpq_poly:
+    W = Y.ncols()
+    return flint.fmpq_poly(Y.entries()[l * W:(l + 1) * W])
 
 
-def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmpq_mat:
-    """z_B = D B^-T c_i as a matrix: row l holds the coefficients of component l."""
-    Y = basis.inv_t * C
-    if P.D.degree() > 0:  # z_B = D B^-T c_i: each row times D
-        Dm = P.D.coeffs()
-        W = Y.ncols() + len(Dm) - 1
-        Y = Y * flint.fmpq_mat(Y.ncols(), W, [Dm[m - k] if 0 <= m - k < len(Dm) else 0
-                                             for k in range(Y.ncols()) for m in range(W)])
-    return Y
+def _dual_components(P: _Problem, basis: _Basis, C: flint.fmpq_mat) -> flint.fmpz_mat:
+    """z_B = D B^-T c_i as an integer matrix, up to a positive factor per row: row l holds the coefficients
+    of component l (its signs and roots are z_B's component l's).  One exact solve B_int^T Y = C D."""
+    return basis.components(P.components_matrix(C))
 
 
 def _point_piece(P: _Problem, C: flint.fmpq_mat, t: FiniteReal) -> tuple[_Step | None, list[_Ray]]:
@@ -962,7 +1014,7 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             x = found.basis.x
             gNx = x.transpose() * objectives[i]  # 1 x L: g_i N_k x_B
             c = (P.D * P.cs.b[i] - flint.fmpq_poly(gNx.entries())) * P.D
-            point: tuple[Fraction, ...] | None = tuple(Fraction(int(v.p), int(v.q)) for v in x.entries())
+            point: tuple[Fraction, ...] | None = tuple(fraction_of(v) for v in x.entries())
         else:
             c = -found.r  # the ray-facet condition -(g_i N d) D >= 0: negative on the open piece
             point = None
