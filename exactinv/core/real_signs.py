@@ -26,15 +26,15 @@ from fractions import Fraction
 import flint
 
 from .algebraic import FiniteReal, Real
-from .flintq import dyadic_of
+from .flintq import dyadic_of, fmpq_of
 from .float_hint import float_hint
-from .polys import integer_part, no_root_between, sign_at, sign_right_of
+from .polys import ONE_PLUS_X, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
 from .real_algebraic import RealAlgebraic
 from .roots import first_sign_change
 from .scalars import INF
 
 __all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
-           "positive_after"]
+           "positive_after", "sign_change_near"]
 
 
 def narrowed(alpha: FiniteReal) -> FiniteReal:
@@ -278,6 +278,104 @@ def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
         if other < end:
             end = other
     return end
+
+
+def sign_change_near(p: flint.fmpq_poly, t: FiniteReal, left: float, right: float) -> Real | None:
+    """The least root of odd multiplicity of p greater than t (as :func:`next_sign_change`), when a float
+    hint is right; None when it is not (then nothing is proved).  The hint: p(left) >= 0 > p(right) in
+    floats, t < left < right.  A float root x in [left, right] (safeguarded Newton), and then, exactly,
+    with dyadics lo < x < hi (hi - lo about 2^-43 (1 + |x|)) and a = t (t.lower for an algebraic t):
+
+    * lo > t (lo > t.upper), Descartes proves no root of p in (a, lo), and p(lo) > 0: p > 0 on (t, lo];
+    * p(hi) < 0: p has a root of odd multiplicity in (lo, hi), so the least one beyond t lies there;
+    * of p's irreducible factors of odd multiplicity, exactly one has a root in (lo, hi), and exactly one
+      (Descartes: one sign variation), the others none (no variation).
+
+    Then that root is the answer: a Fraction (a linear factor) or a :class:`RealAlgebraic` isolated by
+    (lo, hi), already narrow.  One exact factorisation and a few Descartes tests, no root isolation.
+
+    >>> r = sign_change_near(flint.fmpq_poly([2, 0, -1]), Fraction(0), 1.0, 2.0)     # 2 - x^2: sqrt 2
+    >>> str(r.poly), r.upper - r.lower <= Fraction(1, 2**42)
+    ('x^2 + (-2)', True)
+    >>> sign_change_near(flint.fmpq_poly([6, -5, 1]), Fraction(0), 1.0, 2.5)     # (x - 2)(x - 3): 2
+    Fraction(2, 1)
+    >>> sign_change_near(flint.fmpq_poly([6, -5, 1]), Fraction(0), 2.5, 2.9) is None   # a wrong hint
+    True
+    """
+    x = _float_root(p, left, right)
+    if x is None:
+        return None
+    mid = Fraction(x)
+    width = (1 + abs(mid)) / 2**44
+    width = Fraction(1, 2 ** max(0, -(width.numerator.bit_length() - width.denominator.bit_length())))
+    lo, hi = mid - width, mid + width
+    if isinstance(t, RealAlgebraic):
+        a, top = t.lower, t.upper
+    else:
+        a = top = Fraction(t)
+    if not (top < lo and sign_at(p, lo) > 0 and sign_at(p, hi) < 0 and no_root_between(p, a, lo)):
+        return None
+    _, factors = integer_part(p).factor()
+    found: Real | None = None
+    for f, m in factors:
+        if m % 2 == 0:
+            continue
+        count = _variations_between(f, lo, hi)
+        if count == 0:
+            continue
+        if count > 1 or found is not None:
+            return None
+        if f.degree() == 1:
+            c0, c1 = (int(c) for c in f.coeffs())
+            found = Fraction(-c0, c1)
+        else:
+            f = f if f.leading_coefficient() > 0 else -f
+            found = RealAlgebraic(f, lo, hi, _trusted=True)
+    return found
+
+
+def _variations_between(f: flint.fmpz_poly, lo: Fraction, hi: Fraction) -> int:
+    """The sign variations of (1 + y)^d f((lo + hi y)/(1 + y)): by Descartes' rule at least the number of
+    f's roots in (lo, hi), of the same parity (0: none; 1: exactly one)."""
+    shifted = flint.fmpq_poly(f)(flint.fmpq_poly([fmpq_of(lo), fmpq_of(hi - lo)]))
+    return sign_variations(flint.fmpq_poly(list(reversed(shifted.coeffs())))(ONE_PLUS_X).coeffs())
+
+
+def _float_root(p: flint.fmpq_poly, left: float, right: float) -> float | None:
+    """A float root of p in [left, right] where p(left) >= 0 > p(right) in floats (safeguarded Newton on
+    the bracket); None when the floats do not show that bracket.  A hint: never raises."""
+    try:
+        c = [float_hint(v) for v in integer_part(p).coeffs()]
+        scale = max((abs(v) for v in c), default=0.0)
+        if not (scale > 0 and math.isfinite(scale)):
+            return None
+        c = [v / scale for v in c]
+
+        def value(x: float) -> tuple[float, float]:
+            f = df = 0.0
+            for v in reversed(c):
+                df = df * x + f
+                f = f * x + v
+            return f, df
+
+        a, b = left, right
+        if not (math.isfinite(a) and math.isfinite(b) and a < b and value(a)[0] >= 0 > value(b)[0]):
+            return None
+        x = (a + b) / 2
+        for _ in range(200):
+            f, df = value(x)
+            if f >= 0:
+                a = x
+            else:
+                b = x
+            step = x - f / df if df else math.nan
+            x_next = step if a < step < b else (a + b) / 2
+            if b - a <= 1e-15 * (1 + abs(x)) or abs(x_next - x) <= 1e-16 * (1 + abs(x)):
+                return x_next
+            x = x_next
+        return x
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return None
 
 
 def rational_right_of(t: FiniteReal, width: Fraction) -> Fraction:

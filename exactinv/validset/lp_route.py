@@ -76,6 +76,7 @@ from ..core.real_signs import (
     positive_after,
     rational_right_of,
     sign_at_real,
+    sign_change_near,
     sign_right_of_real,
 )
 from ..core.roots import real_roots
@@ -576,22 +577,29 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     return [tuple(sorted(out + (r,))) for r in enter]
 
 
-def _first_negative(Y: flint.fmpz_mat, lo: Fraction, span: Fraction) -> list[float]:
+_GRID = (np.arange(0, 65) / 64.0) ** 2  # 0, then 64 points on (0, 1], denser near 0
+
+
+def _first_negative(Y: flint.fmpz_mat, lo: Fraction, span: Fraction) -> tuple[list[float], list[float]]:
     """For each row of Y (a polynomial's integer coefficients), the first point of a float grid on
-    (lo, lo + span], denser near lo, where it is negative (inf if none): a guess that only
-    chooses which component's roots are computed first, and never raises."""
+    (lo, lo + span], denser near lo, where it is negative (inf if none), and the grid point before it
+    (lo for the first): a guess that only chooses which component's roots are computed first, and
+    brackets its end for :func:`~exactinv.core.real_signs.sign_change_near`; it never raises."""
     n, W = Y.nrows(), Y.ncols()
     try:
         with np.errstate(all="ignore"):
             M = np.array([float(v) for v in Y.entries()], dtype=float).reshape(n, W)
             M /= np.abs(M).max() or 1.0
-            grid = float(lo) + float(span) * (np.arange(1, 65) / 64.0) ** 2
-            values = M @ np.vstack([grid ** k for k in range(W)])
+            grid = float(lo) + float(span) * _GRID
+            values = M @ np.vander(grid[1:], W, increasing=True).T
             negative = values < 0
-            first = np.where(negative.any(axis=1), grid[negative.argmax(axis=1)], math.inf)
-        return [float(v) if math.isfinite(v) else math.inf for v in first]
+            at = negative.argmax(axis=1)
+            found = negative.any(axis=1)
+            first = np.where(found, grid[1:][at], math.inf)
+            before = np.where(found, grid[at], math.inf)
+        return first.tolist(), before.tolist()
     except (OverflowError, ValueError):
-        return [0.0] * n
+        return [0.0] * n, [0.0] * n
 
 
 def _tight(e: Real) -> Real:
@@ -666,14 +674,16 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
     end: Real = INF if cap is None else cap
     leaving = -1
     span = (cap - lo) if cap is not None and cap > lo else 2 * (1 + abs(lo))
-    guess = _first_negative(Y, lo, span)
+    guess, before = _first_negative(Y, lo, span)
     done: set[int] = set()
     first = min(range(P.n), key=lambda l: guess[l])
     if guess[first] < math.inf:
         p = _row(Y, first)
-        if sign_right_of_real(p, t) < 0:
-            return None
-        e = _tight(next_sign_change(p, t))
+        e = sign_change_near(p, t, before[first], guess[first])  # proves p > 0 on (t, e) too
+        if e is None:  # the float bracket did not help
+            if sign_right_of_real(p, t) < 0:
+                return None
+            e = _tight(next_sign_change(p, t))
         if exact_lt(e, end):
             end, leaving = e, first
         done.add(first)
