@@ -203,6 +203,22 @@ def test_lp_route_equals_the_box_route_and_the_vertex_route(problem):
     assert V2.route == "box" and _ends(V1) == _ends(V2) == _ends(V3)
 
 
+@settings(max_examples=20, deadline=None)
+@given(polytopes(), st.lists(st.integers(1, 12), min_size=16, max_size=16), st.integers(0, 3))
+def test_rows_scaled_to_fractions_give_the_same_set(problem, scales, shift):
+    """Each row of (G | b) divided by a positive integer (and all by 7^shift): the same P.  The walk works
+    on the rows scaled back to integers (a basis's components then scale by positive factors per row: the
+    same signs and roots; its point and the ratio test are unchanged), so the valid set is the vertex
+    route's on the integral rows, end by end and flag by flag, and the kernel accepts the certificate,
+    whose bases it proves on the rows as given."""
+    S, P, m = problem
+    G = [[F(v, scales[r] * 7**shift) for v in g] for r, g in enumerate(P.G)]
+    Q = ei.Polyhedron(G, [F(beta, scales[r] * 7**shift) for r, beta in enumerate(P.b)])
+    V = ei.valid_steplengths(S, Q, m, route="lp")
+    assert V.route == "lp" and _ends(V) == _ends(ei.valid_steplengths(S, P, m, route="vertex"))
+    assert exactinv_check.check(V.certificate).ok
+
+
 # ------------------------------------------------------------------ an independent exact LP (PPL)
 
 
