@@ -68,6 +68,7 @@ from ..conditions.polyhedron import Condition, ConditionSet, Kind, never_binds
 from ..core.algebraic import FiniteReal, Real, RealAlgebraic, exact_lt
 from ..core.encode import encode_real, vec
 from ..core.flintq import fmpq_of, fraction_of
+from ..core.float_hint import float_hint
 from ..core.polys import no_root_between, shift, sign_at, sign_variations
 from ..core.real_signs import (
     interval_signs,
@@ -385,6 +386,9 @@ class _Problem:
         self.Gb_int = (flint.fmpz_mat(G_int_rows) if self.m else flint.fmpz_mat(0, self.n),
                        flint.fmpz_mat(self.m, 1, b_int_list))
         self._components: dict[int, tuple[flint.fmpq_mat, flint.fmpz_mat]] = {}
+        self._float_components: dict[int, tuple[flint.fmpq_mat, np.ndarray | None]] = {}
+        G_int_float = _floats(v for g in G_int_rows for v in g)
+        self.G_int_float = None if G_int_float is None else G_int_float.reshape(self.m, self.n)
         self.float_lps = self.exact_lps = self.pivots = 0
         self.point: tuple[Fraction, ...] | None = None  # a point of P, kept when a ray is found
 
@@ -439,6 +443,23 @@ class _Problem:
                     out = None
             self._bases[rows] = out
         return self._bases[rows]
+
+    def float_components(self, C: flint.fmpq_mat) -> np.ndarray | None:
+        """:meth:`components_matrix` in floats, each row scaled to max 1 (None beyond double range).  Cached."""
+        found = self._float_components.get(id(C))
+        if found is None or found[0] is not C:
+            Z = self.components_matrix(C)
+            with np.errstate(all="ignore"):
+                try:
+                    Zf = np.array([float_hint(v) for v in Z.entries()], dtype=float).reshape(Z.nrows(), Z.ncols())
+                    Zf /= np.abs(Zf).max() or 1.0
+                    if not np.all(np.isfinite(Zf)):
+                        Zf = None
+                except (OverflowError, ValueError):
+                    Zf = None
+            found = (C, Zf)
+            self._float_components[id(C)] = found
+        return found[1]
 
     def components_matrix(self, C: flint.fmpq_mat) -> flint.fmpz_mat:
         """The n x W integer matrix whose row l holds, times one positive integer, the coefficients of
@@ -563,8 +584,9 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     Gd = (P.Gb_int[0] * d).entries()  # G d, row r times lambda_r > 0 (as the slacks)
     s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
+    inside = set(basis.rows)
     for r in range(P.m):
-        if Gd[r] > _ZERO and r not in basis.rows:
+        if Gd[r] > _ZERO and r not in inside:
             if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
                 best, enter = r, [r]
             elif s[r] * Gd[best] == s[best] * Gd[r]:
@@ -580,25 +602,32 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
 _GRID = (np.arange(0, 65) / 64.0) ** 2  # 0, then 64 points on (0, 1], denser near 0
 
 
-def _first_negative(Y: flint.fmpz_mat, lo: Fraction, span: Fraction) -> tuple[list[float], list[float]]:
-    """For each row of Y (a polynomial's integer coefficients), the first point of a float grid on
-    (lo, lo + span], denser near lo, where it is negative (inf if none), and the grid point before it
-    (lo for the first): a guess that only chooses which component's roots are computed first, and
-    brackets its end for :func:`~exactinv.core.real_signs.sign_change_near`; it never raises."""
-    n, W = Y.nrows(), Y.ncols()
+def _first_negative(P: _Problem, rows: tuple[int, ...], C: flint.fmpq_mat, n: int, lo: Fraction,
+                    span: Fraction) -> tuple[list[float], list[float]]:
+    """For each component of z_B (B the basis ``rows``, C facet i's objective), the first point of a float
+    grid on (lo, lo + span], denser near lo, where its float image is negative (inf if none), and the
+    grid point before it (lo for the first): a guess that only chooses which component's roots are
+    computed first, and brackets its end for :func:`~exactinv.core.real_signs.sign_change_near`.  The
+    float image is one float solve B_int^T Y = C D (no exact number turned into a float per piece);
+    it never raises, and when floats say nothing every guess is 0 (every component is then tested)."""
     try:
         with np.errstate(all="ignore"):
-            M = np.array([float(v) for v in Y.entries()], dtype=float).reshape(n, W)
-            M /= np.abs(M).max() or 1.0
+            Cf = P.float_components(C)
+            if Cf is None or P.G_int_float is None:
+                return [0.0] * n, [0.0] * n
+            M = np.linalg.solve(P.G_int_float[list(rows)].T, Cf)
+            W = M.shape[1]
             grid = float(lo) + float(span) * _GRID
             values = M @ np.vander(grid[1:], W, increasing=True).T
+            if not np.all(np.isfinite(values)):
+                return [0.0] * n, [0.0] * n
             negative = values < 0
             at = negative.argmax(axis=1)
             found = negative.any(axis=1)
             first = np.where(found, grid[1:][at], math.inf)
             before = np.where(found, grid[at], math.inf)
         return first.tolist(), before.tolist()
-    except (OverflowError, ValueError):
+    except (OverflowError, ValueError, np.linalg.LinAlgError):
         return [0.0] * n, [0.0] * n
 
 
@@ -674,7 +703,7 @@ def _accept(P: _Problem, C: flint.fmpq_mat, rows: tuple[int, ...] | None, t: Fin
     end: Real = INF if cap is None else cap
     leaving = -1
     span = (cap - lo) if cap is not None and cap > lo else 2 * (1 + abs(lo))
-    guess, before = _first_negative(Y, lo, span)
+    guess, before = _first_negative(P, rows, C, P.n, lo, span)
     done: set[int] = set()
     first = min(range(P.n), key=lambda l: guess[l])
     if guess[first] < math.inf:
