@@ -251,11 +251,12 @@ class _Basis:
     simplex step's ratio test, are the slacks').  No inverse: B_int^-T C and the columns of B_int^-1 come from
     exact solves when asked; B^-T itself (in Q, of the unscaled rows) only for a dual piece (:attr:`inv_t`)."""
 
-    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inv_t", "_inv_t_int", "_G_rows")
+    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inv_t", "_inv_t_int", "_G_rows", "_lam")
 
     def __init__(self, rows: tuple[int, ...], B: flint.fmpz_mat, x: flint.fmpq_mat, slack: list[flint.fmpz],
-                 G_rows: list):
+                 G_rows: list, lam: tuple[int, ...] | None = None):
         self.rows, self._B, self.x, self.slack, self._G_rows = rows, B, x, slack, G_rows
+        self._lam = lam  # lambda_r of the rows (None: all 1)
         self._Bt: flint.fmpz_mat | None = None
         self._inv_t: flint.fmpq_mat | None = None
         self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
@@ -291,14 +292,15 @@ class _Basis:
         Without B^-T at hand, one exact solve B^T y = d (no inverse)."""
         if self._inv_t_int is None and self._inv_t is not None:
             self._inv_t_int = self._inv_t.numer_denom()
-        if self._inv_t_int is None:
-            n = len(self.rows)
-            Bt = flint.fmpq_mat(n, n, [v for r in self.rows for v in self._G_rows[r]]).transpose()
+        if self._inv_t_int is None:  # B_int^T y' = d_int, y = Lambda y' / d_den (B = Lambda^-1 B_int)
             try:
-                y = Bt.solve(flint.fmpq_mat(d_int) / d_den).entries()
+                y = self.transposed().solve(d_int).entries()
             except ZeroDivisionError:  # cannot happen: B is nonsingular
                 return None
-            return None if any(v < 0 for v in y) else y
+            if any(v < 0 for v in y):
+                return None
+            lam = self._lam
+            return [v / d_den for v in y] if lam is None else [v * lam[k] / d_den for k, v in enumerate(y)]
         M, den = self._inv_t_int
         Y = (M * d_int).entries()
         if any(v < 0 for v in Y):
@@ -377,16 +379,19 @@ class _Problem:
         self.float_lp = self.hint_model()
         # each row of (G | b) times a positive integer lambda_r (1 for an integral row): the same P, the same
         # vertices, integer bases; the slacks and a basis's components only scale by positive numbers
-        G_int_rows, b_int_list = [], []
+        G_int_rows, b_int_list, self.lam = [], [], []
         for g, beta in zip(self.G_rows, cs.b):
             lam = math.lcm(beta.denominator, *(int(v.q) for v in g))
             G_int_rows.append([int(v.p) * (lam // int(v.q)) for v in g])
             b_int_list.append(beta.numerator * (lam // beta.denominator))
+            self.lam.append(lam)
+        self.integral = all(lam == 1 for lam in self.lam)
         self.G_int_rows, self.b_int_list = G_int_rows, b_int_list
         self.Gb_int = (flint.fmpz_mat(G_int_rows) if self.m else flint.fmpz_mat(0, self.n),
                        flint.fmpz_mat(self.m, 1, b_int_list))
         self._components: dict[int, tuple[flint.fmpq_mat, flint.fmpz_mat]] = {}
         self._float_components: dict[int, tuple[flint.fmpq_mat, np.ndarray | None]] = {}
+        self.point_hints: dict[tuple[int, ...], flint.fmpq_mat] = {}  # x_B of a basis the ratio test named
         G_int_float = _floats(v for g in G_int_rows for v in g)
         self.G_int_float = None if G_int_float is None else G_int_float.reshape(self.m, self.n)
         self.float_lps = self.exact_lps = self.pivots = 0
@@ -431,14 +436,22 @@ class _Problem:
         if rows not in self._bases:
             G_int, b_int = self.Gb_int
             B = flint.fmpz_mat(self.n, self.n, [v for r in rows for v in self.G_int_rows[r]])
+            b_B = flint.fmpz_mat(self.n, 1, [self.b_int_list[r] for r in rows])
             out = None
-            try:
-                x = B.solve(flint.fmpz_mat(self.n, 1, [self.b_int_list[r] for r in rows]))
-            except ZeroDivisionError:
-                x = None
+            x = self.point_hints.pop(rows, None)  # the dual simplex step's point: checked, B x = b_B exactly
             if x is not None:
                 x_num, x_den = x.numer_denom()
-                out = _Basis(rows, B, x, (b_int * x_den - G_int * x_num).entries(), self.G_rows)
+                if B * x_num != b_B * x_den or B.det() == 0:
+                    x = None
+            if x is None:
+                try:
+                    x = B.solve(b_B)
+                except ZeroDivisionError:
+                    x = None
+            if x is not None:
+                x_num, x_den = x.numer_denom()
+                lam = None if self.integral else tuple(self.lam[r] for r in rows)
+                out = _Basis(rows, B, x, (b_int * x_den - G_int * x_num).entries(), self.G_rows, lam)
                 if not out.feasible:
                     out = None
             self._bases[rows] = out
@@ -596,7 +609,14 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
             P.point = tuple(fraction_of(v) for v in basis.x.entries())
         return [_Ray(_primitive(d.entries()))]
     out = basis.rows[:leaving] + basis.rows[leaving + 1:]
-    return [tuple(sorted(out + (r,))) for r in enter]
+    # the point every candidate shares: x + tau d with tau = slack_best / (x_den Gd_best) (row best tight),
+    # as a hint for P.basis, which checks B' x' = b_B' exactly instead of solving for it
+    x_num, x_den = basis.x.numer_denom()
+    point = flint.fmpq_mat(x_num * Gd[best] + d * s[best]) / (x_den * Gd[best])
+    candidates = [tuple(sorted(out + (r,))) for r in enter]
+    for rows in candidates:
+        P.point_hints[rows] = point
+    return candidates
 
 
 _GRID = (np.arange(0, 65) / 64.0) ** 2  # 0, then 64 points on (0, 1], denser near 0

@@ -18,6 +18,7 @@ from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity
 from exactinv.errors import InvalidInput
+from exactinv.validset import lp_route as engine_lp
 from exactinv.validset.lp import LP_ABOVE
 from exactinv.validset.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
 
@@ -214,9 +215,17 @@ def test_rows_scaled_to_fractions_give_the_same_set(problem, scales, shift):
     S, P, m = problem
     G = [[F(v, scales[r] * 7**shift) for v in g] for r, g in enumerate(P.G)]
     Q = ei.Polyhedron(G, [F(beta, scales[r] * 7**shift) for r, beta in enumerate(P.b)])
+    expected = _ends(ei.valid_steplengths(S, P, m, route="vertex"))
     V = ei.valid_steplengths(S, Q, m, route="lp")
-    assert V.route == "lp" and _ends(V) == _ends(ei.valid_steplengths(S, P, m, route="vertex"))
+    assert V.route == "lp" and _ends(V) == expected
     assert exactinv_check.check(V.certificate).ok
+    old = engine_lp.DUAL_POLICY
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, 1, 10**9)  # dual pieces everywhere: B^-T d on scaled rows
+    try:
+        V = ei.valid_steplengths(S, Q, m, route="lp")
+    finally:
+        engine_lp.DUAL_POLICY = old
+    assert _ends(V) == expected and exactinv_check.check(V.certificate).ok
 
 
 # ------------------------------------------------------------------ an independent exact LP (PPL)
