@@ -305,15 +305,17 @@ def sign_change_near(p: flint.fmpq_poly, t: FiniteReal, left: float, right: floa
     x = _float_root(p, left, right)
     if x is None:
         return None
-    mid = Fraction(x)
-    width = (1 + abs(mid)) / 2**44
-    width = Fraction(1, 2 ** max(0, -(width.numerator.bit_length() - width.denominator.bit_length())))
+    # dyadics lo < x < hi, hi - lo = 2^(1 - k) <= 2^-43 (1 + |x|): fmpq throughout, Fractions once at the end
+    _, top_exponent = math.frexp(1 + abs(x))
+    k = 45 - top_exponent
+    width = flint.fmpq(1, 2**k) if k >= 0 else flint.fmpq(2 ** -k)
+    mid = flint.fmpq(*x.as_integer_ratio())
     lo, hi = mid - width, mid + width
     if isinstance(t, RealAlgebraic):
-        a, top = t.lower, t.upper
+        a, top = fmpq_of(t.lower), fmpq_of(t.upper)
     else:
-        a = top = Fraction(t)
-    if not (top < lo and sign_at(p, lo) > 0 and sign_at(p, hi) < 0 and no_root_between(p, a, lo)):
+        a = top = fmpq_of(Fraction(t))
+    if not (top < lo and p(lo) > 0 and p(hi) < 0 and _variations_between(p, a, lo) == 0):
         return None
     _, factors = integer_part(p).factor()
     found: Real | None = None
@@ -330,14 +332,18 @@ def sign_change_near(p: flint.fmpq_poly, t: FiniteReal, left: float, right: floa
             found = Fraction(-c0, c1)
         else:
             f = f if f.leading_coefficient() > 0 else -f
-            found = RealAlgebraic(f, lo, hi, _trusted=True)
+            found = RealAlgebraic(f, _fraction(lo), _fraction(hi), _trusted=True)
     return found
 
 
-def _variations_between(f: flint.fmpz_poly, lo: Fraction, hi: Fraction) -> int:
+def _fraction(x: flint.fmpq) -> Fraction:
+    return Fraction(int(x.p), int(x.q))
+
+
+def _variations_between(f: flint.fmpz_poly | flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq) -> int:
     """The sign variations of (1 + y)^d f((lo + hi y)/(1 + y)): by Descartes' rule at least the number of
     f's roots in (lo, hi), of the same parity (0: none; 1: exactly one)."""
-    shifted = flint.fmpq_poly(f)(flint.fmpq_poly([fmpq_of(lo), fmpq_of(hi - lo)]))
+    shifted = flint.fmpq_poly(f)(flint.fmpq_poly([lo, hi - lo]))
     return sign_variations(flint.fmpq_poly(list(reversed(shifted.coeffs())))(ONE_PLUS_X).coeffs())
 
 
