@@ -248,26 +248,18 @@ class _Basis:
     """A basis B (rows of G, sorted) with B nonsingular and x_B = B^-1 b_B in P, kept in integers: the
     rows of G scaled to integers (row r times a positive lambda_r; the same P, the same x_B), B_int and
     x_B, and the slacks b - G x_B times positive integers per row (their signs, and the ratios of the dual
-    simplex step's ratio test, are the slacks').  No inverse: B_int^-T C and the columns of B_int^-1 come from
-    exact solves when asked; B^-T itself (in Q, of the unscaled rows) only for a dual piece (:attr:`inv_t`)."""
+    simplex step's ratio test, are the slacks').  B_int^-T C and the columns of B_int^-1 come from exact
+    solves; the inverse B_int^-T = M / den (M integral, den > 0) only once a dual piece asks for duals
+    B^-T d (then every later product uses it).  B = Lambda^-1 B_int, so B^-T = Lambda B_int^-T."""
 
-    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inv_t", "_inv_t_int", "_G_rows", "_lam")
+    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inverse", "_lam")
 
     def __init__(self, rows: tuple[int, ...], B: flint.fmpz_mat, x: flint.fmpq_mat, slack: list[flint.fmpz],
-                 G_rows: list, lam: tuple[int, ...] | None = None):
-        self.rows, self._B, self.x, self.slack, self._G_rows = rows, B, x, slack, G_rows
+                 lam: tuple[int, ...] | None = None):
+        self.rows, self._B, self.x, self.slack = rows, B, x, slack
         self._lam = lam  # lambda_r of the rows (None: all 1)
         self._Bt: flint.fmpz_mat | None = None
-        self._inv_t: flint.fmpq_mat | None = None
-        self._inv_t_int: tuple[flint.fmpz_mat, flint.fmpz] | None = None
-
-    @property
-    def inv_t(self) -> flint.fmpq_mat:
-        """B^-T in Q (B: the rows of G as given), computed once when first asked."""
-        if self._inv_t is None:
-            n = len(self.rows)
-            self._inv_t = flint.fmpq_mat(n, n, [v for r in self.rows for v in self._G_rows[r]]).inv().transpose()
-        return self._inv_t
+        self._inverse: tuple[flint.fmpz_mat, flint.fmpz] | None = None
 
     def transposed(self) -> flint.fmpz_mat:
         """B_int^T (the scaled rows, transposed)."""
@@ -275,38 +267,49 @@ class _Basis:
             self._Bt = self._B.transpose()
         return self._Bt
 
+    def inverse(self) -> tuple[flint.fmpz_mat, flint.fmpz]:
+        """(M, den): B_int^-T = M / den, M integral, den > 0.  Computed once."""
+        if self._inverse is None:
+            self._inverse = flint.fmpq_mat(self.transposed()).inv().numer_denom()
+        return self._inverse
+
+    @property
+    def inv_t(self) -> flint.fmpq_mat:
+        """B^-T in Q (B: the rows of G as given) = Lambda M / den."""
+        M, den = self.inverse()
+        if self._lam is not None:
+            M = flint.fmpz_mat([[v * lam for v in row] for row, lam in zip(M.tolist(), self._lam)])
+        return flint.fmpq_mat(M) / den
+
     def components(self, C: flint.fmpz_mat) -> flint.fmpz_mat:
-        """B_int^-T C times a positive integer, for an integer matrix C: one exact solve.  Row l is
-        B^-T C's row l times lambda_(rows[l]) and that integer, so its signs and roots are B^-T C's."""
+        """B_int^-T C times a positive integer, for an integer matrix C: one exact solve (or M C, when the
+        inverse is known).  Row l is B^-T C's row l times lambda_(rows[l]) and a positive integer, so its signs
+        and roots are B^-T C's."""
+        if self._inverse is not None:
+            return self._inverse[0] * C
         return self.transposed().solve(C).numer_denom()[0]
 
     def column(self, l: int) -> flint.fmpz_mat:
-        """Column l of B_int^-1 times a positive integer (one exact solve B_int d = e_l): column l of B^-1
-        times a positive number (B = Lambda^-1 B_int, B^-1 = B_int^-1 Lambda)."""
+        """Column l of B_int^-1 times a positive integer (one exact solve B_int d = e_l, or row l of M): column
+        l of B^-1 times a positive number (B^-1 = B_int^-1 Lambda)."""
         n = len(self.rows)
+        if self._inverse is not None:
+            M = self._inverse[0]
+            return flint.fmpz_mat(n, 1, [M[l, k] for k in range(n)])
         return self._B.solve(flint.fmpz_mat(n, 1, [int(k == l) for k in range(n)])).numer_denom()[0]
 
     def dual_of(self, d_int: flint.fmpz_mat, d_den: flint.fmpz) -> list[flint.fmpq] | None:
         """B^-T d for d = d_int / d_den (d_den > 0), exactly, when it is >= 0; else None.  The sign test runs
-        on integers (B^-T = M / den with M integral, den > 0), the division only for a basis that serves.
-        Without B^-T at hand, one exact solve B^T y = d (no inverse)."""
-        if self._inv_t_int is None and self._inv_t is not None:
-            self._inv_t_int = self._inv_t.numer_denom()
-        if self._inv_t_int is None:  # B_int^T y' = d_int, y = Lambda y' / d_den (B = Lambda^-1 B_int)
-            try:
-                y = self.transposed().solve(d_int).entries()
-            except ZeroDivisionError:  # cannot happen: B is nonsingular
-                return None
-            if any(v < 0 for v in y):
-                return None
-            lam = self._lam
-            return [v / d_den for v in y] if lam is None else [v * lam[k] / d_den for k, v in enumerate(y)]
-        M, den = self._inv_t_int
+        on integers (B_int^-T = M / den), the division only for a basis that serves: y = Lambda M d_int /
+        (den d_den)."""
+        M, den = self.inverse()
         Y = (M * d_int).entries()
-        if any(v < 0 for v in Y):
+        if any(v < _ZERO for v in Y):
             return None
         scale = den * d_den
-        return [flint.fmpq(v, scale) for v in Y]
+        lam = self._lam
+        return [flint.fmpq(v, scale) for v in Y] if lam is None else [flint.fmpq(v * lam[k], scale)
+                                                                      for k, v in enumerate(Y)]
 
     @property
     def feasible(self) -> bool:
@@ -451,7 +454,7 @@ class _Problem:
             if x is not None:
                 x_num, x_den = x.numer_denom()
                 lam = None if self.integral else tuple(self.lam[r] for r in rows)
-                out = _Basis(rows, B, x, (b_int * x_den - G_int * x_num).entries(), self.G_rows, lam)
+                out = _Basis(rows, B, x, (b_int * x_den - G_int * x_num).entries(), lam)
                 if not out.feasible:
                     out = None
             self._bases[rows] = out
