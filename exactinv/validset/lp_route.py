@@ -601,11 +601,17 @@ def _pivots(P: _Problem, basis: _Basis, leaving: int) -> list[tuple[int, ...]]:
     s = basis.slack  # the ratios slack_r / Gd_r compared by cross-multiplication (positive factors cancel)
     best, enter = None, []
     inside = set(basis.rows)
+    s_best = g_best = _ZERO
     for r in range(P.m):
-        if Gd[r] > _ZERO and r not in inside:
-            if best is None or s[r] * Gd[best] < s[best] * Gd[r]:
-                best, enter = r, [r]
-            elif s[r] * Gd[best] == s[best] * Gd[r]:
+        g = Gd[r]
+        if g > _ZERO and r not in inside:
+            if best is None:
+                best, enter, s_best, g_best = r, [r], s[r], g
+                continue
+            left, right = s[r] * g_best, s_best * g
+            if left < right:
+                best, enter, s_best, g_best = r, [r], s[r], g
+            elif left == right:
                 enter.append(r)
     if best is None:
         if P.point is None:
