@@ -252,7 +252,7 @@ class _Basis:
     solves; the inverse B_int^-T = M / den (M integral, den > 0) only once a dual piece asks for duals
     B^-T d (then every later product uses it).  B = Lambda^-1 B_int, so B^-T = Lambda B_int^-T."""
 
-    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inverse", "_lam")
+    __slots__ = ("rows", "x", "slack", "_B", "_Bt", "_inverse", "_inv_q", "_lam")
 
     def __init__(self, rows: tuple[int, ...], B: flint.fmpz_mat, x: flint.fmpq_mat, slack: list[flint.fmpz],
                  lam: tuple[int, ...] | None = None):
@@ -260,6 +260,7 @@ class _Basis:
         self._lam = lam  # lambda_r of the rows (None: all 1)
         self._Bt: flint.fmpz_mat | None = None
         self._inverse: tuple[flint.fmpz_mat, flint.fmpz] | None = None
+        self._inv_q: flint.fmpq_mat | None = None
 
     def transposed(self) -> flint.fmpz_mat:
         """B_int^T (the scaled rows, transposed)."""
@@ -270,16 +271,21 @@ class _Basis:
     def inverse(self) -> tuple[flint.fmpz_mat, flint.fmpz]:
         """(M, den): B_int^-T = M / den, M integral, den > 0.  Computed once."""
         if self._inverse is None:
-            self._inverse = flint.fmpq_mat(self.transposed()).inv().numer_denom()
+            self._inverse = self._inverse_q().numer_denom()
         return self._inverse
+
+    def _inverse_q(self) -> flint.fmpq_mat:
+        if self._inv_q is None:
+            self._inv_q = flint.fmpq_mat(self.transposed()).inv()
+        return self._inv_q
 
     @property
     def inv_t(self) -> flint.fmpq_mat:
-        """B^-T in Q (B: the rows of G as given) = Lambda M / den."""
+        """B^-T in Q (B: the rows of G as given) = Lambda B_int^-T."""
+        if self._lam is None:
+            return self._inverse_q()
         M, den = self.inverse()
-        if self._lam is not None:
-            M = flint.fmpz_mat([[v * lam for v in row] for row, lam in zip(M.tolist(), self._lam)])
-        return flint.fmpq_mat(M) / den
+        return flint.fmpq_mat([[v * lam for v in row] for row, lam in zip(M.tolist(), self._lam)]) / den
 
     def components(self, C: flint.fmpz_mat) -> flint.fmpz_mat:
         """B_int^-T C times a positive integer, for an integer matrix C: one exact solve (or M C, when the
