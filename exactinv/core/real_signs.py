@@ -26,15 +26,15 @@ from fractions import Fraction
 import flint
 
 from .algebraic import FiniteReal, Real
-from .flintq import dyadic_of
+from .flintq import dyadic_of, fmpq_of
 from .float_hint import float_hint
-from .polys import integer_part, no_root_between, sign_at, sign_right_of
+from .polys import ONE_PLUS_X, integer_part, no_root_between, sign_at, sign_right_of, sign_variations
 from .real_algebraic import RealAlgebraic
 from .roots import first_sign_change
 from .scalars import INF
 
 __all__ = ["sign_right_of_real", "next_sign_change", "rational_right_of", "interval_signs", "narrowed",
-           "positive_after"]
+           "positive_after", "sign_change_near"]
 
 
 def narrowed(alpha: FiniteReal) -> FiniteReal:
@@ -97,42 +97,60 @@ def _newton(p: flint.fmpz_poly, lower: Fraction, upper: Fraction) -> RealAlgebra
     return None
 
 
-def interval_signs(M: flint.fmpq_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
+def interval_signs(M: flint.fmpq_mat | flint.fmpz_mat, lo: Fraction, hi: Fraction | None) -> list[int]:
     """For each row of M (the coefficients, constant first, of a polynomial p): +1 if Descartes'
     rule proves p > 0 on the open interval (lo, hi) (hi None: (lo, oo)) or p = 0, -1 if it proves
     p < 0 there, 0 if it proves nothing.  All rows at once: p(lo + y) by one product with the
     Taylor-shift matrix, then for a finite hi = lo + H the coefficients of
     (1 + y)^d p(lo + H y/(1 + y)), whose sign variations bound p's roots in (lo, hi)
-    (as in :func:`exactinv.core.polys.positive_below`).  Exact.
+    (as in :func:`exactinv.core.polys.positive_below`).  Exact: on integers (M's numerators and the
+    transform's, each over one positive common denominator, which changes no sign).
 
     >>> M = flint.fmpq_mat([[2, -3, 1], [-2, 0, 1], [0, 0, 0], [-1, 0, -1]])  # (x-1)(x-2), x^2-2, 0, -1-x^2
     >>> # (x-1)(x-2) > 0 and x^2 - 2 < 0 on (0, 1); beyond 2 every one keeps its sign
     >>> interval_signs(M, Fraction(0), Fraction(1)), interval_signs(M, Fraction(2), None)
     ([1, -1, 1, -1], [1, 1, 1, -1])
+    >>> interval_signs(flint.fmpz_mat([[2, -3, 1], [-2, 0, 1]]), Fraction(0), Fraction(1))
+    [1, -1]
     """
     W = M.ncols()
-    d = W - 1
-    x = flint.fmpq(lo.numerator, lo.denominator)
-    if hi is None:  # p(lo + y): row k of T is (lo + y)^k
-        base, one = flint.fmpq_poly([x, 1]), flint.fmpq_poly([1])
-    else:  # (1 + y)^d p(lo + H y/(1 + y)): row k is (lo + (lo + H) y)^k (1 + y)^(d - k)
-        H = hi - lo
-        base, one = flint.fmpq_poly([x, x + flint.fmpq(H.numerator, H.denominator)]), flint.fmpq_poly([1, 1])
-    rows = []
-    for k in range(W):
-        c = ((base ** k) * (one ** (d - k))).coeffs()
-        rows.extend(c + [0] * (W - len(c)))
-    T = flint.fmpq_mat(W, W, rows)
+    if isinstance(M, flint.fmpq_mat):
+        M = M.numer_denom()[0]  # a positive common denominator: the same signs
+    T = _descartes_matrix(W, lo, hi)
+    entries = (M * T).entries()
     out = []
-    numerators, _ = (M * T).numer_denom()  # a positive common denominator: the signs of the numerators
-    entries = numerators.entries()
     zero = flint.fmpz(0)  # fmpz against fmpz: compared in C
     for r in range(M.nrows()):
         row = entries[r * W:(r + 1) * W]
-        positive = any(c > zero for c in row)
-        negative = any(c < zero for c in row)
+        positive = negative = False
+        for c in row:
+            if c > zero:
+                positive = True
+            elif c < zero:
+                negative = True
         out.append(0 if positive and negative else -1 if negative else 1)
     return out
+
+
+def _descartes_matrix(W: int, lo: Fraction, hi: Fraction | None) -> flint.fmpz_mat:
+    """The W x W integer matrix T (times a positive integer) of :func:`interval_signs`: row k holds the
+    coefficients of (lo + y)^k (hi None), or of (lo + hi y)^k (1 + y)^(d - k), d = W - 1."""
+    d = W - 1
+    if hi is None:  # (a + q y)^k / q^k for lo = a/q: times q^d, row k is (a + q y)^k q^(d - k)
+        a, q = lo.numerator, lo.denominator
+        base, one = flint.fmpz_poly([a, q]), flint.fmpz_poly([q])
+    else:  # lo = a/q, hi = c/r: (lo + hi y)^k (1 + y)^(d-k) times (q r)^d: (a r + c q y)^k ((1 + y) q r)^(d-k)
+        a, q, c, r = lo.numerator, lo.denominator, hi.numerator, hi.denominator
+        base, one = flint.fmpz_poly([a * r, c * q]), flint.fmpz_poly([q * r, q * r])
+    rows: list = []
+    power, other = flint.fmpz_poly([1]), [flint.fmpz_poly([1])]
+    for _ in range(d):
+        other.append(other[-1] * one)
+    for k in range(W):
+        c = (power * other[d - k]).coeffs()
+        rows.extend(c + [0] * (W - len(c)))
+        power = power * base
+    return flint.fmpz_mat(W, W, rows)
 
 
 def _sign_at_algebraic(r: flint.fmpz_poly, alpha: RealAlgebraic) -> int:
@@ -260,6 +278,110 @@ def next_sign_change(p: flint.fmpq_poly, t: FiniteReal) -> Real:
         if other < end:
             end = other
     return end
+
+
+def sign_change_near(p: flint.fmpq_poly, t: FiniteReal, left: float, right: float) -> Real | None:
+    """The least root of odd multiplicity of p greater than t (as :func:`next_sign_change`), when a float
+    hint is right; None when it is not (then nothing is proved).  The hint: p(left) >= 0 > p(right) in
+    floats, t < left < right.  A float root x in [left, right] (safeguarded Newton), and then, exactly,
+    with dyadics lo < x < hi (hi - lo about 2^-43 (1 + |x|)) and a = t (t.lower for an algebraic t):
+
+    * lo > t (lo > t.upper), Descartes proves no root of p in (a, lo), and p(lo) > 0: p > 0 on (t, lo];
+    * p(hi) < 0: p has a root of odd multiplicity in (lo, hi), so the least one beyond t lies there;
+    * of p's irreducible factors of odd multiplicity, exactly one has a root in (lo, hi), and exactly one
+      (Descartes: one sign variation), the others none (no variation).
+
+    Then that root is the answer: a Fraction (a linear factor) or a :class:`RealAlgebraic` isolated by
+    (lo, hi), already narrow.  One exact factorisation and a few Descartes tests, no root isolation.
+
+    >>> r = sign_change_near(flint.fmpq_poly([2, 0, -1]), Fraction(0), 1.0, 2.0)     # 2 - x^2: sqrt 2
+    >>> str(r.poly), r.upper - r.lower <= Fraction(1, 2**42)
+    ('x^2 + (-2)', True)
+    >>> sign_change_near(flint.fmpq_poly([6, -5, 1]), Fraction(0), 1.0, 2.5)     # (x - 2)(x - 3): 2
+    Fraction(2, 1)
+    >>> sign_change_near(flint.fmpq_poly([6, -5, 1]), Fraction(0), 2.5, 2.9) is None   # a wrong hint
+    True
+    """
+    x = _float_root(p, left, right)
+    if x is None:
+        return None
+    # dyadics lo < x < hi, hi - lo = 2^(1 - k) <= 2^-43 (1 + |x|): fmpq throughout, Fractions once at the end
+    _, top_exponent = math.frexp(1 + abs(x))
+    k = 45 - top_exponent
+    width = flint.fmpq(1, 2**k) if k >= 0 else flint.fmpq(2 ** -k)
+    mid = flint.fmpq(*x.as_integer_ratio())
+    lo, hi = mid - width, mid + width
+    if isinstance(t, RealAlgebraic):
+        a, top = fmpq_of(t.lower), fmpq_of(t.upper)
+    else:
+        a = top = fmpq_of(Fraction(t))
+    if not (top < lo and p(lo) > 0 and p(hi) < 0 and _variations_between(p, a, lo) == 0):
+        return None
+    _, factors = integer_part(p).factor()
+    found: Real | None = None
+    for f, m in factors:
+        if m % 2 == 0:
+            continue
+        count = _variations_between(f, lo, hi)
+        if count == 0:
+            continue
+        if count > 1 or found is not None:
+            return None
+        if f.degree() == 1:
+            c0, c1 = (int(c) for c in f.coeffs())
+            found = Fraction(-c0, c1)
+        else:
+            f = f if f.leading_coefficient() > 0 else -f
+            found = RealAlgebraic(f, _fraction(lo), _fraction(hi), _trusted=True)
+    return found
+
+
+def _fraction(x: flint.fmpq) -> Fraction:
+    return Fraction(int(x.p), int(x.q))
+
+
+def _variations_between(f: flint.fmpz_poly | flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq) -> int:
+    """The sign variations of (1 + y)^d f((lo + hi y)/(1 + y)): by Descartes' rule at least the number of
+    f's roots in (lo, hi), of the same parity (0: none; 1: exactly one)."""
+    shifted = flint.fmpq_poly(f)(flint.fmpq_poly([lo, hi - lo]))
+    return sign_variations(flint.fmpq_poly(list(reversed(shifted.coeffs())))(ONE_PLUS_X).coeffs())
+
+
+def _float_root(p: flint.fmpq_poly, left: float, right: float) -> float | None:
+    """A float root of p in [left, right] where p(left) >= 0 > p(right) in floats (safeguarded Newton on
+    the bracket); None when the floats do not show that bracket.  A hint: never raises."""
+    try:
+        c = [float_hint(v) for v in integer_part(p).coeffs()]
+        scale = max((abs(v) for v in c), default=0.0)
+        if not (scale > 0 and math.isfinite(scale)):
+            return None
+        c = [v / scale for v in c]
+
+        def value(x: float) -> tuple[float, float]:
+            f = df = 0.0
+            for v in reversed(c):
+                df = df * x + f
+                f = f * x + v
+            return f, df
+
+        a, b = left, right
+        if not (math.isfinite(a) and math.isfinite(b) and a < b and value(a)[0] >= 0 > value(b)[0]):
+            return None
+        x = (a + b) / 2
+        for _ in range(200):
+            f, df = value(x)
+            if f >= 0:
+                a = x
+            else:
+                b = x
+            step = x - f / df if df else math.nan
+            x_next = step if a < step < b else (a + b) / 2
+            if b - a <= 1e-15 * (1 + abs(x)) or abs(x_next - x) <= 1e-16 * (1 + abs(x)):
+                return x_next
+            x = x_next
+        return x
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return None
 
 
 def rational_right_of(t: FiniteReal, width: Fraction) -> Fraction:

@@ -18,6 +18,7 @@ from exactinv.conditions.polyhedron import ConditionSet
 from exactinv.core.algebraic import RealAlgebraic
 from exactinv.core.scalars import INF, Infinity
 from exactinv.errors import InvalidInput
+from exactinv.validset import lp_route as engine_lp
 from exactinv.validset.lp import LP_ABOVE
 from exactinv.validset.lp_route import LPRouteCache, LPRouteDeclined, lp_route, vertex_bound
 
@@ -201,6 +202,30 @@ def test_lp_route_equals_the_box_route_and_the_vertex_route(problem):
     S, P, m = problem
     V1, V2, V3 = (ei.valid_steplengths(S, P, m, route=r) for r in ("lp", "box", "vertex"))
     assert V2.route == "box" and _ends(V1) == _ends(V2) == _ends(V3)
+
+
+@settings(max_examples=20, deadline=None)
+@given(polytopes(), st.lists(st.integers(1, 12), min_size=16, max_size=16), st.integers(0, 3))
+def test_rows_scaled_to_fractions_give_the_same_set(problem, scales, shift):
+    """Each row of (G | b) divided by a positive integer (and all by 7^shift): the same P.  The walk works
+    on the rows scaled back to integers (a basis's components then scale by positive factors per row: the
+    same signs and roots; its point and the ratio test are unchanged), so the valid set is the vertex
+    route's on the integral rows, end by end and flag by flag, and the kernel accepts the certificate,
+    whose bases it proves on the rows as given."""
+    S, P, m = problem
+    G = [[F(v, scales[r] * 7**shift) for v in g] for r, g in enumerate(P.G)]
+    Q = ei.Polyhedron(G, [F(beta, scales[r] * 7**shift) for r, beta in enumerate(P.b)])
+    expected = _ends(ei.valid_steplengths(S, P, m, route="vertex"))
+    V = ei.valid_steplengths(S, Q, m, route="lp")
+    assert V.route == "lp" and _ends(V) == expected
+    assert exactinv_check.check(V.certificate).ok
+    old = engine_lp.DUAL_POLICY
+    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, 1, 10**9)  # dual pieces everywhere: B^-T d on scaled rows
+    try:
+        V = ei.valid_steplengths(S, Q, m, route="lp")
+    finally:
+        engine_lp.DUAL_POLICY = old
+    assert _ends(V) == expected and exactinv_check.check(V.certificate).ok
 
 
 # ------------------------------------------------------------------ an independent exact LP (PPL)
