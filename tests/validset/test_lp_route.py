@@ -9,7 +9,7 @@ from fractions import Fraction
 
 import ppl
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 import exactinv as ei
@@ -439,13 +439,31 @@ def unbounded_polyhedra(draw):
     return ei.LinearSystem(A), ei.Polyhedron(G, b), draw(st.sampled_from(UNBOUNDED_METHODS))
 
 
+# Found by Hypothesis (lp-basiscost, a random seed): Pade(2,2), D(h) has a real root near h = 2.19 where two rays
+# of P change places, an irrational point where the facet's ray conditions all vanish: the documented decline.
+_RAYS_SWAP = (ei.LinearSystem([[0, 2, -2], [-1, 3, -1], [0, Fraction(-1, 2), 3]]),
+              ei.Polyhedron([[-1, 0, 0], [0, -1, 0], [0, 0, -1], [-2, 2, -2]], [1, 1, 1, 2]), M.pade(2, 2))
+
+
 @settings(max_examples=30, deadline=None)
+@example(_RAYS_SWAP)
 @given(unbounded_polyhedra())
 def test_lp_route_equals_the_vertex_route_on_unbounded_polyhedra(problem):
     """Taylor, backward Euler and Pade methods on random unbounded pointed P (n <= 3): intervals, ends,
     flags, tau and attained identical to the vertex route's (generators with rays); both certificates
-    verify in the kernel."""
+    verify in the kernel.  Or the LP route declines for its one documented reason on a pointed P
+    (docs/design.md, "The route protocol": an irrational point where a facet's ray conditions all vanish),
+    and the vertex route still answers."""
     S, P, m = problem
+    try:
+        cs = ConditionSet(S, P, m)
+        lp_route(cs)
+    except LPRouteDeclined as declined:
+        assert "ray conditions all vanish" in str(declined), str(declined)
+        with pytest.raises(InvalidInput, match="lp route declines"):
+            ei.valid_steplengths(S, P, m, route="lp")
+        assert exactinv_check.check(ei.valid_steplengths(S, P, m, route="vertex").certificate).ok
+        return
     _three_routes_agree(S, P, m)
 
 
