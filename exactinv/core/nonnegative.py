@@ -15,6 +15,7 @@ This mirrors the kernel's valid set (exactinv_check/validset.py).
 from __future__ import annotations
 
 import math
+import statistics
 from fractions import Fraction
 from typing import Callable, Iterable, Iterator
 
@@ -99,7 +100,7 @@ def time_scale(polys: Iterable[flint.fmpq_poly]) -> int:
             turns.append(min((low - lk) / (k - j) for k, lk in logs[1:]))
     if not turns:
         return 0
-    return int(round(float(np.median(turns))))
+    return int(round(statistics.median(turns)))  # not np.median: its first call imports numpy.ma (~20-36 ms)
 
 
 def _bound(V: IntervalUnion):
