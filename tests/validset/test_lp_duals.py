@@ -247,10 +247,10 @@ def _check_dual_piece(S, P, method, facet, piece):
 
 
 def test_chained_and_carried_dual_pieces_are_the_papers_certificate_exactly(monkeypatch):
-    """R^5 with 20 facets, Taylor-4, dual pieces tried after one basis piece: dual pieces follow dual pieces directly (y_0 from the
-    float LP's basis at the previous end), some with y_1, y_2, ... carried over from the previous piece's y(h)
-    (no LP); every dual piece re-proved apart from the engine, the set the same as without dual pieces and as
-    the vertex route's, the certificate accepted by the kernel."""
+    """R^5 with 20 facets, Taylor-4, dual pieces tried after one basis piece: dual pieces follow dual pieces
+    directly (y_0 from the float LP's basis at the previous end), some with y_1, y_2, ... carried over from the
+    previous piece's y(h) (no LP); every dual piece re-proved apart from the engine, the set the same as
+    without dual pieces and as the vertex route's, the certificate accepted by the kernel."""
     from exactinv.validset import lp_duals
     carried = []
     original = lp_duals.DualCertificate.taylor_at
@@ -339,6 +339,7 @@ def test_dual_certificates_are_immutable_and_compare_by_value():
     assert c != DualCertificate(F(1), F(2), (((0, F(1, 2)),),))
     assert hash(c) == hash(DualCertificate(F(1), F(2), (((0, F(1, 2)),), ((3, F(2)),))))
     assert c.record() == {"dual": [[[0, "1/2"]], [[3, "2"]]]}
-    assert repr(c) == "DualCertificate(start=Fraction(1, 1), end=Fraction(2, 1), ys=(((0, Fraction(1, 2)),), ((3, Fraction(2, 1)),)))"
+    assert repr(c) == ("DualCertificate(start=Fraction(1, 1), end=Fraction(2, 1), "
+                       "ys=(((0, Fraction(1, 2)),), ((3, Fraction(2, 1)),)))")
     with pytest.raises(AttributeError):
         c.end = F(3)
