@@ -113,10 +113,11 @@ class DualCertificate:
         """
         return {"dual": [[[r, exact_text(v)] for r, v in y] for y in self._entries]}
 
-    def taylor_at(self, a: Fraction) -> list[list[tuple[int, flint.fmpq]]]:
+    def taylor_at(self, a: Fraction, first: int = 0) -> list[list[tuple[int, flint.fmpq]]]:
         """The same y(h) = sum_k (h - start)^k y_k written at a >= start: z_k = sum_{j >= k} C(j, k)
         (a - start)^(j - k) y_j, so y(h) = sum_k (h - a)^k z_k.  Every weight is >= 0, so z_k >= 0 and
         G^T z_k is the k-th Taylor coefficient at a of the same D N^T g_i: exact y_k for a piece from a.
+        ``first``: z_first, z_(first+1), ... only.
 
         >>> DualCertificate(Fraction(0), INF, (((0, Fraction(1)),), ((1, Fraction(2)),))).taylor_at(Fraction(1, 2))
         [[(0, 1), (1, 1)], [(1, 2)]]
@@ -131,8 +132,9 @@ class DualCertificate:
             for r, v in y:
                 Y[j, column[r]] = v if isinstance(v, flint.fmpq) else fmpq_of(v)
         t = fmpq_of(a - self.start)
-        S = flint.fmpq_mat(K, K, [comb(j, k) * t ** (j - k) if j >= k else 0 for k in range(K) for j in range(K)])
-        Z = (S * Y).tolist()
+        S = flint.fmpq_mat(K - first, K, [comb(j, k) * t ** (j - k) if j >= k else 0
+                                          for k in range(first, K) for j in range(K)])
+        Z = (S * Y).tolist() if K > first else []
         return [[(r, v) for r, v in zip(rows, z) if v != _ZERO] for z in Z]
 
 
@@ -273,7 +275,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
             end = _reaches(top, betas + carried[k:], a, cap)
             if end is not None:
                 assert carry is not None
-                ys.extend(tuple(y) for y in carry.taylor_at(a)[k:])
+                ys.extend(tuple(y) for y in carry.taylor_at(a, k))
                 betas.extend(carried[k:])
                 break
         d = flint.fmpq_mat(n, 1, [Tk[l, k] for l in range(n)])
@@ -316,7 +318,8 @@ def _carried_betas(carry: DualCertificate, a: Fraction, b: list[flint.fmpq]) -> 
     own b^T y_j by the same binomial weights (no vector is formed): sum_j C(j, k) (a - start)^(j - k) b^T y_j."""
     if a < carry.start:
         return None
-    old = [_beta(b, [(r, v if isinstance(v, flint.fmpq) else fmpq_of(v)) for r, v in y]) for y in carry.entries]
+    old = [_beta(b, y if all(isinstance(v, flint.fmpq) for _, v in y) else [(r, fmpq_of(v)) for r, v in y])
+           for y in carry.entries]
     t = fmpq_of(a - carry.start)
     return [sum((comb(j, k) * t ** (j - k) * old[j] for j in range(k, len(old))), _ZERO) for k in range(len(old))]
 
@@ -373,6 +376,22 @@ def _short_end(a: Fraction, span: Fraction) -> Fraction:
     return simplest_between(a + span - span / 64, a + span)
 
 
+def _short_float(lo: float, hi: float) -> Fraction | None:
+    """A short rational p/q in [lo, hi] (floats, 0 <= lo < hi), the least q <= 4096 that has one, found in floats
+    (the caller proves whatever it needs of it exactly); None when floats fail or no q <= 4096 does.
+
+    >>> _short_float(0.31, 1 / 3), _short_float(2.3, 2.31)
+    (Fraction(1, 3), Fraction(23, 10))
+    """
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi < 2.0**52):
+        return None
+    for q in range(1, 4097):
+        p = math.ceil(lo * q)
+        if p <= hi * q:
+            return Fraction(p, q)
+    return None
+
+
 def _float_end(q: flint.fmpq_poly, a: Fraction, cap: Fraction | None) -> Real | None:
     """:func:`piece_end` from a float guess of q's first root beyond 0, proved exactly; None when floats say
     nothing useful or the proof fails (never raises, never wrong: every end it returns is proved)."""
@@ -388,7 +407,9 @@ def _float_end(q: flint.fmpq_poly, a: Fraction, cap: Fraction | None) -> Real | 
     for top in (r * (1 + 1e-9), r * (1 - 1e-9)):  # the root itself when it is short and rational, else below it
         if not top > 0:
             return None
-        span = _short_end(a, Fraction(top)) - a
+        start = float(a)
+        short = _short_float(start + top * 63 / 64, start + top)
+        span = (short - a) if short is not None and short > a else _short_end(a, Fraction(top)) - a
         if cap is not None and cap - a < span:
             span = cap - a
         end = _proved(q, a, span)

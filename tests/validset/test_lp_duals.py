@@ -255,7 +255,7 @@ def test_chained_and_carried_dual_pieces_are_the_papers_certificate_exactly(monk
     carried = []
     original = lp_duals.DualCertificate.taylor_at
     monkeypatch.setattr(lp_duals.DualCertificate, "taylor_at",
-                        lambda self, a: carried.append(a) or original(self, a))
+                        lambda self, a, first=0: carried.append(a) or original(self, a, first))
     S, P = _family(5, 20)
     method = M.taylor(4)
     V = _with(engine_lp.DualPolicy(after=1), S, P, method)
@@ -290,6 +290,7 @@ def test_a_dual_pieces_y_written_at_a_later_start_is_the_same_polynomial(data):
     cert = DualCertificate(start, INF, tuple(ys))
     z = cert.taylor_at(a)
     assert all(v > 0 for y in z for _, v in y)
+    assert cert.taylor_at(a, 1) == z[1:] and cert.taylor_at(a, K) == []
     for h in (a, a + F(1, 3), a + 2, start + 7):
         old = [sum(F(str(v)) * (h - start) ** k for k, y in enumerate(ys) for r2, v in y if r2 == r) for r in range(m)]
         new = [sum(F(str(v)) * (h - a) ** k for k, y in enumerate(z) for r2, v in y if r2 == r) for r in range(m)]
