@@ -100,14 +100,16 @@ class DualPolicy:
     facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i)
     and the facet's last ``after`` pieces are all basis pieces (the optimal basis changes while the facet
     is far from binding: what a dual piece skips); after a failed try, the next ``backoff`` pieces of that
-    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none.
+    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none; at the end
+    of a dual piece, up to ``chain`` more dual pieces in a row (y_0 from the float LP's basis there, the
+    previous piece's y(h) carried over where it reaches the cap).
     A heuristic only: every dual piece is exact, and a failed one falls back to basis pieces.
     ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
     ``DualPolicy(Fraction(0), 0, 1, 10**9)``)."""
 
     slack: Fraction = Fraction(1, 4)
     backoff: int = 3
-    after: int = 3
+    after: int = 2  # 3 before chained dual pieces (branch lp-dualcost): a chained piece reaches what the first misses
     give_up: int = 8  # after this many failed tries and no dual piece found at all, the walk tries no more
     chain: int = 1  # dual pieces that may follow a dual piece directly (y_0 from the float LP at its end)
 
