@@ -268,7 +268,6 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     carried = _carried_betas(carry, a, b_list) if carry is not None and cap is not None else None
     if carried is not None and len(carried) > W:
         carried = None
-    GT = G.transpose()
     end: Real | None = None
     for k in range(1, W):
         if carried is not None and cap is not None:  # y_k, y_(k+1), ... carried over: enough to reach the cap?
@@ -296,7 +295,7 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
             if res is None or res.status != OPTIMAL or res.y_q is None:
                 return None  # unbounded in the direction d_k: no y_k >= 0 (Farkas)
             full = res.y_q.entries()
-            if len(full) != m or any(v < 0 for v in full) or GT * res.y_q != d:
+            if len(full) != m or any(v < 0 for v in full) or G.transpose() * res.y_q != d:
                 return None
             y = _sparse(full)
         ys.append(y)

@@ -912,11 +912,10 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             return False
         if i not in targets:
             targets[i] = dual_target(objectives[i], P.D)
-        rows = before.basis.rows
-        y0 = P.direction_basis(rows).dual_of(P, _cost(objectives[i], P.D, a))  # B optimal at a: y_0 = B^-T d_0 >= 0
+        y0 = before.basis.dual_of(*_cost(objectives[i], P.D, a).numer_denom())  # B optimal at a: B^-T d_0 >= 0
         if y0 is None:
             return False
-        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], (rows, y0), guard, a, _cap(T),
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], (before.basis.rows, y0), guard, a, _cap(T),
                           lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
         if cert is None:
             backoff[i] = policy.backoff
