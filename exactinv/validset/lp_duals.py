@@ -312,13 +312,17 @@ def dual_piece(G: flint.fmpq_mat, b: flint.fmpq_mat, b_i: Fraction, D: flint.fmp
     return DualCertificate(a, end, tuple(ys))
 
 
+def _flint_entries(y: tuple[tuple[int, Fraction | flint.fmpq], ...]) -> list[tuple[int, flint.fmpq]]:
+    """(row, value) with every value an fmpq (the engine's already are)."""
+    return [(r, v if isinstance(v, flint.fmpq) else fmpq_of(v)) for r, v in y]
+
+
 def _carried_betas(carry: DualCertificate, a: Fraction, b: list[flint.fmpq]) -> list[flint.fmpq] | None:
     """b^T z_k for the previous piece's y(h) written at a (z_k of :meth:`DualCertificate.taylor_at`), from its
     own b^T y_j by the same binomial weights (no vector is formed): sum_j C(j, k) (a - start)^(j - k) b^T y_j."""
     if a < carry.start:
         return None
-    old = [_beta(b, y if all(isinstance(v, flint.fmpq) for _, v in y) else [(r, fmpq_of(v)) for r, v in y])
-           for y in carry.entries]
+    old = [_beta(b, _flint_entries(y)) for y in carry.entries]
     t = fmpq_of(a - carry.start)
     return [sum((comb(j, k) * t ** (j - k) * old[j] for j in range(k, len(old))), _ZERO) for k in range(len(old))]
 
