@@ -38,6 +38,7 @@ import numpy as np
 
 from ..core.algebraic import Real, RealAlgebraic, exact_lt
 from ..core.flintq import exact_text, fmpq_of, fraction_of
+from ..core.float_hint import float_hint, float_hints
 from ..core.polys import no_root_between
 from ..core.real_signs import narrowed
 from ..core.roots import real_roots
@@ -410,7 +411,7 @@ def _float_end(q: flint.fmpq_poly, a: Fraction, cap: Fraction | None) -> Real | 
     for top in (r * (1 + 1e-9), r * (1 - 1e-9)):  # the root itself when it is short and rational, else below it
         if not top > 0:
             return None
-        start = float(a)
+        start = float_hint(a)
         short = _short_float(start + top * 63 / 64, start + top)
         span = (short - a) if short is not None and short > a else _short_end(a, Fraction(top)) - a
         if cap is not None and cap - a < span:
@@ -426,7 +427,7 @@ def _decreasing_root(q: flint.fmpq_poly) -> list[float] | None:
     method in floats from the right (q is concave there, so the iterates fall monotonically onto the root):
     [] when q is constant, None when floats fail (a hint; never raises)."""
     try:
-        c = [float(v) for v in q.coeffs()]
+        c = float_hints(q.coeffs()).tolist()
         if len(c) < 2:
             return []
         if not all(math.isfinite(v) for v in c) or not c[0] > 0:
@@ -461,7 +462,7 @@ def _float_roots(q: flint.fmpq_poly) -> list[float] | None:
     """The positive real roots of q in floats (a hint: None when floats fail; never raises)."""
     try:
         with np.errstate(all="ignore"):
-            c = np.array([float(v) for v in q.coeffs()])
+            c = float_hints(q.coeffs())
             if len(c) < 2:
                 return [] if np.all(np.isfinite(c)) else None
             if not np.all(np.isfinite(c)) or c[-1] == 0:
@@ -469,7 +470,7 @@ def _float_roots(q: flint.fmpq_poly) -> list[float] | None:
             roots = np.polynomial.polynomial.polyroots(c / np.abs(c).max())
             if not np.all(np.isfinite(roots)):
                 return None
-            return [float(r.real) for r in roots if abs(r.imag) <= 1e-7 * (1.0 + abs(r.real)) and r.real > 0]
+            return [r.real.item() for r in roots if abs(r.imag) <= 1e-7 * (1.0 + abs(r.real)) and r.real > 0]
     except Exception:  # noqa: BLE001 -- a hint never raises: it only fails to help
         return None
 
