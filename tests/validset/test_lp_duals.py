@@ -344,3 +344,15 @@ def test_dual_certificates_are_immutable_and_compare_by_value():
                        "ys=(((0, Fraction(1, 2)),), ((3, Fraction(2, 1)),)))")
     with pytest.raises(AttributeError):
         c.end = F(3)
+
+
+@pytest.mark.parametrize("scale", [F(10**400), F(1, 10**400), F(1)])
+def test_a_dual_pieces_end_with_coefficients_beyond_double_range(scale):
+    """The float root is only a hint (exactinv.core.float_hint: inf or 0, never an exception): q(a + s) =
+    scale (1 - s) (1 + s), decreasing, huge or tiny -- the end is still q's root 1 beyond a, proved exactly;
+    q = scale (1 + s^2 - s) (no real root) never ends."""
+    from exactinv.validset.lp_duals import piece_end
+    c = flint.fmpq(scale.numerator, scale.denominator)
+    assert piece_end(flint.fmpq_poly([c, 0, -c]), F(1, 3), None) == F(4, 3)
+    assert piece_end(flint.fmpq_poly([c, -c, c]), F(1, 3), None) == INF
+    assert piece_end(flint.fmpq_poly([c, -c, c]), F(1, 3), F(5)) == F(5)
