@@ -103,6 +103,10 @@ class DualCertificate:
     def __hash__(self) -> int:
         return hash((self.start, self.end, self.ys))
 
+    def __reduce__(self) -> tuple:
+        """Pickled (and copied) by value, with Fractions: a result crosses process boundaries in a batch."""
+        return (DualCertificate, (self.start, self.end, self.ys))
+
     def __repr__(self) -> str:
         return f"DualCertificate(start={self.start!r}, end={self.end!r}, ys={self.ys!r})"
 

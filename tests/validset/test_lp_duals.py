@@ -344,6 +344,9 @@ def test_dual_certificates_are_immutable_and_compare_by_value():
                        "ys=(((0, Fraction(1, 2)),), ((3, Fraction(2, 1)),)))")
     with pytest.raises(AttributeError):
         c.end = F(3)
+    import copy
+    import pickle
+    assert pickle.loads(pickle.dumps(c)) == c and copy.deepcopy(c) == c and copy.copy(c) == c
 
 
 @pytest.mark.parametrize("scale", [F(10**400), F(1, 10**400), F(1)])
