@@ -102,15 +102,18 @@ class DualPolicy:
     facet i where the piece's condition has c(a) > ``slack`` D(a)^2 b_i (phi_i(a) below (1 - slack) b_i)
     and the facet's last ``after`` pieces are all basis pieces (the optimal basis changes while the facet
     is far from binding: what a dual piece skips); after a failed try, the next ``backoff`` pieces of that
-    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none.
+    facet try none, and after ``give_up`` failed tries with no dual piece found the walk tries none; at the end
+    of a dual piece, up to ``chain`` more dual pieces in a row (y_0 from the float LP's basis there, the
+    previous piece's y(h) carried over where it reaches the cap).
     A heuristic only: every dual piece is exact, and a failed one falls back to basis pieces.
     ``DUAL_POLICY = None`` turns dual pieces off (tests force them on with
     ``DualPolicy(Fraction(0), 0, 1, 10**9)``)."""
 
     slack: Fraction = Fraction(1, 4)
     backoff: int = 3
-    after: int = 3
+    after: int = 2  # 3 before chained dual pieces (branch lp-dualcost): a chained piece reaches what the first misses
     give_up: int = 8  # after this many failed tries and no dual piece found at all, the walk tries no more
+    chain: int = 1  # dual pieces that may follow a dual piece directly (y_0 from the float LP at its end)
 
 
 DUAL_POLICY: DualPolicy | None = DualPolicy()
@@ -1010,10 +1013,13 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
 
     def try_dual(i: int, t: FiniteReal) -> bool:
         """A dual piece of facet i from t (or from a rational just left of an algebraic t, the previous basis
-        piece cut there), when the previous piece is a basis piece and facet i is far from binding at t."""
+        piece cut there), when the previous piece is a basis piece and facet i is far from binding at t; or
+        right at the end t of a dual piece (:attr:`DualPolicy.chain`), with y_0 from the float LP's basis at t."""
         before = last[i]
-        if policy is None or before is None or before.basis is None or isinstance(t, Infinity):
+        if policy is None or before is None or isinstance(t, Infinity):
             return False
+        if before.basis is None:
+            return before.piece.dual is not None and chain(i, t)
         if backoff[i] > 0:
             backoff[i] -= 1
             return False
@@ -1037,7 +1043,10 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
             return False
         if i not in targets:
             targets[i] = dual_target(objectives[i], P.D)
-        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], before.basis.rows, before.basis.inv_t, guard, a, _cap(T),
+        y0 = before.basis.dual_of(*_cost(objectives[i], P.D, a).numer_denom())  # B optimal at a: B^-T d_0 >= 0
+        if y0 is None:
+            return False
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], (before.basis.rows, y0), guard, a, _cap(T),
                           lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows))
         if cert is None:
             backoff[i] = policy.backoff
@@ -1046,10 +1055,48 @@ def _build(cs: ConditionSet, walked: int | None = None) -> tuple[list[Condition]
         tally[0] += 1
         if a != t:
             walks[i][-1] = (replace(piece, end=a), c, walks[i][-1][2])
-        dual = Piece(a, cert.end, None, None, cert)
+        found(i, cert)
+        return True
+
+    def chain(i: int, t: FiniteReal) -> bool:
+        """A dual piece of facet i right at the end t (rational) of its dual piece: y_0 = B^-T d_0(t) >= 0 for the
+        basis B of the float LP at d_0(t) (exact; the basis need not be primal feasible), taken when
+        q(t) = D(t)^2 b_i - b^T y_0 > slack D(t)^2 b_i; at most ``chain`` such pieces in a row."""
+        assert policy is not None
+        run = 0
+        for p, _, _ in reversed(walks[i]):
+            if p.dual is None:
+                break
+            run += 1
+        if run > policy.chain or not isinstance(t, Fraction) or tally[1] >= policy.give_up and not tally[0]:
+            return False
+        b_i, x = P.cs.b[i], fmpq_of(t)
+        Da = P.D(x)
+        if not (b_i > 0 and Da != 0):
+            return False
+        if i not in targets:
+            targets[i] = dual_target(objectives[i], P.D)
+        d0 = _cost(objectives[i], P.D, t)
+        rows = _hint_rows(P, d0)
+        y0 = None if rows is None else P.direction_basis(rows).dual_of(P, d0)
+        if rows is None or y0 is None:
+            return False
+        beta = sum((v * P.b[r, 0] for r, v in zip(rows, y0)), flint.fmpq(0))
+        if not Da * Da * fmpq_of(b_i) - beta > fmpq_of(policy.slack) * Da * Da * fmpq_of(b_i):
+            return False
+        cert = dual_piece(P.G, P.b, b_i, P.D, targets[i], (rows, y0), guard, t, _cap(T),
+                          lambda k, d: suggest(i, k, d), lambda k, rows: used(i, k, rows), carry=walks[i][-1][0].dual)
+        if cert is None:
+            tally[1] += 1
+            return False
+        tally[0] += 1
+        found(i, cert)
+        return True
+
+    def found(i: int, cert: DualCertificate) -> None:
+        dual = Piece(cert.start, cert.end, None, None, cert)
         last[i] = _Step(dual, None, -1, None, True)
         walks[i].append((dual, None, walks[i][-1][2]))
-        return True
 
     def step(i: int, t: FiniteReal) -> None:
         nonlocal T

@@ -201,9 +201,11 @@ def test_seeded_mutants_of_genuine_dual_piece_certificates_give_the_true_valid_s
 
 def test_the_fuzzer_finds_a_false_accept_in_a_kernel_that_skips_q(monkeypatch):
     """The fuzzer can fail: with q >= 0 not checked (q taken as 1), a dual piece's end moved outward or a
-    piece replaced by a dual one is accepted past where the facet holds, and the fuzzer reports it."""
+    piece replaced by a dual one is accepted past where the facet holds, and the fuzzer reports it.  (40
+    mutations per record: the engine's chained dual pieces (branch lp-dualcost) changed the seed's records, and
+    25 mutations of them happened to miss; 40 find 4 false accepts.)"""
     monkeypatch.setattr(lp_duals.DualChecker, "q", lambda self, i, b_i, dual, a, what: [1])
-    _, _, bad = fuzz(seed=11, problems=4, mutations=25)
+    _, _, bad = fuzz(seed=11, problems=4, mutations=40)
     assert bad
 
 
