@@ -405,3 +405,95 @@ def test_a_problem_G_of_distinct_huge_denominators_is_charged_before_the_price_s
     assert len(text) < 1_000_000
     report = check_within(text, 20)  # was 31 s
     assert report.kind == "over-budget" and "G's common denominator" in str(report), report
+
+
+# ------------------------------------------------------------------ chained dual pieces (red team rt-chain)
+
+# x' = -x on [-1, 1], forward Euler (PROBLEM): facet 0's D N^T g_0 = 1 - h = (1 - a) - (h - a), so from any
+# a < 1 the dual piece y_0 = 1 - a on row 0, y_1 = 1 on row 1 has q = 2a - h >= 0 on [a, 2a]; from a = 1,
+# y_0 = 0, q = 2 - h.  Three dual pieces in a row, each at its own anchor (the engine's chain, y_0 fresh, y_1
+# carried over): [1/4, 1/2], [1/2, 1], [1, 2].  The truth: [0, 2].
+CHAIN = {"facets": [{"ends": ["1/4", "1/2", "1", "2", "oo"],
+                     "bases": [[0], {"dual": [[[0, "3/4"]], [[1, "1"]]]}, {"dual": [[[0, "1/2"]], [[1, "1"]]]},
+                               {"dual": [[], [[1, "1"]]]}, [1]]},
+                    {"ends": ["1", "2"], "bases": [[1], [0]]}]}
+
+
+def _chain(ends, bases, other=None):
+    record = copy.deepcopy(CHAIN)
+    record["facets"][0].update(ends=list(ends), bases=bases)
+    if other is not None:
+        record["facets"][1] = other
+    return record
+
+
+def test_a_chain_of_dual_pieces_each_at_its_own_anchor_gives_the_true_set():
+    assert [(t["lo"], t["hi"]) for t in truth(PROBLEM, ei.methods.taylor(1))] == [("0", "2")]
+    assert [str(i) for i in kernel_set(PROBLEM, CHAIN)] == ["[0, 2]"]
+
+
+_FIRST = {"dual": [[[0, "3/4"]], [[1, "1"]]]}  # the chain's first piece, anchored at 1/4
+_ON = [{"dual": [[[0, "1/2"]], [[1, "1"]]]}, {"dual": [[], [[1, "1"]]]}, [1]]  # the rest of the genuine chain
+
+
+@pytest.mark.parametrize("ends, bases, message", [
+    # the shared end 1/2 moved right: the first piece past its q's root (q = 1/2 - h)
+    (["1/4", "51/100", "1", "2", "oo"], [[0], _FIRST, *_ON], "negative inside its piece"),
+    # moved left: the chained piece's y_0 = 1/2 now sits at the anchor 49/100 (1 - a = 51/100)
+    (["1/4", "49/100", "1", "2", "oo"], [[0], _FIRST, *_ON], "Taylor coefficient 0"),
+    # the chained piece carries the first piece's y_0, y_1 as they are: not re-expanded at 1/2
+    (["1/4", "1/2", "1", "2", "oo"], [[0], _FIRST, copy.deepcopy(_FIRST), *_ON[1:]], "Taylor coefficient 0"),
+    # re-expanded at 1/2 (Lemma D3: z_0 = y(1/2) = (3/4, 1/4), z_1 = y_1): the identity holds, but it is the
+    # first piece's y(h), whose q = 1/2 - h < 0 on (1/2, 1]
+    (["1/4", "1/2", "1", "2", "oo"], [[0], _FIRST, {"dual": [[[0, "3/4"], [1, "1/4"]], [[1, "1"]]]}, *_ON[1:]],
+     "negative inside its piece"),
+    # the two pieces merged: the first piece's y(h) stretched to 1
+    (["1/4", "1", "2", "oo"], [[0], _FIRST, *_ON[1:]], "negative inside its piece"),
+    # merged the other way: the chained piece's y(h) stretched back to 1/4 (its anchor moved)
+    (["1/4", "1", "2", "oo"], [[0], *_ON], "Taylor coefficient 0"),
+    # the two pieces' vectors swapped
+    (["1/4", "1/2", "1", "2", "oo"], [[0], _ON[0], _FIRST, *_ON[1:]], "Taylor coefficient 0"),
+    # the shared end 1/2 as an algebraic number of the same value, root of (h - 1/2)(h^2 - 2): a dual piece
+    # needs a rational anchor
+    (["1/4", {"poly": ["1", "-2", "-1/2", "1"], "interval": ["49/100", "51/100"]}, "1", "2", "oo"],
+     [[0], _FIRST, *_ON], "starts at a rational"),
+    ([{"poly": ["1", "-2", "-1/2", "1"], "interval": ["49/100", "51/100"]}, "1", "2", "oo"],
+     [[0], *_ON], "starts at a rational"),  # the same after a basis piece
+    # the last dual piece run past 2 (q = 2 - h)
+    (["1/4", "1/2", "1", "201/100", "oo"], [[0], _FIRST, *_ON], "negative inside its piece"),
+])
+def test_chained_dual_pieces_with_a_moved_shared_end_or_carried_vectors_are_rejected(ends, bases, message):
+    with pytest.raises(CheckFailure, match=message):
+        _conditions(PROBLEM, _chain(ends, bases))
+
+
+def test_a_point_dual_piece_at_a_chains_shared_end_is_proved_at_that_point():
+    """[1/2, 1/2] between the chain's pieces: the first piece's y(h) re-expanded at 1/2 (q(1/2) = 0) is
+    accepted, the same vectors not re-expanded are not (their G'^T y_0 is the coefficient at 1/4)."""
+    z = {"dual": [[[0, "3/4"], [1, "1/4"]], [[1, "1"]]]}
+    record = _chain(["1/4", "1/2", "1/2", "1", "2", "oo"], [[0], _FIRST, z, *_ON])
+    assert [str(i) for i in kernel_set(PROBLEM, record)] == ["[0, 2]"]
+    record = _chain(["1/4", "1/2", "1/2", "1", "2", "oo"], [[0], _FIRST, copy.deepcopy(_FIRST), *_ON])
+    with pytest.raises(CheckFailure, match="Taylor coefficient 0"):
+        _conditions(PROBLEM, record)
+
+
+def test_a_facet_ending_in_a_chain_of_dual_pieces_before_the_horizon_needs_conditions_that_stop_there():
+    """Facet 0's last piece a dual piece ending at E = 2 (no piece beyond): accepted with [0, 2] while facet 1's
+    basis piece [1, 2] (x_B = 1: the condition 2 - h >= 0) bounds the conditions' set by E; with facet 1 a dual
+    piece there too, nothing bounds it ([0, oo) from the conditions h >= 0), and the kernel rejects (the truth
+    is [0, 2], but nothing proves any facet at h > 2)."""
+    cut = _chain(["1/4", "1/2", "1", "2"], [[0], _FIRST, *_ON[:2]])
+    assert [str(i) for i in kernel_set(PROBLEM, cut)] == ["[0, 2]"]
+    _, _, _, _, horizon = _conditions(PROBLEM, cut)
+    assert str(horizon) == "2"
+    both = _chain(["1/4", "1/2", "1", "2"], [[0], _FIRST, *_ON[:2]],
+                  other={"ends": ["1", "2"], "bases": [[1], {"dual": [[], [[0, "1"]]]}]})
+    assert kernel_set(PROBLEM, both) is None
+    with pytest.raises(CheckFailure, match="allow steplengths beyond"):
+        p = Problem(PROBLEM)
+        _, D, inequalities, equalities, horizon = lp_pieces.lp_conditions(p, both)
+        lp_pieces.require_horizon(D, inequalities, equalities, horizon, {}, "set")
+    # a claim of [0, 2] on it is rejected as a whole certificate too
+    assert not check_within(_valid_set_certificate(PROBLEM, both, hi="2"), 60).ok
+    assert check_within(_valid_set_certificate(PROBLEM, cut, hi="2"), 60).ok
