@@ -16,6 +16,7 @@ from math import gcd
 
 import pytest
 from kernel_deadline import check_within
+from lp_chain_fuzz import chains, fuzz_chains, genuine_chain
 from lp_duals_fuzz import fuzz, genuine, kernel_set, truth
 
 import exactinv as ei
@@ -497,3 +498,55 @@ def test_a_facet_ending_in_a_chain_of_dual_pieces_before_the_horizon_needs_condi
     # a claim of [0, 2] on it is rejected as a whole certificate too
     assert not check_within(_valid_set_certificate(PROBLEM, both, hi="2"), 60).ok
     assert check_within(_valid_set_certificate(PROBLEM, cut, hi="2"), 60).ok
+
+
+def _inside(W, h):
+    """h (a Fraction) lies in the kernel's valid set W (a list of Intervals), exactly."""
+    from exactinv_check.reals import Real
+    x = Real.rational(h)
+    for w in W:
+        lo, hi = x.compare(w.lo), (-1 if w.hi.inf else x.compare(w.hi))
+        if (lo > 0 or (lo == 0 and w.lo_closed)) and (hi < 0 or (hi == 0 and w.hi_closed)):
+            return True
+    return False
+
+
+def _valid_by_lps(problem, h):
+    """A_d(h) P within P by pplpy's exact LPs (every facet's max <= b_i and bounded), None at a pole."""
+    Ad = _A_d(problem, h)
+    if Ad is None:
+        return None
+    G = [[F(v) for v in r] for r in problem["G"]]
+    b = [F(v) for v in problem["b"]]
+    for g, beta in zip(G, b):
+        c = [sum(g[r] * F(str(Ad[r, col])) for r in range(Ad.shape[0])) for col in range(Ad.shape[1])]
+        best = _lp_max(G, b, c)
+        if best is None or best > beta:
+            return False
+    return True
+
+
+def test_chained_dual_pieces_give_the_valid_set_of_exact_lps_just_inside_and_outside_every_end():
+    """Route against route on genuine certificates with chained dual pieces (the engine's chain forced on,
+    DualPolicy(after 0 or 1, chain 2 or 3); bounded, ray and line problems, every method family): at each
+    chained pair's starts, shared end and last end, and at rationals 10^-6 (relative) on either side of them,
+    the kernel's valid set holds h exactly when pplpy's exact LPs find A_d(h) P within P."""
+    rng = random.Random(5)
+    checked = 0
+    for _ in range(4):
+        problem, record, _ = genuine_chain(rng, (2, 3), ("bounded", "rays", "lines"))
+        W = kernel_set(problem, record)
+        assert W is not None
+        for i, k in chains(record["facets"]):
+            f = record["facets"][i]
+            points = [F(0) if k < 2 else f["ends"][k - 2], f["ends"][k - 1], f["ends"][k]]
+            for t in points:
+                if t == "oo" or isinstance(t, dict):
+                    continue
+                t = F(t)
+                for h in (t, t * (1 - F(1, 10 ** 6)), t * (1 + F(1, 10 ** 6)) + F(1, 10 ** 9)):
+                    valid = _valid_by_lps(problem, h)
+                    if valid is not None:
+                        assert valid == _inside(W, h), (json.dumps(problem), json.dumps(record), str(h))
+                        checked += 1
+    assert checked >= 20
