@@ -5,10 +5,11 @@ one facet -- one way at a time: their shared end moved (a gap or an overlap of t
 algebraic number of the same value, or moved to the later piece's end; the chained piece's y_k replaced by
 the first piece's y_k not re-expanded (valid only at the old anchor), or by the first piece's y(h) written at
 the new start (Lemma D3: the identity holds, q decides); the two pieces merged (either y(h) stretched over
-both); the two pieces' vectors swapped; a dual piece split at a rational inside it (with and without the
-re-expansion); the facet cut right after a dual piece (its last piece a dual piece ending before the
-horizon); and any number of the record changed by :func:`lp_duals_fuzz.mutate`.  Every record the kernel
-accepts must give the vertex route's exact valid set of its problem."""
+both), or one of them stretched over every later piece of the facet; the two pieces' vectors swapped; a dual
+piece split at a rational inside it (with and without the re-expansion); a point piece inserted at the shared
+end; the facet cut right after a dual piece (its last piece a dual piece ending before the horizon); and any
+number of the record changed by :func:`lp_duals_fuzz.mutate`.  Every record the kernel accepts must give the
+vertex route's exact valid set of its problem."""
 
 import copy
 import json
@@ -87,7 +88,7 @@ def mutate_chain(rng, problem, record, kinds=None):
     if isinstance(ends[k - 1], dict) or (k >= 2 and isinstance(ends[k - 2], dict)):
         return None
     a1, a = _start(f, k - 1), F(ends[k - 1])
-    kind = rng.randrange(12)
+    kind = rng.randrange(13)
     if kinds is not None:
         kinds[kind] = kinds.get(kind, 0) + 1
     if kind == 0:  # the shared end moved: a gap or overlap between the two y(h)'s
@@ -137,6 +138,12 @@ def mutate_chain(rng, problem, record, kinds=None):
         z = reexpand(first, a1, a)
         ends.insert(k - 1, str(a))
         bases.insert(k, {"dual": z if rng.random() < 0.5 else copy.deepcopy(first)})
+    elif kind == 11:  # the chain runs on: the first or the chained piece absorbs every later piece of the facet
+        j = rng.choice([k - 1, k])
+        if j == len(bases) - 1:
+            return None
+        del ends[j:-1]
+        del bases[j + 1:]
     else:  # any number of the record (lp_duals_fuzz.mutate: entries, rows, ends, b, A)
         return mutate(rng, problem, record)
     return pr, rec
