@@ -149,7 +149,11 @@ class DualChecker:
             n, g = self.n, self.G[i]
             L, W = len(self.N), len(self.N) + len(self.D) - 1
             bits = max(_bits(x) for Nk in self.N for row in Nk for x in row) + max(_bits(x) for x in g)
-            charge(n * n * L * (PYTHON_OP + words(bits) ** 2) + n * L * len(self.D) * (PYTHON_OP + words(bits) ** 2),
+            # a Fraction product and sum per (column, power, row of g != 0), then per (column, power, coefficient
+            # of D): charged as Fraction operations (red team rt-chain: n^2 L PYTHON_OP was 54 times under the
+            # CPU time for n = 200, tests/kernel/test_lp_duals_attacks.py)
+            nonzero = sum(1 for x in g if x)
+            charge(n * L * (nonzero + len(self.D)) * (2 * FRACTION_WEIGHT + words(bits) ** 2),
                    "a dual piece's target D N^T g_i")
             rows = []
             for col in range(n):

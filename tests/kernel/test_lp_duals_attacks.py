@@ -259,6 +259,33 @@ def test_a_vector_of_distinct_huge_denominators_is_charged_before_its_common_den
     assert report.kind == "over-budget" and "common denominator" in str(report), report
 
 
+def test_a_facets_target_is_charged_by_its_fraction_operations():
+    """Found (red team rt-chain): a facet's target D N^T g_i (built once per facet with a dual piece; chained
+    dual pieces put one on more facets) makes n L nnz(g_i) Fraction products and sums, but was charged
+    n^2 L (PYTHON_OP + w^2) -- 11 units per product for short numbers: for n = 200 (x' = -x, forward Euler,
+    a dense g_i of digits), 0.5 s of CPU per target charged 9.2e5 (0.009 s at RATE: 54 times under, and
+    under BIG_CHARGE, so up to 63 of them between two readings of the clock).  Now each product and its sum
+    is charged as two Fraction operations (2 FRACTION_WEIGHT + w^2), like the kernel's other Fraction loops."""
+    from fractions import Fraction
+
+    from exactinv_check.budget import FRACTION_WEIGHT
+    from exactinv_check.conditions import method_matrices
+    rng = random.Random(8)
+    n = 60
+    A = [[Fraction(-int(i == j)) for j in range(n)] for i in range(n)]
+    G = [[Fraction(rng.choice([-9, -5, -1, 1, 2, 7])) for _ in range(n)] for _ in range(4)]
+    D, N = method_matrices(A, [Fraction(1), Fraction(1)], [Fraction(1)])
+    with account(limit=10**15, time_limit=None) as acc:
+        checker = lp_duals.DualChecker(G, [Fraction(1)] * 4, D, N)
+        before = acc.spent
+        f, T = checker.target(0)
+        charged = acc.spent - before
+    products = n * len(N) * n  # every column l, every power k, every row r with g_r != 0
+    assert charged >= 2 * FRACTION_WEIGHT * products
+    # the target itself, exact: D N^T g_0 = (1 - h) g_0
+    assert [[Fraction(v, f) for v in row] for row in T] == [[g, -g] for g in G[0]]
+
+
 def test_the_common_denominator_is_charged_by_the_sizes_of_its_steps():
     """40 distinct 300-digit denominators: a 40 x 1000-bit common denominator, charged step by step (each
     step's words squared), against one repeated denominator, charged once per entry at its own size."""
