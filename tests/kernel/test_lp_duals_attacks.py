@@ -6,7 +6,12 @@ and a y_k of 1/d_r entries with distinct 3990-digit d_r built a common denominat
 uncharged (50 s of CPU, past the clock).  Crafted forgeries (a tiny negative, a negative or out-of-range row,
 a line row, an extra y_K, a wrong anchor, a pole inside the piece, non-rational numbers) are rejected, and a
 seeded mutation fuzzer of genuine dual-piece certificates (tests/kernel/lp_duals_fuzz.py) checks every
-accepted mutant against the vertex route's exact valid set."""
+accepted mutant against the vertex route's exact valid set.
+
+Red team rt-chain (chained dual pieces: a dual piece right after another, at its end): crafted chains, a chain
+mutation fuzzer (tests/kernel/lp_chain_fuzz.py) and pplpy's exact LPs around every chained pair's ends; no
+false accept.  Found: a facet's target D N^T g_i priced 54 times under its CPU time, now charged as Fraction
+operations."""
 
 import copy
 import json
