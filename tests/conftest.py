@@ -22,7 +22,7 @@ def pytest_collection_modifyitems(config, items):
     left with one of them at the end while the others idle: CI's wall time is the longest worker's.
 
     EXACTINV_EXAMPLES_SCALE=s (``.ci/run``'s lowest-versions stage): every property test draws
-    max(3, ceil(s * n)) examples instead of its own n.  That stage checks that the declared lower bounds of
+    max(3, ceil(s * n)) examples instead of its own n (.ci/run: s = 0.1).  That stage checks that the declared lower bounds of
     the dependencies work, not new examples (stage 2 runs them all at full strength)."""
     items.sort(key=lambda item: item.get_closest_marker("heavy") is None)  # stable: the rest keep their order
     scale = float(os.environ.get("EXACTINV_EXAMPLES_SCALE", "1") or "1")
