@@ -12,13 +12,10 @@ number of the record changed by :func:`lp_duals_fuzz.mutate`.  Every record the 
 vertex route's exact valid set of its problem."""
 
 import copy
-import json
-import random
 from fractions import Fraction as F
 from math import comb
 
-from lp_duals_fuzz import METHODS, mutate, random_problem, truth
-from lp_record_sets import kernel_set, same
+from lp_duals_fuzz import METHODS, fuzz, mutate, random_problem
 
 import exactinv as ei
 from exactinv.validset import lp_route as engine_lp
@@ -152,30 +149,4 @@ def mutate_chain(rng, problem, record, kinds=None):
 def fuzz_chains(seed, problems, mutations, dims=(2, 3), shapes=("bounded", "rays", "lines")):
     """(tried, accepted, false accepts): mutants of genuine chained dual-piece records; a false accept is an
     accepted mutant whose valid set is not the vertex route's."""
-    rng = random.Random(seed)
-    tried = accepted = 0
-    bad = []
-    for _ in range(problems):
-        problem, record, method = genuine_chain(rng, dims, shapes)
-        W = kernel_set(problem, record)
-        assert W is not None and same(W, truth(problem, method)), json.dumps(record)
-        truths = {}
-        for _ in range(mutations):
-            out = mutate_chain(rng, problem, record)
-            if out is None:
-                continue
-            pr, rec = out
-            tried += 1
-            W = kernel_set(pr, rec)
-            if W is None:
-                continue
-            accepted += 1
-            key = json.dumps(pr)
-            if key not in truths:
-                try:
-                    truths[key] = truth(pr, method)
-                except ei.ExactinvError:
-                    truths[key] = None
-            if truths[key] is None or not same(W, truths[key]):
-                bad.append((pr, rec))
-    return tried, accepted, bad
+    return fuzz(seed, problems, mutations, dims, shapes, genuine_record=genuine_chain, mutate_record=mutate_chain)

@@ -155,19 +155,23 @@ def genuine(rng, dims, shapes):
         engine_lp.DUAL_POLICY = old
 
 
-def fuzz(seed, problems, mutations, dims=(2, 3), shapes=("bounded", "rays", "lines")):
+def fuzz(seed, problems, mutations, dims=(2, 3), shapes=("bounded", "rays", "lines"), genuine_record=None,
+         mutate_record=None):
     """(tried, accepted, false accepts): mutants of genuine dual-piece records; a false accept is an accepted
-    mutant whose valid set is not the vertex route's."""
+    mutant whose valid set is not the vertex route's.  ``genuine_record(rng, dims, shapes)`` and
+    ``mutate_record(rng, problem, record)`` (default :func:`genuine` and :func:`mutate`) make the records
+    and their mutants (tests/kernel/lp_chain_fuzz.py: chained dual pieces)."""
+    genuine_record, mutate_record = genuine_record or genuine, mutate_record or mutate
     rng = random.Random(seed)
     tried = accepted = 0
     bad = []
     for _ in range(problems):
-        problem, record, method = genuine(rng, dims, shapes)
+        problem, record, method = genuine_record(rng, dims, shapes)
         W = kernel_set(problem, record)
         assert W is not None and same(W, truth(problem, method)), json.dumps(record)
         truths = {}
         for _ in range(mutations):
-            out = mutate(rng, problem, record)
+            out = mutate_record(rng, problem, record)
             if out is None:
                 continue
             pr, rec = out
