@@ -15,9 +15,8 @@ import copy
 from fractions import Fraction as F
 from math import comb
 
-from lp_duals_fuzz import METHODS, fuzz, mutate, random_problem
+from lp_duals_fuzz import METHODS, fuzz, genuine, mutate
 
-import exactinv as ei
 from exactinv.validset import lp_route as engine_lp
 
 __all__ = ["METHODS", "chains", "genuine_chain", "mutate_chain", "reexpand", "fuzz_chains"]
@@ -35,21 +34,8 @@ def chains(facets):
 
 def genuine_chain(rng, dims, shapes, tries=10**6):
     """One genuine certificate holding a chained dual piece: (problem, record, method), or None."""
-    old = engine_lp.DUAL_POLICY
-    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, rng.choice([0, 1]), 10**9, rng.choice([2, 3]))
-    try:
-        for _ in range(tries):
-            A, G, b, method = random_problem(rng, dims, rng.choice(shapes))
-            try:
-                V = ei.valid_steplengths(ei.LinearSystem(A), ei.Polyhedron(G, b), method, route="lp")
-            except (ei.ExactinvError, engine_lp.LPRouteDeclined):
-                continue
-            claim = V.certificate["claims"][0]
-            if "lp" in claim and chains(claim["lp"]["facets"]):
-                return V.certificate["problem"], claim["lp"], method
-    finally:
-        engine_lp.DUAL_POLICY = old
-    return None
+    policy = engine_lp.DualPolicy(F(0), 0, rng.choice([0, 1]), 10**9, rng.choice([2, 3]))
+    return genuine(rng, dims, shapes, policy=policy, wanted=chains, tries=tries)
 
 
 def reexpand(ys, a1, a):

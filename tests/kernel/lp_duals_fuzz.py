@@ -7,6 +7,7 @@ ray piece replaced by a dual piece, a facet made one dual piece; b or A nudged).
 accepts must give the vertex route's exact valid set of its problem."""
 
 import copy
+import itertools
 import json
 import random
 from fractions import Fraction as F
@@ -136,12 +137,15 @@ def truth(problem, method):
     return V.certificate["claims"][0]["intervals"]
 
 
-def genuine(rng, dims, shapes):
-    """One genuine certificate with at least one dual piece: (problem, record, method)."""
+def genuine(rng, dims, shapes, policy=None, wanted=None, tries=None):
+    """One genuine certificate with at least one dual piece (or, with ``wanted(facets)``, one where that is
+    true): (problem, record, method); None after ``tries`` problems (None: until one is found).  The engine
+    runs under ``policy`` (default: a dual piece as early as possible)."""
     old = engine_lp.DUAL_POLICY
-    engine_lp.DUAL_POLICY = engine_lp.DualPolicy(F(0), 0, 1)
+    engine_lp.DUAL_POLICY = policy or engine_lp.DualPolicy(F(0), 0, 1)
+    wanted = wanted or _duals
     try:
-        while True:
+        for _ in itertools.count() if tries is None else range(tries):
             A, G, b, method = random_problem(rng, dims, rng.choice(shapes))
             try:
                 P = ei.Polyhedron(G, b)
@@ -149,10 +153,11 @@ def genuine(rng, dims, shapes):
             except (ei.ExactinvError, engine_lp.LPRouteDeclined):
                 continue
             claim = V.certificate["claims"][0]
-            if "lp" in claim and _duals(claim["lp"]["facets"]):
+            if "lp" in claim and wanted(claim["lp"]["facets"]):
                 return V.certificate["problem"], claim["lp"], method
     finally:
         engine_lp.DUAL_POLICY = old
+    return None
 
 
 def fuzz(seed, problems, mutations, dims=(2, 3), shapes=("bounded", "rays", "lines"), genuine_record=None,
